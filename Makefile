@@ -1,0 +1,115 @@
+# celadon — build, test, demo, bench.
+# `make` builds build/celadon. `make test` builds the test suite twice (optimised,
+# and under ASan+UBSan) and runs both. `make demo` reconstructs the bundled sample.
+
+CC      ?= cc
+CXX     ?= c++
+PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0
+DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
+            libgsl-dev libjansson-dev libxml2-dev libcriterion-dev
+
+# Flags depend on pkg-config, which may be missing before `make deps`.
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lembree3
+
+WARN     := -Wall -Wextra -Werror
+CFLAGS   ?= -O2 -g
+CXXFLAGS ?= -O2 -g
+ALL_CFLAGS   = -std=c11 -D_GNU_SOURCE $(WARN) -fopenmp -Iinclude -Isrc $(PKG_CFLAGS) $(CFLAGS)
+ALL_CXXFLAGS = -std=c++17 $(WARN) -Iinclude $(PKG_CFLAGS) $(CXXFLAGS)
+LDLIBS   = $(PKG_LIBS) -fopenmp -lstdc++ -lm
+SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+
+LIB_C    := $(shell find src -name '*.c' ! -path 'src/cli/*' | sort)
+LIB_CXX  := $(shell find src -name '*.cpp' | sort)
+CLI_C    := $(shell find src/cli -name '*.c' | sort)
+TEST_C   := $(shell find tests -name '*.c' | sort)
+BENCH_C  := $(wildcard bench/*.c)
+
+# $(call objs,VARIANT,SOURCES)
+objs = $(patsubst %.c,build/$(1)/%.o,$(filter %.c,$(2))) $(patsubst %.cpp,build/$(1)/%.o,$(filter %.cpp,$(2)))
+
+.PHONY: all deps test test-fast test-asan demo bench bench-sor clean check-deps
+all: check-deps-stamp
+	@$(MAKE) --no-print-directory build/celadon
+
+# ---------------------------------------------------------------- dependencies
+# Installs only what is missing; works as root or through sudo.
+deps:
+	@missing=""; for p in $(DEB_PKGS); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "celadon: installing Debian packages:$$missing"; \
+	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; \
+	fi
+
+# Every user-facing target runs this first: a no-op when everything is there.
+check-deps:
+	@$(MAKE) --no-print-directory deps
+
+# ---------------------------------------------------------------- objects
+build/opt/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -MMD -MP -c $< -o $@
+build/opt/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) $(ALL_CXXFLAGS) -MMD -MP -c $< -o $@
+build/asan/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(SAN) -O1 -MMD -MP -c $< -o $@
+build/asan/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) $(ALL_CXXFLAGS) $(SAN) -O1 -MMD -MP -c $< -o $@
+
+build/opt/libceladon.a: $(call objs,opt,$(LIB_C) $(LIB_CXX))
+	@rm -f $@; ar rcs $@ $^
+build/asan/libceladon.a: $(call objs,asan,$(LIB_C) $(LIB_CXX))
+	@rm -f $@; ar rcs $@ $^
+
+# ---------------------------------------------------------------- programs
+build/celadon: $(call objs,opt,$(CLI_C)) build/opt/libceladon.a
+	$(CC) -o $@ $(call objs,opt,$(CLI_C)) build/opt/libceladon.a $(LDLIBS)
+build/asan/celadon: $(call objs,asan,$(CLI_C)) build/asan/libceladon.a
+	$(CC) $(SAN) -o $@ $^ $(LDLIBS)
+
+build/opt/celadon-tests: $(call objs,opt,$(TEST_C)) build/opt/libceladon.a
+	$(CC) -o $@ $^ $(LDLIBS) -lcriterion
+build/asan/celadon-tests: $(call objs,asan,$(TEST_C)) build/asan/libceladon.a
+	$(CC) $(SAN) -o $@ $^ $(LDLIBS) -lcriterion
+
+build/bench/%: bench/%.c build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -O3 -o $@ $< build/opt/libceladon.a $(LDLIBS)
+
+# The stamp makes a fresh machine run `make deps` once before compiling anything.
+check-deps-stamp:
+	@$(MAKE) --no-print-directory deps
+.PHONY: check-deps-stamp
+
+# ---------------------------------------------------------------- tests
+# The end-to-end tests find the CLI through CELADON_BIN. The sanitizer run uses
+# the sanitized CLI so bad-input tests prove that nothing a user passes crashes it.
+ASAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:halt_on_error=1 \
+            LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
+            UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+test: check-deps-stamp
+	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon build/asan/celadon-tests build/asan/celadon
+	@echo "== optimised build"
+	CELADON_BIN=$(CURDIR)/build/celadon CELADON_BUILD=opt ./build/opt/celadon-tests --jobs 2
+	@echo "== ASan+UBSan build"
+	$(ASAN_ENV) CELADON_BIN=$(CURDIR)/build/asan/celadon CELADON_BUILD=asan ./build/asan/celadon-tests --jobs 2
+
+test-fast: check-deps-stamp
+	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon
+	CELADON_BIN=$(CURDIR)/build/celadon CELADON_BUILD=opt ./build/opt/celadon-tests --jobs 2 $(ARGS)
+
+test-asan: check-deps-stamp
+	@$(MAKE) --no-print-directory -j2 build/asan/celadon-tests build/asan/celadon
+	$(ASAN_ENV) CELADON_BIN=$(CURDIR)/build/asan/celadon CELADON_BUILD=asan ./build/asan/celadon-tests --jobs 2 $(ARGS)
+
+clean:
+	rm -rf build out
+
+-include $(shell find build -name '*.d' 2>/dev/null)

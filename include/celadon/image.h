@@ -1,0 +1,40 @@
+/* Image I/O: a thin C API over OpenImageIO (src/image/oiio_shim.cpp). */
+#ifndef CELADON_IMAGE_H
+#define CELADON_IMAGE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* Pixels as float in [0,1] (the file's encoded values: 8-bit sRGB stays sRGB),
+ * row-major, channels interleaved, origin top-left, EXIF orientation applied. */
+typedef struct {
+    int width, height, channels;
+    int bits;        /* bits per channel in the file (8, 16, 32, ...) */
+    int has_alpha;   /* the last channel is alpha */
+    float *data;
+} image_t;
+
+/* Reads any format OpenImageIO knows. Returns 0 on success; otherwise -1 with a
+ * one-line reason (without the file name) in err. */
+int image_read(const char *path, image_t *img, char *err, size_t errlen);
+
+/* Reads only the header: size and channels, cheap. */
+int image_probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen);
+
+/* Writes 8-bit pixels; the format follows the extension (png, jpg, tif, ...).
+ * Written to a temporary file in the same folder and renamed, so a failure
+ * leaves no partial file. */
+int image_write_u8(const char *path, int width, int height, int channels,
+                   const uint8_t *pixels, char *err, size_t errlen);
+
+/* Writes 16-bit pixels (PNG, TIFF), atomically like image_write_u8. */
+int image_write_u16(const char *path, int width, int height, int channels,
+                    const uint16_t *pixels, char *err, size_t errlen);
+
+image_t image_alloc(int width, int height, int channels);
+void image_free(image_t *img);
+
+/* Luminance-like gray (Rec.601 weights on the encoded values), alpha ignored. */
+float *image_to_gray(const image_t *img);
+
+#endif

@@ -1,0 +1,39 @@
+#include <stdio.h>
+#include <string.h>
+
+#include "cli/commands.h"
+
+#define CELADON_VERSION "0.1.0"
+
+static const cli_command commands[] = {
+    {NULL, NULL, NULL},
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f, "celadon " CELADON_VERSION " — one photograph of a vessel to an exact surface of revolution\n\n"
+               "usage: celadon COMMAND [ARGS]   (celadon COMMAND --help for details)\n\ncommands:\n");
+    for (const cli_command *c = commands; c->name; c++)
+        fprintf(f, "  %-12s %s\n", c->name, c->summary);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return 0;
+    }
+    if (!strcmp(argv[1], "--version")) {
+        printf("celadon %s\n", CELADON_VERSION);
+        return 0;
+    }
+    for (const cli_command *c = commands; c->name; c++)
+        if (!strcmp(argv[1], c->name))
+            return c->run(argc - 1, argv + 1);
+    fprintf(stderr, "celadon: unknown command '%s' (try celadon --help)\n", argv[1]);
+    return 2;
+}
