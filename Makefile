@@ -23,7 +23,7 @@ SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-fra
 LIB_C    := $(shell find src -name '*.c' ! -path 'src/cli/*' | sort)
 LIB_CXX  := $(shell find src -name '*.cpp' | sort)
 CLI_C    := $(shell find src/cli -name '*.c' | sort)
-TEST_C   := $(shell find tests -name '*.c' | sort)
+TEST_C   := $(shell find tests -name '*.c' ! -path 'tests/tools/*' | sort)
 BENCH_C  := $(wildcard bench/*.c)
 
 # $(call objs,VARIANT,SOURCES)
