@@ -1,6 +1,5 @@
 /* celadon mesh: a saved profile revolved into a triangle mesh file. */
 #include <errno.h>
-#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
