@@ -428,9 +428,9 @@ Test(scene_xml, unknown_things)
                NULL, 0);
     load_fails("m.xml", HEAD "  <bsdf type=\"diffuse\">\n    <texture type=\"checkerboard\"/>\n  </bsdf>\n</scene>\n",
                "m.xml", 4, "needs a name", NULL, 0);
-    load_fails("n.xml", HEAD "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n"
-               "    <string name=\"focal_length\" value=\"50mm\"/></sensor>\n</scene>\n", "n.xml", 4, "not both",
-               NULL, 0);
+    load_fails("n.xml", HEAD "  <emitter type=\"point\"><point name=\"position\" value=\"1 2 3\"/>\n"
+               "    <transform name=\"to_world\"/></emitter>\n</scene>\n", "n.xml", 4,
+               "takes 'position' or 'to_world', not both", NULL, 0);
 }
 
 Test(scene_xml, bad_numbers)

@@ -24,12 +24,9 @@ static const schema_child scene_children[] = {
 /* ----------------------------------------------------- sensor, film, ... */
 static const schema_param perspective_params[] = {
     {"fov", PT_FLOAT, 0, NULL},
-    {"focal_length", PT_STRING, 0, NULL},
     {"fov_axis", PT_STRING, 0, "x|y|diagonal|smaller|larger"},
     {"near_clip", PT_FLOAT, 0, NULL},
     {"far_clip", PT_FLOAT, 0, NULL},
-    {"principal_point_offset_x", PT_FLOAT, 0, NULL},
-    {"principal_point_offset_y", PT_FLOAT, 0, NULL},
     {"to_world", PT_TRANSFORM, 0, NULL},
     END};
 static const schema_child sensor_children[] = {{SCENE_FILM, 0, 1}, {SCENE_SAMPLER, 0, 1}, {SCENE_SCENE, 0, 0}};
@@ -172,7 +169,7 @@ static const schema_param directional_params[] = {
 
 static const schema_plugin plugins[] = {
     {SCENE_SCENE, "scene", scene_params, scene_children, {NULL, NULL}},
-    {SCENE_SENSOR, "perspective", perspective_params, sensor_children, {"fov", "focal_length"}},
+    {SCENE_SENSOR, "perspective", perspective_params, sensor_children, {NULL, NULL}},
     {SCENE_FILM, "hdrfilm", hdrfilm_params, film_children, {NULL, NULL}},
     {SCENE_RFILTER, "box", no_params, no_children, {NULL, NULL}},
     {SCENE_RFILTER, "gaussian", gaussian_params, no_children, {NULL, NULL}},
