@@ -210,6 +210,11 @@ const schema_plugin *schema_find(scene_class cls, const char *type)
     return NULL;
 }
 
+const schema_plugin *schema_plugin_at(int i)
+{
+    return i >= 0 && i < (int)(sizeof plugins / sizeof plugins[0]) ? &plugins[i] : NULL;
+}
+
 const schema_param *schema_param_find(const schema_plugin *p, const char *name)
 {
     for (const schema_param *q = p->params; q->name; q++)

@@ -49,6 +49,8 @@ typedef struct {
 /* The plugin entry, or NULL when the subset has no such plugin. The scene
  * root is looked up as (SCENE_SCENE, "scene"). */
 const schema_plugin *schema_find(scene_class cls, const char *type);
+/* The i-th plugin of the table, or NULL past its end. */
+const schema_plugin *schema_plugin_at(int i);
 const schema_param *schema_param_find(const schema_plugin *p, const char *name);
 const schema_child *schema_child_find(const schema_plugin *p, scene_class cls);
 /* Whether word is one of the '|'-separated choices. */
