@@ -132,6 +132,7 @@ Test(scene_xml, every_property_type_round_trips)
     cr_assert_eq(scene_obj_float(b, "alpha_u", 0.1), 0.25);
     cr_assert_eq(scene_obj_float(b, "alpha_v", 0.1), 0.5);
     cr_assert_eq(scene_obj_float(b, "alpha", 0.1), 0.1, "absent: default");
+    cr_assert(scene_obj_has(b, "alpha_u") && !scene_obj_has(b, "alpha"));
     scene_rgb eta = scene_obj_rgb(b, "eta", (scene_rgb){0, 0, 0});
     cr_assert(eta.r == 0.2 && eta.g == 0.9 && eta.b == 1.1);
     scene_rgb k = scene_obj_rgb(b, "k", (scene_rgb){0, 0, 0});

@@ -1,4 +1,5 @@
 /* Float32 OpenEXR output through the OpenEXR 3 core C API (openexr.h). */
+#include <errno.h>
 #include <openexr.h>
 #include <stdio.h>
 #include <string.h>
@@ -88,9 +89,10 @@ int exr_write_float(const char *path, int width, int height, int nch, const char
     }
     if (rv == EXR_ERR_SUCCESS && rename(tmp, path) == 0)
         return 0;
+    int rename_errno = errno;
     remove(tmp);
     if (rv == EXR_ERR_SUCCESS)
-        snprintf(err, errlen, "%s: cannot write: %s", path, "rename failed");
+        snprintf(err, errlen, "%s: cannot rename into place: %s", path, strerror(rename_errno));
     else
         snprintf(err, errlen, "%s: cannot write EXR: %s", path,
                  exr_message[0] ? exr_message : exr_get_default_error_message(rv));
