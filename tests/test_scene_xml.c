@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "celadon/scene_xml.h"
@@ -453,6 +454,8 @@ Test(scene_xml, bad_numbers)
                "bad number 'ninety'", NULL, 0);
     load_fails("h.xml", HEAD "  <shape type=\"cube\"><transform name=\"to_world\">\n"
                "    <scale x=\"0\"/></transform></shape>\n</scene>\n", "h.xml", 4, "nonzero", NULL, 0);
+    load_fails("h2.xml", HEAD "  <shape type=\"cube\"><transform name=\"to_world\">\n"
+               "    <scale value=\"2\" y=\"3\"/></transform></shape>\n</scene>\n", "h2.xml", 4, "not both", NULL, 0);
     load_fails("i.xml", HEAD "  <shape type=\"cube\"><transform name=\"to_world\">\n"
                "    <matrix value=\"1 2 3\"/></transform></shape>\n</scene>\n", "i.xml", 4, "16 or 9 numbers", NULL, 0);
     load_fails("j.xml", HEAD "  <sensor type=\"perspective\"><transform name=\"to_world\">\n"
@@ -474,6 +477,13 @@ Test(scene_xml, missing_files_refs_and_cycles)
                "e.xml", 3, "reference cycle", NULL, 0);
     load_fails("f.xml", HEAD "  <include filename=\"missing.xml\"/>\n</scene>\n", "f.xml", 3,
                "cannot read included file 'missing.xml'", NULL, 0);
+    char err[512], sub[128];
+    snprintf(sub, sizeof sub, "%s/folder.xml", dir);
+    cr_assert_eq(mkdir(sub, 0755), 0);
+    cr_assert_null(scene_xml_load(sub, NULL, 0, err, sizeof err));
+    cr_assert_not_null(strstr(err, "Is a directory"), "%s", err);
+    cr_assert_null(scene_xml_load("/nonexistent/scene.xml", NULL, 0, err, sizeof err));
+    cr_assert_str_eq(err, "/nonexistent/scene.xml: cannot read scene: No such file or directory");
     /* x.xml includes y.xml which includes x.xml again: the error is in y.xml. */
     put("y.xml", HEAD "\n  <include filename=\"x.xml\"/>\n</scene>\n");
     load_fails("x.xml", HEAD "  <include filename=\"y.xml\"/>\n</scene>\n", "y.xml", 4,

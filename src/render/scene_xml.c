@@ -282,6 +282,11 @@ static int parse_document(scene_ctx *c, const char *xml, size_t len, const char 
 
 static int read_whole_file(const char *path, char **buf, size_t *len)
 {
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+        errno = EISDIR;
+        return -1;
+    }
     FILE *f = fopen(path, "rb");
     if (!f)
         return -1;

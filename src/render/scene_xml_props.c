@@ -250,6 +250,9 @@ static int parse_transform_op(scene_ctx *c, const xmlNode *n, transform4 *op)
         double u;
         int uniform = value && scene_parse_list(value, &u, 1) == 1;
         free(value);
+        if (uniform && (xmlHasProp(n, (const xmlChar *)"x") || xmlHasProp(n, (const xmlChar *)"y") ||
+                        xmlHasProp(n, (const xmlChar *)"z")))
+            return scene_fail(c, line, "<scale> takes either 'value' or x/y/z attributes, not both");
         if (uniform)
             s = v3(u, u, u);
         else if (parse_xyz(c, n, 1.0, &s) != 0)
