@@ -4,8 +4,9 @@
  * Reconstruction is a box of one pixel: a sample counts, with its weight,
  * only in the pixel it falls in, so disjoint pixel sets can be rendered by
  * different threads without locks (or threads can render into films of
- * their own and film_merge them). A film can be written at any time, e.g.
- * after Ctrl-C stopped a render: pixels that have no samples yet are black. */
+ * their own and film_merge them). A film can be written whenever no thread
+ * is adding to it, e.g. after Ctrl-C stopped a render between passes:
+ * pixels that have no samples yet are written black. */
 #ifndef CELADON_FILM_H
 #define CELADON_FILM_H
 
