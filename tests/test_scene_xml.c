@@ -525,3 +525,33 @@ Test(scene_xml, bundled_studio_scene)
     cr_assert_eq(scene_obj_rgb(scene_obj_child(shapes[2], SCENE_EMITTER), "radiance", (scene_rgb){0, 0, 0}).g, 6);
     scene_desc_free(d);
 }
+
+/* The bundled Cornell box: every wall faces into the room, and the light
+ * faces down, as computed from the transforms the file gives. */
+Test(scene_xml, bundled_cbox_walls_face_inward)
+{
+    char err[1024];
+    scene_desc *d = scene_xml_load("tests/data/scenes/cbox.xml", NULL, 0, err, sizeof err);
+    cr_assert_not_null(d, "%s", err);
+    scene_obj *root = scene_desc_root(d), *shapes[16];
+    int n = scene_obj_children(root, SCENE_SHAPE, shapes, 16);
+    cr_assert_eq(n, 8);
+    int walls = 0;
+    for (int i = 0; i < n; i++) {
+        if (strcmp(shapes[i]->type, "rectangle") != 0)
+            continue;
+        transform4 m = scene_obj_transform(shapes[i], "to_world");
+        vec3 c = transform_point(&m, v3(0, 0, 0)), nn = v3_norm(transform_normal(&m, v3(0, 0, 1)));
+        /* The centre lies on the box surface (one coordinate at +-1, or the
+         * light just below the ceiling) and the normal points to the origin. */
+        cr_assert_lt(v3_dot(nn, c), -0.98, "%s faces away from the room", shapes[i]->id);
+        cr_assert_float_eq(v3_dot(nn, v3_neg(v3_norm(c))), 1.0, 1e-12, "%s", shapes[i]->id);
+        walls++;
+    }
+    cr_assert_eq(walls, 6);
+    scene_obj *sensor = scene_obj_child(root, SCENE_SENSOR);
+    cr_assert_str_eq(scene_obj_child(root, SCENE_INTEGRATOR)->type, "path");
+    cr_assert_eq(scene_obj_bool(scene_obj_child(sensor, SCENE_FILM), "sample_border", false), true);
+    cr_assert_str_eq(scene_obj_child(shapes[7], SCENE_BSDF)->type, "dielectric");
+    scene_desc_free(d);
+}

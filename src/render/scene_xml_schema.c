@@ -27,6 +27,7 @@ static const schema_param perspective_params[] = {
     {"fov_axis", PT_STRING, 0, "x|y|diagonal|smaller|larger"},
     {"near_clip", PT_FLOAT, 0, NULL},
     {"far_clip", PT_FLOAT, 0, NULL},
+    {"focus_distance", PT_FLOAT, 0, NULL}, /* Mitsuba accepts it; a pinhole has no focus */
     {"to_world", PT_TRANSFORM, 0, NULL},
     END};
 static const schema_child sensor_children[] = {{SCENE_FILM, 0, 1}, {SCENE_SAMPLER, 0, 1}, {SCENE_SCENE, 0, 0}};
@@ -37,6 +38,7 @@ static const schema_param hdrfilm_params[] = {
     {"file_format", PT_STRING, 0, "openexr|exr"},
     {"pixel_format", PT_STRING, 0, "luminance|luminance_alpha|rgb|rgba|xyz|xyza"},
     {"component_format", PT_STRING, 0, "float16|float32|uint32"},
+    {"sample_border", PT_BOOL, 0, NULL}, /* no effect with a one-pixel box filter */
     END};
 static const schema_child film_children[] = {{SCENE_RFILTER, 0, 1}, {SCENE_SCENE, 0, 0}};
 
