@@ -8,7 +8,9 @@
  * 'blendbsdf' for <bsdf>". Once loaded, a consumer reads properties through
  * the typed getters below, which mark them consumed; the validator already
  * guaranteed each property's name and type against the plugin table, so a
- * getter only falls back to its default when the property is absent. */
+ * getter falls back to its default only when the property is absent or has
+ * another of its allowed types (int_ior as a float or an IOR name, a color
+ * or a texture): check scene_obj_prop(o, name)->type for those. */
 #ifndef CELADON_SCENE_XML_H
 #define CELADON_SCENE_XML_H
 
