@@ -8,10 +8,12 @@
  * estimate 4.9 r/N^2.
  *
  * Usage: bench_sor              the whole table; the last line is the ratio
- *        bench_sor --analytic-only NAME SECONDS
- *                               only sor_intersect on NAME's incoherent rays,
- *                               one thread, for a profiler */
+ *        bench_sor --only METHOD PROFILE SECONDS
+ *                               one method (direct, embree-user, naive, mesh:N)
+ *                               on PROFILE's incoherent rays, one thread, for a
+ *                               profiler */
 #include <omp.h>
+#include <pmmintrin.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,7 +39,7 @@ typedef enum { M_DIRECT, M_EMBREE_USER, M_MESH, M_NAIVE } method_kind;
 typedef struct {
     method_kind kind;
     const sor_t *sor;
-    const accel_t *acc;
+    accel_t *acc;
 } method;
 
 static int trace(const method *m, const ray3 *r, double *t)
@@ -217,7 +219,9 @@ static sor_t *make_sor(const bspline_t *c)
     return s;
 }
 
-static int analytic_only(const char *name, double seconds)
+/* One method on one profile's incoherent rays, one thread, for a profiler:
+ * direct, embree-user, naive, or mesh:N (N angular segments). */
+static int only(const char *what, const char *name, double seconds)
 {
     bspline_t c;
     sor_test_profile(find_profile(name), &c);
@@ -227,6 +231,21 @@ static int analytic_only(const char *name, double seconds)
     ray3 *rays = malloc(sizeof *rays * N_INCOHERENT);
     incoherent_rays(lo, hi, 1, rays, N_INCOHERENT);
     method m = {M_DIRECT, s, NULL};
+    double *rings = NULL, tol, build;
+    int n_rings, segments = 0;
+    if (strcmp(what, "naive") == 0) {
+        m.kind = M_NAIVE;
+    } else if (strcmp(what, "embree-user") == 0) {
+        accel_sor_mode analytic = {0};
+        m = (method){M_EMBREE_USER, NULL, scene_of(&c, &analytic, &build)};
+    } else if (sscanf(what, "mesh:%d", &segments) == 1) {
+        rings = rings_near(&c, TARGET_RINGS, &n_rings, &tol);
+        accel_sor_mode mode = {.segments = segments, .u_rings = rings, .n_rings = n_rings};
+        m = (method){M_MESH, NULL, scene_of(&c, &mode, &build)};
+    } else if (strcmp(what, "direct") != 0) {
+        fprintf(stderr, "bench_sor: unknown method '%s' (direct, embree-user, naive, mesh:N)\n", what);
+        return 2;
+    }
     long traced = 0, hits = 0;
     double t0 = now_seconds();
     while (now_seconds() - t0 < seconds) {
@@ -236,19 +255,34 @@ static int analytic_only(const char *name, double seconds)
         }
         traced += N_INCOHERENT;
     }
-    printf("%s: %ld rays, %ld hits, %.0f rays/s\n", name, traced, hits, traced / (now_seconds() - t0));
+    printf("%s %s: %ld rays, %ld hits, %.0f rays/s\n", what, name, traced, hits, traced / (now_seconds() - t0));
+    accel_destroy(m.acc);
+    free(rings);
     free(rays);
     sor_destroy(s);
     bspline_free(&c);
     return 0;
 }
 
+/* Embree asks every tracing thread to flush denormals to zero (it warns of a
+ * severe slowdown otherwise); set on the master and on OpenMP's pool, which
+ * persists, so every method runs under the same mode. */
+static void denormals_to_zero(void)
+{
+#pragma omp parallel
+    {
+        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+    }
+}
+
 int main(int argc, char **argv)
 {
-    if (argc == 4 && strcmp(argv[1], "--analytic-only") == 0)
-        return analytic_only(argv[2], atof(argv[3]));
+    denormals_to_zero();
+    if (argc == 5 && strcmp(argv[1], "--only") == 0)
+        return only(argv[2], argv[3], atof(argv[4]));
     if (argc != 1) {
-        fprintf(stderr, "usage: bench_sor [--analytic-only PROFILE SECONDS]\n");
+        fprintf(stderr, "usage: bench_sor [--only METHOD PROFILE SECONDS]\n");
         return 2;
     }
     int cores = omp_get_max_threads();

@@ -2,6 +2,9 @@
  * triangle meshes and surfaces of revolution (SORs), each placed by an affine
  * object-to-world transform.
  *
+ * Placement is a transform4 (celadon/transform.h: the matrix with its inverse),
+ * as scenes carry it; NULL means the identity.
+ *
  * An SOR enters the scene in one of two forms behind the same call:
  *  - analytic: an Embree user geometry with one primitive per monotone interval
  *    of the profile plus its caps (sor_prim_*), so Embree's BVH culls intervals
@@ -23,26 +26,12 @@
 #include "celadon/bspline.h"
 #include "celadon/mesh.h"
 #include "celadon/sor.h"
+#include "celadon/transform.h"
 #include "celadon/vecmath.h"
 
 typedef struct accel accel_t;
 
 #define ACCEL_INVALID_ID 0xffffffffu
-
-/* Object-to-world affine map x' = A x + b, row-major: m[i] = (A[i][0..2], b[i]). */
-typedef struct {
-    double m[3][4];
-} accel_xform;
-
-accel_xform accel_xform_identity(void);
-accel_xform accel_xform_translate(vec3 t);
-accel_xform accel_xform_scale(vec3 s);
-/* Rotation by angle (radians, right-handed) about a unit axis. */
-accel_xform accel_xform_rotate(vec3 axis, double angle);
-/* a after b: x -> a(b(x)). */
-accel_xform accel_xform_compose(const accel_xform *a, const accel_xform *b);
-vec3 accel_xform_point(const accel_xform *x, vec3 p);
-vec3 accel_xform_vector(const accel_xform *x, vec3 v);
 
 typedef enum { ACCEL_KIND_MESH = 0, ACCEL_KIND_SOR_ANALYTIC = 1, ACCEL_KIND_SOR_MESH = 2 } accel_kind;
 
@@ -78,14 +67,14 @@ typedef enum { ACCEL_BUILD_FAST = 0, ACCEL_BUILD_BEST = 1 } accel_build;
 accel_t *accel_create(accel_build build, char *err, size_t errlen);
 void accel_destroy(accel_t *acc);
 
-/* Adds a copy of the mesh (pos, tri required; nrm, uv optional), placed by xf.
+/* Adds a copy of the mesh (pos, tri required; nrm, uv optional), placed by to_world.
  * Returns the geometry id, or ACCEL_INVALID_ID with a reason in err. */
-unsigned accel_add_mesh(accel_t *acc, const mesh_t *mesh, const accel_xform *xf, char *err, size_t errlen);
+unsigned accel_add_mesh(accel_t *acc, const mesh_t *mesh, const transform4 *to_world, char *err, size_t errlen);
 
-/* Adds the SOR of sor_create(profile, height, caps) placed by xf, in the form
+/* Adds the SOR of sor_create(profile, height, caps) placed by to_world, in the form
  * mode asks for. Returns the geometry id, or ACCEL_INVALID_ID with a reason. */
 unsigned accel_add_sor(accel_t *acc, const bspline_t *profile, double height, unsigned caps,
-                       const accel_xform *xf, const accel_sor_mode *mode, char *err, size_t errlen);
+                       const transform4 *to_world, const accel_sor_mode *mode, char *err, size_t errlen);
 
 /* Builds the BVH; call after the last add and before tracing. Returns 0 or -1. */
 int accel_commit(accel_t *acc, char *err, size_t errlen);

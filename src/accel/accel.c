@@ -61,8 +61,32 @@ void accel_destroy(accel_t *acc)
     free(acc);
 }
 
-/* A record with its transforms; NULL with a reason when xf is singular. */
-static accel_geom *geom_new(accel_kind kind, const accel_xform *xf, char *err, size_t errlen)
+/* Finite, affine, and its carried inverse really inverts it (a singular
+ * scale, say, leaves infinities there). */
+static int transform_valid(const transform4 *t)
+{
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            if (!isfinite(t->m[i][j]) || !isfinite(t->inv[i][j]))
+                return 0;
+    if (t->m[3][0] != 0 || t->m[3][1] != 0 || t->m[3][2] != 0 || t->m[3][3] != 1)
+        return 0;
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            double p = 0, scale = 0;
+            for (int k = 0; k < 3; k++) {
+                p += t->m[i][k] * t->inv[k][j];
+                scale += fabs(t->m[i][k] * t->inv[k][j]);
+            }
+            if (!(fabs(p - (i == j)) <= 1e-9 * scale))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* A record with its transforms; NULL with a reason when to_world is unusable. */
+static accel_geom *geom_new(accel_kind kind, const transform4 *to_world, char *err, size_t errlen)
 {
     accel_geom *g = calloc(1, sizeof *g);
     if (!g) {
@@ -70,12 +94,13 @@ static accel_geom *geom_new(accel_kind kind, const accel_xform *xf, char *err, s
         return NULL;
     }
     g->kind = kind;
-    g->to_world = xf ? *xf : accel_xform_identity();
-    if (xform_invert(&g->to_world, &g->to_object) != 0) {
+    g->to_world = to_world ? *to_world : transform_identity();
+    if (!transform_valid(&g->to_world)) {
         snprintf(err, errlen, "transform is singular or not finite");
         free(g);
         return NULL;
     }
+    g->to_object = transform_inverse(&g->to_world);
     return g;
 }
 
@@ -107,7 +132,7 @@ static unsigned attach(accel_t *acc, RTCGeometry geom, accel_geom *g, char *err,
     return id;
 }
 
-static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, const accel_xform *xf, char *err,
+static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, const transform4 *to_world, char *err,
                               size_t errlen)
 {
     if (!m || m->n_verts < 3 || m->n_tris < 1 || !m->pos || !m->tri) {
@@ -120,7 +145,7 @@ static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, co
             return ACCEL_INVALID_ID;
         }
     }
-    accel_geom *g = geom_new(kind, xf, err, errlen);
+    accel_geom *g = geom_new(kind, to_world, err, errlen);
     if (!g)
         return ACCEL_INVALID_ID;
     g->n_verts = m->n_verts;
@@ -147,7 +172,7 @@ static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, co
         return ACCEL_INVALID_ID;
     }
     for (int i = 0; i < m->n_verts; i++) {
-        vec3 p = accel_xform_point(&g->to_world, v3(m->pos[3 * i], m->pos[3 * i + 1], m->pos[3 * i + 2]));
+        vec3 p = transform_point(&g->to_world, v3(m->pos[3 * i], m->pos[3 * i + 1], m->pos[3 * i + 2]));
         if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z)) {
             snprintf(err, errlen, "mesh vertex %d is not finite", i);
             rtcReleaseGeometry(geom);
@@ -168,15 +193,15 @@ static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, co
     return attach(acc, geom, g, err, errlen);
 }
 
-unsigned accel_add_mesh(accel_t *acc, const mesh_t *mesh, const accel_xform *xf, char *err, size_t errlen)
+unsigned accel_add_mesh(accel_t *acc, const mesh_t *mesh, const transform4 *to_world, char *err, size_t errlen)
 {
-    return add_triangles(acc, mesh, ACCEL_KIND_MESH, xf, err, errlen);
+    return add_triangles(acc, mesh, ACCEL_KIND_MESH, to_world, err, errlen);
 }
 
 static unsigned add_sor_analytic(accel_t *acc, const bspline_t *profile, double height, unsigned caps,
-                                 const accel_xform *xf, char *err, size_t errlen)
+                                 const transform4 *to_world, char *err, size_t errlen)
 {
-    accel_geom *g = geom_new(ACCEL_KIND_SOR_ANALYTIC, xf, err, errlen);
+    accel_geom *g = geom_new(ACCEL_KIND_SOR_ANALYTIC, to_world, err, errlen);
     if (!g)
         return ACCEL_INVALID_ID;
     g->sor = sor_create(profile, height, caps, err, errlen);
@@ -194,7 +219,7 @@ static unsigned add_sor_analytic(accel_t *acc, const bspline_t *profile, double 
 }
 
 static unsigned add_sor_mesh(accel_t *acc, const bspline_t *profile, double height, unsigned caps,
-                             const accel_xform *xf, const accel_sor_mode *mode, char *err, size_t errlen)
+                             const transform4 *to_world, const accel_sor_mode *mode, char *err, size_t errlen)
 {
     /* sor_create validates the profile, height and caps the same way for both forms. */
     sor_t *check = sor_create(profile, height, caps, err, errlen);
@@ -219,21 +244,21 @@ static unsigned add_sor_mesh(accel_t *acc, const bspline_t *profile, double heig
         snprintf(err, errlen, "cannot revolve the profile (%d rings, %d segments)", n, mode->segments);
         return ACCEL_INVALID_ID;
     }
-    unsigned id = add_triangles(acc, &m, ACCEL_KIND_SOR_MESH, xf, err, errlen);
+    unsigned id = add_triangles(acc, &m, ACCEL_KIND_SOR_MESH, to_world, err, errlen);
     mesh_free(&m);
     return id;
 }
 
-unsigned accel_add_sor(accel_t *acc, const bspline_t *profile, double height, unsigned caps, const accel_xform *xf,
+unsigned accel_add_sor(accel_t *acc, const bspline_t *profile, double height, unsigned caps, const transform4 *to_world,
                        const accel_sor_mode *mode, char *err, size_t errlen)
 {
     if (!mode || mode->segments == 0)
-        return add_sor_analytic(acc, profile, height, caps, xf, err, errlen);
+        return add_sor_analytic(acc, profile, height, caps, to_world, err, errlen);
     if (mode->segments < 3) {
         snprintf(err, errlen, "a meshed SOR needs at least 3 angular segments, got %d", mode->segments);
         return ACCEL_INVALID_ID;
     }
-    return add_sor_mesh(acc, profile, height, caps, xf, mode, err, errlen);
+    return add_sor_mesh(acc, profile, height, caps, to_world, mode, err, errlen);
 }
 
 int accel_commit(accel_t *acc, char *err, size_t errlen)
@@ -300,21 +325,21 @@ static void triangle_hit(const accel_geom *g, const struct RTCRayHit *rh, const 
 {
     const uint32_t *t = g->tri + 3 * (size_t)rh->hit.primID;
     vec3 a = vertex(g->pos, t[0]), b = vertex(g->pos, t[1]), c = vertex(g->pos, t[2]);
-    ray3 ro = {accel_xform_point(&g->to_object, ray->o), accel_xform_vector(&g->to_object, ray->d)};
+    ray3 ro = {transform_point(&g->to_object, ray->o), transform_vector(&g->to_object, ray->d)};
     double tt = rh->ray.tfar, bu = rh->hit.u, bv = rh->hit.v;
     triangle_refine(a, b, c, &ro, &tt, &bu, &bv);
     double bw = 1.0 - bu - bv;
     hit->t = tt;
-    hit->p = accel_xform_point(&g->to_world, v3_add(v3_add(v3_scale(a, bw), v3_scale(b, bu)), v3_scale(c, bv)));
+    hit->p = transform_point(&g->to_world, v3_add(v3_add(v3_scale(a, bw), v3_scale(b, bu)), v3_scale(c, bv)));
     /* The counter-clockwise side in object space, carried by A^-T (which keeps
      * it on the same side of the surface even when the transform mirrors). */
-    hit->ng = xform_normal(&g->to_object, v3_cross(v3_sub(b, a), v3_sub(c, a)));
+    hit->ng = world_normal(g, v3_cross(v3_sub(b, a), v3_sub(c, a)));
     hit->ns = hit->ng;
     if (g->nrm) {
         vec3 n = v3_add(v3_add(v3_scale(vertex(g->nrm, t[0]), bw), v3_scale(vertex(g->nrm, t[1]), bu)),
                         v3_scale(vertex(g->nrm, t[2]), bv));
         if (v3_len(n) > 0)
-            hit->ns = xform_normal(&g->to_object, n);
+            hit->ns = world_normal(g, n);
     }
     if (g->uv) {
         const float *q = g->uv;
@@ -329,9 +354,9 @@ static void triangle_hit(const accel_geom *g, const struct RTCRayHit *rh, const 
 static void analytic_hit(const accel_geom *g, const sor_hit *h, accel_hit *hit)
 {
     hit->t = h->t;
-    hit->p = accel_xform_point(&g->to_world, h->p);
-    hit->ng = xform_normal(&g->to_object, h->ng);
-    hit->ns = xform_normal(&g->to_object, h->shading.n);
+    hit->p = transform_point(&g->to_world, h->p);
+    hit->ng = world_normal(g, h->ng);
+    hit->ns = world_normal(g, h->shading.n);
     hit->uv = h->uv;
     hit->part = h->part;
 }

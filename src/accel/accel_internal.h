@@ -11,7 +11,7 @@
 
 typedef struct {
     accel_kind kind;
-    accel_xform to_world, to_object;
+    transform4 to_world, to_object; /* each carries the other as its inverse */
     /* Triangles (ACCEL_KIND_MESH, ACCEL_KIND_SOR_MESH): Embree's buffers hold the
      * world-space vertices it traverses (float) and the indices; our copy keeps
      * the mesh as given, in object space, where hits are refined in double. */
@@ -21,6 +21,9 @@ typedef struct {
     /* Analytic SOR (ACCEL_KIND_SOR_ANALYTIC). */
     sor_t *sor;
 } accel_geom;
+
+/* A unit normal mapped to world space (by the inverse transpose). */
+static inline vec3 world_normal(const accel_geom *g, vec3 n) { return v3_norm(transform_normal(&g->to_world, n)); }
 
 struct accel {
     RTCDevice device;
@@ -42,8 +45,6 @@ typedef struct {
     sor_hit sor_hit;    /* object space */
 } accel_context;
 
-int xform_invert(const accel_xform *x, accel_xform *inv);
-vec3 xform_normal(const accel_xform *inv, vec3 n);
 
 /* Creates the Embree user geometry of an analytic SOR whose record is g
  * (g->sor, transforms set). Returns the uncommitted geometry or NULL. */

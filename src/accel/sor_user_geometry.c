@@ -36,7 +36,7 @@ static void sor_prim_bounds_cb(const struct RTCBoundsFunctionArguments *args)
     vec3 wlo = v3(INFINITY, INFINITY, INFINITY), whi = v3(-INFINITY, -INFINITY, -INFINITY);
     for (int k = 0; k < 8; k++) {
         vec3 c = v3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
-        vec3 w = accel_xform_point(&g->to_world, c);
+        vec3 w = transform_point(&g->to_world, c);
         wlo = v3(fmin(wlo.x, w.x), fmin(wlo.y, w.y), fmin(wlo.z, w.z));
         whi = v3(fmax(whi.x, w.x), fmax(whi.y, w.y), fmax(whi.z, w.z));
     }
@@ -55,8 +55,8 @@ static void sor_prim_bounds_cb(const struct RTCBoundsFunctionArguments *args)
 static const ray3 *object_ray(accel_context *ctx, const accel_geom *g, unsigned geom_id)
 {
     if (ctx->obj_geom != geom_id) {
-        ctx->obj_ray.o = accel_xform_point(&g->to_object, ctx->ray.o);
-        ctx->obj_ray.d = accel_xform_vector(&g->to_object, ctx->ray.d);
+        ctx->obj_ray.o = transform_point(&g->to_object, ctx->ray.o);
+        ctx->obj_ray.d = transform_vector(&g->to_object, ctx->ray.d);
         ctx->obj_geom = geom_id;
     }
     return &ctx->obj_ray;
