@@ -125,6 +125,8 @@ static unsigned attach(accel_t *acc, RTCGeometry geom, accel_geom *g, char *err,
     /* Ids are handed out in order from 0 while nothing is detached. */
     if (id != (unsigned)acc->n_geoms) {
         snprintf(err, errlen, "Embree returned geometry id %u, expected %d", id, acc->n_geoms);
+        if (id != RTC_INVALID_GEOMETRY_ID)
+            rtcDetachGeometry(acc->scene, id);
         geom_free(g);
         return ACCEL_INVALID_ID;
     }

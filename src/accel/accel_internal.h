@@ -5,6 +5,7 @@
 #define CELADON_ACCEL_INTERNAL_H
 
 #include <embree3/rtcore.h>
+#include <math.h>
 #include <stdint.h>
 
 #include "celadon/accel.h"
@@ -50,8 +51,18 @@ typedef struct {
  * (g->sor, transforms set). Returns the uncommitted geometry or NULL. */
 RTCGeometry sor_user_geometry_new(RTCDevice device, accel_geom *g);
 
-/* Smallest float >= x (resp. <= x): Embree's float ray interval must contain the double one. */
-float float_up(double x);
-float float_down(double x);
+/* The float nearest x on the far (resp. near) side: Embree's float ray
+ * interval must contain the double one. */
+static inline float float_up(double x)
+{
+    float f = (float)x;
+    return (double)f < x ? nextafterf(f, INFINITY) : f;
+}
+
+static inline float float_down(double x)
+{
+    float f = (float)x;
+    return (double)f > x ? nextafterf(f, -INFINITY) : f;
+}
 
 #endif

@@ -10,21 +10,7 @@
  * scene also saves the second BVH level per SOR. The price is that the BVH
  * bounds the world box of each primitive's transformed object box, slightly
  * looser than an instance's object-space boxes under rotation. */
-#include <float.h>
-
 #include "accel/accel_internal.h"
-
-float float_up(double x)
-{
-    float f = (float)x;
-    return (double)f < x ? nextafterf(f, INFINITY) : f;
-}
-
-float float_down(double x)
-{
-    float f = (float)x;
-    return (double)f > x ? nextafterf(f, -INFINITY) : f;
-}
 
 /* World box of the transformed object box, widened so Embree's float ray
  * (rounded from the double one) cannot miss a box the double ray enters. */
