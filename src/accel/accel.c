@@ -42,9 +42,7 @@ static void geom_free(accel_geom *g)
 {
     if (!g)
         return;
-    free(g->pos);
-    free(g->nrm);
-    free(g->uv);
+    free(g->vtx);
     sor_destroy(g->sor);
     free(g);
 }
@@ -153,8 +151,7 @@ static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, co
     g->n_verts = m->n_verts;
     g->n_tris = m->n_tris;
     size_t nv = (size_t)m->n_verts;
-    if (!(g->pos = malloc(3 * sizeof(float) * nv)) || (m->nrm && !(g->nrm = malloc(3 * sizeof(float) * nv))) ||
-        (m->uv && !(g->uv = malloc(2 * sizeof(float) * nv)))) {
+    if (!(g->vtx = calloc(nv, sizeof *g->vtx))) {
         snprintf(err, errlen, "out of memory");
         geom_free(g);
         return ACCEL_INVALID_ID;
@@ -185,11 +182,15 @@ static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, co
         pos[3 * i + 1] = (float)p.y;
         pos[3 * i + 2] = (float)p.z;
     }
-    memcpy(g->pos, m->pos, 3 * sizeof(float) * nv);
-    if (g->nrm)
-        memcpy(g->nrm, m->nrm, 3 * sizeof(float) * nv);
-    if (g->uv)
-        memcpy(g->uv, m->uv, 2 * sizeof(float) * nv);
+    g->has_nrm = m->nrm != NULL;
+    g->has_uv = m->uv != NULL;
+    for (size_t i = 0; i < nv; i++) {
+        memcpy(g->vtx[i].p, m->pos + 3 * i, sizeof g->vtx[i].p);
+        if (m->nrm)
+            memcpy(g->vtx[i].n, m->nrm + 3 * i, sizeof g->vtx[i].n);
+        if (m->uv)
+            memcpy(g->vtx[i].uv, m->uv + 2 * i, sizeof g->vtx[i].uv);
+    }
     memcpy(tri, m->tri, 3 * sizeof(uint32_t) * (size_t)m->n_tris);
     g->tri = tri;
     return attach(acc, geom, g, err, errlen);
@@ -318,7 +319,7 @@ static int triangle_refine(vec3 a, vec3 b, vec3 c, const ray3 *ray, double *t, d
     return 1;
 }
 
-static vec3 vertex(const float *a, uint32_t i) { return v3(a[3 * i], a[3 * i + 1], a[3 * i + 2]); }
+static vec3 f3(const float *a) { return v3(a[0], a[1], a[2]); }
 
 /* Embree found the triangle in world space (float); the hit itself is
  * recomputed in object space, on the vertices as given, from the double ray
@@ -326,7 +327,8 @@ static vec3 vertex(const float *a, uint32_t i) { return v3(a[3 * i], a[3 * i + 1
 static void triangle_hit(const accel_geom *g, const struct RTCRayHit *rh, const ray3 *ray, accel_hit *hit)
 {
     const uint32_t *t = g->tri + 3 * (size_t)rh->hit.primID;
-    vec3 a = vertex(g->pos, t[0]), b = vertex(g->pos, t[1]), c = vertex(g->pos, t[2]);
+    const accel_vertex *va = &g->vtx[t[0]], *vb = &g->vtx[t[1]], *vc = &g->vtx[t[2]];
+    vec3 a = f3(va->p), b = f3(vb->p), c = f3(vc->p);
     ray3 ro = {transform_point(&g->to_object, ray->o), transform_vector(&g->to_object, ray->d)};
     double tt = rh->ray.tfar, bu = rh->hit.u, bv = rh->hit.v;
     triangle_refine(a, b, c, &ro, &tt, &bu, &bv);
@@ -337,19 +339,14 @@ static void triangle_hit(const accel_geom *g, const struct RTCRayHit *rh, const 
      * it on the same side of the surface even when the transform mirrors). */
     hit->ng = world_normal(g, v3_cross(v3_sub(b, a), v3_sub(c, a)));
     hit->ns = hit->ng;
-    if (g->nrm) {
-        vec3 n = v3_add(v3_add(v3_scale(vertex(g->nrm, t[0]), bw), v3_scale(vertex(g->nrm, t[1]), bu)),
-                        v3_scale(vertex(g->nrm, t[2]), bv));
+    if (g->has_nrm) {
+        vec3 n = v3_add(v3_add(v3_scale(f3(va->n), bw), v3_scale(f3(vb->n), bu)), v3_scale(f3(vc->n), bv));
         if (v3_len(n) > 0)
             hit->ns = world_normal(g, n);
     }
-    if (g->uv) {
-        const float *q = g->uv;
-        hit->uv = v2(bw * q[2 * t[0]] + bu * q[2 * t[1]] + bv * q[2 * t[2]],
-                     bw * q[2 * t[0] + 1] + bu * q[2 * t[1] + 1] + bv * q[2 * t[2] + 1]);
-    } else {
-        hit->uv = v2(bu, bv);
-    }
+    hit->uv = g->has_uv ? v2(bw * va->uv[0] + bu * vb->uv[0] + bv * vc->uv[0],
+                             bw * va->uv[1] + bu * vb->uv[1] + bv * vc->uv[1])
+                        : v2(bu, bv);
     hit->part = SOR_PART_WALL;
 }
 

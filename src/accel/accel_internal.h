@@ -10,6 +10,12 @@
 
 #include "celadon/accel.h"
 
+/* One vertex of our copy, attributes side by side: a hit reads the three
+ * vertices of one triangle, so interleaving costs it the fewest cache lines. */
+typedef struct {
+    float p[3], n[3], uv[2];
+} accel_vertex;
+
 typedef struct {
     accel_kind kind;
     transform4 to_world, to_object; /* each carries the other as its inverse */
@@ -18,7 +24,8 @@ typedef struct {
      * the mesh as given, in object space, where hits are refined in double. */
     int n_verts, n_tris;
     const uint32_t *tri;
-    float *pos, *nrm, *uv;
+    accel_vertex *vtx;
+    int has_nrm, has_uv;
     /* Analytic SOR (ACCEL_KIND_SOR_ANALYTIC). */
     sor_t *sor;
 } accel_geom;
