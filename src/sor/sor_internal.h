@@ -88,6 +88,10 @@ void sor_fill_hit(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
 /* SOR_CAP_BASE or SOR_CAP_MOUTH: the cap a primitive index past the intervals names. */
 unsigned sor_prim_cap(const sor_t *sor, int prim);
 
+/* min/max that compile to one instruction (fmin/fmax are libm calls here). */
+static inline double sor_max(double a, double b) { return a > b ? a : b; }
+static inline double sor_min(double a, double b) { return a < b ? a : b; }
+
 /* Bernstein helpers shared by the build and the solver. */
 void sor_bernstein_square3(const double p[4], double out[7]);
 void sor_cubic_split(const double p[4], double w, double left[4], double right[4]);

@@ -21,7 +21,7 @@
 
 typedef struct {
     double lo, hi; /* a bracket with one sign change, or a seed point lo = hi */
-    double clo;    /* g at lo for a bracket */
+    double clo, chi; /* g at the ends of a bracket */
     int bracket;
 } iso_item;
 
@@ -53,9 +53,9 @@ static int isolate(const double *c, int n, double tau, iso_item *items)
 {
     int ni = 0, budget = ISO_BUDGET;
     if (fabs(c[0]) <= tau)
-        items[ni++] = (iso_item){0.0, 0.0, 0.0, 0};
+        items[ni++] = (iso_item){0.0, 0.0, 0.0, 0.0, 0};
     if (fabs(c[n]) <= tau)
-        items[ni++] = (iso_item){1.0, 1.0, 0.0, 0};
+        items[ni++] = (iso_item){1.0, 1.0, 0.0, 0.0, 0};
     iso_span stack[ISO_MAX_DEPTH + 2];
     int sp = 0;
     stack[sp].lo = 0.0, stack[sp].hi = 1.0, stack[sp].depth = 0;
@@ -79,11 +79,11 @@ static int isolate(const double *c, int n, double tau, iso_item *items)
             continue;
         double mid = 0.5 * (S->lo + S->hi);
         if (var == 1 && fabs(S->c[0]) > tau && fabs(S->c[n]) > tau) {
-            items[ni++] = (iso_item){S->lo, S->hi, S->c[0], 1};
+            items[ni++] = (iso_item){S->lo, S->hi, S->c[0], S->c[n], 1};
             continue;
         }
         if (S->depth >= ISO_MAX_DEPTH) {
-            items[ni++] = (iso_item){mid, mid, 0.0, 0};
+            items[ni++] = (iso_item){mid, mid, 0.0, 0.0, 0};
             continue;
         }
         iso_span L, R;
@@ -91,7 +91,7 @@ static int isolate(const double *c, int n, double tau, iso_item *items)
         L.lo = S->lo, L.hi = mid, R.lo = mid, R.hi = S->hi;
         L.depth = R.depth = S->depth + 1;
         if (fabs(L.c[n]) <= tau)
-            items[ni++] = (iso_item){mid, mid, 0.0, 0};
+            items[ni++] = (iso_item){mid, mid, 0.0, 0.0, 0};
         stack[sp++] = R; /* left half first: S is overwritten only after its halves are copied */
         stack[sp++] = L;
     }
@@ -128,13 +128,18 @@ static double leaf_fn(const sor_piece *pc, const sor_ray *ry, double w, double *
     return dy2 * q.r * q.r - D * (ry->a * D + lin) - ry->rho2c * dy2;
 }
 
-/* Newton safeguarded by bisection on a bracket with one sign change. */
+/* Newton safeguarded by bisection on a bracket with one sign change, started
+ * where the chord of the bracket's end values crosses zero. It stops at 1e-10
+ * of the piece: the polish in (w, s) takes it to full precision. */
 static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_item *it)
 {
-    double lo = it->lo, hi = it->hi, w = 0.5 * (lo + hi);
+    double lo = it->lo, hi = it->hi, fp;
     int slo = it->clo > 0.0;
+    double w = lo + (hi - lo) * it->clo / (it->clo - it->chi);
+    if (!(w > lo && w < hi))
+        w = 0.5 * (lo + hi);
     for (int k = 0; k < 60; k++) {
-        double fp, f = leaf_fn(pc, ry, w, &fp);
+        double f = leaf_fn(pc, ry, w, &fp);
         if (f == 0.0)
             return w;
         if ((f > 0.0) == slo)
@@ -144,7 +149,7 @@ static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_ite
         double wn = w - f / fp;
         if (!(wn > lo && wn < hi))
             wn = 0.5 * (lo + hi);
-        if (fabs(wn - w) <= 4.0 * DBL_EPSILON || hi - lo <= 4.0 * DBL_EPSILON)
+        if (fabs(wn - w) <= 1e-10 || hi - lo <= 1e-10)
             return wn;
         w = wn;
     }
@@ -157,25 +162,27 @@ static double residual(const sor_ray *ry, const piece_point *q, double s, double
     double rho2 = (ry->a * s + 2.0 * ry->beta) * s + ry->rho2c;
     *F1 = q->r * q->r - rho2;
     *F2 = q->h - ry->hc - ry->dy * s;
-    double rho = sqrt(fmax(rho2, 0.0));
-    return fmax(fabs(q->r - rho), fabs(*F2));
+    double rho = sqrt(sor_max(rho2, 0.0));
+    return sor_max(fabs(q->r - rho), fabs(*F2));
 }
 
-/* Newton on F1 = r(w)^2 - rho^2(s), F2 = h(w) - hc - dy s from (w, s); keeps
- * the best iterate. Returns its distance from the surface. */
-static double polish(const sor_piece *pc, const sor_ray *ry, double tol, double *w, double *s)
+/* Newton on F1 = r(w)^2 - rho^2(s), F2 = h(w) - hc - dy s from (w, s), keeping
+ * the best iterate; q is the piece at w. One step is enough from a bracketed
+ * root; more are taken only while the distance to the surface exceeds tol.
+ * Returns that distance. */
+static double polish(const sor_piece *pc, const sor_ray *ry, double tol, piece_point q, double *w, double *s)
 {
-    double bw = *w, bs = *s, F1, F2;
-    piece_point q = piece_eval(pc, bw);
-    double best = residual(ry, &q, bs, &F1, &F2);
-    double cw = bw, cs = bs;
-    for (int it = 0; it < 4 && best > 1e-3 * tol; it++) {
+    double bw = *w, bs = *s, cw = bw, cs = bs, best = INFINITY, F1, F2;
+    double rho2 = (ry->a * cs + 2.0 * ry->beta) * cs + ry->rho2c;
+    F1 = q.r * q.r - rho2;
+    F2 = q.h - ry->hc - ry->dy * cs;
+    for (int it = 0; it < 4; it++) {
         double J11 = 2.0 * q.r * q.rw, J12 = -2.0 * (ry->a * cs + ry->beta), J21 = q.hw, J22 = -ry->dy;
         double det = J11 * J22 - J12 * J21;
         if (!(fabs(det) > 1e-14 * (fabs(J11 * J22) + fabs(J12 * J21))))
-            break;
-        double dw = (J12 * F2 - J22 * F1) / det, ds = (J21 * F1 - J11 * F2) / det;
-        cw += dw, cs += ds;
+            break; /* tangent: the seed is as good as it gets */
+        cw += (J12 * F2 - J22 * F1) / det;
+        cs += (J21 * F1 - J11 * F2) / det;
         if (!(cw > -0.5 && cw < 1.5))
             break;
         q = piece_eval(pc, cw);
@@ -183,6 +190,12 @@ static double polish(const sor_piece *pc, const sor_ray *ry, double tol, double 
         if (!(e < best))
             break;
         best = e, bw = cw, bs = cs;
+        if (e <= 1e-3 * tol)
+            break;
+    }
+    if (best == INFINITY) { /* no step taken: judge the seed */
+        q = piece_eval(pc, bw);
+        best = residual(ry, &q, bs, &F1, &F2);
     }
     *w = bw, *s = bs;
     return best;
@@ -199,10 +212,10 @@ static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *
     if (ry->steep) {
         cand[nc++] = (q.h - ry->hc) / ry->dy;
     } else {
-        double S = sqrt(fmax(0.0, (q.r * q.r - ry->d2) / ry->a));
+        double S = sqrt(sor_max(0.0, (q.r * q.r - ry->d2) / ry->a));
         double sp = ry->s_star + S, sm = ry->s_star - S;
         double ep = fabs(q.h - ry->hc - ry->dy * sp), em = fabs(q.h - ry->hc - ry->dy * sm);
-        if (fmax(ep, em) <= sor->tol || S == 0.0) {
+        if (sor_max(ep, em) <= sor->tol || S == 0.0) {
             cand[nc++] = sm;
             if (S > 0.0)
                 cand[nc++] = sp;
@@ -213,9 +226,9 @@ static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *
     int found = 0;
     for (int k = 0; k < nc; k++) {
         double cw = w, cs = cand[k];
-        double e = polish(pc, ry, sor->tol, &cw, &cs);
+        double e = polish(pc, ry, sor->tol, q, &cw, &cs);
         if (e <= sor->tol && cw >= -1e-9 && cw <= 1.0 + 1e-9 && cs > smin && cs < best->s) {
-            best->s = cs, best->w = fmin(1.0, fmax(0.0, cw)), best->piece = idx, best->part = SOR_PART_WALL;
+            best->s = cs, best->w = sor_min(1.0, sor_max(0.0, cw)), best->piece = idx, best->part = SOR_PART_WALL;
             found = 1;
         }
     }
@@ -245,7 +258,7 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
         for (int k = 0; k < 7; k++) {
             double A = dy2 * pc->r2[k], B = pq[k] + K;
             c[k] = A - B;
-            mag = fmax(mag, fabs(A) + fabs(B));
+            mag = sor_max(mag, fabs(A) + fabs(B));
             pos += c[k] > 0.0, neg += c[k] < 0.0;
         }
         n = 6;
@@ -256,7 +269,7 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
     } else {
         for (int i = 0; i < 4; i++) {
             c[i] = pc->h[i] - ry->hc;
-            mag = fmax(mag, fabs(pc->h[i]) + fabs(ry->hc));
+            mag = sor_max(mag, fabs(pc->h[i]) + fabs(ry->hc));
         }
         n = 3;
     }

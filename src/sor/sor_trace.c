@@ -45,7 +45,7 @@ static inline int node_hit(const sor_node *nd, const sor_ray *ry, double smin, d
             double t = sa;
             sa = sb, sb = t;
         }
-        sa = fmax(sa, smin), sb = fmin(sb, smax);
+        sa = sor_max(sa, smin), sb = sor_min(sb, smax);
         if (!(sa <= sb))
             return 0;
     } else {
@@ -56,7 +56,7 @@ static inline int node_hit(const sor_node *nd, const sor_ray *ry, double smin, d
     if (ry->a > 0.0) {
         double ea = sa - ry->s_star, eb = sb - ry->s_star;
         double fa = ry->a * ea * ea + ry->d2, fb = ry->a * eb * eb + ry->d2;
-        if (fmax(fa, fb) < nd->q0)
+        if (sor_max(fa, fb) < nd->q0)
             return 0;
         double em = ea > 0.0 ? ea : (eb < 0.0 ? eb : 0.0);
         if (ry->a * em * em + ry->d2 > nd->q1)
@@ -141,7 +141,7 @@ void sor_fill_hit(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
 {
     double t = ry->tc + best->s;
     vec3 p = v3_add(ry->pc, v3_scale(ry->d, best->s));
-    double rho = hypot(p.x, p.z), c = 1.0, sn = 0.0, phi = 0.0;
+    double rho = sqrt(p.x * p.x + p.z * p.z), c = 1.0, sn = 0.0, phi = 0.0;
     if (rho > 0.0) {
         c = p.x / rho, sn = p.z / rho;
         phi = atan2(p.z, p.x);
@@ -159,7 +159,7 @@ void sor_fill_hit(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
         double hw = m * m * (pc->h[1] - pc->h[0]) + 2.0 * w * m * (pc->h[2] - pc->h[1]) + w * w * (pc->h[3] - pc->h[2]);
         double scale = fabs(pc->r[3] - pc->r[0]) + fabs(pc->h[3] - pc->h[0]) + fabs(pc->r[1] - pc->r[0]) +
                        fabs(pc->h[1] - pc->h[0]) + fabs(pc->r[2] - pc->r[3]) + fabs(pc->h[2] - pc->h[3]);
-        if (hypot(rw, hw) <= 1e-12 * scale) {
+        if (fabs(rw) + fabs(hw) <= 1e-12 * scale) {
             /* A vanishing tangent (coincident control points at an end): the
              * tangent's limit is the direction to the next distinct control point. */
             int end = w > 0.5;
@@ -181,7 +181,7 @@ void sor_fill_hit(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
     hit->shading.s = v3(-sn, 0.0, c);
     hit->shading.t = v3_cross(n, hit->shading.s);
     double tu = phi <= M_PI ? 1.0 - phi / M_PI : phi / M_PI - 1.0;
-    hit->uv = v2(tu, fmin(1.0, fmax(0.0, p.y / sor->height)));
+    hit->uv = v2(tu, sor_min(1.0, sor_max(0.0, p.y / sor->height)));
     hit->part = best->part;
     hit->prim = prim;
 }
