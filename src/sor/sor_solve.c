@@ -202,9 +202,12 @@ static double polish(const sor_piece *pc, const sor_ray *ry, double tol, piece_p
 }
 
 /* Offers the hit candidates at piece parameter w: s from whichever equation
- * determines it better, then polished and checked. */
-static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *ry, double w, double smin,
-                 sor_best *best)
+ * determines it better, then polished and checked. A shallow ray meets the
+ * circle of radius r(w) at two s; from a bracketed root the height tells
+ * which, but a seed may stand for a cluster of roots (the entry and exit of
+ * a nearly horizontal ray at almost the same w), so seeds try both. */
+static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *ry, double w, int seed,
+                 double smin, sor_best *best)
 {
     piece_point q = piece_eval(pc, w);
     double cand[2];
@@ -215,7 +218,7 @@ static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *
         double S = sqrt(sor_max(0.0, (q.r * q.r - ry->d2) / ry->a));
         double sp = ry->s_star + S, sm = ry->s_star - S;
         double ep = fabs(q.h - ry->hc - ry->dy * sp), em = fabs(q.h - ry->hc - ry->dy * sm);
-        if (sor_max(ep, em) <= sor->tol || S == 0.0) {
+        if (seed || sor_max(ep, em) <= sor->tol || S == 0.0) {
             cand[nc++] = sm;
             if (S > 0.0)
                 cand[nc++] = sp;
@@ -279,7 +282,7 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
     int found = 0;
     for (int k = 0; k < ni; k++) {
         double w = items[k].bracket ? bracket_root(pc, ry, &items[k]) : items[k].lo;
-        found |= offer(sor, pc, idx, ry, w, smin, best);
+        found |= offer(sor, pc, idx, ry, w, !items[k].bracket, smin, best);
     }
     return found;
 }
