@@ -21,8 +21,9 @@
 
 typedef struct {
     double lo, hi; /* a bracket with one sign change, or a seed point lo = hi */
-    double clo, chi; /* g at the ends of a bracket */
+    double clo;    /* g at lo for a bracket */
     int bracket;
+    double c[7];   /* a bracket's Bernstein coefficients */
 } iso_item;
 
 typedef struct {
@@ -53,9 +54,9 @@ static int isolate(const double *c, int n, double tau, iso_item *items)
 {
     int ni = 0, budget = ISO_BUDGET;
     if (fabs(c[0]) <= tau)
-        items[ni++] = (iso_item){0.0, 0.0, 0.0, 0.0, 0};
+        items[ni++] = (iso_item){0.0, 0.0, 0.0, 0, {0}};
     if (fabs(c[n]) <= tau)
-        items[ni++] = (iso_item){1.0, 1.0, 0.0, 0.0, 0};
+        items[ni++] = (iso_item){1.0, 1.0, 0.0, 0, {0}};
     iso_span stack[ISO_MAX_DEPTH + 2];
     int sp = 0;
     stack[sp].lo = 0.0, stack[sp].hi = 1.0, stack[sp].depth = 0;
@@ -79,11 +80,14 @@ static int isolate(const double *c, int n, double tau, iso_item *items)
             continue;
         double mid = 0.5 * (S->lo + S->hi);
         if (var == 1 && fabs(S->c[0]) > tau && fabs(S->c[n]) > tau) {
-            items[ni++] = (iso_item){S->lo, S->hi, S->c[0], S->c[n], 1};
+            iso_item *it = &items[ni++];
+            it->lo = S->lo, it->hi = S->hi, it->clo = S->c[0], it->bracket = 1;
+            for (int k = 0; k <= n; k++)
+                it->c[k] = S->c[k];
             continue;
         }
         if (S->depth >= ISO_MAX_DEPTH) {
-            items[ni++] = (iso_item){mid, mid, 0.0, 0.0, 0};
+            items[ni++] = (iso_item){mid, mid, 0.0, 0, {0}};
             continue;
         }
         iso_span L, R;
@@ -91,7 +95,7 @@ static int isolate(const double *c, int n, double tau, iso_item *items)
         L.lo = S->lo, L.hi = mid, R.lo = mid, R.hi = S->hi;
         L.depth = R.depth = S->depth + 1;
         if (fabs(L.c[n]) <= tau)
-            items[ni++] = (iso_item){mid, mid, 0.0, 0.0, 0};
+            items[ni++] = (iso_item){mid, mid, 0.0, 0, {0}};
         stack[sp++] = R; /* left half first: S is overwritten only after its halves are copied */
         stack[sp++] = L;
     }
@@ -129,13 +133,19 @@ static double leaf_fn(const sor_piece *pc, const sor_ray *ry, double w, double *
 }
 
 /* Newton safeguarded by bisection on a bracket with one sign change, started
- * where the chord of the bracket's end values crosses zero. It stops at 1e-10
- * of the piece: the polish in (w, s) takes it to full precision. */
-static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_item *it)
+ * where the bracket's control polygon crosses zero (c: its Bernstein
+ * coefficients, n the degree). It stops once a step is below 1e-7 of the
+ * piece, when the error is already ~1e-14: the polish in (w, s) that follows
+ * squares it again. */
+static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_item *it, const double *c, int n)
 {
-    double lo = it->lo, hi = it->hi, fp;
+    double lo = it->lo, hi = it->hi, fp, w = 0.5 * (lo + hi);
     int slo = it->clo > 0.0;
-    double w = lo + (hi - lo) * it->clo / (it->clo - it->chi);
+    for (int k = 0; k < n; k++)
+        if ((c[k] > 0.0) != (c[k + 1] > 0.0)) {
+            w = lo + (hi - lo) * (k + c[k] / (c[k] - c[k + 1])) / n;
+            break;
+        }
     if (!(w > lo && w < hi))
         w = 0.5 * (lo + hi);
     for (int k = 0; k < 60; k++) {
@@ -149,7 +159,7 @@ static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_ite
         double wn = w - f / fp;
         if (!(wn > lo && wn < hi))
             wn = 0.5 * (lo + hi);
-        if (fabs(wn - w) <= 1e-10 || hi - lo <= 1e-10)
+        if (fabs(wn - w) <= 1e-7 || hi - lo <= 1e-10)
             return wn;
         w = wn;
     }
@@ -257,18 +267,23 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
         pq[4] = (p[1] * q[3] + 3.0 * p[2] * q[2] + p[3] * q[1]) / 5.0;
         pq[5] = 0.5 * (p[2] * q[3] + p[3] * q[2]);
         pq[6] = p[3] * q[3];
-        int pos = 0, neg = 0;
+        int var = 0;
         for (int k = 0; k < 7; k++) {
             double A = dy2 * pc->r2[k], B = pq[k] + K;
             c[k] = A - B;
             mag = sor_max(mag, fabs(A) + fabs(B));
-            pos += c[k] > 0.0, neg += c[k] < 0.0;
+            var += k > 0 && (c[k] > 0.0) != (c[k - 1] > 0.0);
         }
         n = 6;
-        /* Fast exit: the hull of g stays clear of zero (ends with margin). */
+        /* Fast paths, the common cases: the hull of g stays clear of zero, or
+         * crosses it once with both ends clear of zero (exactly one root). */
         double tau = 64.0 * DBL_EPSILON * mag;
-        if ((pos == 7 || neg == 7) && fabs(c[0]) > tau && fabs(c[6]) > tau)
-            return 0;
+        if (fabs(c[0]) > tau && fabs(c[6]) > tau && var <= 1) {
+            if (var == 0)
+                return 0;
+            iso_item it = {0.0, 1.0, c[0], 1, {0}};
+            return offer(sor, pc, idx, ry, bracket_root(pc, ry, &it, c, 6), 0, smin, best);
+        }
     } else {
         for (int i = 0; i < 4; i++) {
             c[i] = pc->h[i] - ry->hc;
@@ -281,7 +296,7 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
     int ni = isolate(c, n, tau, items);
     int found = 0;
     for (int k = 0; k < ni; k++) {
-        double w = items[k].bracket ? bracket_root(pc, ry, &items[k]) : items[k].lo;
+        double w = items[k].bracket ? bracket_root(pc, ry, &items[k], items[k].c, n) : items[k].lo;
         found |= offer(sor, pc, idx, ry, w, !items[k].bracket, smin, best);
     }
     return found;
