@@ -13,6 +13,9 @@ int sor_ray_setup(const sor_t *sor, const ray3 *ray, sor_ray *ry)
     double a = d.x * d.x + d.z * d.z, dy = d.y;
     if (!(a + dy * dy > 0.0) || !isfinite(a + dy * dy) || !isfinite(o.x + o.y + o.z))
         return 0;
+    /* A tilt so small that 1/dy overflows is horizontal to double precision. */
+    if (!isfinite(1.0 / dy))
+        dy = 0.0;
     ry->o = o, ry->d = d, ry->a = a, ry->dy = dy;
     ry->inv_dy = dy != 0.0 ? 1.0 / dy : 0.0;
     ry->steep = a < dy * dy;
@@ -34,38 +37,29 @@ int sor_ray_setup(const sor_t *sor, const ray3 *ray, sor_ray *ry)
 }
 
 /* Can the ray meet the annulus r^2 in [q0,q1], h in [h0,h1] for s in [smin, smax]?
- * On success *slo is a lower bound of s over the meeting. */
+ * On success *slo is a lower bound of s over the meeting. The usual case
+ * (dy != 0, a > 0) is branch-free: min/max compile to single instructions,
+ * and the tests are combined at the end. */
 static inline int node_hit(const sor_node *nd, const sor_ray *ry, double smin, double smax, double *slo)
 {
     double sa, sb;
     if (ry->dy != 0.0) {
-        sa = (nd->h0 - ry->hc) * ry->inv_dy;
-        sb = (nd->h1 - ry->hc) * ry->inv_dy;
-        if (sa > sb) {
-            double t = sa;
-            sa = sb, sb = t;
-        }
-        sa = sor_max(sa, smin), sb = sor_min(sb, smax);
-        if (!(sa <= sb))
-            return 0;
+        double s0 = (nd->h0 - ry->hc) * ry->inv_dy, s1 = (nd->h1 - ry->hc) * ry->inv_dy;
+        sa = sor_max(sor_min(s0, s1), smin);
+        sb = sor_min(sor_max(s0, s1), smax);
     } else {
         if (ry->hc < nd->h0 || ry->hc > nd->h1)
             return 0;
         sa = smin, sb = smax;
     }
+    *slo = sa;
     if (ry->a > 0.0) {
         double ea = sa - ry->s_star, eb = sb - ry->s_star;
-        double fa = ry->a * ea * ea + ry->d2, fb = ry->a * eb * eb + ry->d2;
-        if (sor_max(fa, fb) < nd->q0)
-            return 0;
-        double em = ea > 0.0 ? ea : (eb < 0.0 ? eb : 0.0);
-        if (ry->a * em * em + ry->d2 > nd->q1)
-            return 0;
-    } else if (ry->rho2c < nd->q0 || ry->rho2c > nd->q1) {
-        return 0;
+        double em = sor_max(ea, sor_min(eb, 0.0)); /* the vertex clamped into [ea, eb] */
+        double fa = ry->a * ea * ea, fb = ry->a * eb * eb, fm = ry->a * em * em;
+        return (sa <= sb) & (sor_max(fa, fb) + ry->d2 >= nd->q0) & (fm + ry->d2 <= nd->q1);
     }
-    *slo = sa;
-    return 1;
+    return (sa <= sb) & (ry->rho2c >= nd->q0) & (ry->rho2c <= nd->q1);
 }
 
 int sor_tree_intersect(const sor_t *sor, int root, const sor_ray *ry, double smin, sor_best *best, int any)
