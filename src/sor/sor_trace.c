@@ -80,7 +80,7 @@ int sor_tree_intersect(const sor_t *sor, int root, const sor_ray *ry, double smi
                     return 1;
             }
         } else {
-            double s0, s1;
+            double s0 = 0.0, s1 = 0.0;
             int h0 = node_hit(&nodes[node + 1], ry, smin, best->s, &s0);
             int h1 = node_hit(&nodes[nd->skip], ry, smin, best->s, &s1);
             if (h0 && h1) {
