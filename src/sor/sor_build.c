@@ -327,6 +327,8 @@ sor_t *sor_create(const bspline_t *profile, double height, unsigned caps, char *
         return NULL;
     }
     free(iv_of_leaf);
+    double slack = BOX_SLACK * s->size, R = s->r_max + slack;
+    s->bound = (sor_node){0.0, R * R, s->h_min - slack, s->h_max + slack, -1, -1};
     return s;
 }
 

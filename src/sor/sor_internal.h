@@ -38,6 +38,7 @@ struct sor {
     double r_base, r_mouth; /* cap radii */
     int n_pieces;           /* monotone leaves, in profile order */
     sor_piece *pieces;
+    sor_node bound;         /* the bounding cylinder of wall and caps */
     int n_nodes;
     sor_node *nodes;
     int n_intervals;        /* monotone intervals: one subtree each */

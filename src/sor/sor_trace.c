@@ -117,7 +117,7 @@ int sor_caps_intersect(const sor_t *sor, const sor_ray *ry, unsigned which, doub
         if (!(which & cap))
             continue;
         double y = cap == SOR_CAP_BASE ? 0.0 : sor->height, R = cap == SOR_CAP_BASE ? sor->r_base : sor->r_mouth;
-        double s = (y - ry->hc) / ry->dy;
+        double s = (y - ry->hc) * ry->inv_dy;
         if (!(s > smin && s < best->s))
             continue;
         double x = ry->pc.x + s * ry->d.x, z = ry->pc.z + s * ry->d.z, lim = R + sor->tol;
@@ -217,7 +217,9 @@ int sor_intersect(const sor_t *sor, const ray3 *ray, double tmin, double tmax, s
     if (!sor_ray_setup(sor, ray, &ry))
         return 0;
     sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc;
+    double smin = tmin - ry.tc, slo;
+    if (!node_hit(&sor->bound, &ry, smin, best.s, &slo))
+        return 0;
     int found = sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best);
     found |= sor_tree_intersect(sor, 0, &ry, smin, &best, 0);
     return finish(sor, sor->pieces, &ry, &best, found, hit);
@@ -229,7 +231,9 @@ int sor_occluded(const sor_t *sor, const ray3 *ray, double tmin, double tmax)
     if (!sor_ray_setup(sor, ray, &ry))
         return 0;
     sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc;
+    double smin = tmin - ry.tc, slo;
+    if (!node_hit(&sor->bound, &ry, smin, best.s, &slo))
+        return 0;
     return sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best) || sor_tree_intersect(sor, 0, &ry, smin, &best, 1);
 }
 
