@@ -304,6 +304,10 @@ Test(sor_degenerate, bad_input_is_rejected_with_a_reason)
     cr_assert_null(sor_create(&c, 1.0, 8u, err, sizeof err));
     c.ctrl[1].x = -0.1;
     cr_assert_null(sor_create(&c, 1.0, SOR_CAPS_ALL, err, sizeof err));
+    c.ctrl[1].x = -1e-12; /* rounding noise of a fit: snapped to the axis */
+    sor_t *snapped = sor_create(&c, 1.0, SOR_CAPS_ALL, err, sizeof err);
+    cr_assert_not_null(snapped, "%s", err);
+    sor_destroy(snapped);
     c.ctrl[1].x = 0.55;
     c.ctrl[0].y = 0.01;
     cr_assert_null(sor_create(&c, 1.0, SOR_CAPS_ALL, err, sizeof err), "h(0) must be 0");

@@ -180,11 +180,17 @@ static int load_profile(sor_t *s, const bspline_t *profile, char *err, size_t er
     int n = bspline_to_bezier(profile, &bz);
     if (n <= 0)
         return fail(err, errlen, "profile: cannot split into Bezier pieces");
-    double h1 = bz[n - 1].p[3].y;
-    if (bz[0].p[0].y != 0.0 || !(h1 > 0.0)) {
+    /* Fitted profiles may miss r >= 0 and h(0) = 0 by rounding: within 1e-9 of
+     * the profile's extent they are snapped, beyond that rejected. */
+    double ext = 0.0;
+    for (int i = 0; i < profile->n_ctrl; i++)
+        ext = fmax(ext, fmax(fabs(profile->ctrl[i].x), fabs(profile->ctrl[i].y)));
+    double snap = 1e-9 * ext, h1 = bz[n - 1].p[3].y;
+    if (!(fabs(bz[0].p[0].y) <= snap) || !(h1 > snap)) {
         free(bz);
         return fail(err, errlen, "profile: need h(0) = 0 < h(1)");
     }
+    bz[0].p[0].y = 0.0;
     s->scale = s->height / h1;
     s->bez = calloc((size_t)n, sizeof *s->bez);
     if (!s->bez) {
@@ -196,10 +202,11 @@ static int load_profile(sor_t *s, const bspline_t *profile, char *err, size_t er
     for (int j = 0; j < n; j++) {
         sor_piece *pc = &s->bez[j];
         for (int k = 0; k < 4; k++) {
-            if (!(bz[j].p[k].x >= 0.0)) {
+            if (!(bz[j].p[k].x >= -snap)) {
                 free(bz);
                 return fail(err, errlen, "profile: control point with r < 0");
             }
+            bz[j].p[k].x = fmax(bz[j].p[k].x, 0.0);
             /* Shared joints stay bit-identical: the same doubles times the same scale. */
             pc->r[k] = bz[j].p[k].x * s->scale;
             pc->h[k] = bz[j].p[k].y * s->scale;
