@@ -41,7 +41,20 @@ void sor_cubic_split(const double p[4], double w, double left[4], double right[4
     right[0] = m, right[1] = bc, right[2] = c, right[3] = p[3];
 }
 
-static void piece_finish(sor_piece *pc) { sor_bernstein_square3(pc->r, pc->r2); }
+static void power_basis(const double b[4], double p[4])
+{
+    p[0] = b[0];
+    p[1] = 3.0 * (b[1] - b[0]);
+    p[2] = 3.0 * (b[2] - 2.0 * b[1] + b[0]);
+    p[3] = b[3] - 3.0 * b[2] + 3.0 * b[1] - b[0];
+}
+
+static void piece_finish(sor_piece *pc)
+{
+    sor_bernstein_square3(pc->r, pc->r2);
+    power_basis(pc->r, pc->rp);
+    power_basis(pc->h, pc->hp);
+}
 
 /* Splits pc at local parameter w into two pieces sharing the split point bit for bit. */
 static void piece_split(const sor_piece *pc, double w, sor_piece *left, sor_piece *right)
@@ -218,6 +231,7 @@ static int load_profile(sor_t *s, const bspline_t *profile, char *err, size_t er
         piece_finish(pc);
     }
     s->bez[n - 1].h[3] = s->height;
+    piece_finish(&s->bez[n - 1]);
     free(bz);
     s->r_base = s->bez[0].r[0];
     s->r_mouth = s->bez[n - 1].r[3];

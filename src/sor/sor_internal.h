@@ -15,7 +15,8 @@
 typedef struct {
     double r[4], h[4];
     double r2[7];
-    double u0, u1; /* profile parameter range covered */
+    double rp[4], hp[4]; /* power-basis coefficients (p0 + p1 w + p2 w^2 + p3 w^3) for fast evaluation */
+    double u0, u1;       /* profile parameter range covered */
     int interval;  /* monotone interval of a leaf (its primitive index) */
 } sor_piece;
 

@@ -106,16 +106,16 @@ typedef struct {
     double r, h, rw, hw;
 } piece_point;
 
+/* The piece and its derivative at w, by Horner on the power basis (the
+ * Bernstein values stay the reference for everything exact at the ends). */
 static piece_point piece_eval(const sor_piece *pc, double w)
 {
-    double m = 1.0 - w;
-    double b0 = m * m * m, b1 = 3.0 * w * m * m, b2 = 3.0 * w * w * m, b3 = w * w * w;
-    double d0 = m * m, d1 = 2.0 * w * m, d2 = w * w;
+    const double *r = pc->rp, *h = pc->hp;
     piece_point q;
-    q.r = b0 * pc->r[0] + b1 * pc->r[1] + b2 * pc->r[2] + b3 * pc->r[3];
-    q.h = b0 * pc->h[0] + b1 * pc->h[1] + b2 * pc->h[2] + b3 * pc->h[3];
-    q.rw = 3.0 * (d0 * (pc->r[1] - pc->r[0]) + d1 * (pc->r[2] - pc->r[1]) + d2 * (pc->r[3] - pc->r[2]));
-    q.hw = 3.0 * (d0 * (pc->h[1] - pc->h[0]) + d1 * (pc->h[2] - pc->h[1]) + d2 * (pc->h[3] - pc->h[2]));
+    q.r = ((r[3] * w + r[2]) * w + r[1]) * w + r[0];
+    q.h = ((h[3] * w + h[2]) * w + h[1]) * w + h[0];
+    q.rw = (3.0 * r[3] * w + 2.0 * r[2]) * w + r[1];
+    q.hw = (3.0 * h[3] * w + 2.0 * h[2]) * w + h[1];
     return q;
 }
 
