@@ -203,9 +203,11 @@ static double polish(const sor_piece *pc, const sor_ray *ry, double tol, piece_p
         if (e <= 1e-3 * tol)
             break;
     }
-    if (best == INFINITY) { /* no step taken: judge the seed */
-        q = piece_eval(pc, bw);
-        best = residual(ry, &q, bs, &F1, &F2);
+    if (best > tol) { /* no step helped enough (e.g. at a tangency): judge the seed too */
+        q = piece_eval(pc, *w);
+        double e = residual(ry, &q, *s, &F1, &F2);
+        if (e < best)
+            return e;
     }
     *w = bw, *s = bs;
     return best;
