@@ -134,9 +134,9 @@ static double leaf_fn(const sor_piece *pc, const sor_ray *ry, double w, double *
 
 /* Newton safeguarded by bisection on a bracket with one sign change, started
  * where the bracket's control polygon crosses zero (c: its Bernstein
- * coefficients, n the degree). It stops once a step is below 1e-7 of the
- * piece, when the error is already ~1e-14: the polish in (w, s) that follows
- * squares it again. */
+ * coefficients, n the degree). It stops once a step is below 1e-4 of the
+ * piece, when the error is ~1e-8: the Newton polish in (w, s) that follows
+ * squares it to rounding level. */
 static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_item *it, const double *c, int n)
 {
     double lo = it->lo, hi = it->hi, fp, w = 0.5 * (lo + hi);
@@ -159,7 +159,7 @@ static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_ite
         double wn = w - f / fp;
         if (!(wn > lo && wn < hi))
             wn = 0.5 * (lo + hi);
-        if (fabs(wn - w) <= 1e-7 || hi - lo <= 1e-10)
+        if (fabs(wn - w) <= 1e-4 || hi - lo <= 1e-10)
             return wn;
         w = wn;
     }
