@@ -13,26 +13,24 @@ int sor_ray_setup(const sor_t *sor, const ray3 *ray, sor_ray *ry)
     double a = d.x * d.x + d.z * d.z, dy = d.y;
     if (!(a + dy * dy > 0.0) || !isfinite(a + dy * dy) || !isfinite(o.x + o.y + o.z))
         return 0;
-    /* A tilt so small that 1/dy overflows is horizontal to double precision. */
-    if (!isfinite(1.0 / dy))
-        dy = 0.0;
-    ry->o = o, ry->d = d, ry->a = a, ry->dy = dy;
-    ry->inv_dy = dy != 0.0 ? 1.0 / dy : 0.0;
+    /* A tilt so small that 1/dy (or 1/a) overflows is horizontal (vertical) to
+     * double precision. */
+    double inv_dy = 1.0 / dy, inv_a = 1.0 / a;
+    if (!isfinite(inv_dy))
+        dy = 0.0, inv_dy = 0.0;
+    if (!isfinite(inv_a))
+        a = 0.0, inv_a = 0.0;
+    ry->o = o, ry->d = d, ry->a = a, ry->dy = dy, ry->inv_dy = inv_dy;
     ry->steep = a < dy * dy;
-    ry->tc = ry->steep ? (0.5 * (sor->h_min + sor->h_max) - o.y) / dy : -(o.x * d.x + o.z * d.z) / a;
+    ry->tc = ry->steep ? (0.5 * (sor->h_min + sor->h_max) - o.y) * inv_dy : -(o.x * d.x + o.z * d.z) * inv_a;
     vec3 pc = v3_add(o, v3_scale(d, ry->tc));
     ry->pc = pc;
     ry->hc = pc.y;
     ry->rho2c = pc.x * pc.x + pc.z * pc.z;
     ry->beta = ry->steep ? pc.x * d.x + pc.z * d.z : 0.0;
-    if (a > 0.0) {
-        double cr = pc.x * d.z - pc.z * d.x; /* invariant along the ray: no cancellation */
-        ry->s_star = -ry->beta / a;
-        ry->d2 = cr * cr / a;
-    } else {
-        ry->s_star = 0.0;
-        ry->d2 = ry->rho2c;
-    }
+    double cr = pc.x * d.z - pc.z * d.x; /* invariant along the ray: no cancellation */
+    ry->s_star = -ry->beta * inv_a;
+    ry->d2 = a > 0.0 ? cr * cr * inv_a : ry->rho2c;
     return 1;
 }
 
