@@ -102,7 +102,7 @@ static ray3 gen_vertical(const sor_ref *ref, sor_rng *g, int k)
     double rho = sor_ref_rmax(ref) * uniform(g, 0.0, 1.1), phi = uniform(g, 0.0, 2.0 * M_PI);
     if (k % 10 == 0)
         rho = 0.0;
-    double sign = k & 1 ? 1.0 : -1.0, lean = k % 7 == 3 ? 1e-170 : 0.0; /* a tilt whose square underflows */
+    double sign = k & 1 ? 1.0 : -1.0, lean = k % 7 == 3 && rho > 0.0 ? 1e-170 : 0.0; /* a tilt whose square underflows */
     return (ray3){{rho * cos(phi), 0.5 - 3.0 * sign, rho * sin(phi)}, {lean, sign, 0.0}};
 }
 
