@@ -134,9 +134,9 @@ static double leaf_fn(const sor_piece *pc, const sor_ray *ry, double w, double *
 
 /* Newton safeguarded by bisection on a bracket with one sign change, started
  * where the bracket's control polygon crosses zero (c: its Bernstein
- * coefficients, n the degree). It stops once a step is below 1e-4 of the
- * piece, when the error is ~1e-8: the Newton polish in (w, s) that follows
- * squares it to rounding level. */
+ * coefficients, n the degree). It stops once a step is below 1e-7 of the
+ * piece, when the error is ~1e-14: the Newton polish in (w, s) that follows
+ * takes it to rounding level. */
 static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_item *it, const double *c, int n)
 {
     double lo = it->lo, hi = it->hi, fp, w = 0.5 * (lo + hi);
@@ -159,7 +159,7 @@ static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_ite
         double wn = w - f / fp;
         if (!(wn > lo && wn < hi))
             wn = 0.5 * (lo + hi);
-        if (fabs(wn - w) <= 1e-4 || hi - lo <= 1e-10)
+        if (fabs(wn - w) <= 1e-7 || hi - lo <= 1e-10)
             return wn;
         w = wn;
     }
@@ -213,39 +213,42 @@ static double polish(const sor_piece *pc, const sor_ray *ry, double tol, piece_p
     return best;
 }
 
-/* Offers the hit candidates at piece parameter w: s from whichever equation
- * determines it better, then polished and checked. A shallow ray meets the
- * circle of radius r(w) at two s; from a bracketed root the height tells
- * which, but a seed may stand for a cluster of roots (the entry and exit of
- * a nearly horizontal ray at almost the same w), so seeds try both. */
-static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *ry, double w, int seed,
-                 double smin, sor_best *best)
+/* Offers the hit candidates at piece parameter w, a root isolated in
+ * [wlo, whi]: s from whichever equation determines it better, then polished
+ * and checked. A shallow ray meets the circle of radius r(w) at two s. From a
+ * bracketed root the height tells which; should the polish leave the bracket
+ * (it went to another root), the other s is tried. A seed may stand for a
+ * cluster of roots (the entry and exit of a nearly horizontal ray at almost
+ * the same w), so seeds try both. */
+static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *ry, double w, double wlo, double whi,
+                 int seed, double smin, sor_best *best)
 {
     piece_point q = piece_eval(pc, w);
     double cand[2];
-    int nc = 0;
+    int nc = 0, both = 1;
     if (ry->steep) {
         cand[nc++] = (q.h - ry->hc) / ry->dy;
     } else {
         double S = sqrt(sor_max(0.0, (q.r * q.r - ry->d2) / ry->a));
         double sp = ry->s_star + S, sm = ry->s_star - S;
         double ep = fabs(q.h - ry->hc - ry->dy * sp), em = fabs(q.h - ry->hc - ry->dy * sm);
-        if (seed || sor_max(ep, em) <= sor->tol || S == 0.0) {
-            cand[nc++] = sm;
-            if (S > 0.0)
-                cand[nc++] = sp;
-        } else {
-            cand[nc++] = ep < em ? sp : sm;
-        }
+        cand[nc++] = ep < em ? sp : sm;
+        if (S > 0.0)
+            cand[nc++] = ep < em ? sm : sp;
+        both = seed || sor_max(ep, em) <= sor->tol;
     }
     int found = 0;
     for (int k = 0; k < nc; k++) {
         double cw = w, cs = cand[k];
         double e = polish(pc, ry, sor->tol, q, &cw, &cs);
-        if (e <= sor->tol && cw >= -1e-9 && cw <= 1.0 + 1e-9 && cs > smin && cs < best->s) {
+        if (!(e <= sor->tol && cw >= wlo - 1e-9 && cw <= whi + 1e-9))
+            continue;
+        if (cs > smin && cs < best->s) {
             best->s = cs, best->w = sor_min(1.0, sor_max(0.0, cw)), best->piece = idx, best->part = SOR_PART_WALL;
             found = 1;
         }
+        if (!both)
+            break;
     }
     return found;
 }
@@ -284,7 +287,7 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
             if (var == 0)
                 return 0;
             iso_item it = {0.0, 1.0, c[0], 1, {0}};
-            return offer(sor, pc, idx, ry, bracket_root(pc, ry, &it, c, 6), 0, smin, best);
+            return offer(sor, pc, idx, ry, bracket_root(pc, ry, &it, c, 6), 0.0, 1.0, 0, smin, best);
         }
     } else {
         for (int i = 0; i < 4; i++) {
@@ -298,8 +301,11 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
     int ni = isolate(c, n, tau, items);
     int found = 0;
     for (int k = 0; k < ni; k++) {
-        double w = items[k].bracket ? bracket_root(pc, ry, &items[k], items[k].c, n) : items[k].lo;
-        found |= offer(sor, pc, idx, ry, w, !items[k].bracket, smin, best);
+        const iso_item *it = &items[k];
+        if (it->bracket)
+            found |= offer(sor, pc, idx, ry, bracket_root(pc, ry, it, it->c, n), it->lo, it->hi, 0, smin, best);
+        else
+            found |= offer(sor, pc, idx, ry, it->lo, 0.0, 1.0, 1, smin, best);
     }
     return found;
 }
