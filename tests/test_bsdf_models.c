@@ -285,6 +285,16 @@ Test(bsdf_models, parameters_names_and_errors)
     cr_assert_eq(bsdf_ior_lookup("diamond", &ior), 0);
     cr_assert_float_eq(ior, 2.419, 1e-12);
     cr_assert_eq(bsdf_ior_lookup("glass?", &ior), -1);
+    /* Every listed name resolves (the lists feed "valid choices are" messages). */
+    int n_ior = 0;
+    for (const char *const *nm = bsdf_ior_names(); *nm; nm++, n_ior++)
+        cr_assert_eq(bsdf_ior_lookup(*nm, &ior), 0, "%s", *nm);
+    cr_assert_eq(n_ior, 23);
+    int n_metal = 0;
+    rgb eta, k;
+    for (const char *const *nm = bsdf_conductor_names(); *nm; nm++, n_metal++)
+        cr_assert_eq(bsdf_conductor_preset(*nm, &eta, &k), 0, "%s", *nm);
+    cr_assert_eq(n_metal, 5);
 
     bsdf_dielectric_params dp = bsdf_dielectric_defaults();
     dp.int_ior = -1.0;

@@ -24,7 +24,6 @@ static int incident_thetas(const bsdf_case *c, double *out)
     return n;
 }
 
-static double max3(rgb c) { return rgb_max(c); }
 
 Test(bsdf_props, albedo_at_most_one_and_sample_matches_eval_pdf, .timeout = 60)
 {
@@ -75,11 +74,11 @@ Test(bsdf_props, albedo_at_most_one_and_sample_matches_eval_pdf, .timeout = 60)
                  * (flux) is bounded by one when light leaves the dense side. */
                 rgb mean = rgb_scale(sum, 1.0 / n);
                 rgb var = rgb_sub(rgb_scale(sum2, 1.0 / n), rgb_mul(mean, mean));
-                double se = sqrt(fmax(0.0, max3(var)) / n);
+                double se = sqrt(fmax(0.0, rgb_max(var)) / n);
                 int bounded = mode == 1 || thetas[ti] < 90.0;
                 if (bounded)
-                    cr_assert_leq(max3(mean), 1.0 + 4.0 * se + 1e-9, "%s theta %g mode %d: albedo %g (se %g)",
-                                  cases[ci].name, thetas[ti], mode, max3(mean), se);
+                    cr_assert_leq(rgb_max(mean), 1.0 + 4.0 * se + 1e-9, "%s theta %g mode %d: albedo %g (se %g)",
+                                  cases[ci].name, thetas[ti], mode, rgb_max(mean), se);
             }
     }
     bsdf_cases_free(cases, nc);
