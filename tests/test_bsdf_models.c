@@ -315,3 +315,59 @@ Test(bsdf_models, parameters_names_and_errors)
     cr_assert_eq(t, MICROFACET_GGX);
     cr_assert_eq(microfacet_type_parse("phong", &t), -1);
 }
+
+/* Extreme roughness and directions produce finite values or clean rejections. */
+Test(bsdf_models, extreme_inputs_stay_finite)
+{
+    const double alphas[] = {0.0, 1e-3, 2.0};
+    const vec3 wis[] = {{0, 0, 1}, {1, 0, 0}, {0.6, 0.8, 1e-9}, {0, 0, -1}, {1e-9, 0, -1}, {0.8, -0.6, -1e-7}};
+    rng_t rng;
+    rng_seed(&rng, 3, 3);
+    for (int a = 0; a < 3; a++)
+        for (int kind = 0; kind < 4; kind++) {
+            bsdf_t *b = NULL;
+            for (int dist = 0; dist < 2; dist++) {
+                microfacet_type t = dist ? MICROFACET_GGX : MICROFACET_BECKMANN;
+                if (kind == 0) {
+                    bsdf_roughconductor_params p = bsdf_roughconductor_defaults();
+                    p.alpha_u = p.alpha_v = alphas[a];
+                    p.distribution = t;
+                    b = bsdf_create_roughconductor(&p, err, sizeof err);
+                } else if (kind == 1) {
+                    bsdf_roughdielectric_params p = bsdf_roughdielectric_defaults();
+                    p.alpha_u = alphas[a];
+                    p.alpha_v = 0.3;
+                    p.distribution = t;
+                    b = bsdf_create_roughdielectric(&p, err, sizeof err);
+                } else if (kind == 2) {
+                    bsdf_roughplastic_params p = bsdf_roughplastic_defaults();
+                    p.alpha = alphas[a];
+                    p.distribution = t;
+                    b = bsdf_create_roughplastic(&p, err, sizeof err);
+                } else {
+                    bsdf_roughdielectric_params p = bsdf_roughdielectric_defaults();
+                    p.alpha_u = p.alpha_v = alphas[a];
+                    p.sample_visible = 0;
+                    p.distribution = t;
+                    b = bsdf_create_roughdielectric(&p, err, sizeof err);
+                }
+                cr_assert_not_null(b, "%s", err);
+                for (int w = 0; w < 6; w++) {
+                    bsdf_query q = {v3_norm(wis[w]), v2(0, 0), TRANSPORT_RADIANCE};
+                    for (int k = 0; k < 200; k++) {
+                        bsdf_sample_rec s;
+                        double u1 = k == 0 ? 0.0 : rng_next_double(&rng);
+                        vec2 u2 = k == 0 ? v2(0.0, 0.0) : k == 1 ? v2(1.0 - 1e-16, 1.0 - 1e-16)
+                                                                 : v2(rng_next_double(&rng), rng_next_double(&rng));
+                        if (!bsdf_sample(b, &q, u1, u2, &s))
+                            continue;
+                        cr_assert(isfinite(s.weight.r) && isfinite(s.pdf) && isfinite(s.wo.x + s.wo.y + s.wo.z),
+                                  "kind %d alpha %g wi %d", kind, alphas[a], w);
+                        rgb f = bsdf_eval(b, &q, s.wo);
+                        cr_assert(isfinite(f.r) && isfinite(bsdf_pdf(b, &q, s.wo)));
+                    }
+                }
+                bsdf_free(b);
+            }
+        }
+}
