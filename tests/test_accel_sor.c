@@ -227,3 +227,47 @@ Test(accel_sor, rejects_bad_sors)
     accel_destroy(acc);
     bspline_free(&c);
 }
+
+/* The meshed form of the same SOR, through the same call: where the analytic
+ * wall is hit head-on, the mesh is hit within its tessellation error, with
+ * nearly the same shading normal and texture coordinates. */
+Test(accel_sor, meshed_form_agrees_with_analytic)
+{
+    bspline_t c;
+    sor_test_profile(6, &c);
+    char err[256] = "";
+    accel_t *acc = accel_create(ACCEL_BUILD_FAST, err, sizeof err);
+    cr_assert_not_null(acc, "%s", err);
+    accel_sor_mode analytic = {0}, mesh = {.segments = 256, .tol_px = 1e-4};
+    transform4 apart = transform_translate(v3(100, 0, 0)), back = transform_translate(v3(-100, 0, 0));
+    cr_assert_eq(accel_add_sor(acc, &c, HEIGHT, SOR_CAPS_ALL, NULL, &analytic, err, sizeof err), 0u, "%s", err);
+    cr_assert_eq(accel_add_sor(acc, &c, HEIGHT, SOR_CAPS_ALL, &apart, &mesh, err, sizeof err), 1u, "%s", err);
+    cr_assert_eq(accel_commit(acc, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(accel_geometry_kind(acc, 1), ACCEL_KIND_SOR_MESH);
+    cr_assert_gt(accel_geometry_triangles(acc, 1), 1000);
+    vec3 lo = v3(-1, 0, -1), hi = v3(1, HEIGHT, 1);
+    test_rng rng = {11};
+    int compared = 0;
+    for (int i = 0; i < 2000; i++) {
+        ray3 r = test_ray_toward_box(&rng, lo, hi);
+        ray3 rm = {transform_point(&apart, r.o), r.d};
+        accel_hit a, m;
+        if (!accel_intersect(acc, &r, 0, 50, &a) || a.part != SOR_PART_WALL)
+            continue;
+        double cosine = fabs(v3_dot(a.ng, v3_norm(r.d)));
+        if (cosine < 0.5)
+            continue; /* near the silhouette the two surfaces may be hit at different places */
+        cr_assert(accel_intersect(acc, &rm, 0, INFINITY, &m), "ray %d misses the mesh", i);
+        cr_assert_eq(m.geom_id, 1u);
+        cr_assert_eq(m.kind, ACCEL_KIND_SOR_MESH);
+        double dp = v3_len(v3_sub(transform_point(&back, m.p), a.p));
+        cr_assert_lt(dp, 1e-3, "ray %d: mesh hit %g from the analytic one", i, dp);
+        cr_assert_lt(v3_len(v3_sub(m.ns, a.ns)), 0.05, "ray %d: shading normals", i);
+        cr_assert_lt(fabs(m.uv.x - a.uv.x) + fabs(m.uv.y - a.uv.y), 0.01, "ray %d: uv (%g %g) vs (%g %g)", i, m.uv.x,
+                     m.uv.y, a.uv.x, a.uv.y);
+        compared++;
+    }
+    cr_assert_gt(compared, 500, "%d head-on wall hits", compared);
+    accel_destroy(acc);
+    bspline_free(&c);
+}

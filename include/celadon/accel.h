@@ -79,7 +79,7 @@ unsigned accel_add_sor(accel_t *acc, const bspline_t *profile, double height, un
 /* Builds the BVH; call after the last add and before tracing. Returns 0 or -1. */
 int accel_commit(accel_t *acc, char *err, size_t errlen);
 
-/* Nearest hit with t in (tmin, tmax) of a world-space ray (d need not be unit). */
+/* Nearest hit with t in (tmin, tmax), 0 <= tmin, of a world-space ray (d need not be unit). */
 int accel_intersect(const accel_t *acc, const ray3 *ray, double tmin, double tmax, accel_hit *hit);
 /* Any hit with t in (tmin, tmax). */
 int accel_occluded(const accel_t *acc, const ray3 *ray, double tmin, double tmax);
