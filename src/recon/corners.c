@@ -96,6 +96,13 @@ int recon_find_corners(const vec2 *contour, int n, const int *approx_idx, int n_
     for (int i = 0; i < n; i++)
         area2 += v2_cross(contour[i], contour[(i + 1) % n]);
     double orient = area2 >= 0 ? 1 : -1;
+    double amin = INFINITY, amax = -INFINITY;
+    for (int i = 0; i < n; i++) {
+        double a = v2_dot(v2_sub(contour[i], mean), axis_up);
+        amin = fmin(amin, a);
+        amax = fmax(amax, a);
+    }
+    const double tie = fmax(3.0, 0.02 * (amax - amin));
     /* Quadrant signs (up, right) in the order of the CORNER_ enum. */
     int at_q[CORNER_COUNT] = {-1, -1, -1, -1};
     const int SU[CORNER_COUNT] = {1, 1, -1, -1}, SR[CORNER_COUNT] = {-1, 1, -1, 1};
@@ -109,7 +116,8 @@ int recon_find_corners(const vec2 *contour, int n, const int *approx_idx, int n_
         for (int pass = 0; pass < 2; pass++) {
             double best = -1;
             for (int k = 0; k < m; k++) {
-                if (resp[k] < 0.05f * rmax || orient * turning(contour, n, approx_idx[k], 8) < 20 * M_PI / 180)
+                if (resp[k] < 0.05f * rmax || orient * turning(contour, n, approx_idx[k], 8) < 20 * M_PI / 180 ||
+                    orient * turning(contour, n, approx_idx[k], 24) < 15 * M_PI / 180)
                     continue;
                 vec2 d = v2_sub(poly[k], mean);
                 double a = SU[q] * v2_dot(d, axis_up), b = SR[q] * v2_dot(d, right);
@@ -117,8 +125,8 @@ int recon_find_corners(const vec2 *contour, int n, const int *approx_idx, int n_
                     continue;
                 if (pass == 0)
                     top = fmax(top, a);
-                else if (a >= top - 3 && resp[k] > best) {
-                    best = resp[k];
+                else if (a >= top - tie && b > best) {
+                    best = b;
                     at_q[q] = k;
                 }
             }

@@ -160,9 +160,10 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     }
     if (area > 0 && res->mask_mode == RECON_MASK_BACKGROUND &&
         recon_mask_trim_soft(res->mask, gray, w, h, res->threshold_used / 255.0f)) {
-        /* Trimming may leave small pieces; keep the largest again. */
+        /* Trimming may leave thin slivers and pieces: an opening of radius 1
+         * removes the slivers, then the largest object is kept again. */
         int dropped2, holes2;
-        area = recon_mask_clean(res->mask, w, h, &dropped2, &holes2);
+        area = recon_mask_open(res->mask, w, h, 1) ? -1 : recon_mask_clean(res->mask, w, h, &dropped2, &holes2);
         if (area < 0) {
             st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
             goto out;

@@ -216,6 +216,19 @@ int recon_mask_close(uint8_t *mask, int w, int h, int r)
     return 0;
 }
 
+int recon_mask_open(uint8_t *mask, int w, int h, int r)
+{
+    uint8_t *tmp = malloc((size_t)w * h);
+    if (!tmp)
+        return -1;
+    spread(mask, tmp, w, h, r, 0, 0);
+    spread(tmp, mask, w, h, r, 1, 0);
+    spread(mask, tmp, w, h, r, 0, 1);
+    spread(tmp, mask, w, h, r, 1, 1);
+    free(tmp);
+    return 0;
+}
+
 /* ---- connected components over runs */
 
 typedef struct {
@@ -347,8 +360,17 @@ static int sharp(const float *gray, int w, int h, int i, int j, float step)
 
 int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float step)
 {
+    int top = -1, bottom = -1;
+    for (int j = 0; j < h; j++)
+        if (memchr(mask + (size_t)j * w, 1, (size_t)w)) {
+            bottom = j;
+            if (top < 0)
+                top = j;
+        }
+    if (top < 0)
+        return 0;
     int trimmed = 0;
-    for (int j = 0; j < h; j++) {
+    for (int j = bottom - (bottom - top) / 8; j <= bottom; j++) {
         uint8_t *m = mask + (size_t)j * w;
         int a = 0, b = w - 1;
         while (a < w && !m[a])
@@ -357,17 +379,15 @@ int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float s
             b--;
         if (a >= w)
             continue;
-        /* From each end inward, to the first sharp step. */
+        /* From each end inward, to the first sharp step; rows without one
+         * stay as they are. */
         int r = b, l = a;
         while (r >= a && !sharp(gray, w, h, r, j, step))
             r--;
         while (l <= r && !sharp(gray, w, h, l, j, step))
             l++;
-        if (r < a || l > r) {
-            memset(m + a, 0, (size_t)(b - a + 1));
-            trimmed = 1;
+        if (r < a || l > r)
             continue;
-        }
         if (l > a || r < b)
             trimmed = 1;
         memset(m + a, 0, (size_t)(l - a));

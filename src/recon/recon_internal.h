@@ -27,12 +27,14 @@ long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *ho
  * narrower than 2r+1 px (a decoration line as light as the backdrop that
  * reaches the outline). Returns 0, or -1 when out of memory. */
 int recon_mask_close(uint8_t *mask, int w, int h, int r);
+/* Morphological opening: removes slivers thinner than 2r+1 px. */
+int recon_mask_open(uint8_t *mask, int w, int h, int r);
 
-/* Soft boundaries are not outlines: on each row, moves the object's ends
- * inward to the first sharp step (over two pixels along the row or the
- * column, at least step), so a soft
- * floor shadow or a backdrop gradient that joined the mask is cut off at the
- * vessel; a row with no sharp step is cleared. Returns 1 when anything changed. */
+/* Floor shadows are soft and touch the vessel only at its foot: on each row of
+ * the object's lowest eighth, moves the object's ends inward to the first
+ * sharp step (over two pixels along the row or the column, at least step), so
+ * a shadow that joined the mask is cut off at the vessel. Rows without a sharp
+ * step stay. Returns 1 when anything changed. */
 int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float step);
 
 /* ---- Suzuki–Abe border following (border_follow.c) */
