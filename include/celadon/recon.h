@@ -19,6 +19,14 @@ typedef struct {
     recon_side side;
 } recon_options;
 
+/* How the mask was made. */
+typedef enum {
+    RECON_MASK_ALPHA = 0,      /* alpha channel, background transparent */
+    RECON_MASK_BACKGROUND,     /* automatic: |gray - background model| above an Otsu threshold */
+    RECON_MASK_GRAY_BELOW,     /* forced threshold, object darker than the background */
+    RECON_MASK_GRAY_ABOVE      /* forced threshold, object lighter than the background */
+} recon_mask_mode;
+
 /* Why an image was refused (all of these are bad input: exit code 2). */
 typedef enum {
     RECON_OK = 0,
@@ -32,7 +40,9 @@ typedef enum {
 typedef struct {
     int width, height;
     uint8_t *mask;           /* width*height, 1 = vessel (largest object, holes filled) */
-    int threshold_used;      /* -1 when the mask came from alpha */
+    recon_mask_mode mask_mode;
+    int threshold_used;      /* 0..255: on gray when forced, on |gray - background| when automatic;
+                                -1 when the mask came from alpha */
     int dropped_objects;     /* other connected objects removed from the mask */
     int holes_filled;
     int n_contour;
@@ -46,8 +56,11 @@ typedef struct {
     vec2 axis_origin, axis_direction; /* DESIGN.md: origin at h = 0, unit toward the rim */
     double tilt_deg;         /* angle of the axis from the image vertical */
     recon_side side_used;
+    double edge_noise_px[2];  /* per side [0] left, [1] right: median |2nd difference| of the edge */
+    double edge_contrast[2];  /* per side: 10th percentile of |fg - bg| along the edge */
+    int axis_from_symmetry;   /* 1 when the axis was refined by left/right symmetry */
     int n_silhouette[2];     /* sub-pixel outline points, [0] left, [1] right, image coords */
-    vec2 *silhouette[2];
+    vec2 *silhouette[2];     /* one point per pixel row (y = row centre), rim corner to base corner */
     int n_polyline;
     vec2 *polyline;          /* (r, h), px, base to rim, on side_used */
     double ms_image_processing;

@@ -1,0 +1,72 @@
+/* Sub-pixel silhouette position on one pixel row from the anti-aliased ramp.
+ *
+ * Under box-filter anti-aliasing a pixel's value is v = bg + a (fg - bg), a the
+ * fraction of its area covered by the object. Over a window of pixels [a0, a1]
+ * that the outline crosses, sum a_i is the area of the object inside the
+ * window's row strip; for a straight edge that equals the object's length on
+ * the row's centre line (the strip is a trapezoid). So the edge on the right
+ * is a0 + sum a_i, on the left a1 + 1 - sum a_i, exact up to curvature. fg and
+ * bg are the pixels just inside and just outside the window: the nearest pure
+ * pixels, which follows shading, texture and backdrop gradients. */
+#include <math.h>
+
+#include "recon/recon_internal.h"
+
+/* Object length inside [a0, a1] measured from its inner end, and the contrast. */
+static int ramp(const float *row, int w, int a0, int a1, int side, double *len, double *contrast)
+{
+    if (a0 < 1 || a1 > w - 2 || a1 < a0)
+        return 0;
+    double fg = side > 0 ? row[a0 - 1] : row[a1 + 1], bg = side > 0 ? row[a1 + 1] : row[a0 - 1];
+    *contrast = fabs(fg - bg);
+    if (*contrast < 1e-4)
+        return 0;
+    double s = 0;
+    for (int i = a0; i <= a1; i++)
+        s += (row[i] - bg) / (fg - bg);
+    *len = s;
+    return 1;
+}
+
+static int outermost(const uint8_t *m, int w, int side)
+{
+    if (side > 0) {
+        for (int i = w - 1; i >= 0; i--)
+            if (m[i])
+                return i;
+    } else {
+        for (int i = 0; i < w; i++)
+            if (m[i])
+                return i;
+    }
+    return -1;
+}
+
+recon_edge recon_subpixel_edge(const float *gray, const uint8_t *mask, int w, int h, int j, int side, double slope)
+{
+    recon_edge out = {NAN, 0, 0};
+    if (j < 0 || j >= h)
+        return out;
+    const float *row = gray + (size_t)j * w;
+    int i0 = outermost(mask + (size_t)j * w, w, side);
+    if (i0 < 0)
+        return out;
+    double half = 0.5 * fabs(slope);
+    /* Pass 1: a window wide enough for the mask's own error of a pixel. */
+    int hw = (int)ceil(half) + 1;
+    int a0 = side > 0 ? i0 - hw : i0 - 1 - hw, a1 = side > 0 ? i0 + 1 + hw : i0 + hw;
+    double len, contrast;
+    if (!ramp(row, w, a0, a1, side, &len, &contrast))
+        return out;
+    double e = side > 0 ? a0 + len : a1 + 1 - len;
+    /* Pass 2: only the pixels the edge can cross, so fg and bg come from the
+     * pixels nearest to it. */
+    a0 = (int)floor(e - half - 0.25);
+    a1 = (int)floor(e + half + 0.25);
+    if (!ramp(row, w, a0, a1, side, &len, &contrast))
+        return out;
+    out.x = side > 0 ? a0 + len : a1 + 1 - len;
+    out.contrast = contrast;
+    out.ok = isfinite(out.x);
+    return out;
+}
