@@ -344,13 +344,12 @@ Test(cli_reconstruct, batch_gives_one_folder_per_photo)
     free_run(&r);
 }
 
-/* Runs one bad photo into an existing empty folder and into a missing one:
- * exit 2, one stderr line naming the file, nothing written. */
+/* Runs one bad photo into an existing empty folder: exit 2, one stderr line
+ * naming the file, nothing written. */
 static void expect_refused(const char *photo, const char *why)
 {
-    char out[300], fresh[300];
+    char out[300];
     path_in(out, sizeof out, "out");
-    path_in(fresh, sizeof fresh, "fresh/deeper");
     mkdir(out, 0755);
     run_result r = run_reconstruct((const char *const[]){photo, "-o", out, NULL});
     cr_expect_eq(r.status, 2, "%s: exit %d, stderr: %s", why, r.status, r.err);
@@ -360,11 +359,17 @@ static void expect_refused(const char *photo, const char *why)
     cr_expect(!strncmp(r.err, prefix, strlen(prefix)), "%s: stderr: %s", why, r.err);
     cr_expect_eq(count_entries(out), 0, "%s: the output folder stays empty", why);
     free_run(&r);
-    r = run_reconstruct((const char *const[]){photo, "-o", fresh, NULL});
-    cr_expect_eq(r.status, 2);
-    char parent[300];
+}
+
+Test(cli_reconstruct, a_failed_run_creates_no_output_folder)
+{
+    char photo[300], fresh[300], parent[300];
+    path_in(photo, sizeof photo, "missing.png");
+    path_in(fresh, sizeof fresh, "fresh/deeper");
     path_in(parent, sizeof parent, "fresh");
-    cr_expect_neq(access(parent, F_OK), 0, "%s: no output folder created", why);
+    run_result r = run_reconstruct((const char *const[]){photo, "-o", fresh, NULL});
+    cr_expect_eq(r.status, 2);
+    cr_expect_neq(access(parent, F_OK), 0, "the folders made for the outputs are removed again");
     free_run(&r);
 }
 
