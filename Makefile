@@ -136,6 +136,8 @@ demo: check-deps-stamp
 # Every bench/*.c program; bench_recon draws its photos with the test drawer.
 # Results are printed and kept in out/bench/.
 BENCH_BIN := $(patsubst bench/%.c,build/bench/%,$(BENCH_C))
+# The OpenCV reference uses Debian's python3-opencv, if installed (not by deps).
+PYTHON_CV ?= /usr/bin/python3
 build/bench/bench_recon: bench/bench_recon.c tests/support/synth_vessel.c build/opt/libceladon.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_recon.c tests/support/synth_vessel.c build/opt/libceladon.a $(LDLIBS)
@@ -144,10 +146,11 @@ bench: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon $(BENCH_BIN)
 	@mkdir -p out/bench
 	@for b in $(BENCH_BIN); do \
-	  echo "== $$b"; CELADON_BIN=$(CURDIR)/build/celadon $$b | tee out/bench/$$(basename $$b).txt || exit 1; \
+	  echo "== $$b"; CELADON_BIN=$(CURDIR)/build/celadon $$b > out/bench/$$(basename $$b).txt || exit 1; \
+	  cat out/bench/$$(basename $$b).txt; \
 	done
-	@if [ -f bench/opencv_recon.py ] && python3 -c 'import cv2' 2>/dev/null; then \
+	@if [ -f bench/opencv_recon.py ] && $(PYTHON_CV) -c "import cv2" 2>/dev/null; then \
 	  echo "== bench/opencv_recon.py (OpenCV reference)"; \
-	  python3 bench/opencv_recon.py out/bench/bench_recon_photo.png | tee out/bench/opencv_recon.txt; \
+	  $(PYTHON_CV) bench/opencv_recon.py out/bench/bench_recon_photo.png out/bench/bench_recon_mask.png | tee out/bench/opencv_recon.txt; \
 	fi
 	@echo "celadon: benchmark results in out/bench/*.txt (docs/BENCHMARKS.md explains them)"
