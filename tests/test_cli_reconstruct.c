@@ -394,6 +394,13 @@ Test(cli_reconstruct, unusable_files_are_refused)
     path_in(path, sizeof path, "folder.png");
     cr_assert_eq(mkdir(path, 0755), 0);
     expect_refused(path, "a folder");
+    expect_refused("/dev/null", "not a regular file");
+    if (geteuid() != 0) { /* root reads anything */
+        draw_photo("locked.png", SYNTH_JAR, 0.0, 64, 80);
+        path_in(path, sizeof path, "locked.png");
+        cr_assert_eq(chmod(path, 0), 0);
+        expect_refused(path, "unreadable");
+    }
 
     /* A real PNG cut in half. */
     draw_photo("whole.png", SYNTH_VASE, 0.0, 200, 260);

@@ -342,6 +342,10 @@ static int check_file(const char *path, report *rep)
         snprintf(rep->error, sizeof rep->error, "is a folder, not a photo");
         return -1;
     }
+    if (!S_ISREG(st.st_mode)) {
+        snprintf(rep->error, sizeof rep->error, "not a regular file");
+        return -1;
+    }
     if (st.st_size == 0) {
         snprintf(rep->error, sizeof rep->error, "empty file");
         return -1;
