@@ -73,10 +73,40 @@ static double quantile(const double *v, int n, double q, double *tmp)
     return tmp[k];
 }
 
+static int cmp_double(const void *a, const void *b);
+
+/* Drops points more than 1 px from the median x of their 7-row neighbourhood
+ * (a decoration or a highlight spoiling one row's ramp); an outline is smooth
+ * at that scale, and the median of a straight run is its centre value. */
+static int drop_outliers(vec2 *pts, double *contrast, int n)
+{
+    if (n < 7)
+        return n;
+    double *dev = malloc((size_t)n * sizeof *dev);
+    if (!dev)
+        return n;
+    for (int k = 0; k < n; k++) {
+        int a = k < 3 ? 0 : (k + 3 >= n ? n - 7 : k - 3);
+        double v[7];
+        for (int i = 0; i < 7; i++)
+            v[i] = pts[a + i].x;
+        qsort(v, 7, sizeof v[0], cmp_double);
+        dev[k] = fabs(pts[k].x - v[3]);
+    }
+    int m = 0;
+    for (int k = 0; k < n; k++)
+        if (dev[k] <= 1.0) {
+            pts[m] = pts[k];
+            contrast[m++] = contrast[k];
+        }
+    free(dev);
+    return m;
+}
+
 /* Sub-pixel outline of one side (-1 left, +1 right) on rows j0..j1 (clamped to
  * the object's rows). Fills pts and contrast; returns the count. */
-static int trace_side(const float *gray, const uint8_t *mask, int w, int h, int j0, int j1, int side, vec2 *pts,
-                      double *contrast)
+static int trace_side(const float *gray, const uint8_t *mask, int w, int h, int j0, int j1, int side, double delta,
+                      vec2 *pts, double *contrast)
 {
     int n = 0;
     for (int j = j0; j <= j1; j++) {
@@ -103,13 +133,13 @@ static int trace_side(const float *gray, const uint8_t *mask, int w, int h, int 
         for (int k = 0; k < 3; k += 2)
             if (xs[k] >= 0)
                 slope = fmax(slope, fabs((double)(xs[k] - xs[1])));
-        recon_edge e = recon_subpixel_edge(gray, mask, w, h, j, side, slope);
+        recon_edge e = recon_subpixel_edge(gray, mask, w, h, j, side, slope, delta);
         if (!e.ok)
             continue;
         pts[n] = v2(e.x, j + 0.5);
         contrast[n++] = e.contrast;
     }
-    return n;
+    return drop_outliers(pts, contrast, n);
 }
 
 /* Roughness of an outline: median |second difference| of x over its middle. */
@@ -265,7 +295,10 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
             st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
             goto out;
         }
-        res->n_silhouette[s] = trace_side(gray, res->mask, w, h, j0, j1, side, res->silhouette[s], contrast);
+        /* Half the mask threshold (at least 3/255) separates object from
+         * background noise and JPEG ringing. */
+        double delta = res->mask_mode == RECON_MASK_ALPHA ? 0.05 : fmax(0.5 * res->threshold_used, 3.0) / 255;
+        res->n_silhouette[s] = trace_side(gray, res->mask, w, h, j0, j1, side, delta, res->silhouette[s], contrast);
         int m = res->n_silhouette[s];
         res->edge_contrast[s] = quantile(contrast, m, 0.1, contrast + cap);
         res->edge_noise_px[s] = roughness(res->silhouette[s], m, contrast + cap, contrast + 2 * cap);
