@@ -103,37 +103,24 @@ static int drop_outliers(vec2 *pts, double *contrast, int n)
     return m;
 }
 
-/* Sub-pixel outline of one side (-1 left, +1 right) on rows j0..j1 (clamped to
- * the object's rows). Fills pts and contrast; returns the count. */
-static int trace_side(const float *gray, const uint8_t *mask, int w, int h, int j0, int j1, int side, double delta,
+/* Sub-pixel outline of one side (-1 left, +1 right) on rows j0..j1; ext[j]
+ * is the mask's outermost object pixel of row j on that side (-1: none).
+ * Fills pts and contrast; returns the count. */
+static int trace_side(const float *gray, const int *ext, int w, int h, int j0, int j1, int side, double delta,
                       vec2 *pts, double *contrast)
 {
     int n = 0;
-    for (int j = j0; j <= j1; j++) {
-        /* The outline's slope (dx per row) from the mask's outermost pixels of
-         * the neighbouring rows: the widest step decides the window. */
-        int xs[3];
-        for (int k = -1; k <= 1; k++) {
-            int jj = j + k < 0 ? 0 : (j + k >= h ? h - 1 : j + k), x = -1;
-            const uint8_t *m = mask + (size_t)jj * w;
-            if (side > 0) {
-                for (int i = w - 1; i >= 0 && x < 0; i--)
-                    if (m[i])
-                        x = i;
-            } else {
-                for (int i = 0; i < w && x < 0; i++)
-                    if (m[i])
-                        x = i;
-            }
-            xs[k + 1] = x;
-        }
-        if (xs[1] < 0)
+    for (int j = j0 < 0 ? 0 : j0; j <= j1 && j < h; j++) {
+        if (ext[j] < 0)
             continue;
+        /* The outline's slope (dx per row) from the neighbouring rows: the
+         * widest step decides the window. */
         double slope = 0;
-        for (int k = 0; k < 3; k += 2)
-            if (xs[k] >= 0)
-                slope = fmax(slope, fabs((double)(xs[k] - xs[1])));
-        recon_edge e = recon_subpixel_edge(gray, mask, w, h, j, side, slope, delta);
+        if (j > 0 && ext[j - 1] >= 0)
+            slope = fabs((double)(ext[j - 1] - ext[j]));
+        if (j + 1 < h && ext[j + 1] >= 0)
+            slope = fmax(slope, fabs((double)(ext[j + 1] - ext[j])));
+        recon_edge e = recon_subpixel_edge(gray, w, h, j, ext[j], side, slope, delta);
         if (!e.ok)
             continue;
         pts[n] = v2(e.x, j + 0.5);
@@ -170,7 +157,7 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     float *gray = malloc(n * sizeof *gray);
     res->mask = malloc(n);
     recon_border_set bs = {0};
-    int *keep = NULL;
+    int *keep = NULL, *ext = NULL;
     if (!gray || !res->mask) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
@@ -282,6 +269,19 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     vec2 origin = starts_o[first], dir = starts_d[first];
 
     /* 5. Sub-pixel outlines on both sides, rim corner row to base corner row. */
+    ext = malloc((size_t)2 * h * sizeof *ext);
+    if (!ext) {
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
+        goto out;
+    }
+    for (int j = 0; j < h; j++) {
+        const uint8_t *m = res->mask + (size_t)j * w, *p = memchr(m, 1, (size_t)w);
+        int b = w - 1;
+        while (p && !m[b])
+            b--;
+        ext[j] = p ? (int)(p - m) : -1;
+        ext[h + j] = p ? b : -1;
+    }
     for (int s = 0; s < 2; s++) {
         int side = s ? 1 : -1;
         vec2 rc = res->corners[s ? CORNER_RIM_RIGHT : CORNER_RIM_LEFT];
@@ -298,7 +298,8 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
         /* Half the mask threshold (at least 3/255) separates object from
          * background noise and JPEG ringing. */
         double delta = res->mask_mode == RECON_MASK_ALPHA ? 0.05 : fmax(0.5 * res->threshold_used, 3.0) / 255;
-        res->n_silhouette[s] = trace_side(gray, res->mask, w, h, j0, j1, side, delta, res->silhouette[s], contrast);
+        res->n_silhouette[s] =
+            trace_side(gray, ext + (size_t)s * h, w, h, j0, j1, side, delta, res->silhouette[s], contrast);
         int m = res->n_silhouette[s];
         res->edge_contrast[s] = quantile(contrast, m, 0.1, contrast + cap);
         res->edge_noise_px[s] = roughness(res->silhouette[s], m, contrast + cap, contrast + 2 * cap);
@@ -367,6 +368,7 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
 out:
     free(gray);
     free(keep);
+    free(ext);
     recon_border_set_free(&bs);
     if (st != RECON_OK) {
         int wi = res->width, he = res->height;

@@ -28,30 +28,12 @@ static int ramp(const float *row, int w, int a0, int a1, int side, double *len, 
     return 1;
 }
 
-static int outermost(const uint8_t *m, int w, int side)
-{
-    if (side > 0) {
-        for (int i = w - 1; i >= 0; i--)
-            if (m[i])
-                return i;
-    } else {
-        for (int i = 0; i < w; i++)
-            if (m[i])
-                return i;
-    }
-    return -1;
-}
-
-recon_edge recon_subpixel_edge(const float *gray, const uint8_t *mask, int w, int h, int j, int side, double slope,
-                               double delta)
+recon_edge recon_subpixel_edge(const float *gray, int w, int h, int j, int i0, int side, double slope, double delta)
 {
     recon_edge out = {NAN, 0, 0};
-    if (j < 0 || j >= h)
+    if (j < 0 || j >= h || i0 < 0 || i0 >= w)
         return out;
     const float *row = gray + (size_t)j * w;
-    int i0 = outermost(mask + (size_t)j * w, w, side);
-    if (i0 < 0)
-        return out;
     double half = 0.5 * fabs(slope);
     int span = (int)ceil(fabs(slope));
     /* Pass 1: from the background well outside the mask, inward to
