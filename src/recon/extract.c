@@ -28,7 +28,8 @@ vec2 recon_profile_to_image(vec2 axis_origin, vec2 axis_direction, double r, dou
     return v2_add(axis_origin, v2_add(v2_scale(right, side_sign * r), v2_scale(axis_direction, h)));
 }
 
-void recon_result_free(recon_result *res)
+/* Frees the arrays and clears their pointers and counts; scalars stay. */
+static void free_arrays(recon_result *res)
 {
     free(res->mask);
     free(res->contour);
@@ -36,6 +37,14 @@ void recon_result_free(recon_result *res)
     free(res->silhouette[0]);
     free(res->silhouette[1]);
     free(res->polyline);
+    res->mask = NULL;
+    res->contour = res->approx = res->polyline = res->silhouette[0] = res->silhouette[1] = NULL;
+    res->n_contour = res->n_approx = res->n_polyline = res->n_silhouette[0] = res->n_silhouette[1] = 0;
+}
+
+void recon_result_free(recon_result *res)
+{
+    free_arrays(res);
     memset(res, 0, sizeof *res);
 }
 
@@ -210,18 +219,16 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
-    double perimeter = 0;
     for (int i = 0; i < nc; i++) {
         const int *p = bs.points + 2 * (size_t)(ob->start + i);
         res->contour[i] = v2(p[0] + 0.5, p[1] + 0.5);
-        if (i > 0)
-            perimeter += v2_len(v2_sub(res->contour[i], res->contour[i - 1]));
     }
     res->n_contour = nc;
 
-    /* 3. Douglas–Peucker with eps = 0.2% of the perimeter (at least 1 px, to
-     * remove the pixel staircase), then the corners. */
-    double eps = fmax(1.0, 0.0 * perimeter);
+    /* 3. Douglas–Peucker with eps = 1 px: removes the pixel staircase and
+     * keeps every real bend, so smooth arcs become chains of small turns and
+     * the corner tests below can tell them from corners. */
+    const double eps = 1.0;
     res->n_approx = recon_douglas_peucker_closed(res->contour, nc, eps, keep);
     res->approx = malloc((size_t)(res->n_approx > 0 ? res->n_approx : 1) * sizeof *res->approx);
     if (!res->approx) {
@@ -370,12 +377,8 @@ out:
     free(keep);
     free(ext);
     recon_border_set_free(&bs);
-    if (st != RECON_OK) {
-        int wi = res->width, he = res->height;
-        recon_result_free(res);
-        res->width = wi;
-        res->height = he;
-    }
+    if (st != RECON_OK)
+        free_arrays(res);
     res->ms_image_processing = (now_seconds() - t_start) * 1000;
     return st;
 }
