@@ -102,15 +102,21 @@ int recon_border_follow(const uint8_t *mask, int w, int h, recon_border_set *out
     /* Labels on the objects' bounding box with a one-pixel frame of zeros;
      * (ox, oy) maps label coordinates back to the image. */
     int bx0 = w, bx1 = -1, by0 = -1, by1 = -1;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++)
-            if (mask[(size_t)y * w + x]) {
-                if (by0 < 0)
-                    by0 = y;
-                by1 = y;
-                bx0 = x < bx0 ? x : bx0;
-                bx1 = x > bx1 ? x : bx1;
-            }
+    for (int y = 0; y < h; y++) {
+        const uint8_t *m = mask + (size_t)y * w;
+        int a = 0, b = w - 1;
+        while (a < w && !m[a])
+            a++;
+        if (a == w)
+            continue;
+        while (!m[b])
+            b--;
+        if (by0 < 0)
+            by0 = y;
+        by1 = y;
+        bx0 = a < bx0 ? a : bx0;
+        bx1 = b > bx1 ? b : bx1;
+    }
     if (by0 < 0)
         return 0;
     const int W = bx1 - bx0 + 3, H = by1 - by0 + 3, ox = bx0 - 1, oy = by0 - 1;
