@@ -44,7 +44,7 @@ static int push_point(sink *s, int x, int y)
 
 /* Follows one border starting at (x, y) (padded coordinates) whose known
  * background neighbour is (x2, y2); f holds the labels. Returns -1 on OOM. */
-static int follow(int *f, int W, int x, int y, int x2, int y2, int nbd, sink *s)
+static int follow(int *f, int W, int ox, int oy, int x, int y, int x2, int y2, int nbd, sink *s)
 {
     int *p = f + (size_t)y * W;
     /* 3.1: clockwise from (x2, y2) around (x, y) for a nonzero pixel. */
@@ -56,7 +56,7 @@ static int follow(int *f, int W, int x, int y, int x2, int y2, int nbd, sink *s)
             break;
         }
     }
-    if (push_point(s, x - 1, y - 1))
+    if (push_point(s, x + ox, y + oy))
         return -1;
     if (d1 < 0) { /* isolated pixel */
         p[x] = -nbd;
@@ -87,7 +87,7 @@ static int follow(int *f, int W, int x, int y, int x2, int y2, int nbd, sink *s)
         /* 3.5: (x1, y1) precedes the start on the border: back at the start. */
         if (x4 == x && y4 == y && x3 == x1 && y3 == y1)
             break;
-        if (push_point(s, x4 - 1, y4 - 1))
+        if (push_point(s, x4 + ox, y4 + oy))
             return -1;
         dprev = dir_of(x3 - x4, y3 - y4);
         x3 = x4;
@@ -99,13 +99,33 @@ static int follow(int *f, int W, int x, int y, int x2, int y2, int nbd, sink *s)
 int recon_border_follow(const uint8_t *mask, int w, int h, recon_border_set *out)
 {
     memset(out, 0, sizeof *out);
-    const int W = w + 2, H = h + 2;
+    /* Labels on the objects' bounding box with a one-pixel frame of zeros;
+     * (ox, oy) maps label coordinates back to the image. */
+    int bx0 = w, bx1 = -1, by0 = -1, by1 = -1;
+    for (int y = 0; y < h; y++) {
+        const uint8_t *m = mask + (size_t)y * w;
+        int a = 0, b = w - 1;
+        while (a < w && !m[a])
+            a++;
+        if (a == w)
+            continue;
+        while (!m[b])
+            b--;
+        if (by0 < 0)
+            by0 = y;
+        by1 = y;
+        bx0 = a < bx0 ? a : bx0;
+        bx1 = b > bx1 ? b : bx1;
+    }
+    if (by0 < 0)
+        return 0;
+    const int W = bx1 - bx0 + 3, H = by1 - by0 + 3, ox = bx0 - 1, oy = by0 - 1;
     int *f = calloc((size_t)W * H, sizeof *f);
     if (!f)
         return -1;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++)
-            f[(size_t)(y + 1) * W + x + 1] = mask[(size_t)y * w + x] != 0;
+    for (int y = 1; y < H - 1; y++)
+        for (int x = 1; x < W - 1; x++)
+            f[(size_t)y * W + x] = mask[(size_t)(y + oy) * w + x + ox] != 0;
     sink s = {0};
     int nbd = 1, rc = 0;
     for (int y = 1; y < H - 1 && rc == 0; y++) {
@@ -146,7 +166,7 @@ int recon_border_follow(const uint8_t *mask, int w, int h, recon_border_set *out
                 nb->start = s.n;
                 nb->is_hole = hole;
                 nb->parent = parent;
-                if (follow(f, W, x, y, x2, y, nbd, &s)) {
+                if (follow(f, W, ox, oy, x, y, x2, y, nbd, &s)) {
                     rc = -1;
                     break;
                 }

@@ -28,7 +28,8 @@ vec2 recon_profile_to_image(vec2 axis_origin, vec2 axis_direction, double r, dou
     return v2_add(axis_origin, v2_add(v2_scale(right, side_sign * r), v2_scale(axis_direction, h)));
 }
 
-void recon_result_free(recon_result *res)
+/* Frees the arrays and clears their pointers and counts; scalars stay. */
+static void free_arrays(recon_result *res)
 {
     free(res->mask);
     free(res->contour);
@@ -36,6 +37,14 @@ void recon_result_free(recon_result *res)
     free(res->silhouette[0]);
     free(res->silhouette[1]);
     free(res->polyline);
+    res->mask = NULL;
+    res->contour = res->approx = res->polyline = res->silhouette[0] = res->silhouette[1] = NULL;
+    res->n_contour = res->n_approx = res->n_polyline = res->n_silhouette[0] = res->n_silhouette[1] = 0;
+}
+
+void recon_result_free(recon_result *res)
+{
+    free_arrays(res);
     memset(res, 0, sizeof *res);
 }
 
@@ -73,43 +82,60 @@ static double quantile(const double *v, int n, double q, double *tmp)
     return tmp[k];
 }
 
-/* Sub-pixel outline of one side (-1 left, +1 right) on rows j0..j1 (clamped to
- * the object's rows). Fills pts and contrast; returns the count. */
-static int trace_side(const float *gray, const uint8_t *mask, int w, int h, int j0, int j1, int side, vec2 *pts,
-                      double *contrast)
+static int cmp_double(const void *a, const void *b);
+
+/* Drops points more than 1 px from the median x of their 7-row neighbourhood
+ * (a decoration or a highlight spoiling one row's ramp); an outline is smooth
+ * at that scale, and the median of a straight run is its centre value. */
+static int drop_outliers(vec2 *pts, double *contrast, int n)
+{
+    if (n < 7)
+        return n;
+    double *dev = malloc((size_t)n * sizeof *dev);
+    if (!dev)
+        return n;
+    for (int k = 0; k < n; k++) {
+        int a = k < 3 ? 0 : (k + 3 >= n ? n - 7 : k - 3);
+        double v[7];
+        for (int i = 0; i < 7; i++)
+            v[i] = pts[a + i].x;
+        qsort(v, 7, sizeof v[0], cmp_double);
+        dev[k] = fabs(pts[k].x - v[3]);
+    }
+    int m = 0;
+    for (int k = 0; k < n; k++)
+        if (dev[k] <= 1.0) {
+            pts[m] = pts[k];
+            contrast[m++] = contrast[k];
+        }
+    free(dev);
+    return m;
+}
+
+/* Sub-pixel outline of one side (-1 left, +1 right) on rows j0..j1; ext[j]
+ * is the mask's outermost object pixel of row j on that side (-1: none).
+ * Fills pts and contrast; returns the count. */
+static int trace_side(const float *gray, const int *ext, int w, int h, int j0, int j1, int side, double delta,
+                      vec2 *pts, double *contrast)
 {
     int n = 0;
-    for (int j = j0; j <= j1; j++) {
-        /* The outline's slope (dx per row) from the mask's outermost pixels of
-         * the neighbouring rows: the widest step decides the window. */
-        int xs[3];
-        for (int k = -1; k <= 1; k++) {
-            int jj = j + k < 0 ? 0 : (j + k >= h ? h - 1 : j + k), x = -1;
-            const uint8_t *m = mask + (size_t)jj * w;
-            if (side > 0) {
-                for (int i = w - 1; i >= 0 && x < 0; i--)
-                    if (m[i])
-                        x = i;
-            } else {
-                for (int i = 0; i < w && x < 0; i++)
-                    if (m[i])
-                        x = i;
-            }
-            xs[k + 1] = x;
-        }
-        if (xs[1] < 0)
+    for (int j = j0 < 0 ? 0 : j0; j <= j1 && j < h; j++) {
+        if (ext[j] < 0)
             continue;
+        /* The outline's slope (dx per row) from the neighbouring rows: the
+         * widest step decides the window. */
         double slope = 0;
-        for (int k = 0; k < 3; k += 2)
-            if (xs[k] >= 0)
-                slope = fmax(slope, fabs((double)(xs[k] - xs[1])));
-        recon_edge e = recon_subpixel_edge(gray, mask, w, h, j, side, slope);
+        if (j > 0 && ext[j - 1] >= 0)
+            slope = fabs((double)(ext[j - 1] - ext[j]));
+        if (j + 1 < h && ext[j + 1] >= 0)
+            slope = fmax(slope, fabs((double)(ext[j + 1] - ext[j])));
+        recon_edge e = recon_subpixel_edge(gray, w, h, j, ext[j], side, slope, delta);
         if (!e.ok)
             continue;
         pts[n] = v2(e.x, j + 0.5);
         contrast[n++] = e.contrast;
     }
-    return n;
+    return drop_outliers(pts, contrast, n);
 }
 
 /* Roughness of an outline: median |second difference| of x over its middle. */
@@ -140,20 +166,21 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     float *gray = malloc(n * sizeof *gray);
     res->mask = malloc(n);
     recon_border_set bs = {0};
-    int *keep = NULL;
+    int *keep = NULL, *ext = NULL;
     if (!gray || !res->mask) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
 
-    /* 1. Mask: threshold, closing (radius 4), largest object, holes filled,
-     * rows filled, soft ends (shadows) trimmed. */
+    /* 1. Mask: threshold; largest object, holes and rows filled; closing
+     * (radius 4, on the object's box) and the same again; floor shadow
+     * trimmed at the foot. */
     res->mask_mode = recon_mask_threshold(img, opt ? opt->threshold : -1, gray, res->mask, &res->threshold_used);
-    if (recon_mask_close(res->mask, w, h, 4)) {
-        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
-        goto out;
-    }
     long area = recon_mask_clean(res->mask, w, h, &res->dropped_objects, &res->holes_filled);
+    if (area > 0) {
+        int dropped2, holes2;
+        area = recon_mask_close(res->mask, w, h, 4) ? -1 : recon_mask_clean(res->mask, w, h, &dropped2, &holes2);
+    }
     if (area < 0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
@@ -193,18 +220,16 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
-    double perimeter = 0;
     for (int i = 0; i < nc; i++) {
         const int *p = bs.points + 2 * (size_t)(ob->start + i);
         res->contour[i] = v2(p[0] + 0.5, p[1] + 0.5);
-        if (i > 0)
-            perimeter += v2_len(v2_sub(res->contour[i], res->contour[i - 1]));
     }
     res->n_contour = nc;
 
-    /* 3. Douglas–Peucker with eps = 0.2% of the perimeter (at least 1 px, to
-     * remove the pixel staircase), then the corners. */
-    double eps = fmax(1.0, 0.0 * perimeter);
+    /* 3. Douglas–Peucker with eps = 1 px: removes the pixel staircase and
+     * keeps every real bend, so smooth arcs become chains of small turns and
+     * the corner tests below can tell them from corners. */
+    const double eps = 1.0;
     res->n_approx = recon_douglas_peucker_closed(res->contour, nc, eps, keep);
     res->approx = malloc((size_t)(res->n_approx > 0 ? res->n_approx : 1) * sizeof *res->approx);
     if (!res->approx) {
@@ -252,6 +277,19 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     vec2 origin = starts_o[first], dir = starts_d[first];
 
     /* 5. Sub-pixel outlines on both sides, rim corner row to base corner row. */
+    ext = malloc((size_t)2 * h * sizeof *ext);
+    if (!ext) {
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
+        goto out;
+    }
+    for (int j = 0; j < h; j++) {
+        const uint8_t *m = res->mask + (size_t)j * w, *p = memchr(m, 1, (size_t)w);
+        int b = w - 1;
+        while (p && !m[b])
+            b--;
+        ext[j] = p ? (int)(p - m) : -1;
+        ext[h + j] = p ? b : -1;
+    }
     for (int s = 0; s < 2; s++) {
         int side = s ? 1 : -1;
         vec2 rc = res->corners[s ? CORNER_RIM_RIGHT : CORNER_RIM_LEFT];
@@ -265,7 +303,11 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
             st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
             goto out;
         }
-        res->n_silhouette[s] = trace_side(gray, res->mask, w, h, j0, j1, side, res->silhouette[s], contrast);
+        /* Half the mask threshold (at least 3/255) separates object from
+         * background noise and JPEG ringing. */
+        double delta = res->mask_mode == RECON_MASK_ALPHA ? 0.05 : fmax(0.5 * res->threshold_used, 3.0) / 255;
+        res->n_silhouette[s] =
+            trace_side(gray, ext + (size_t)s * h, w, h, j0, j1, side, delta, res->silhouette[s], contrast);
         int m = res->n_silhouette[s];
         res->edge_contrast[s] = quantile(contrast, m, 0.1, contrast + cap);
         res->edge_noise_px[s] = roughness(res->silhouette[s], m, contrast + cap, contrast + 2 * cap);
@@ -334,13 +376,10 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
 out:
     free(gray);
     free(keep);
+    free(ext);
     recon_border_set_free(&bs);
-    if (st != RECON_OK) {
-        int wi = res->width, he = res->height;
-        recon_result_free(res);
-        res->width = wi;
-        res->height = he;
-    }
+    if (st != RECON_OK)
+        free_arrays(res);
     res->ms_image_processing = (now_seconds() - t_start) * 1000;
     return st;
 }

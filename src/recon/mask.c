@@ -150,13 +150,14 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
     const float c00 = top[0], c10 = top[w - 1], c01 = bot[0], c11 = bot[w - 1];
     const float iu = w > 1 ? 1.0f / (w - 1) : 0, iv = h > 1 ? 1.0f / (h - 1) : 0;
     for (int j = 0; j < h; j++) {
+        /* The patch on row j is P[i] + alpha + beta u, u = i/(w-1). */
         float v = j * iv, l = left[j], r = right[j];
+        float k0 = (1 - v) * c00 + v * c01, k1 = (1 - v) * (c10 - c00) + v * (c11 - c01);
+        float alpha = l - k0, beta = (r - l - k1) * iu;
         const float *g = gray + (size_t)j * w;
         uint8_t *m = mask + (size_t)j * w;
         for (int i = 0; i < w; i++) {
-            float u = i * iu;
-            float bgm = (1 - u) * l + u * r + (1 - v) * top[i] + v * bot[i] -
-                        ((1 - u) * (1 - v) * c00 + u * (1 - v) * c10 + (1 - u) * v * c01 + u * v * c11);
+            float bgm = (1 - v) * top[i] + v * bot[i] + alpha + beta * i;
             float d = fabsf(g[i] - bgm) * 255.0f + 0.5f;
             int q = d >= 255.0f ? 255 : (int)d;
             m[i] = (uint8_t)q;
@@ -178,56 +179,94 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
     return RECON_MASK_BACKGROUND;
 }
 
-/* ---- closing */
+/* ---- closing and opening */
 
-/* One separable pass of a (2r+1) box: out = v where any pixel of the window
- * (along rows, or along columns when vertical) equals v; pixels outside the
- * image do not count. */
-static void spread(const uint8_t *in, uint8_t *out, int w, int h, int r, int vertical, uint8_t v)
+/* out = v where any pixel of the (2r+1) box window equals v, else !v; on the
+ * sub-rectangle [x0, x1) x [y0, y1) of a w-wide image, pixels outside it not
+ * counting. Separable: along rows, then along columns with one running count
+ * per column (row-major, cache friendly). cnt: x1 - x0 ints. */
+static void box_spread(uint8_t *img, uint8_t *tmp, int w, int x0, int y0, int x1, int y1, int r, uint8_t v, int *cnt)
 {
-    int len = vertical ? h : w, lines = vertical ? w : h;
-    size_t step = vertical ? (size_t)w : 1, lstep = vertical ? 1 : (size_t)w;
-    for (int l = 0; l < lines; l++) {
-        const uint8_t *a = in + l * lstep;
-        uint8_t *b = out + l * lstep;
+    int nx = x1 - x0;
+    for (int y = y0; y < y1; y++) {
+        const uint8_t *a = img + (size_t)y * w + x0;
+        uint8_t *b = tmp + (size_t)y * w + x0;
         int count = 0;
-        for (int i = 0; i < r && i < len; i++)
-            count += a[i * step] == v;
-        for (int i = 0; i < len; i++) {
-            if (i + r < len)
-                count += a[(i + r) * step] == v;
+        for (int i = 0; i < r && i < nx; i++)
+            count += a[i] == v;
+        for (int i = 0; i < nx; i++) {
+            if (i + r < nx)
+                count += a[i + r] == v;
             if (i - r - 1 >= 0)
-                count -= a[(i - r - 1) * step] == v;
-            b[i * step] = count > 0 ? v : (uint8_t)!v;
+                count -= a[i - r - 1] == v;
+            b[i] = count > 0 ? v : (uint8_t)!v;
         }
+    }
+    memset(cnt, 0, (size_t)nx * sizeof *cnt);
+    for (int y = y0; y < y0 + r && y < y1; y++)
+        for (int i = 0; i < nx; i++)
+            cnt[i] += tmp[(size_t)y * w + x0 + i] == v;
+    for (int y = y0; y < y1; y++) {
+        if (y + r < y1) {
+            const uint8_t *add = tmp + (size_t)(y + r) * w + x0;
+            for (int i = 0; i < nx; i++)
+                cnt[i] += add[i] == v;
+        }
+        if (y - r - 1 >= y0) {
+            const uint8_t *sub = tmp + (size_t)(y - r - 1) * w + x0;
+            for (int i = 0; i < nx; i++)
+                cnt[i] -= sub[i] == v;
+        }
+        uint8_t *o = img + (size_t)y * w + x0;
+        for (int i = 0; i < nx; i++)
+            o[i] = cnt[i] > 0 ? v : (uint8_t)!v;
     }
 }
 
-int recon_mask_close(uint8_t *mask, int w, int h, int r)
+/* Dilation then erosion (first = 1: closing) or the reverse (first = 0:
+ * opening), on the objects' bounding box grown by 2r+1 (nothing outside it
+ * can change). */
+static int morph(uint8_t *mask, int w, int h, int r, uint8_t first)
 {
+    int x0 = w, x1 = -1, y0 = -1, y1 = -1;
+    for (int y = 0; y < h; y++) {
+        const uint8_t *m = mask + (size_t)y * w;
+        const uint8_t *p = memchr(m, 1, (size_t)w);
+        if (!p)
+            continue;
+        if (y0 < 0)
+            y0 = y;
+        y1 = y;
+        int a = (int)(p - m), b = w - 1;
+        while (!m[b])
+            b--;
+        x0 = a < x0 ? a : x0;
+        x1 = b > x1 ? b : x1;
+    }
+    if (y0 < 0)
+        return 0;
+    int g = 2 * r + 1;
+    x0 = x0 - g < 0 ? 0 : x0 - g;
+    y0 = y0 - g < 0 ? 0 : y0 - g;
+    x1 = x1 + g + 1 > w ? w : x1 + g + 1;
+    y1 = y1 + g + 1 > h ? h : y1 + g + 1;
     uint8_t *tmp = malloc((size_t)w * h);
-    if (!tmp)
+    int *cnt = malloc((size_t)(x1 - x0) * sizeof *cnt);
+    if (!tmp || !cnt) {
+        free(tmp);
+        free(cnt);
         return -1;
-    spread(mask, tmp, w, h, r, 0, 1);
-    spread(tmp, mask, w, h, r, 1, 1);
-    spread(mask, tmp, w, h, r, 0, 0);
-    spread(tmp, mask, w, h, r, 1, 0);
+    }
+    box_spread(mask, tmp, w, x0, y0, x1, y1, r, first, cnt);
+    box_spread(mask, tmp, w, x0, y0, x1, y1, r, (uint8_t)!first, cnt);
     free(tmp);
+    free(cnt);
     return 0;
 }
 
-int recon_mask_open(uint8_t *mask, int w, int h, int r)
-{
-    uint8_t *tmp = malloc((size_t)w * h);
-    if (!tmp)
-        return -1;
-    spread(mask, tmp, w, h, r, 0, 0);
-    spread(tmp, mask, w, h, r, 1, 0);
-    spread(mask, tmp, w, h, r, 0, 1);
-    spread(tmp, mask, w, h, r, 1, 1);
-    free(tmp);
-    return 0;
-}
+int recon_mask_close(uint8_t *mask, int w, int h, int r) { return morph(mask, w, h, r, 1); }
+
+int recon_mask_open(uint8_t *mask, int w, int h, int r) { return morph(mask, w, h, r, 0); }
 
 /* ---- connected components over runs */
 

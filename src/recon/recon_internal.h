@@ -109,11 +109,14 @@ typedef struct {
     int ok;
 } recon_edge;
 
-/* Sub-pixel position of the outermost edge of the mask on row j, on side
+/* Sub-pixel position of the outermost edge of the object on row j, on side
  * (-1 left, +1 right), from the gray ramp: the fraction of each pixel covered
  * by the object, (v - bg)/(fg - bg), summed over the pixels the edge crosses,
  * is the object's length in that window (exact for a straight edge under box
- * anti-aliasing). slope: the outline's dx per row, from the neighbouring rows. */
-recon_edge recon_subpixel_edge(const float *gray, const uint8_t *mask, int w, int h, int j, int side, double slope);
+ * anti-aliasing). The search starts at i0, the mask's outermost object pixel
+ * on that side of the row; slope is the outline's dx per row (from the
+ * neighbouring rows); delta the smallest difference from the background that
+ * counts as object. */
+recon_edge recon_subpixel_edge(const float *gray, int w, int h, int j, int i0, int side, double slope, double delta);
 
 #endif

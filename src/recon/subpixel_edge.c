@@ -28,33 +28,28 @@ static int ramp(const float *row, int w, int a0, int a1, int side, double *len, 
     return 1;
 }
 
-static int outermost(const uint8_t *m, int w, int side)
-{
-    if (side > 0) {
-        for (int i = w - 1; i >= 0; i--)
-            if (m[i])
-                return i;
-    } else {
-        for (int i = 0; i < w; i++)
-            if (m[i])
-                return i;
-    }
-    return -1;
-}
-
-recon_edge recon_subpixel_edge(const float *gray, const uint8_t *mask, int w, int h, int j, int side, double slope)
+recon_edge recon_subpixel_edge(const float *gray, int w, int h, int j, int i0, int side, double slope, double delta)
 {
     recon_edge out = {NAN, 0, 0};
-    if (j < 0 || j >= h)
+    if (j < 0 || j >= h || i0 < 0 || i0 >= w)
         return out;
     const float *row = gray + (size_t)j * w;
-    int i0 = outermost(mask + (size_t)j * w, w, side);
-    if (i0 < 0)
-        return out;
     double half = 0.5 * fabs(slope);
-    /* Pass 1: a window wide enough for the mask's own error of a pixel. */
-    int hw = (int)ceil(half) + 1;
-    int a0 = side > 0 ? i0 - hw : i0 - 1 - hw, a1 = side > 0 ? i0 + 1 + hw : i0 + hw;
+    int span = (int)ceil(fabs(slope));
+    /* Pass 1: from the background well outside the mask, inward to
+     * the first pixel that differs from it by more than delta: the outermost
+     * pixel the object touches (the mask may miss a light rim or decoration). */
+    int far = i0 + side * (span + 12);
+    far = far < 1 ? 1 : (far > w - 2 ? w - 2 : far);
+    if ((far - i0) * side < span + 2)
+        return out;
+    double bgv = row[far];
+    int p = far - side, stop = i0 - side * (span + 3);
+    while (p != stop && fabs(row[p] - bgv) <= delta)
+        p -= side;
+    if (p == stop)
+        return out;
+    int a0 = side > 0 ? p - span : p, a1 = side > 0 ? p : p + span;
     double len, contrast;
     if (!ramp(row, w, a0, a1, side, &len, &contrast))
         return out;
@@ -67,6 +62,6 @@ recon_edge recon_subpixel_edge(const float *gray, const uint8_t *mask, int w, in
         return out;
     out.x = side > 0 ? a0 + len : a1 + 1 - len;
     out.contrast = contrast;
-    out.ok = isfinite(out.x);
+    out.ok = isfinite(out.x) && fabs(out.x - (i0 + 0.5 + 0.5 * side)) < span + 12;
     return out;
 }

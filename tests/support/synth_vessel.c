@@ -41,7 +41,7 @@ synth_params synth_defaults(synth_shape shape, int width, int height)
     p.height = height;
     p.height_px = fmin(0.7 * height, 0.75 * width / (2 * max_unit_radius(shape)));
     p.base_center = v2(0.5 * width, 0.5 * height + 0.5 * p.height_px);
-    const float fg[3] = {0.25f, 0.42f, 0.33f}, fg2[3] = {0.80f, 0.82f, 0.74f}, bg[3] = {0.94f, 0.94f, 0.93f};
+    const float fg[3] = {0.25f, 0.42f, 0.33f}, fg2[3] = {0.68f, 0.70f, 0.60f}, bg[3] = {0.94f, 0.94f, 0.93f};
     memcpy(p.fg, fg, sizeof fg);
     memcpy(p.fg2, fg2, sizeof fg2);
     memcpy(p.bg, bg, sizeof bg);
@@ -129,10 +129,11 @@ static float pattern_colour_mix(const synth_params *p, vec2 d, vec2 q)
     double h = fmin(fmax(v2_dot(rel, d), 0), H);
     double r = synth_radius(p, h), s = v2_dot(rel, n);
     double phi = asin(fmax(-1.0, fmin(1.0, s / r)));
-    /* Meridian stripes of 22.5° centred on multiples of 22.5°, so the
-     * silhouette (phi = ±90°) lies mid-stripe; twelve height bands. */
-    int stripe = (int)floor(phi / (PI / 8) + 0.5);
-    int band = (int)floor(h / (H / 12));
+    /* Meridian stripes of 45° centred on multiples of 45°, so the silhouette
+     * (phi = ±90°) lies mid-stripe, as on a decorated vessel whose pattern
+     * does not change within a pixel or two of its outline; ten height bands. */
+    int stripe = (int)floor(phi / (PI / 4) + 0.5);
+    int band = (int)floor(h / (H / 10));
     return (float)((stripe + band) & 1);
 }
 

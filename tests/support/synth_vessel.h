@@ -47,7 +47,7 @@ typedef struct {
     vec2 base_center;   /* image point of the axis at the base (h = 0) */
     double tilt_deg;    /* in-plane rotation of the axis; positive: rim leans right */
     float fg[3], bg[3]; /* vessel and background colours, encoded values in [0, 1] */
-    int textured;       /* checkerboard of height bands x meridian stripes (22.5°) of fg and fg2 */
+    int textured;       /* checkerboard of 10 height bands x 45° meridian stripes of fg and fg2 */
     float fg2[3];
     int rgba;           /* 4 channels: colour = fg (bg where uncovered), alpha = coverage */
     int subrows;        /* vertical samples per pixel row (0: 16) */
