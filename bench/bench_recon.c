@@ -100,8 +100,9 @@ int main(void)
     if (!gray || !tmp || !blur || !resp || !mask)
         die("out of memory");
     int thr, dropped, holes;
-    TIME_STAGE("mask (threshold, close, clean)", REPS, , {
+    TIME_STAGE("mask (threshold, clean, close, clean)", REPS, , {
         recon_mask_threshold(&img, -1, gray, mask, &thr);
+        recon_mask_clean(mask, w, h, &dropped, &holes);
         recon_mask_close(mask, w, h, 4);
         recon_mask_clean(mask, w, h, &dropped, &holes);
     });
@@ -140,11 +141,27 @@ int main(void)
     int cidx[CORNER_COUNT];
     TIME_STAGE("corners (windowed Gaussian+Shi-Tomasi)", REPS, ,
                recon_find_corners(contour, nc, keep, n_approx, mean, up, cidx));
+    /* The outermost object pixel of each row and side, where the sub-pixel search starts. */
+    int *ext = malloc(2 * (size_t)h * sizeof *ext);
+    if (!ext)
+        die("out of memory");
+    for (int j = 0; j < h; j++) {
+        ext[j] = ext[h + j] = -1;
+        for (int i = 0; i < w; i++)
+            if (mask[(size_t)j * w + i]) {
+                if (ext[j] < 0)
+                    ext[j] = i;
+                ext[h + j] = i;
+            }
+    }
+    double delta = fmax(0.5 * thr, 3.0) / 255;
     TIME_STAGE("sub-pixel silhouette, both sides", REPS, , {
         for (int j = 0; j < h; j++)
-            for (int s = -1; s <= 1; s += 2)
-                recon_subpixel_edge(gray, mask, w, h, j, s, 0.0);
+            for (int s = 0; s < 2; s++)
+                if (ext[s * h + j] >= 0)
+                    recon_subpixel_edge(gray, w, h, j, ext[s * h + j], s ? 1 : -1, 0.0, delta);
     });
+    free(ext);
     recon_options ropt = {.threshold = -1, .side = RECON_SIDE_AUTO};
     recon_result res = {0};
     TIME_STAGE("recon_extract (all image stages)", REPS, recon_result_free(&res),
