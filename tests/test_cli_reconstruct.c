@@ -247,6 +247,28 @@ Test(cli_reconstruct, one_photo_gives_every_output)
     free_run(&r);
 }
 
+Test(cli_reconstruct, transparent_background_photo)
+{
+    synth_params p = synth_defaults(SYNTH_BOTTLE, 200, 260);
+    p.rgba = 1;
+    image_t img;
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    char photo[300], out[300], err[256], path[400];
+    path_in(photo, sizeof photo, "bottle.png");
+    cr_assert_eq(synth_write(photo, &img, 8, err, sizeof err), 0, "%s", err);
+    image_free(&img);
+    path_in(out, sizeof out, "out");
+    run_result r = run_reconstruct((const char *const[]){photo, "-o", out, "--segments", "16", "--json", NULL});
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    json_t *rep = json_loads(r.out, 0, NULL);
+    cr_assert_not_null(rep);
+    cr_expect_eq(json_integer_value(json_object_get(rep, "threshold")), -1, "the mask came from alpha");
+    json_decref(rep);
+    snprintf(path, sizeof path, "%s/texture.png", out);
+    cr_expect_eq(access(path, R_OK), 0);
+    free_run(&r);
+}
+
 Test(cli_reconstruct, json_report_has_the_table_1_columns)
 {
     draw_photo("jar.png", SYNTH_JAR, -1.0, 280, 360);

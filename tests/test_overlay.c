@@ -145,3 +145,25 @@ Test(overlay, line_width_grows_with_the_photo)
     cr_expect_eq(overlay_line_width(300, 400), 2.0);
     cr_expect_eq(overlay_line_width(1200, 900), 3.0);
 }
+
+Test(overlay, transparent_background_shows_white)
+{
+    scene s;
+    make_scene(&s, 0.0, RECON_SIDE_RIGHT);
+    /* The same vessel as RGBA: colour black where transparent, alpha = coverage. */
+    image_t rgba = image_alloc(s.img.width, s.img.height, 4);
+    cr_assert_not_null(rgba.data);
+    rgba.has_alpha = 1;
+    size_t n = (size_t)s.img.width * s.img.height;
+    for (size_t i = 0; i < n; i++)
+        rgba.data[4 * i + 3] = 0.0f;
+    uint8_t *rgb = overlay_render(&rgba, &s.res, &s.curve);
+    cr_assert_not_null(rgb);
+    /* Far from every shape: white, lightened (still white). */
+    size_t far = (size_t)(s.img.height - 3) * s.img.width + 2;
+    for (int c = 0; c < 3; c++)
+        cr_expect_eq(rgb[3 * far + c], 255);
+    free(rgb);
+    image_free(&rgba);
+    free_scene(&s);
+}

@@ -24,7 +24,8 @@ typedef enum {
 extern const uint8_t overlay_colours[OVERLAY_LAYER_COUNT][3];
 
 /* The photo's pixels under the drawing: lightened toward white so the
- * layers stand out, 0.6 * photo + 0.4 * white (photo as 8-bit RGB). */
+ * layers stand out, 0.6 * photo + 0.4 * white (photo as 8-bit RGB; a photo
+ * with alpha is first composited over white). */
 #define OVERLAY_PHOTO_WEIGHT 0.6
 
 /* Line width in pixels for a photo of this size: 2, or 1/300 of the smaller

@@ -223,6 +223,10 @@ uint8_t *overlay_render(const image_t *photo, const recon_result *res, const bsp
     for (size_t i = 0; i < n; i++)
         for (int k = 0; k < 3; k++) {
             float v = photo->data[i * C + (C >= 3 ? k : 0)];
+            if (photo->has_alpha) { /* over white: a transparent background shows as white */
+                float a = photo->data[i * C + C - 1];
+                v = a * v + (1.0f - a);
+            }
             v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
             cv.rgb[3 * i + k] = (uint8_t)lrint(OVERLAY_PHOTO_WEIGHT * lrintf(255.0f * v) + (1.0 - OVERLAY_PHOTO_WEIGHT) * 255.0);
         }
