@@ -248,10 +248,10 @@ uint8_t *overlay_render(const image_t *photo, const recon_result *res, const bsp
     }
     composite(&cv, overlay_colours[OVERLAY_PCA]);
 
-    /* The curve, sampled about every pixel of its polyline's length. */
+    /* The curve as a polyline of about two points per pixel of height. */
     int side = res->side_used == RECON_SIDE_LEFT ? -1 : 1;
     double lo = curve->knots[0], hi = curve->knots[bspline_n_knots(curve) - 1];
-    int steps = 64 + 2 * (int)fmin(1e5, H);
+    int steps = 64 + 2 * (int)fmin(1e5, fmax(0.0, H));
     vec2 prev = {0, 0};
     for (int i = 0; i <= steps; i++) {
         vec2 rh = bspline_eval(curve, lo + (hi - lo) * i / steps);
