@@ -173,14 +173,11 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     }
 
     /* 1. Mask: threshold; largest object, holes and rows filled; closing
-     * (radius 4, on the object's box) and the same again; floor shadow
-     * trimmed at the foot. */
+     * (radius 4); floor shadow trimmed at the foot. */
     res->mask_mode = recon_mask_threshold(img, opt ? opt->threshold : -1, gray, res->mask, &res->threshold_used);
     long area = recon_mask_clean(res->mask, w, h, &res->dropped_objects, &res->holes_filled);
-    if (area > 0) {
-        int dropped2, holes2;
-        area = recon_mask_close(res->mask, w, h, 4) ? -1 : recon_mask_clean(res->mask, w, h, &dropped2, &holes2);
-    }
+    if (area > 0 && recon_mask_close(res->mask, w, h, 4))
+        area = -1;
     if (area < 0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;

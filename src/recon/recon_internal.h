@@ -23,11 +23,13 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
  * Returns the object's pixel count, or -1 when out of memory. */
 long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *holes_filled);
 
-/* Morphological closing with a (2r+1)^2 square: bridges slits and gaps
- * narrower than 2r+1 px (a decoration line as light as the backdrop that
- * reaches the outline). Returns 0, or -1 when out of memory. */
+/* Morphological closing with a (2r+1)^2 square of a row-convex mask (one
+ * interval per row, as recon_mask_clean leaves it), computed on the row
+ * intervals: bridges slits narrower than 2r+1 px (a decoration line as light
+ * as the backdrop that reaches the outline). Returns 0, or -1 when out of
+ * memory. */
 int recon_mask_close(uint8_t *mask, int w, int h, int r);
-/* Morphological opening: removes slivers thinner than 2r+1 px. */
+/* Opening, likewise: removes slivers thinner than 2r+1 px. */
 int recon_mask_open(uint8_t *mask, int w, int h, int r);
 
 /* Floor shadows are soft and touch the vessel only at its foot: on each row of
