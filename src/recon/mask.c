@@ -373,13 +373,10 @@ long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *ho
     return kept;
 }
 
-/* A sharp step at pixel i of row j: across it along the row or the column. */
-static int sharp(const float *gray, int w, int h, int i, int j, float step)
+/* A sharp step across pixel i of a row, at least step over two pixels. */
+static int sharp(const float *g, int w, int i, float step)
 {
-    if (i < 1 || i + 1 >= w || j < 1 || j + 1 >= h)
-        return 1;
-    const float *g = gray + (size_t)j * w + i;
-    return fabsf(g[-1] - g[1]) >= step || fabsf(g[-w] - g[w]) >= step;
+    return i < 1 || i + 1 >= w || fabsf(g[i - 1] - g[i + 1]) >= step;
 }
 
 int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float step)
@@ -393,9 +390,10 @@ int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float s
         }
     if (top < 0)
         return 0;
-    int trimmed = 0;
+    int trimmed = 0, plo = -1, phi = -1;
     for (int j = bottom - (bottom - top) / 8; j <= bottom; j++) {
         uint8_t *m = mask + (size_t)j * w;
+        const float *g = gray + (size_t)j * w;
         int a = 0, b = w - 1;
         while (a < w && !m[a])
             a++;
@@ -403,19 +401,23 @@ int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float s
             b--;
         if (a >= w)
             continue;
-        /* From each end inward, to the first sharp step; rows without one
-         * stay as they are. */
-        int r = b, l = a;
-        while (r >= a && !sharp(gray, w, h, r, j, step))
-            r--;
-        while (l <= r && !sharp(gray, w, h, l, j, step))
-            l++;
-        if (r < a || l > r)
-            continue;
+        /* An end that juts out more than 3 px past the row above moves
+         * inward to the first sharp step, but not past the row above. */
+        int l = a, r = b;
+        if (phi >= 0 && b > phi + 3) {
+            while (r > phi && !sharp(g, w, r, step))
+                r--;
+        }
+        if (plo >= 0 && a < plo - 3) {
+            while (l < plo && !sharp(g, w, l, step))
+                l++;
+        }
         if (l > a || r < b)
             trimmed = 1;
         memset(m + a, 0, (size_t)(l - a));
         memset(m + r + 1, 0, (size_t)(b - r));
+        plo = l;
+        phi = r;
     }
     return trimmed;
 }
