@@ -179,88 +179,73 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
     return RECON_MASK_BACKGROUND;
 }
 
-/* ---- closing and opening */
+/* ---- closing and opening of a row-convex mask */
 
-/* out = v where any pixel of the (2r+1) box window equals v, else !v; on the
- * sub-rectangle [x0, x1) x [y0, y1) of a w-wide image, pixels outside it not
- * counting. Separable: along rows, then along columns with one running count
- * per column (row-major, cache friendly). cnt: x1 - x0 ints. */
-static void box_spread(uint8_t *img, uint8_t *tmp, int w, int x0, int y0, int x1, int y1, int r, uint8_t v, int *cnt)
+/* Row intervals [lo, hi] of the mask (lo = -1: empty row). */
+static void row_extents(const uint8_t *mask, int w, int h, int *lo, int *hi)
 {
-    int nx = x1 - x0;
-    for (int y = y0; y < y1; y++) {
-        const uint8_t *a = img + (size_t)y * w + x0;
-        uint8_t *b = tmp + (size_t)y * w + x0;
-        int count = 0;
-        for (int i = 0; i < r && i < nx; i++)
-            count += a[i] == v;
-        for (int i = 0; i < nx; i++) {
-            if (i + r < nx)
-                count += a[i + r] == v;
-            if (i - r - 1 >= 0)
-                count -= a[i - r - 1] == v;
-            b[i] = count > 0 ? v : (uint8_t)!v;
-        }
-    }
-    memset(cnt, 0, (size_t)nx * sizeof *cnt);
-    for (int y = y0; y < y0 + r && y < y1; y++)
-        for (int i = 0; i < nx; i++)
-            cnt[i] += tmp[(size_t)y * w + x0 + i] == v;
-    for (int y = y0; y < y1; y++) {
-        if (y + r < y1) {
-            const uint8_t *add = tmp + (size_t)(y + r) * w + x0;
-            for (int i = 0; i < nx; i++)
-                cnt[i] += add[i] == v;
-        }
-        if (y - r - 1 >= y0) {
-            const uint8_t *sub = tmp + (size_t)(y - r - 1) * w + x0;
-            for (int i = 0; i < nx; i++)
-                cnt[i] -= sub[i] == v;
-        }
-        uint8_t *o = img + (size_t)y * w + x0;
-        for (int i = 0; i < nx; i++)
-            o[i] = cnt[i] > 0 ? v : (uint8_t)!v;
+    for (int j = 0; j < h; j++) {
+        const uint8_t *m = mask + (size_t)j * w, *p = memchr(m, 1, (size_t)w);
+        int b = w - 1;
+        while (p && !m[b])
+            b--;
+        lo[j] = p ? (int)(p - m) : -1;
+        hi[j] = p ? b : -1;
     }
 }
 
-/* Dilation then erosion (first = 1: closing) or the reverse (first = 0:
- * opening), on the objects' bounding box grown by 2r+1 (nothing outside it
- * can change). */
-static int morph(uint8_t *mask, int w, int h, int r, uint8_t first)
+/* One square (2r+1) dilation (grow = 1) or erosion (grow = 0) of a set given
+ * by row intervals, from (lo, hi) into (nlo, nhi). For dilation the union of
+ * the neighbour rows' intervals is taken as its hull (the mask is row-filled
+ * anyway); erosion keeps a row only where all rows around it in the image are
+ * occupied (rows beyond the image do not count). */
+static void interval_step(const int *lo, const int *hi, int *nlo, int *nhi, int w, int h, int r, int grow)
 {
-    int x0 = w, x1 = -1, y0 = -1, y1 = -1;
-    for (int y = 0; y < h; y++) {
-        const uint8_t *m = mask + (size_t)y * w;
-        const uint8_t *p = memchr(m, 1, (size_t)w);
-        if (!p)
-            continue;
-        if (y0 < 0)
-            y0 = y;
-        y1 = y;
-        int a = (int)(p - m), b = w - 1;
-        while (!m[b])
-            b--;
-        x0 = a < x0 ? a : x0;
-        x1 = b > x1 ? b : x1;
+    for (int j = 0; j < h; j++) {
+        int a = grow ? w : -1, b = grow ? -1 : w, ok = 1;
+        for (int k = j - r < 0 ? 0 : j - r; k <= j + r && k < h; k++) {
+            int empty = lo[k] < 0;
+            if (grow) {
+                if (!empty) {
+                    a = lo[k] < a ? lo[k] : a;
+                    b = hi[k] > b ? hi[k] : b;
+                }
+            } else if (empty) {
+                ok = 0;
+            } else {
+                a = lo[k] > a ? lo[k] : a;
+                b = hi[k] < b ? hi[k] : b;
+            }
+        }
+        if (grow && b >= 0) {
+            a = a - r < 0 ? 0 : a - r;
+            b = b + r >= w ? w - 1 : b + r;
+        } else if (!grow) {
+            a += r;
+            b -= r;
+        }
+        int valid = grow ? b >= 0 : (ok && a <= b);
+        nlo[j] = valid ? a : -1;
+        nhi[j] = valid ? b : -1;
     }
-    if (y0 < 0)
-        return 0;
-    int g = 2 * r + 1;
-    x0 = x0 - g < 0 ? 0 : x0 - g;
-    y0 = y0 - g < 0 ? 0 : y0 - g;
-    x1 = x1 + g + 1 > w ? w : x1 + g + 1;
-    y1 = y1 + g + 1 > h ? h : y1 + g + 1;
-    uint8_t *tmp = malloc((size_t)w * h);
-    int *cnt = malloc((size_t)(x1 - x0) * sizeof *cnt);
-    if (!tmp || !cnt) {
-        free(tmp);
-        free(cnt);
+}
+
+static int morph(uint8_t *mask, int w, int h, int r, int close)
+{
+    int *lo = calloc((size_t)4 * h, sizeof *lo);
+    if (!lo)
         return -1;
+    int *hi = lo + h, *tlo = hi + h, *thi = tlo + h;
+    row_extents(mask, w, h, lo, hi);
+    interval_step(lo, hi, tlo, thi, w, h, r, close);
+    interval_step(tlo, thi, lo, hi, w, h, r, !close);
+    for (int j = 0; j < h; j++) {
+        uint8_t *m = mask + (size_t)j * w;
+        memset(m, 0, (size_t)w);
+        if (lo[j] >= 0)
+            memset(m + lo[j], 1, (size_t)(hi[j] - lo[j] + 1));
     }
-    box_spread(mask, tmp, w, x0, y0, x1, y1, r, first, cnt);
-    box_spread(mask, tmp, w, x0, y0, x1, y1, r, (uint8_t)!first, cnt);
-    free(tmp);
-    free(cnt);
+    free(lo);
     return 0;
 }
 
@@ -388,13 +373,10 @@ long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *ho
     return kept;
 }
 
-/* A sharp step at pixel i of row j: across it along the row or the column. */
-static int sharp(const float *gray, int w, int h, int i, int j, float step)
+/* A sharp step across pixel i of a row, at least step over two pixels. */
+static int sharp(const float *g, int w, int i, float step)
 {
-    if (i < 1 || i + 1 >= w || j < 1 || j + 1 >= h)
-        return 1;
-    const float *g = gray + (size_t)j * w + i;
-    return fabsf(g[-1] - g[1]) >= step || fabsf(g[-w] - g[w]) >= step;
+    return i < 1 || i + 1 >= w || fabsf(g[i - 1] - g[i + 1]) >= step;
 }
 
 int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float step)
@@ -408,9 +390,10 @@ int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float s
         }
     if (top < 0)
         return 0;
-    int trimmed = 0;
+    int trimmed = 0, plo = -1, phi = -1;
     for (int j = bottom - (bottom - top) / 8; j <= bottom; j++) {
         uint8_t *m = mask + (size_t)j * w;
+        const float *g = gray + (size_t)j * w;
         int a = 0, b = w - 1;
         while (a < w && !m[a])
             a++;
@@ -418,19 +401,23 @@ int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float s
             b--;
         if (a >= w)
             continue;
-        /* From each end inward, to the first sharp step; rows without one
-         * stay as they are. */
-        int r = b, l = a;
-        while (r >= a && !sharp(gray, w, h, r, j, step))
-            r--;
-        while (l <= r && !sharp(gray, w, h, l, j, step))
-            l++;
-        if (r < a || l > r)
-            continue;
+        /* An end that juts out more than 3 px past the row above moves
+         * inward to the first sharp step, but not past the row above. */
+        int l = a, r = b;
+        if (phi >= 0 && b > phi + 3) {
+            while (r > phi && !sharp(g, w, r, step))
+                r--;
+        }
+        if (plo >= 0 && a < plo - 3) {
+            while (l < plo && !sharp(g, w, l, step))
+                l++;
+        }
         if (l > a || r < b)
             trimmed = 1;
         memset(m + a, 0, (size_t)(l - a));
         memset(m + r + 1, 0, (size_t)(b - r));
+        plo = l;
+        phi = r;
     }
     return trimmed;
 }

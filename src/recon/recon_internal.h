@@ -23,18 +23,22 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
  * Returns the object's pixel count, or -1 when out of memory. */
 long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *holes_filled);
 
-/* Morphological closing with a (2r+1)^2 square: bridges slits and gaps
- * narrower than 2r+1 px (a decoration line as light as the backdrop that
- * reaches the outline). Returns 0, or -1 when out of memory. */
+/* Morphological closing with a (2r+1)^2 square of a row-convex mask (one
+ * interval per row, as recon_mask_clean leaves it), computed on the row
+ * intervals: bridges slits narrower than 2r+1 px (a decoration line as light
+ * as the backdrop that reaches the outline). Returns 0, or -1 when out of
+ * memory. */
 int recon_mask_close(uint8_t *mask, int w, int h, int r);
-/* Morphological opening: removes slivers thinner than 2r+1 px. */
+/* Opening, likewise: removes slivers thinner than 2r+1 px. */
 int recon_mask_open(uint8_t *mask, int w, int h, int r);
 
-/* Floor shadows are soft and touch the vessel only at its foot: on each row of
- * the object's lowest eighth, moves the object's ends inward to the first
- * sharp step (over two pixels along the row or the column, at least step), so
- * a shadow that joined the mask is cut off at the vessel. Rows without a sharp
- * step stay. Returns 1 when anything changed. */
+/* Floor shadows are soft and touch the vessel only at its foot: on the rows
+ * of the object's lowest eighth, top to bottom, an end of the row that juts
+ * out more than 3 px past the (trimmed) row above moves inward to the first
+ * sharp step along the row (over two pixels, at least step), but not past the
+ * row above. A vessel's outline changes smoothly from row to
+ * row; a shadow that joined the mask does not. Returns 1 when anything
+ * changed. */
 int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float step);
 
 /* ---- Suzuki–Abe border following (border_follow.c) */
