@@ -633,11 +633,11 @@ static json_t *report_json(const options *o, const report *r)
         "mesh", r->ms_mesh, "overlay", r->ms_overlay, "write", r->ms_write, "total", r->ms_total);
     json_t *errors = json_pack("{s:f, s:f}", "curve_to_polyline", r->err_curve_to_polyline, "polyline_to_curve",
                                r->err_polyline_to_curve);
-    return json_pack("{s:s, s:b, s:s, s:i, s:i, s:f, s:s, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, "
+    return json_pack("{s:s, s:b, s:s, s:i, s:i, s:f, s:s, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, "
                      "s:o, s:o, s:o}",
                      "photo", r->photo, "ok", 1, "output", r->out, "width", r->width, "height", r->height,
                      "tilt_deg", r->tilt_deg, "side", r->side, "threshold", r->threshold_used, "dropped_objects",
-                     r->dropped_objects, "contour_points", r->contour_points, "approx_points", r->approx_points,
+                     r->dropped_objects, "holes_filled", r->holes_filled, "contour_points", r->contour_points, "approx_points", r->approx_points,
                      "polyline_points", r->polyline_points, "control_points", r->control_points, "domains",
                      r->domains, "segments", r->mesh.segments, "vertices", r->mesh.vertices, "faces", r->mesh.faces,
                      "error_px", errors, "timings_ms", timings, "lods", lods);
