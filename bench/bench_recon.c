@@ -79,9 +79,7 @@ int main(void)
 
     synth_params p = synth_defaults(SYNTH_VASE, 900, 1200);
     p.tilt_deg = 1.0;
-    p.textured = 1;
-    p.fg[0] = 0.33f, p.fg[1] = 0.52f, p.fg[2] = 0.42f;
-    p.fg2[0] = 0.85f, p.fg2[1] = 0.84f, p.fg2[2] = 0.76f;
+    p.textured = 1; /* the drawer's default colours */
     image_t drawn;
     if (synth_draw(&p, &drawn) != 0 || synth_write(photo, &drawn, 8, err, sizeof err) != 0)
         die("cannot draw the photo");
