@@ -108,6 +108,7 @@ static void draw_photo(const char *name, synth_shape shape, double tilt_deg, int
     synth_params p = synth_defaults(shape, width, height);
     p.tilt_deg = tilt_deg;
     p.textured = 1;
+    p.subrows = 4; /* anti-aliased enough, and four times faster to draw */
     p.fg2[0] = 0.8f, p.fg2[1] = 0.75f, p.fg2[2] = 0.3f;
     image_t img;
     cr_assert_eq(synth_draw(&p, &img), 0);
