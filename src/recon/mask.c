@@ -402,15 +402,19 @@ int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float s
         if (a >= w)
             continue;
         /* An end that juts out more than 3 px past the row above moves
-         * inward to the first sharp step, but not past the row above. */
+         * inward to the first sharp step (none: it stays). */
         int l = a, r = b;
         if (phi >= 0 && b > phi + 3) {
-            while (r > phi && !sharp(g, w, r, step))
+            while (r > a && !sharp(g, w, r, step))
                 r--;
+            if (r <= a)
+                r = b;
         }
         if (plo >= 0 && a < plo - 3) {
-            while (l < plo && !sharp(g, w, l, step))
+            while (l < r && !sharp(g, w, l, step))
                 l++;
+            if (l >= r)
+                l = a;
         }
         if (l > a || r < b)
             trimmed = 1;

@@ -35,8 +35,7 @@ int recon_mask_open(uint8_t *mask, int w, int h, int r);
 /* Floor shadows are soft and touch the vessel only at its foot: on the rows
  * of the object's lowest eighth, top to bottom, an end of the row that juts
  * out more than 3 px past the (trimmed) row above moves inward to the first
- * sharp step along the row (over two pixels, at least step), but not past the
- * row above. A vessel's outline changes smoothly from row to
+ * sharp step along the row (over two pixels, at least step; none: it stays). A vessel's outline changes smoothly from row to
  * row; a shadow that joined the mask does not. Returns 1 when anything
  * changed. */
 int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float step);
