@@ -119,6 +119,10 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
             tmp[i] = fabs(e[i] - med);
         qsort(tmp, (size_t)m, sizeof *tmp, cmp_double);
         double tol = fmax(3 * 1.4826 * tmp[m / 2], 0.5);
+        /* Once roughly aligned, a row more than 1.5 px from the median is not
+         * symmetric, whatever the spread of the rest (a washed-out side). */
+        if (iter >= 2)
+            tol = fmin(tol, 1.5);
         /* Least squares e = 2 dc + 2 dth (x - xm) on the inliers, x = h + slope r. */
         double hm = 0, cnt = 0;
         for (int i = 0; i < m; i++)
