@@ -6,6 +6,9 @@
 
 #include "recon/recon_internal.h"
 
+/* Clamps a signal value to [0, 1]; NaN (HDR or broken files) becomes 0. */
+static inline float finite01(float v) { return v > 0 ? (v < 1 ? v : 1) : 0; }
+
 /* Median of 5 values (the border curves are denoised with it). */
 static float median5(float a, float b, float c, float d, float e)
 {
@@ -98,7 +101,7 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
             clear += (px[(size_t)j * w * c + c - 1] < 0.5f) + (px[((size_t)j * w + w - 1) * c + c - 1] < 0.5f);
         if (2 * clear > total) {
             for (size_t i = 0; i < n; i++) {
-                gray[i] = px[i * c + c - 1];
+                gray[i] = finite01(px[i * c + c - 1]);
                 mask[i] = gray[i] >= 0.5f;
             }
             *threshold_used = -1;
@@ -107,7 +110,7 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
     }
     for (size_t i = 0; i < n; i++) {
         const float *p = px + i * c;
-        gray[i] = c >= 3 ? 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2] : p[0];
+        gray[i] = finite01(c >= 3 ? 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2] : p[0]);
     }
 
     /* Background model: the Coons patch of the four (denoised) border curves,
