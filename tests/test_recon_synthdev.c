@@ -26,10 +26,10 @@ static const expectation CASES[] = {
     {"squat_jar_crane", 0.25, 1.5, 0.1, NULL},
     {"baluster_vase_e1.5_r1", 0.25, 1.5, 0.1, NULL},
     {"conical_tea_bowl_e5", 0.25, 1.5, 0.1, NULL},
-    {"melon_vase_specular", 0.6, 1.5, 0.8,
+    {"melon_vase_specular", 0.4, 1.5, 0.5,
      "the left edge is washed out by the highlight (the mask loses up to 18 px there) and the clean right edge "
-     "glows toward the backdrop under the rim light, biasing it 0.3-0.7 px inward; the axis rests on the "
-     "left/right symmetry of a half-missing outline"},
+     "glows toward the backdrop under the rim light (0.3 px inward on average even after the fg "
+     "extrapolation); the axis rests on the left/right symmetry of a half-missing outline"},
     {"stem_cup_r2", 0.25, 1.5, 0.1, NULL},
     {"pear_bottle_e3", 0.25, 1.5, 0.1, NULL},
     {"brush_pot_lowcontrast_r1.5", 0.25, 1.5, 0.1, NULL},

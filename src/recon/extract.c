@@ -82,8 +82,6 @@ static double quantile(const double *v, int n, double q, double *tmp)
     return tmp[k];
 }
 
-static int cmp_double(const void *a, const void *b);
-
 /* Drops points more than 1 px from the median x of their 7-row neighbourhood
  * (a decoration or a highlight spoiling one row's ramp); an outline is smooth
  * at that scale, and the median of a straight run is its centre value. */

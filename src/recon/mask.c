@@ -6,6 +6,9 @@
 
 #include "recon/recon_internal.h"
 
+/* Clamps a signal value to [0, 1]; NaN (HDR or broken files) becomes 0. */
+static inline float finite01(float v) { return v > 0 ? (v < 1 ? v : 1) : 0; }
+
 /* Median of 5 values (the border curves are denoised with it). */
 static float median5(float a, float b, float c, float d, float e)
 {
@@ -98,7 +101,7 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
             clear += (px[(size_t)j * w * c + c - 1] < 0.5f) + (px[((size_t)j * w + w - 1) * c + c - 1] < 0.5f);
         if (2 * clear > total) {
             for (size_t i = 0; i < n; i++) {
-                gray[i] = px[i * c + c - 1];
+                gray[i] = finite01(px[i * c + c - 1]);
                 mask[i] = gray[i] >= 0.5f;
             }
             *threshold_used = -1;
@@ -107,7 +110,7 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
     }
     for (size_t i = 0; i < n; i++) {
         const float *p = px + i * c;
-        gray[i] = c >= 3 ? 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2] : p[0];
+        gray[i] = finite01(c >= 3 ? 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2] : p[0]);
     }
 
     /* Background model: the Coons patch of the four (denoised) border curves,
@@ -402,15 +405,19 @@ int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float s
         if (a >= w)
             continue;
         /* An end that juts out more than 3 px past the row above moves
-         * inward to the first sharp step, but not past the row above. */
+         * inward to the first sharp step (none: it stays). */
         int l = a, r = b;
         if (phi >= 0 && b > phi + 3) {
-            while (r > phi && !sharp(g, w, r, step))
+            while (r > a && !sharp(g, w, r, step))
                 r--;
+            if (r <= a)
+                r = b;
         }
         if (plo >= 0 && a < plo - 3) {
-            while (l < plo && !sharp(g, w, l, step))
+            while (l < r && !sharp(g, w, l, step))
                 l++;
+            if (l >= r)
+                l = a;
         }
         if (l > a || r < b)
             trimmed = 1;
