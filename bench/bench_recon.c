@@ -20,7 +20,7 @@
 #include "celadon/overlay.h"
 #include "celadon/progress.h"
 #include "celadon/recon.h"
-#include "celadon/texture.h"
+#include "celadon/recon_texture.h"
 #include "recon/recon_internal.h"
 
 #define REPS 21
@@ -175,9 +175,9 @@ int main(void)
                if (curve_domains_by_curvature(&curve, 0.25, &u, &nu)) die("domains failed"));
     double e1, e2;
     TIME_STAGE("Hausdorff errors", REPS, , curve_polyline_hausdorff(&curve, res.polyline, res.n_polyline, &e1, &e2));
-    texture_t tex = {0};
-    TIME_STAGE("texture (scanline)", REPS, texture_free(&tex),
-               if (texture_from_photo(&img, &res, &tex, err, sizeof err)) die(err));
+    recon_texture_t tex = {0};
+    TIME_STAGE("texture (scanline)", REPS, recon_texture_free(&tex),
+               if (recon_texture_from_photo(&img, &res, &tex, err, sizeof err)) die(err));
     uint8_t *ov = NULL;
     TIME_STAGE("overlay", REPS, free(ov), ov = overlay_render(&img, &res, &curve));
     printf("  (%d contour points, %d polyline points, %d control points, %d domain boundaries,\n"
@@ -238,7 +238,7 @@ int main(void)
         die("cannot remove out/bench/batch");
 
     free(ov);
-    texture_free(&tex);
+    recon_texture_free(&tex);
     free(u);
     bspline_free(&curve);
     recon_result_free(&res);

@@ -23,7 +23,7 @@
 #include "celadon/profile.h"
 #include "celadon/progress.h"
 #include "celadon/recon.h"
-#include "celadon/texture.h"
+#include "celadon/recon_texture.h"
 #include "cli/commands.h"
 
 enum { MIN_SIDE_PX = 32, MAX_LODS = 8 };
@@ -461,7 +461,7 @@ static int run_pipeline(const options *o, const char *photo, const char *tmp, re
     bspline_t curve = {0};
     double *domains = NULL;
     int n_domains = 0;
-    texture_t tex = {0};
+    recon_texture_t tex = {0};
     uint8_t *overlay = NULL;
     char err[400], path[PATH_MAX + 64];
     const char *files[8 + 2 * MAX_LODS];
@@ -517,7 +517,7 @@ static int run_pipeline(const options *o, const char *photo, const char *tmp, re
     rep->ms_hausdorff = ms_since(t0);
 
     t0 = now_seconds();
-    if (texture_from_photo(&img, &res, &tex, err, sizeof err) != 0) {
+    if (recon_texture_from_photo(&img, &res, &tex, err, sizeof err) != 0) {
         fail(rep, 2, "%s", err);
         goto done;
     }
@@ -571,7 +571,7 @@ static int run_pipeline(const options *o, const char *photo, const char *tmp, re
     status = 0;
 done:
     free(overlay);
-    texture_free(&tex);
+    recon_texture_free(&tex);
     free(domains);
     bspline_free(&curve);
     recon_result_free(&res);

@@ -1,12 +1,12 @@
-/* Scanline texture extraction (the layout and the column mapping are in texture.h). */
-#include "celadon/texture.h"
+/* Scanline texture extraction (the layout and the column mapping are in recon_texture.h). */
+#include "celadon/recon_texture.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-void texture_free(texture_t *t)
+void recon_texture_free(recon_texture_t *t)
 {
     free(t->rgb);
     memset(t, 0, sizeof *t);
@@ -90,7 +90,7 @@ static uint8_t to_u8(float v)
     return (uint8_t)lrintf(v * 255.0f);
 }
 
-int texture_from_photo(const image_t *photo, const recon_result *res, texture_t *out, char *err, size_t errlen)
+int recon_texture_from_photo(const image_t *photo, const recon_result *res, recon_texture_t *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
     double H = res->n_polyline > 0 ? res->polyline[res->n_polyline - 1].y : 0.0;
@@ -128,7 +128,7 @@ int texture_from_photo(const image_t *photo, const recon_result *res, texture_t 
     double *cos_u = malloc((size_t)out->width * sizeof(double));
     if (!out->rgb || !cos_u) {
         free(cos_u);
-        texture_free(out);
+        recon_texture_free(out);
         snprintf(err, errlen, "texture: out of memory");
         goto done;
     }

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "celadon/texture.h"
+#include "celadon/recon_texture.h"
 #include "support/synth_vessel.h"
 
 /* What a perfect extraction gives for the drawing: its true axis, its exact
@@ -101,9 +101,9 @@ static void check_pattern(double tilt_deg)
     image_t img;
     draw_striped(&p, &img);
     recon_result res = truth_result(&p);
-    texture_t tex;
+    recon_texture_t tex;
     char err[256];
-    cr_assert_eq(texture_from_photo(&img, &res, &tex, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(recon_texture_from_photo(&img, &res, &tex, err, sizeof err), 0, "%s", err);
 
     double H = p.height_px, widest = 0;
     for (double h = 0; h <= H; h += 0.25)
@@ -146,16 +146,16 @@ static void check_pattern(double tilt_deg)
         n_edges++;
     }
     cr_expect_eq(n_edges, BANDS - 1);
-    texture_free(&tex);
+    recon_texture_free(&tex);
     free_truth(&res);
     image_free(&img);
 }
 
-Test(texture, stripes_and_bands_land_at_their_angles_and_heights) { check_pattern(0.0); }
+Test(recon_texture, stripes_and_bands_land_at_their_angles_and_heights) { check_pattern(0.0); }
 
-Test(texture, tilt_is_undone_by_the_axis_frame) { check_pattern(7.0); }
+Test(recon_texture, tilt_is_undone_by_the_axis_frame) { check_pattern(7.0); }
 
-Test(texture, gray_photo_gives_gray_texture)
+Test(recon_texture, gray_photo_gives_gray_texture)
 {
     synth_params p = striped_vase(0.0);
     image_t rgb;
@@ -165,27 +165,27 @@ Test(texture, gray_photo_gives_gray_texture)
     for (size_t i = 0; i < (size_t)rgb.width * rgb.height; i++)
         gray.data[i] = rgb.data[3 * i + 1];
     recon_result res = truth_result(&p);
-    texture_t tex;
+    recon_texture_t tex;
     char err[256];
-    cr_assert_eq(texture_from_photo(&gray, &res, &tex, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(recon_texture_from_photo(&gray, &res, &tex, err, sizeof err), 0, "%s", err);
     for (size_t i = 0; i < (size_t)tex.width * tex.height; i++)
         cr_assert(tex.rgb[3 * i] == tex.rgb[3 * i + 1] && tex.rgb[3 * i + 1] == tex.rgb[3 * i + 2]);
-    texture_free(&tex);
+    recon_texture_free(&tex);
     free_truth(&res);
     image_free(&gray);
     image_free(&rgb);
 }
 
-Test(texture, a_profile_without_height_is_refused)
+Test(recon_texture, a_profile_without_height_is_refused)
 {
     synth_params p = striped_vase(0.0);
     image_t img;
     draw_striped(&p, &img);
     recon_result res = truth_result(&p);
     res.polyline[res.n_polyline - 1].y = 0.2;
-    texture_t tex;
+    recon_texture_t tex;
     char err[256] = "";
-    cr_expect_eq(texture_from_photo(&img, &res, &tex, err, sizeof err), -1);
+    cr_expect_eq(recon_texture_from_photo(&img, &res, &tex, err, sizeof err), -1);
     cr_expect(err[0] != 0);
     cr_expect_null(tex.rgb);
     free_truth(&res);
