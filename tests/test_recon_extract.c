@@ -1,7 +1,7 @@
 /* recon_extract on drawn vessels with exactly known geometry (synth_vessel):
  * axis tilt, corners and the profile against the analytic truth, through
  * every input path (RGB, RGBA with transparent background, 16-bit PNG, JPEG,
- * textured, light-on-dark). */
+ * textured, light-on-dark, sensor noise). */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -156,6 +156,31 @@ Test(recon_extract, textured_jar)
     synth_params p = synth_defaults(SYNTH_JAR, 300, 360);
     p.textured = 1;
     expect_accurate("jar textured", run_case(&p, NULL, 8, NULL));
+}
+
+Test(recon_extract, sensor_noise)
+{
+    synth_params p = synth_defaults(SYNTH_BOTTLE, 300, 400);
+    p.tilt_deg = 2;
+    image_t img;
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    /* Gaussian noise, sigma 3/255, from a fixed-seed LCG and Box-Muller. */
+    unsigned long long st = 42;
+    for (size_t i = 0; i < (size_t)300 * 400 * 3; i++) {
+        double u[2];
+        for (int k = 0; k < 2; k++) {
+            st = st * 6364136223846793005ULL + 1442695040888963407ULL;
+            u[k] = ((st >> 11) + 0.5) / 9007199254740992.0;
+        }
+        img.data[i] += (float)(3.0 / 255 * sqrt(-2 * log(u[0])) * cos(2 * M_PI * u[1]));
+    }
+    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_result r;
+    char err[256];
+    cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
+    expect_accurate("bottle with noise", measure(&p, &r, 4));
+    recon_result_free(&r);
+    image_free(&img);
 }
 
 Test(recon_extract, side_option_is_honoured)
