@@ -105,8 +105,8 @@ static long corner_vertex(obj_builder *b, const long *key)
 static int parse_corner(const char *tok, const size_t count[3], long out[3])
 {
     const char *s = tok;
+    out[0] = out[1] = out[2] = -1;
     for (int k = 0; k < 3; k++) {
-        out[k] = -1;
         if (k > 0) {
             if (*s != '/')
                 break;
