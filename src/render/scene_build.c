@@ -9,7 +9,7 @@
 
 #define FAIL(o, ...)                                                         \
     do {                                                                     \
-        char msg_[600];                                                      \
+        char msg_[1024];                                                      \
         snprintf(msg_, sizeof msg_, __VA_ARGS__);                            \
         snprintf(err, errlen, "%s:%d: %s", (o)->file, (o)->line, msg_);      \
         return -1;                                                           \
