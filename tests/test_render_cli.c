@@ -1,6 +1,7 @@
 /* celadon render end to end, and determinism of the render loop. */
 #include <fcntl.h>
 #include <spawn.h>
+#include <signal.h>
 #include <sys/wait.h>
 
 #include "celadon/image.h"
@@ -147,5 +148,34 @@ Test(render_determinism, same_seed_same_image_any_thread_count)
     cr_expect_eq(memcmp(a, b, n * sizeof *a), 0, "seed 5 on 1 and 2 threads differ");
     cr_expect_neq(memcmp(a, c, n * sizeof *a), 0, "seeds 5 and 6 give the same image");
     free(a), free(b), free(c);
+    render_fixture_close(&f);
+}
+
+/* Ctrl-C: the render stops, the partial image is written whole, exit 130. */
+Test(render_cli, sigint_writes_the_partial_image)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    render_write_profile(&f, "profile.json", "plum");
+    char scene[256], out[256], errpath[256];
+    render_write_file(&f, "scene.xml", tiny_xml, scene, sizeof scene);
+    snprintf(out, sizeof out, "%s/partial.exr", f.dir);
+    snprintf(errpath, sizeof errpath, "%s/stderr.txt", f.dir);
+    char *argv[] = {(char *)celadon_bin(), "render", scene, "-o", out, "--spp", "10000000", "--threads", "2", NULL};
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 2, errpath, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid;
+    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, argv, environ), 0);
+    posix_spawn_file_actions_destroy(&fa);
+    usleep(1500000);
+    kill(pid, SIGINT);
+    int status;
+    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    cr_assert(WIFEXITED(status), "celadon died from a signal");
+    cr_expect_eq(WEXITSTATUS(status), 130);
+    int w, h, c;
+    char why[256];
+    cr_expect_eq(image_probe(out, &w, &h, &c, why, sizeof why), 0, "no partial image: %s", why);
     render_fixture_close(&f);
 }

@@ -37,8 +37,9 @@ int render_aov_parse(const char *list, unsigned *mask);
 int render_scene(const scene_t *s, const render_options *opt, film_t *film, render_stats *stats, char *err,
                  size_t errlen);
 
-/* Asks a running render_scene to stop after the tiles in flight;
- * async-signal-safe (meant for a SIGINT handler). */
+/* Asks render_scene to stop after the samples in flight (or, if called
+ * before it starts, as soon as it starts); the request is cleared when
+ * render_scene returns. Async-signal-safe (meant for a SIGINT handler). */
 void render_request_stop(void);
 
 /* Radiance along one camera ray of pixel sample rng (the `path` integrator);

@@ -149,6 +149,12 @@ int cmd_render(int argc, char **argv)
         return rc;
     }
 
+    /* From here Ctrl-C asks for the image so far (an empty one while loading). */
+    struct sigaction sa, old;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_sigint;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old);
     char err[2048];
     scene_t *scene = scene_load(scene_path, defs, ndefs, &bo, err, sizeof err);
     for (int i = 0; i < ndefs; i++)
@@ -157,11 +163,6 @@ int cmd_render(int argc, char **argv)
         fprintf(stderr, "celadon: %s\n", err);
         return 2;
     }
-    struct sigaction sa, old;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, &old);
     film_t film;
     render_stats st;
     rc = render_scene(scene, &ro, &film, &st, err, sizeof err) == 0 ? 0 : 1;

@@ -1,6 +1,6 @@
 /* The render loop: passes of samples over 16x16 tiles shared out to OpenMP
  * threads, each pixel sample with its own RNG stream, a progress bar, and a
- * stop request (SIGINT) honoured between tiles. */
+ * stop request (SIGINT) honoured after the sample in progress. */
 #include <omp.h>
 #include <signal.h>
 #include <stdio.h>
@@ -50,21 +50,27 @@ static int pack_values(rgb L, const double *aov, unsigned mask, double *out)
     return n;
 }
 
-static void render_tile(const scene_t *s, film_t *film, unsigned aovs, int tx, int ty, int s0, int s1)
+/* Samples [s0, s1) of every pixel of a tile; a stop request ends it after
+ * the sample in progress. Returns the number of samples taken. */
+static uint64_t render_tile(const scene_t *s, film_t *film, unsigned aovs, int tx, int ty, int s0, int s1)
 {
     const camera_t *cam = scene_camera(s);
-    uint64_t seed = scene_seed(s);
+    uint64_t seed = scene_seed(s), n = 0;
     double aov[AOV_MAX], vals[3 + AOV_MAX];
     for (int y = ty; y < ty + TILE && y < cam->height; y++)
         for (int x = tx; x < tx + TILE && x < cam->width; x++)
             for (int k = s0; k < s1; k++) {
+                if (stop_requested)
+                    return n;
                 rng_t rng = rng_for_sample(seed, (uint32_t)x, (uint32_t)y, (uint32_t)k);
                 double sx = rng_next_double(&rng), sy = rng_next_double(&rng);
                 camera_ray_t cr = camera_ray(cam, x, y, sx, sy);
                 rgb L = integrator_path_li(s, &cr.ray, cr.tmin, cr.tmax, &rng, aovs ? aov : NULL);
                 pack_values(L, aov, aovs, vals);
                 film_add(film, x, y, vals, 1.0);
+                n++;
             }
+    return n;
 }
 
 int render_scene(const scene_t *s, const render_options *opt, film_t *film, render_stats *stats, char *err,
@@ -81,7 +87,6 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
         list[naov++] = (film_aov){"albedo", 3};
     if (film_init(film, cam->width, cam->height, list, naov, err, errlen) != 0)
         return -1;
-    stop_requested = 0;
     int spp = scene_spp(s);
     int tiles_x = (cam->width + TILE - 1) / TILE, tiles_y = (cam->height + TILE - 1) / TILE;
     int ntiles = tiles_x * tiles_y;
@@ -100,9 +105,7 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
             if (stop_requested)
                 continue;
             int tx = (t % tiles_x) * TILE, ty = (t / tiles_x) * TILE;
-            render_tile(s, film, opt->aovs, tx, ty, s0, s1);
-            int w = cam->width - tx < TILE ? cam->width - tx : TILE, h = cam->height - ty < TILE ? cam->height - ty : TILE;
-            uint64_t add = (uint64_t)w * (uint64_t)h * (uint64_t)(s1 - s0), now;
+            uint64_t add = render_tile(s, film, opt->aovs, tx, ty, s0, s1), now;
 #pragma omp atomic capture
             now = done += add;
             if (opt->progress && omp_get_thread_num() == 0) {
@@ -128,5 +131,6 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
         stats->samples = done;
         stats->interrupted = stop_requested != 0;
     }
+    stop_requested = 0;
     return 0;
 }
