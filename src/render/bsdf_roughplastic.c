@@ -5,8 +5,9 @@
  * where T(mu) is the energy the rough interface transmits at incidence mu and
  * k = R_int (linear) or rho * R_int (nonlinear), R_int the hemispherical
  * reflectance of the coating seen from inside. Mitsuba precomputes T and R_int
- * offline for a grid of (alpha, eta); here they are integrated at construction
- * with stratified visible-normal samples of the same distribution. */
+ * offline for a grid of (alpha, eta); here T is integrated at construction
+ * with stratified visible-normal samples of the same distribution and R_int
+ * follows from T by reciprocity. */
 #include "celadon/fresnel.h"
 #include "celadon/sampling.h"
 #include "render/bsdf_impl.h"
@@ -165,13 +166,16 @@ bsdf_t *bsdf_create_roughplastic(const bsdf_roughplastic_params *p, char *err, s
     visible.sample_visible = 1;
     for (int i = 0; i < TABLE_SIZE; i++)
         d->transmittance[i] = rough_transmittance(&visible, d->eta, (double)i / (TABLE_SIZE - 1));
-    /* R_int = 1 - 2 int_0^1 T_inside(mu) mu dmu, midpoint rule in mu. */
-    const int n = TABLE_SIZE / 2;
-    double t_int = 0.0;
-    for (int i = 0; i < n; i++) {
-        double mu = (i + 0.5) / n;
-        t_int += 2.0 * mu * rough_transmittance(&visible, 1.0 / d->eta, mu) / n;
+    /* Reciprocity of the interface: light leaving the base, 1 - R_int, equals
+     * (1 / eta^2) 2 int_0^1 T(mu) mu dmu of the light entering it. Integrating
+     * the same piecewise-linear T that eval interpolates (Simpson is exact on
+     * each segment) makes the diffuse term conserve energy exactly. */
+    double h = 1.0 / (TABLE_SIZE - 1), t_in = 0.0;
+    for (int i = 0; i + 1 < TABLE_SIZE; i++) {
+        double ma = i * h, mb = (i + 1) * h, ta = d->transmittance[i], tb = d->transmittance[i + 1];
+        double mm = 0.5 * (ma + mb), tm = 0.5 * (ta + tb);
+        t_in += h / 6.0 * (2.0 * ma * ta + 4.0 * 2.0 * mm * tm + 2.0 * mb * tb);
     }
-    d->internal_reflectance = 1.0 - t_int;
+    d->internal_reflectance = 1.0 - d->inv_eta2 * t_in;
     return b;
 }

@@ -50,23 +50,17 @@ rgb fresnel_conductor_rgb(double cos_i, rgb eta, rgb k)
 
 double fresnel_diffuse_reflectance(double eta)
 {
-    /* Composite Simpson in mu; the total-internal-reflection kink at
-     * mu_c = sqrt(1 - eta^2) is made a panel boundary so both panels are smooth. */
+    /* 2 int_0^1 F(mu) mu dmu by composite Simpson. For eta < 1, F = 1 below the
+     * critical cosine mu_c = sqrt(1 - eta^2) (exact part), and above it F has a
+     * square-root kink at mu_c; substituting mu = mu_c + (1 - mu_c) s^2 makes
+     * the integrand smooth in s. */
     double mu_c = eta < 1.0 ? sqrt(1.0 - eta * eta) : 0.0;
-    double edges[3] = {0.0, mu_c, 1.0};
-    const int n = 512; /* even */
-    double sum = 0.0;
-    for (int p = 0; p < 2; p++) {
-        double a = edges[p], b = edges[p + 1], h = (b - a) / n;
-        if (h <= 0.0)
-            continue;
-        double s = 0.0;
-        for (int i = 0; i <= n; i++) {
-            double mu = a + i * h;
-            double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
-            s += w * fresnel_dielectric(mu, eta, NULL, NULL, NULL) * mu;
-        }
-        sum += s * h / 3.0;
+    const int n = 256; /* even */
+    double h = 1.0 / n, sum = 0.0;
+    for (int i = 0; i <= n; i++) {
+        double s = i * h, mu = mu_c + (1.0 - mu_c) * s * s;
+        double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+        sum += w * fresnel_dielectric(mu, eta, NULL, NULL, NULL) * mu * 2.0 * (1.0 - mu_c) * s;
     }
-    return 2.0 * sum;
+    return mu_c * mu_c + 2.0 * sum * h / 3.0;
 }
