@@ -117,3 +117,35 @@ Test(render_lights, envmap_orientation_and_density)
     emitter_envmap_free(&env);
     render_fixture_close(&f);
 }
+
+/* Integrator settings: max_depth = 1 shows only emitters seen directly
+ * (the sphere is black, the background the environment's 0.5);
+ * hide_emitters hides that background too. */
+static void depth_one(const char *extra, double want_bg)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    char xml[2048], path[256];
+    snprintf(xml, sizeof xml,
+             "<scene version=\"3.0.0\"><integrator type=\"path\"><integer name=\"max_depth\" value=\"1\"/>%s"
+             "</integrator><sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>"
+             "<transform name=\"to_world\"><lookat origin=\"0, 0, 4\" target=\"0, 0, 0\" up=\"0, 1, 0\"/></transform>"
+             "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"
+             "<film type=\"hdrfilm\"><integer name=\"width\" value=\"16\"/><integer name=\"height\" value=\"16\"/></film>"
+             "</sensor><shape type=\"sphere\"/><emitter type=\"constant\"><rgb name=\"radiance\" value=\"0.5\"/></emitter>"
+             "</scene>",
+             extra);
+    render_write_file(&f, "scene.xml", xml, path, sizeof path);
+    int w, h, nch;
+    float *px = render_to_pixels(path, 0, 1, 2, 0, &w, &h, &nch);
+    cr_expect_float_eq(px[(8 * w + 8) * nch], 0.0, 1e-12, "centre (the sphere)");
+    cr_expect_float_eq(px[0], want_bg, 1e-12, "corner (the background)");
+    free(px);
+    render_fixture_close(&f);
+}
+
+Test(render_lights, max_depth_one_and_hide_emitters)
+{
+    depth_one("", 0.5);
+    depth_one("<boolean name=\"hide_emitters\" value=\"true\"/>", 0.0);
+}
