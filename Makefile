@@ -154,3 +154,13 @@ bench: check-deps-stamp
 	  $(PYTHON_CV) bench/opencv_recon.py out/bench/bench_recon_photo.png out/bench/bench_recon_mask.png | tee out/bench/opencv_recon.txt; \
 	fi
 	@echo "celadon: benchmark results in out/bench/*.txt (docs/BENCHMARKS.md explains them)"
+
+# ---------------------------------------------------------------- SOR benchmark
+# The test profiles are the benchmark's workload, so their source links in.
+BENCH_SOR_SRC := bench/bench_sor.c tests/support/sor_profiles.c
+build/bench/bench_sor: $(BENCH_SOR_SRC) build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -O3 -Itests -o $@ $(BENCH_SOR_SRC) build/opt/libceladon.a $(LDLIBS)
+bench-sor: check-deps-stamp
+	@$(MAKE) --no-print-directory -j2 build/bench/bench_sor
+	./build/bench/bench_sor
