@@ -1,6 +1,6 @@
 /* One ray-tracing scene for every shape: an Embree 3 device and scene holding
- * triangle meshes and surfaces of revolution (SORs), each placed by an affine
- * object-to-world transform.
+ * triangle meshes, surfaces of revolution (SORs) and the quadrics sphere, disk
+ * and cylinder, each placed by an affine object-to-world transform.
  *
  * Placement is a transform4 (celadon/transform.h: the matrix with its inverse),
  * as scenes carry it; NULL means the identity.
@@ -33,7 +33,23 @@ typedef struct accel accel_t;
 
 #define ACCEL_INVALID_ID 0xffffffffu
 
-typedef enum { ACCEL_KIND_MESH = 0, ACCEL_KIND_SOR_ANALYTIC = 1, ACCEL_KIND_SOR_MESH = 2 } accel_kind;
+/* The quadrics are Mitsuba's shapes in their object space, exact in double
+ * precision as Embree user geometries (one primitive each):
+ *  - sphere: the unit sphere at the origin; param = (theta from +z, phi),
+ *    uv = (phi / 2pi, theta / pi);
+ *  - disk: the unit disk in z = 0, normal +z; param = (radius, phi),
+ *    uv = (radius, phi / 2pi);
+ *  - cylinder: the open tube of radius 1 around z from z = 0 to 1, normal
+ *    outward; param = (z, phi), uv = (phi / 2pi, z);
+ * phi = atan2(y, x) in [0, 2pi). */
+typedef enum {
+    ACCEL_KIND_MESH = 0,
+    ACCEL_KIND_SOR_ANALYTIC = 1,
+    ACCEL_KIND_SOR_MESH = 2,
+    ACCEL_KIND_SPHERE = 3,
+    ACCEL_KIND_DISK = 4,
+    ACCEL_KIND_CYLINDER = 5
+} accel_kind;
 
 /* How an SOR enters the scene. segments = 0: analytic. segments >= 3: meshed
  * with that many angular segments and rings at u_rings[0..n_rings-1] when given
@@ -54,14 +70,23 @@ typedef struct {
     vec3 ng;     /* world, unit: SOR outward normal; mesh face normal (counter-clockwise side) */
     vec3 ns;     /* world, unit shading normal: SOR analytic normal; mesh interpolated normal
                     (face normal when the mesh has none) */
-    vec2 uv;     /* SOR: sor_hit.uv; mesh: interpolated uv (barycentrics when the mesh has none) */
-    sor_part part; /* analytic SOR: the part hit; meshes: SOR_PART_WALL */
+    vec2 uv;     /* SOR: sor_hit.uv; quadric: as above; mesh: interpolated uv (barycentrics when
+                    the mesh has none) */
+    sor_part part; /* analytic SOR: the part hit; quadrics and meshes: SOR_PART_WALL */
+    /* The hit in the geometry's object space, for what is defined there
+     * (densities per object area, surface parameters): */
+    vec3 p_obj;      /* point */
+    vec3 n_obj;      /* unit: SOR and quadric outward normal; mesh counter-clockwise face normal */
+    double param[2]; /* analytic SOR: profile u and phi (sor_hit.u, .phi); quadric: as above;
+                        triangle: barycentrics of its second and third vertex */
 } accel_hit;
 
 /* BVH build effort: FAST is Embree's default (medium quality); BEST adds
  * spatial splits, slower to build (several times, for millions of triangles)
- * and faster to trace, for static scenes traced many times. */
-typedef enum { ACCEL_BUILD_FAST = 0, ACCEL_BUILD_BEST = 1 } accel_build;
+ * and faster to trace, for static scenes traced many times. Either may be
+ * or-ed with ROBUST: Embree's watertight triangle test (no ray slips between
+ * two triangles sharing an edge), a little slower. */
+typedef enum { ACCEL_BUILD_FAST = 0, ACCEL_BUILD_BEST = 1, ACCEL_BUILD_ROBUST = 2 } accel_build;
 
 /* A new empty scene on its own Embree device. Returns NULL with a reason in err. */
 accel_t *accel_create(accel_build build, char *err, size_t errlen);
@@ -75,6 +100,14 @@ unsigned accel_add_mesh(accel_t *acc, const mesh_t *mesh, const transform4 *to_w
  * mode asks for. Returns the geometry id, or ACCEL_INVALID_ID with a reason. */
 unsigned accel_add_sor(accel_t *acc, const bspline_t *profile, double height, unsigned caps,
                        const transform4 *to_world, const accel_sor_mode *mode, char *err, size_t errlen);
+
+/* Adds the quadric kind (ACCEL_KIND_SPHERE, _DISK or _CYLINDER) placed by
+ * to_world. Returns the geometry id, or ACCEL_INVALID_ID with a reason. */
+unsigned accel_add_quadric(accel_t *acc, accel_kind kind, const transform4 *to_world, char *err, size_t errlen);
+
+/* What a hit at the point p of a quadric's object-space surface reports
+ * there (unit outward normal, uv, param), e.g. for a point sampled on it. */
+void accel_quadric_at(accel_kind kind, vec3 p, vec3 *n, vec2 *uv, double param[2]);
 
 /* Builds the BVH; call after the last add and before tracing. Returns 0 or -1. */
 int accel_commit(accel_t *acc, char *err, size_t errlen);

@@ -34,7 +34,10 @@ accel_t *accel_create(accel_build build, char *err, size_t errlen)
         free(acc);
         return NULL;
     }
-    rtcSetSceneBuildQuality(acc->scene, build == ACCEL_BUILD_BEST ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
+    rtcSetSceneBuildQuality(acc->scene,
+                            build & ACCEL_BUILD_BEST ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
+    if (build & ACCEL_BUILD_ROBUST)
+        rtcSetSceneFlags(acc->scene, RTC_SCENE_FLAG_ROBUST);
     return acc;
 }
 
@@ -252,6 +255,24 @@ static unsigned add_sor_mesh(accel_t *acc, const bspline_t *profile, double heig
     return id;
 }
 
+unsigned accel_add_quadric(accel_t *acc, accel_kind kind, const transform4 *to_world, char *err, size_t errlen)
+{
+    if (kind != ACCEL_KIND_SPHERE && kind != ACCEL_KIND_DISK && kind != ACCEL_KIND_CYLINDER) {
+        snprintf(err, errlen, "geometry kind %d is not a quadric", (int)kind);
+        return ACCEL_INVALID_ID;
+    }
+    accel_geom *g = geom_new(kind, to_world, err, errlen);
+    if (!g)
+        return ACCEL_INVALID_ID;
+    RTCGeometry geom = quadric_user_geometry_new(acc->device, g);
+    if (!geom) {
+        snprintf(err, errlen, "cannot create an Embree user geometry");
+        geom_free(g);
+        return ACCEL_INVALID_ID;
+    }
+    return attach(acc, geom, g, err, errlen);
+}
+
 unsigned accel_add_sor(accel_t *acc, const bspline_t *profile, double height, unsigned caps, const transform4 *to_world,
                        const accel_sor_mode *mode, char *err, size_t errlen)
 {
@@ -283,7 +304,40 @@ static void context_init(accel_context *ctx, const accel_t *acc, const ray3 *ray
     ctx->tmin = tmin;
     ctx->tbest = tmax;
     ctx->obj_geom = ACCEL_INVALID_ID;
-    ctx->sor_geom = ACCEL_INVALID_ID;
+}
+
+void accel_world_bounds(const accel_geom *g, vec3 lo, vec3 hi, struct RTCBounds *b)
+{
+    vec3 wlo = v3(INFINITY, INFINITY, INFINITY), whi = v3(-INFINITY, -INFINITY, -INFINITY);
+    for (int k = 0; k < 8; k++) {
+        vec3 c = v3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+        vec3 w = transform_point(&g->to_world, c);
+        wlo = v3(fmin(wlo.x, w.x), fmin(wlo.y, w.y), fmin(wlo.z, w.z));
+        whi = v3(fmax(whi.x, w.x), fmax(whi.y, w.y), fmax(whi.z, w.z));
+    }
+    double pad = 1e-6 * (v3_len(v3_sub(whi, wlo)) + fmax(v3_len(wlo), v3_len(whi)));
+    b->lower_x = float_down(wlo.x - pad);
+    b->lower_y = float_down(wlo.y - pad);
+    b->lower_z = float_down(wlo.z - pad);
+    b->upper_x = float_up(whi.x + pad);
+    b->upper_y = float_up(whi.y + pad);
+    b->upper_z = float_up(whi.z + pad);
+}
+
+void accel_accept_hit(accel_context *ctx, const struct RTCIntersectFunctionNArguments *args, const accel_local_hit *h)
+{
+    struct RTCRayHit *rh = (struct RTCRayHit *)args->rayhit;
+    ctx->tbest = h->t;
+    ctx->best = *h;
+    rh->ray.tfar = float_up(h->t);
+    rh->hit.geomID = args->geomID;
+    rh->hit.primID = args->primID;
+    rh->hit.instID[0] = args->context->instID[0];
+    rh->hit.u = (float)h->uv.x;
+    rh->hit.v = (float)h->uv.y;
+    rh->hit.Ng_x = (float)h->ng.x;
+    rh->hit.Ng_y = (float)h->ng.y;
+    rh->hit.Ng_z = (float)h->ng.z;
 }
 
 static void embree_ray(struct RTCRay *r, const ray3 *ray, double tmin, double tmax)
@@ -334,10 +388,14 @@ static void triangle_hit(const accel_geom *g, const struct RTCRayHit *rh, const 
     triangle_refine(a, b, c, &ro, &tt, &bu, &bv);
     double bw = 1.0 - bu - bv;
     hit->t = tt;
-    hit->p = transform_point(&g->to_world, v3_add(v3_add(v3_scale(a, bw), v3_scale(b, bu)), v3_scale(c, bv)));
+    hit->p_obj = v3_add(v3_add(v3_scale(a, bw), v3_scale(b, bu)), v3_scale(c, bv));
+    hit->p = transform_point(&g->to_world, hit->p_obj);
     /* The counter-clockwise side in object space, carried by A^-T (which keeps
      * it on the same side of the surface even when the transform mirrors). */
-    hit->ng = world_normal(g, v3_cross(v3_sub(b, a), v3_sub(c, a)));
+    hit->n_obj = v3_norm(v3_cross(v3_sub(b, a), v3_sub(c, a)));
+    hit->ng = world_normal(g, hit->n_obj);
+    hit->param[0] = bu;
+    hit->param[1] = bv;
     hit->ns = hit->ng;
     if (g->has_nrm) {
         vec3 n = v3_add(v3_add(v3_scale(f3(va->n), bw), v3_scale(f3(vb->n), bu)), v3_scale(f3(vc->n), bv));
@@ -350,14 +408,18 @@ static void triangle_hit(const accel_geom *g, const struct RTCRayHit *rh, const 
     hit->part = SOR_PART_WALL;
 }
 
-static void analytic_hit(const accel_geom *g, const sor_hit *h, accel_hit *hit)
+static void analytic_hit(const accel_geom *g, const accel_local_hit *h, accel_hit *hit)
 {
     hit->t = h->t;
     hit->p = transform_point(&g->to_world, h->p);
     hit->ng = world_normal(g, h->ng);
-    hit->ns = world_normal(g, h->shading.n);
+    hit->ns = world_normal(g, h->ns);
     hit->uv = h->uv;
     hit->part = h->part;
+    hit->p_obj = h->p;
+    hit->n_obj = h->ng;
+    hit->param[0] = h->param[0];
+    hit->param[1] = h->param[1];
 }
 
 int accel_intersect(const accel_t *acc, const ray3 *ray, double tmin, double tmax, accel_hit *hit)
@@ -377,10 +439,10 @@ int accel_intersect(const accel_t *acc, const ray3 *ray, double tmin, double tma
     hit->geom_id = rh.hit.geomID;
     hit->prim = rh.hit.primID;
     hit->kind = g->kind;
-    if (g->kind == ACCEL_KIND_SOR_ANALYTIC)
-        analytic_hit(g, &ctx.sor_hit, hit); /* the last accepted analytic hit is this geometry's */
-    else
+    if (g->kind == ACCEL_KIND_MESH || g->kind == ACCEL_KIND_SOR_MESH)
         triangle_hit(g, &rh, ray, hit);
+    else
+        analytic_hit(g, &ctx.best, hit); /* the last accepted user-geometry hit is this geometry's */
     return 1;
 }
 

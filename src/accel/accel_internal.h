@@ -30,6 +30,15 @@ typedef struct {
     sor_t *sor;
 } accel_geom;
 
+/* An exact hit on a user geometry (analytic SOR or quadric), object space. */
+typedef struct {
+    double t;
+    vec3 p, ng, ns; /* ng, ns unit */
+    vec2 uv;
+    sor_part part;
+    double param[2];
+} accel_local_hit;
+
 /* A unit normal mapped to world space (by the inverse transpose). */
 static inline vec3 world_normal(const accel_geom *g, vec3 n) { return v3_norm(transform_normal(&g->to_world, n)); }
 
@@ -49,14 +58,40 @@ typedef struct {
     double tmin, tbest; /* tbest: nearest accepted analytic t so far (starts at tmax) */
     unsigned obj_geom;  /* geometry whose object-space ray is cached in obj_ray */
     ray3 obj_ray;
-    unsigned sor_geom;  /* geometry of sor_hit, ACCEL_INVALID_ID when none */
-    sor_hit sor_hit;    /* object space */
+    accel_local_hit best; /* the last accepted user-geometry hit: the nearest so far */
 } accel_context;
-
 
 /* Creates the Embree user geometry of an analytic SOR whose record is g
  * (g->sor, transforms set). Returns the uncommitted geometry or NULL. */
 RTCGeometry sor_user_geometry_new(RTCDevice device, accel_geom *g);
+/* The same for a quadric (g->kind one of ACCEL_KIND_SPHERE, _DISK, _CYLINDER). */
+RTCGeometry quadric_user_geometry_new(RTCDevice device, accel_geom *g);
+
+/* Exact object-space hit of a quadric with t in (tmin, tmax) (quadric.c). */
+int quadric_intersect(accel_kind kind, const ray3 *r, double tmin, double tmax, accel_local_hit *h);
+/* The quadric's object-space box. */
+void quadric_bounds(accel_kind kind, vec3 *lo, vec3 *hi);
+
+/* Writes to b the world box of g's transformed object box [lo, hi], widened so
+ * Embree's float ray (rounded from the double one) cannot miss a box the
+ * double ray enters. */
+void accel_world_bounds(const accel_geom *g, vec3 lo, vec3 hi, struct RTCBounds *b);
+
+/* The caller's ray in g's object space (t is preserved by an affine map),
+ * cached per geometry since a ray visits several primitives. */
+static inline const ray3 *accel_object_ray(accel_context *ctx, const accel_geom *g, unsigned geom_id)
+{
+    if (ctx->obj_geom != geom_id) {
+        ctx->obj_ray.o = transform_point(&g->to_object, ctx->ray.o);
+        ctx->obj_ray.d = transform_vector(&g->to_object, ctx->ray.d);
+        ctx->obj_geom = geom_id;
+    }
+    return &ctx->obj_ray;
+}
+
+/* Records h as the nearest hit so far and tells Embree (float ray cut at h.t). */
+void accel_accept_hit(accel_context *ctx, const struct RTCIntersectFunctionNArguments *args,
+                      const accel_local_hit *h);
 
 /* The float nearest x on the far (resp. near) side: Embree's float ray
  * interval must contain the double one. */
