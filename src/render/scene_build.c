@@ -114,24 +114,6 @@ static double det3(const transform4 *t)
            m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
 }
 
-static void world_bounds(shape_t *sh)
-{
-    vec3 lo, hi;
-    sh->ops->bounds(sh->data, &lo, &hi);
-    sh->lo = v3(INFINITY, INFINITY, INFINITY);
-    sh->hi = v3(-INFINITY, -INFINITY, -INFINITY);
-    for (int c = 0; c < 8; c++) {
-        vec3 p = transform_point(&sh->to_world, v3(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z));
-        sh->lo = v3(fmin(sh->lo.x, p.x), fmin(sh->lo.y, p.y), fmin(sh->lo.z, p.z));
-        sh->hi = v3(fmax(sh->hi.x, p.x), fmax(sh->hi.y, p.y), fmax(sh->hi.z, p.z));
-    }
-    /* Pad for rounding in the slab test. */
-    double pad = 1e-9 * (1.0 + fmax(fmax(fabs(sh->lo.x), fabs(sh->hi.x)),
-                                    fmax(fmax(fabs(sh->lo.y), fabs(sh->hi.y)), fmax(fabs(sh->lo.z), fabs(sh->hi.z)))));
-    sh->lo = v3_sub(sh->lo, v3(pad, pad, pad));
-    sh->hi = v3_add(sh->hi, v3(pad, pad, pad));
-}
-
 /* The geometry of one shape; sh->mesh or sh->ops/data filled. */
 static int build_geometry(scene_obj *o, shape_t *sh, const scene_build_options *opt, char *err, size_t errlen)
 {
@@ -186,9 +168,7 @@ static int build_geometry(scene_obj *o, shape_t *sh, const scene_build_options *
         shape_mesh_transform(&sh->mesh, &to_world);
     } else {
         sh->to_world = to_world;
-        sh->to_object = transform_inverse(&to_world);
         sh->det = fabs(det3(&to_world));
-        world_bounds(sh);
     }
     return 0;
 }

@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "celadon/accel.h"
 #include "celadon/bsdf.h"
 #include "celadon/camera.h"
 #include "celadon/color.h"
@@ -40,14 +41,17 @@ typedef struct {
 
 /* ------------------------------------------------------------- shapes */
 
-/* An analytic shape in its object space (shape_sphere.c, ...). */
+/* An analytic shape in its object space (shape_sphere.c, ...), traced by
+ * accel as an Embree user geometry. */
 typedef struct {
     const char *name;
-    int (*intersect)(const void *data, const ray3 *r, double tmin, double tmax, shape_local_hit *h);
+    /* Adds the shape to acc placed by to_world: the geometry id, or ACCEL_INVALID_ID with err. */
+    unsigned (*add)(const void *data, accel_t *acc, const transform4 *to_world, char *err, size_t errlen);
+    /* The object-space hit of an accel hit on the shape. */
+    void (*local_hit)(const void *data, const accel_hit *ah, shape_local_hit *h);
     /* A point drawn from u with its density per unit object-space area. */
     void (*sample)(const void *data, vec3 u, shape_local_hit *h, double *pdf);
     double (*pdf)(const void *data, const shape_local_hit *h);
-    void (*bounds)(const void *data, vec3 *lo, vec3 *hi);
     void (*destroy)(void *data);
 } shape_analytic_ops;
 
@@ -73,16 +77,18 @@ typedef struct {
     /* analytic shapes */
     const shape_analytic_ops *ops;
     void *data;
-    transform4 to_world, to_object;
+    transform4 to_world;
     double det;           /* |det| of to_world's 3x3 part */
-    vec3 lo, hi;          /* world bounds */
 } shape_t;
 
 /* World-space hit from an analytic object-space hit. */
 void shape_analytic_finish(const shape_t *sh, const shape_local_hit *lh, surface_hit *hit);
 /* Density per unit world area of an analytic object-space hit. */
 double shape_analytic_pdf_area(const shape_t *sh, const shape_local_hit *lh);
-int shape_analytic_intersect(const shape_t *sh, const ray3 *r, double tmin, double tmax, surface_hit *hit);
+/* The object-space hit of accel as it reports it (the quadrics' local_hit). */
+void shape_analytic_local_hit(const void *data, const accel_hit *ah, shape_local_hit *h);
+/* Adds a mesh, already in world space, to acc. */
+unsigned shape_mesh_add(const shape_t *sh, accel_t *acc, char *err, size_t errlen);
 
 /* World hit on triangle tri at barycentrics (b1, b2). */
 void shape_mesh_finish(const shape_t *sh, int tri, double b1, double b2, double t, surface_hit *hit);
@@ -187,10 +193,7 @@ struct scene {
     int nemitters;
     int env;              /* index of the constant/envmap emitter, or -1 */
 
-    void *rtc_device, *rtc_scene; /* Embree, NULL without meshes */
-    int *geom_shape;      /* Embree geometry id -> shape index */
-    int *analytic;        /* indices of the analytic shapes */
-    int nanalytic;
+    accel_t *accel;       /* every shape, geometry id = shape index */
 };
 
 /* Nearest hit along r with t in (tmin, tmax). */

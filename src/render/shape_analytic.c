@@ -1,5 +1,5 @@
-/* Analytic shapes placed in the world by an affine to_world: rays move to
- * object space (t is unchanged by an affine map), hits move back. */
+/* Analytic shapes placed in the world by an affine to_world: accel traces
+ * them in object space; hits move back to the world here. */
 #include <math.h>
 
 #include "render/scene_impl.h"
@@ -31,12 +31,14 @@ double shape_analytic_pdf_area(const shape_t *sh, const shape_local_hit *lh)
     return jac > 0.0 ? pdf / jac : 0.0;
 }
 
-int shape_analytic_intersect(const shape_t *sh, const ray3 *r, double tmin, double tmax, surface_hit *hit)
+void shape_analytic_local_hit(const void *data, const accel_hit *ah, shape_local_hit *h)
 {
-    ray3 lr = {transform_point(&sh->to_object, r->o), transform_vector(&sh->to_object, r->d)};
-    shape_local_hit lh;
-    if (!sh->ops->intersect(sh->data, &lr, tmin, tmax, &lh))
-        return 0;
-    shape_analytic_finish(sh, &lh, hit);
-    return 1;
+    (void)data;
+    h->t = ah->t;
+    h->p = ah->p_obj;
+    h->n = ah->n_obj;
+    h->uv = ah->uv;
+    h->part = (int)ah->part;
+    h->param[0] = ah->param[0];
+    h->param[1] = ah->param[1];
 }

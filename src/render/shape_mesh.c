@@ -48,6 +48,13 @@ void shape_mesh_finish(const shape_t *sh, int tri, double b1, double b2, double 
     hit->prim = tri;
 }
 
+unsigned shape_mesh_add(const shape_t *sh, accel_t *acc, char *err, size_t errlen)
+{
+    const shape_mesh_data *m = &sh->mesh;
+    mesh_t view = {m->n_verts, m->n_tris, m->pos, m->nrm, m->uv, m->tri};
+    return accel_add_mesh(acc, &view, NULL, err, errlen);
+}
+
 void shape_mesh_transform(shape_mesh_data *m, const transform4 *to_world)
 {
     for (int i = 0; i < m->n_verts; i++) {

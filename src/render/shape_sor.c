@@ -1,5 +1,6 @@
-/* The `sor` shape analytic: the exact intersector of sor.h in object space,
- * plus sampling by area for area emitters. The wall's area element is
+/* The `sor` shape analytic: traced by accel as its SOR user geometry (the
+ * exact intersector of sor.h in object space), plus sampling by area for
+ * area emitters. The wall's area element is
  * dA = s^2 r(u) |C'(u)| du dphi (s the profile scale): u is drawn from a
  * tabulated piecewise-constant CDF of r(u) |C'(u)|, phi uniformly; the caps
  * are discs. A part is chosen with probability proportional to its area.
@@ -18,8 +19,8 @@
 enum { SOR_TABLE = 1024 };
 
 typedef struct {
-    sor_t *sor;
     bspline_t curve;       /* profile, pixels */
+    unsigned caps;         /* SOR_CAP_* */
     double scale;          /* object units per pixel */
     double height;
     distribution1d wall_u; /* over u in [0,1) */
@@ -50,14 +51,18 @@ void *shape_sor_create(const char *profile_path, double height, bool caps, char 
         return NULL;
     }
     profile_free(&prof);
-    s->sor = sor_create(&s->curve, height, mask, why, sizeof why);
-    if (!s->sor) {
+    /* sor_create validates the profile here, where the error names the shape;
+     * accel builds the SOR traced. */
+    sor_t *check = sor_create(&s->curve, height, mask, why, sizeof why);
+    if (!check) {
         snprintf(err, errlen, "%s", why);
         bspline_free(&s->curve);
         free(s);
         return NULL;
     }
-    s->scale = sor_profile_scale(s->sor);
+    s->scale = sor_profile_scale(check);
+    sor_destroy(check);
+    s->caps = mask;
     s->height = height;
     double f[SOR_TABLE], wall = 0.0;
     for (int i = 0; i < SOR_TABLE; i++) {
@@ -76,7 +81,6 @@ void *shape_sor_create(const char *profile_path, double height, bool caps, char 
     double total = area[0] + area[1] + area[2];
     if (distribution1d_init(&s->wall_u, f, SOR_TABLE) != 0 || !(total > 0.0)) {
         snprintf(err, errlen, "profile has no area");
-        sor_destroy(s->sor);
         bspline_free(&s->curve);
         distribution1d_free(&s->wall_u);
         free(s);
@@ -87,20 +91,17 @@ void *shape_sor_create(const char *profile_path, double height, bool caps, char 
     return s;
 }
 
-static int sor_shape_intersect(const void *data, const ray3 *r, double tmin, double tmax, shape_local_hit *h)
+static unsigned sor_shape_add(const void *data, accel_t *acc, const transform4 *to_world, char *err, size_t errlen)
 {
     const sor_shape *s = data;
-    sor_hit sh;
-    if (!sor_intersect(s->sor, r, tmin, tmax, &sh))
-        return 0;
-    h->t = sh.t;
-    h->p = sh.p;
-    h->n = sh.ng;
-    h->uv = v2(sh.uv.x, 1.0 - sh.uv.y);
-    h->part = (int)sh.part;
-    h->param[0] = sh.u;
-    h->param[1] = sh.phi;
-    return 1;
+    return accel_add_sor(acc, &s->curve, s->height, s->caps, to_world, NULL, err, errlen);
+}
+
+/* accel's SOR hit: param = (u, phi), uv per DESIGN.md, flipped in v here. */
+static void sor_shape_local_hit(const void *data, const accel_hit *ah, shape_local_hit *h)
+{
+    shape_analytic_local_hit(data, ah, h);
+    h->uv.y = 1.0 - h->uv.y;
 }
 
 /* Density per object area of a wall point at profile parameter u. */
@@ -158,24 +159,18 @@ static void sor_shape_sample(const void *data, vec3 u, shape_local_hit *h, doubl
     *pdf = s->part_prob[part] / (M_PI * rad * rad);
 }
 
-static void sor_shape_bounds(const void *data, vec3 *lo, vec3 *hi)
-{
-    sor_bounds(((const sor_shape *)data)->sor, lo, hi);
-}
-
 static void sor_shape_destroy(void *data)
 {
     sor_shape *s = data;
     if (!s)
         return;
-    sor_destroy(s->sor);
     bspline_free(&s->curve);
     distribution1d_free(&s->wall_u);
     free(s);
 }
 
-const shape_analytic_ops shape_sor_ops = {"sor", sor_shape_intersect, sor_shape_sample, sor_shape_pdf,
-                                          sor_shape_bounds, sor_shape_destroy};
+const shape_analytic_ops shape_sor_ops = {"sor", sor_shape_add, sor_shape_local_hit, sor_shape_sample, sor_shape_pdf,
+                                          sor_shape_destroy};
 
 int shape_sor_mesh(const char *profile_path, double height, bool caps, int segments, shape_mesh_data *m, char *err,
                    size_t errlen)
