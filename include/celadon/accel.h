@@ -118,7 +118,8 @@ int accel_intersect(const accel_t *acc, const ray3 *ray, double tmin, double tma
 int accel_occluded(const accel_t *acc, const ray3 *ray, double tmin, double tmax);
 
 /* Introspection: the analytic SOR of a geometry (NULL unless ACCEL_KIND_SOR_ANALYTIC),
- * its triangle count (0 for analytic SORs), and the scene's world bounds. */
+ * its triangle count (0 for user geometries: analytic SORs, quadrics), and
+ * the scene's world bounds. */
 accel_kind accel_geometry_kind(const accel_t *acc, unsigned geom_id);
 const sor_t *accel_geometry_sor(const accel_t *acc, unsigned geom_id);
 int accel_geometry_triangles(const accel_t *acc, unsigned geom_id);

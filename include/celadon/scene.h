@@ -2,10 +2,11 @@
  * turned into a camera, shapes with their BSDFs, emitters and integrator
  * settings, with an acceleration structure for ray queries.
  *
- * Geometry: triangle meshes (obj, ply, rectangle, cube, and `sor` under
- * --geometry mesh:N) are traced by Embree; analytic shapes (sphere, disk,
- * cylinder, and `sor` by default) are intersected exactly in double precision
- * in their object space. */
+ * Geometry: every shape is traced through one Embree scene (accel.h):
+ * triangle meshes (obj, ply, rectangle, cube, and `sor` under --geometry
+ * mesh:N) as triangles; analytic shapes (sphere, disk, cylinder, and `sor` by
+ * default) as user geometries intersected exactly in double precision in
+ * their object space. */
 #ifndef CELADON_SCENE_H
 #define CELADON_SCENE_H
 
