@@ -6,6 +6,7 @@
 #define CELADON_VERSION "0.1.0"
 
 static const cli_command commands[] = {
+    {"mesh", "profile.json -> triangle mesh (OBJ+MTL or PLY) at any resolution", cmd_mesh},
     {NULL, NULL, NULL},
 };
 

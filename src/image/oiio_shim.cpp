@@ -62,7 +62,10 @@ extern "C" int image_read(const char *path, image_t *img, char *err, size_t errl
         set_err(err, errlen, "image too large to read");
         return -1;
     }
-    ImageBuf buf(spec);
+    // The buffer holds floats whatever the file's format (read_image converts).
+    ImageSpec fspec = spec;
+    fspec.set_format(TypeDesc::FLOAT);
+    ImageBuf buf(fspec);
     if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, buf.localpixels()) || in->has_error()) {
         set_err(err, errlen, in->has_error() ? in->geterror() : std::string("cannot decode pixels (truncated or corrupt)"));
         return -1;

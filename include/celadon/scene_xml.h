@@ -1,0 +1,134 @@
+/* Scene description: a documented subset of Mitsuba 3's XML scene format
+ * (docs/scene-format.md), parsed with libxml2 into a generic, validated tree.
+ *
+ * Every object has a class (its XML tag), a plugin type, an optional id and
+ * the file and line it came from; it holds typed properties and child
+ * objects (nested or referenced with <ref>). Everything outside the subset is
+ * a load error naming file, line and feature: "scene.xml:12: unknown plugin
+ * 'blendbsdf' for <bsdf>". Once loaded, a consumer reads properties through
+ * the typed getters below, which mark them consumed; the validator already
+ * guaranteed each property's name and type against the plugin table, so a
+ * getter falls back to its default only when the property is absent or has
+ * another of its allowed types (int_ior as a float or an IOR name, a color
+ * or a texture): check scene_obj_prop(o, name)->type for those. */
+#ifndef CELADON_SCENE_XML_H
+#define CELADON_SCENE_XML_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "celadon/transform.h"
+#include "celadon/vecmath.h"
+
+typedef enum {
+    SCENE_SCENE,
+    SCENE_SENSOR,
+    SCENE_FILM,
+    SCENE_SAMPLER,
+    SCENE_RFILTER,
+    SCENE_INTEGRATOR,
+    SCENE_SHAPE,
+    SCENE_BSDF,
+    SCENE_TEXTURE,
+    SCENE_EMITTER,
+    SCENE_CLASS_COUNT
+} scene_class;
+
+typedef enum {
+    SCENE_FLOAT,
+    SCENE_INTEGER,
+    SCENE_BOOLEAN,
+    SCENE_STRING,
+    SCENE_RGB,
+    SCENE_SPECTRUM,  /* a constant spectrum, stored as gray RGB */
+    SCENE_POINT,
+    SCENE_VECTOR,
+    SCENE_TRANSFORM,
+    SCENE_OBJECT     /* a nested or referenced texture given by name */
+} scene_prop_type;
+
+typedef struct { double r, g, b; } scene_rgb;
+
+typedef struct scene_obj scene_obj;
+
+typedef struct {
+    char *name;
+    scene_prop_type type;
+    const char *file;
+    int line;
+    bool consumed;
+    union {
+        double f;
+        long long i;
+        bool b;
+        char *s;          /* STRING; a `filename` is resolved against its file's folder */
+        scene_rgb rgb;    /* RGB, SPECTRUM */
+        vec3 v;           /* POINT, VECTOR */
+        transform4 xf;    /* TRANSFORM */
+        scene_obj *obj;   /* OBJECT */
+    } value;
+} scene_prop;
+
+struct scene_obj {
+    scene_class cls;
+    char *type;            /* plugin name, e.g. "perspective"; "scene" for the root */
+    char *id;              /* NULL when none */
+    char *name;            /* the name attribute of a nested object, or NULL */
+    const char *file;
+    int line;
+    scene_prop *props;
+    int nprops;
+    scene_obj **children;  /* unnamed nested and referenced objects, document order */
+    int nchildren;
+};
+
+typedef struct scene_desc scene_desc;
+
+/* The root object (class SCENE). */
+scene_obj *scene_desc_root(const scene_desc *d);
+void scene_desc_free(scene_desc *d);
+
+/* A -D name=value override; it takes precedence over <default>. */
+typedef struct { const char *name, *value; } scene_define;
+
+/* Loads a scene file. Returns NULL on error with one line "file:line: what"
+ * in err. An override that the scene neither declares nor uses is an error. */
+scene_desc *scene_xml_load(const char *path, const scene_define *defs, int ndefs,
+                           char *err, size_t errlen);
+/* The same from text in memory; path names it in messages and anchors
+ * relative file names (it need not exist). */
+scene_desc *scene_xml_parse(const char *xml, size_t len, const char *path,
+                            const scene_define *defs, int ndefs, char *err, size_t errlen);
+
+const char *scene_class_name(scene_class c); /* the XML tag: "bsdf" */
+
+/* ------------------------------------------------------------- getters */
+/* The named property (marked consumed), or NULL. */
+scene_prop *scene_obj_prop(scene_obj *o, const char *name);
+bool scene_obj_has(const scene_obj *o, const char *name);
+double scene_obj_float(scene_obj *o, const char *name, double def);
+long long scene_obj_int(scene_obj *o, const char *name, long long def);
+bool scene_obj_bool(scene_obj *o, const char *name, bool def);
+const char *scene_obj_string(scene_obj *o, const char *name, const char *def);
+vec3 scene_obj_point(scene_obj *o, const char *name, vec3 def);
+vec3 scene_obj_vector(scene_obj *o, const char *name, vec3 def);
+/* Identity when absent. */
+transform4 scene_obj_transform(scene_obj *o, const char *name);
+/* A constant color from <rgb>, <spectrum> or <float> (gray); def when the
+ * property is absent or is a texture (see scene_obj_texture). */
+scene_rgb scene_obj_rgb(scene_obj *o, const char *name, scene_rgb def);
+/* The texture given for a "spectrum or texture" property, or NULL. */
+scene_obj *scene_obj_texture(scene_obj *o, const char *name);
+
+/* Children of class cls in document order: writes up to max of them to out
+ * (out may be NULL when max is 0) and returns how many there are. */
+int scene_obj_children(const scene_obj *o, scene_class cls, scene_obj **out, int max);
+/* The first child of class cls, or NULL. */
+scene_obj *scene_obj_child(const scene_obj *o, scene_class cls);
+
+/* Reports the first property nobody consumed in o and its descendants:
+ * returns 1 and "file:line: <bsdf type='diffuse'> property 'x' was not used"
+ * in msg, or 0 when all were consumed. */
+int scene_obj_unconsumed(const scene_obj *o, char *msg, size_t msglen);
+
+#endif

@@ -1,0 +1,65 @@
+/* Thin dielectric sheet (Mitsuba `thindielectric`): light passes straight
+ * through without bending; the reflectance sums the geometric series of
+ * internal bounces, R' = R + T^2 R / (1 - R^2). */
+#include "celadon/fresnel.h"
+#include "render/bsdf_impl.h"
+
+typedef struct {
+    double eta;
+    bsdf_spectrum specular_reflectance, specular_transmittance;
+} thindielectric_data;
+
+static double sheet_reflectance(double cos_i, double eta)
+{
+    double r = fresnel_dielectric(fabs(cos_i), eta, NULL, NULL, NULL);
+    if (r < 1.0) {
+        double t = 1.0 - r;
+        r += t * t * r / (1.0 - r * r);
+    }
+    return r;
+}
+
+static int thindielectric_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out)
+{
+    (void)u2;
+    const thindielectric_data *d = b->data;
+    if (q->wi.z == 0.0)
+        return 0;
+    double r = sheet_reflectance(q->wi.z, d->eta);
+    out->eta = 1.0;
+    if (u1 <= r) {
+        out->wo = reflect_local(q->wi);
+        out->pdf = r;
+        out->sampled_type = BSDF_DELTA_REFLECTION;
+        out->weight = spectrum_eval(&d->specular_reflectance, q->uv);
+    } else {
+        out->wo = v3_neg(q->wi);
+        out->pdf = 1.0 - r;
+        out->sampled_type = BSDF_DELTA_TRANSMISSION;
+        out->weight = spectrum_eval(&d->specular_transmittance, q->uv);
+    }
+    return out->pdf > 0.0;
+}
+
+static rgb thindielectric_albedo(const bsdf_t *b, vec2 uv)
+{
+    const thindielectric_data *d = b->data;
+    return spectrum_eval(&d->specular_transmittance, uv);
+}
+
+static const bsdf_ops thindielectric_ops = {thindielectric_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only,
+                                            thindielectric_albedo};
+
+bsdf_t *bsdf_create_thindielectric(const bsdf_dielectric_params *p, char *err, size_t errlen)
+{
+    if (bsdf_check_ior(p->int_ior, p->ext_ior, err, errlen) ||
+        bsdf_check_spectrum("specular_reflectance", &p->specular_reflectance, err, errlen) ||
+        bsdf_check_spectrum("specular_transmittance", &p->specular_transmittance, err, errlen))
+        return NULL;
+    unsigned flags = BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE;
+    bsdf_t *b = bsdf_alloc("thindielectric", &thindielectric_ops, flags, sizeof(thindielectric_data), err, errlen);
+    if (b)
+        *(thindielectric_data *)b->data =
+            (thindielectric_data){p->int_ior / p->ext_ior, p->specular_reflectance, p->specular_transmittance};
+    return b;
+}

@@ -1,0 +1,241 @@
+/* Warps and tabulated distributions; see sampling.h. */
+#include "celadon/sampling.h"
+
+#include <stdlib.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+vec2 warp_square_to_concentric_disk(vec2 u)
+{
+    double a = 2.0 * u.x - 1.0, b = 2.0 * u.y - 1.0;
+    if (a == 0.0 && b == 0.0)
+        return v2(0.0, 0.0);
+    double r, phi;
+    if (fabs(a) > fabs(b)) {
+        r = a;
+        phi = (M_PI / 4.0) * (b / a);
+    } else {
+        r = b;
+        phi = M_PI / 2.0 - (M_PI / 4.0) * (a / b);
+    }
+    return v2(r * cos(phi), r * sin(phi));
+}
+
+double warp_concentric_disk_pdf(vec2 p)
+{
+    return v2_dot(p, p) <= 1.0 ? 1.0 / M_PI : 0.0;
+}
+
+vec3 warp_square_to_cosine_hemisphere(vec2 u)
+{
+    vec2 d = warp_square_to_concentric_disk(u);
+    double z = sqrt(fmax(0.0, 1.0 - d.x * d.x - d.y * d.y));
+    return v3(d.x, d.y, z);
+}
+
+double warp_cosine_hemisphere_pdf(vec3 w)
+{
+    return w.z > 0.0 ? w.z / M_PI : 0.0;
+}
+
+vec3 warp_square_to_uniform_hemisphere(vec2 u)
+{
+    double z = u.x, r = sqrt(fmax(0.0, 1.0 - z * z)), phi = 2.0 * M_PI * u.y;
+    return v3(r * cos(phi), r * sin(phi), z);
+}
+
+double warp_uniform_hemisphere_pdf(vec3 w)
+{
+    return w.z >= 0.0 ? 1.0 / (2.0 * M_PI) : 0.0;
+}
+
+vec3 warp_square_to_uniform_sphere(vec2 u)
+{
+    double z = 1.0 - 2.0 * u.x, r = sqrt(fmax(0.0, 1.0 - z * z)), phi = 2.0 * M_PI * u.y;
+    return v3(r * cos(phi), r * sin(phi), z);
+}
+
+double warp_uniform_sphere_pdf(void)
+{
+    return 1.0 / (4.0 * M_PI);
+}
+
+vec3 warp_square_to_uniform_cone(vec2 u, double cos_max)
+{
+    double z = 1.0 - u.x * (1.0 - cos_max);
+    double r = sqrt(fmax(0.0, 1.0 - z * z)), phi = 2.0 * M_PI * u.y;
+    return v3(r * cos(phi), r * sin(phi), z);
+}
+
+double warp_uniform_cone_pdf(vec3 w, double cos_max)
+{
+    return w.z >= cos_max && cos_max < 1.0 ? 1.0 / (2.0 * M_PI * (1.0 - cos_max)) : 0.0;
+}
+
+vec2 warp_square_to_uniform_triangle(vec2 u)
+{
+    /* Fold the square along its diagonal: area-preserving onto the triangle. */
+    if (u.x + u.y > 1.0)
+        return v2(1.0 - u.x, 1.0 - u.y);
+    return u;
+}
+
+double mis_power_heuristic(double pdf_f, double pdf_g)
+{
+    double f2 = pdf_f * pdf_f, g2 = pdf_g * pdf_g;
+    if (isinf(f2))
+        return 1.0;
+    return f2 + g2 > 0.0 ? f2 / (f2 + g2) : 0.0;
+}
+
+int distribution1d_init(distribution1d *d, const double *func, int n)
+{
+    d->n = 0;
+    d->func = d->cdf = NULL;
+    d->integral = 0.0;
+    if (n < 1)
+        return -1;
+    d->func = malloc((size_t)n * sizeof *d->func);
+    d->cdf = malloc((size_t)(n + 1) * sizeof *d->cdf);
+    if (!d->func || !d->cdf) {
+        distribution1d_free(d);
+        return -1;
+    }
+    d->n = n;
+    d->cdf[0] = 0.0;
+    for (int i = 0; i < n; i++) {
+        d->func[i] = func[i] > 0.0 && isfinite(func[i]) ? func[i] : 0.0;
+        d->cdf[i + 1] = d->cdf[i] + d->func[i] / n;
+    }
+    d->integral = d->cdf[n];
+    for (int i = 1; i <= n; i++)
+        d->cdf[i] = d->integral > 0.0 ? d->cdf[i] / d->integral : (double)i / n;
+    d->cdf[n] = 1.0;
+    return 0;
+}
+
+void distribution1d_free(distribution1d *d)
+{
+    free(d->func);
+    free(d->cdf);
+    d->func = d->cdf = NULL;
+    d->n = 0;
+}
+
+/* Largest i in [0, n-1] with cdf[i] <= u. */
+static int find_cell(const distribution1d *d, double u)
+{
+    int lo = 0, hi = d->n - 1;
+    while (lo < hi) {
+        int mid = (lo + hi + 1) / 2;
+        if (d->cdf[mid] <= u)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    /* Skip zero-probability cells that share the same cdf value. */
+    while (lo < d->n - 1 && d->cdf[lo + 1] <= u)
+        lo++;
+    return lo;
+}
+
+double distribution1d_pmf(const distribution1d *d, int cell)
+{
+    return d->cdf[cell + 1] - d->cdf[cell];
+}
+
+double distribution1d_sample_continuous(const distribution1d *d, double u, double *pdf, int *cell)
+{
+    int i = find_cell(d, u);
+    double w = distribution1d_pmf(d, i);
+    double t = w > 0.0 ? (u - d->cdf[i]) / w : 0.5;
+    if (t >= 1.0)
+        t = nextafter(1.0, 0.0);
+    if (pdf)
+        *pdf = w * d->n;
+    if (cell)
+        *cell = i;
+    return (i + t) / d->n;
+}
+
+int distribution1d_sample_discrete(const distribution1d *d, double u, double *pmf, double *u_reuse)
+{
+    int i = find_cell(d, u);
+    double w = distribution1d_pmf(d, i);
+    if (pmf)
+        *pmf = w;
+    if (u_reuse) {
+        double t = w > 0.0 ? (u - d->cdf[i]) / w : 0.0;
+        *u_reuse = t < 1.0 ? t : nextafter(1.0, 0.0);
+    }
+    return i;
+}
+
+double distribution1d_pdf(const distribution1d *d, double x)
+{
+    if (!(x >= 0.0 && x < 1.0))
+        return 0.0;
+    int i = (int)(x * d->n);
+    if (i >= d->n)
+        i = d->n - 1;
+    return distribution1d_pmf(d, i) * d->n;
+}
+
+int distribution2d_init(distribution2d *d, const double *f, int nu, int nv)
+{
+    d->nu = nu;
+    d->nv = nv;
+    d->conditional = NULL;
+    d->marginal = (distribution1d){0};
+    if (nu < 1 || nv < 1)
+        return -1;
+    d->conditional = calloc((size_t)nv, sizeof *d->conditional);
+    double *rows = malloc((size_t)nv * sizeof *rows);
+    int ok = d->conditional && rows;
+    for (int v = 0; ok && v < nv; v++) {
+        ok = distribution1d_init(&d->conditional[v], f + (size_t)v * nu, nu) == 0;
+        if (ok)
+            rows[v] = d->conditional[v].integral;
+    }
+    ok = ok && distribution1d_init(&d->marginal, rows, nv) == 0;
+    free(rows);
+    if (!ok) {
+        distribution2d_free(d);
+        return -1;
+    }
+    return 0;
+}
+
+void distribution2d_free(distribution2d *d)
+{
+    if (d->conditional)
+        for (int v = 0; v < d->nv; v++)
+            distribution1d_free(&d->conditional[v]);
+    free(d->conditional);
+    d->conditional = NULL;
+    distribution1d_free(&d->marginal);
+}
+
+vec2 distribution2d_sample(const distribution2d *d, vec2 u, double *pdf)
+{
+    double pv, pu;
+    int row;
+    double y = distribution1d_sample_continuous(&d->marginal, u.y, &pv, &row);
+    double x = distribution1d_sample_continuous(&d->conditional[row], u.x, &pu, NULL);
+    if (pdf)
+        *pdf = pv * pu;
+    return v2(x, y);
+}
+
+double distribution2d_pdf(const distribution2d *d, vec2 p)
+{
+    double pv = distribution1d_pdf(&d->marginal, p.y);
+    if (pv == 0.0)
+        return 0.0;
+    int row = (int)(p.y * d->nv);
+    if (row >= d->nv)
+        row = d->nv - 1;
+    return pv * distribution1d_pdf(&d->conditional[row], p.x);
+}
