@@ -54,6 +54,8 @@ static void piece_finish(sor_piece *pc)
     sor_bernstein_square3(pc->r, pc->r2);
     power_basis(pc->r, pc->rp);
     power_basis(pc->h, pc->hp);
+    pc->tangent_floor = 1e-12 * (fabs(pc->r[3] - pc->r[0]) + fabs(pc->h[3] - pc->h[0]) + fabs(pc->r[1] - pc->r[0]) +
+                                 fabs(pc->h[1] - pc->h[0]) + fabs(pc->r[2] - pc->r[3]) + fabs(pc->h[2] - pc->h[3]));
 }
 
 /* Splits pc at local parameter w into two pieces sharing the split point bit for bit. */
@@ -334,7 +336,7 @@ sor_t *sor_create(const bspline_t *profile, double height, unsigned caps, char *
         fail(err, errlen, "out of memory");
         return NULL;
     }
-    s->height = height;
+    s->height = height, s->inv_height = 1.0 / height;
     s->caps = caps;
     if (load_profile(s, profile, err, errlen) != 0) {
         sor_destroy(s);

@@ -17,6 +17,7 @@ typedef struct {
     double r2[7];
     double rp[4], hp[4]; /* power-basis coefficients (p0 + p1 w + p2 w^2 + p3 w^3) for fast evaluation */
     double u0, u1;       /* profile parameter range covered */
+    double tangent_floor; /* |r'| + |h'| below this is a vanishing tangent (1e-12 of the control polygon) */
     int interval;  /* monotone interval of a leaf (its primitive index) */
 } sor_piece;
 
@@ -32,6 +33,7 @@ typedef struct {
 
 struct sor {
     double height, scale;   /* rim height; object units per profile unit */
+    double inv_height;
     double size;            /* max(height, rim/base extent): the tolerance scale */
     double tol;             /* a hit is accepted within tol of the surface */
     double r_max, h_min, h_max;

@@ -191,8 +191,9 @@ static double polish(const sor_piece *pc, const sor_ray *ry, double tol, piece_p
         double det = J11 * J22 - J12 * J21;
         if (!(fabs(det) > 1e-14 * (fabs(J11 * J22) + fabs(J12 * J21))))
             break; /* tangent: the seed is as good as it gets */
-        cw += (J12 * F2 - J22 * F1) / det;
-        cs += (J21 * F1 - J11 * F2) / det;
+        double inv_det = 1.0 / det;
+        cw += (J12 * F2 - J22 * F1) * inv_det;
+        cs += (J21 * F1 - J11 * F2) * inv_det;
         if (!(cw > -0.5 && cw < 1.5))
             break;
         q = piece_eval(pc, cw);
@@ -227,7 +228,7 @@ static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *
     double cand[2];
     int nc = 0, both = 1;
     if (ry->steep) {
-        cand[nc++] = (q.h - ry->hc) / ry->dy;
+        cand[nc++] = (q.h - ry->hc) * ry->inv_dy;
     } else {
         double S = sqrt(sor_max(0.0, (q.r * q.r - ry->d2) / ry->a));
         double sp = ry->s_star + S, sm = ry->s_star - S;
@@ -267,9 +268,9 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
         double pq[7];
         pq[0] = p[0] * q[0];
         pq[1] = 0.5 * (p[0] * q[1] + p[1] * q[0]);
-        pq[2] = (p[0] * q[2] + 3.0 * p[1] * q[1] + p[2] * q[0]) / 5.0;
-        pq[3] = (p[0] * q[3] + 9.0 * (p[1] * q[2] + p[2] * q[1]) + p[3] * q[0]) / 20.0;
-        pq[4] = (p[1] * q[3] + 3.0 * p[2] * q[2] + p[3] * q[1]) / 5.0;
+        pq[2] = (p[0] * q[2] + 3.0 * p[1] * q[1] + p[2] * q[0]) * 0.2;
+        pq[3] = (p[0] * q[3] + 9.0 * (p[1] * q[2] + p[2] * q[1]) + p[3] * q[0]) * 0.05;
+        pq[4] = (p[1] * q[3] + 3.0 * p[2] * q[2] + p[3] * q[1]) * 0.2;
         pq[5] = 0.5 * (p[2] * q[3] + p[3] * q[2]);
         pq[6] = p[3] * q[3];
         int var = 0;
