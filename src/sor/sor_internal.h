@@ -31,6 +31,12 @@ typedef struct {
     int32_t piece;
 } sor_node;
 
+/* The annuli of an internal node's two children (node + 1 and skip) side by
+ * side, so that the usual ray tests both at once (two lanes of a vector). */
+typedef struct {
+    double q0[2], q1[2], h0[2], h1[2];
+} sor_pair;
+
 struct sor {
     double height, scale;   /* rim height; object units per profile unit */
     double inv_height;
@@ -44,6 +50,7 @@ struct sor {
     sor_node bound;         /* the bounding cylinder of wall and caps */
     int n_nodes;
     sor_node *nodes;
+    sor_pair *pairs;        /* per node; set for internal nodes */
     int n_intervals;        /* monotone intervals: one subtree each */
     int *interval_root;
     int n_bez;              /* raw Bézier pieces for sor_intersect_naive */
