@@ -255,6 +255,18 @@ static int hit_prim(const sor_t *sor, const sor_piece *pieces, const sor_best *b
     return sor->pieces[lo].interval;
 }
 
+/* Per-ray state shared by every query: the ray in the solver's frame, no hit
+ * yet, and the search window (tmin, tmax) in the frame's parameter s = t - tc. */
+static inline int ray_begin(const sor_t *sor, const ray3 *ray, double tmin, double tmax, sor_ray *ry, sor_best *best,
+                            double *smin)
+{
+    if (!sor_ray_setup(sor, ray, ry))
+        return 0;
+    *best = (sor_best){tmax - ry->tc, -1, 0.0, SOR_PART_WALL};
+    *smin = tmin - ry->tc;
+    return 1;
+}
+
 static int finish(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, const sor_best *best, int found,
                   sor_hit *hit)
 {
@@ -266,10 +278,10 @@ static int finish(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
 int sor_intersect(const sor_t *sor, const ray3 *ray, double tmin, double tmax, sor_hit *hit)
 {
     sor_ray ry;
-    if (!sor_ray_setup(sor, ray, &ry))
+    sor_best best;
+    double smin;
+    if (!ray_begin(sor, ray, tmin, tmax, &ry, &best, &smin))
         return 0;
-    sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc;
     if (!bound_hit(sor, &ry, smin, best.s))
         return 0;
     int found = sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best);
@@ -280,10 +292,10 @@ int sor_intersect(const sor_t *sor, const ray3 *ray, double tmin, double tmax, s
 int sor_occluded(const sor_t *sor, const ray3 *ray, double tmin, double tmax)
 {
     sor_ray ry;
-    if (!sor_ray_setup(sor, ray, &ry))
+    sor_best best;
+    double smin;
+    if (!ray_begin(sor, ray, tmin, tmax, &ry, &best, &smin))
         return 0;
-    sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc;
     if (!bound_hit(sor, &ry, smin, best.s))
         return 0;
     return sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best) || sor_tree_intersect(sor, 0, &ry, smin, &best, 1);
@@ -292,10 +304,10 @@ int sor_occluded(const sor_t *sor, const ray3 *ray, double tmin, double tmax)
 int sor_prim_intersect(const sor_t *sor, int prim, const ray3 *ray, double tmin, double tmax, sor_hit *hit)
 {
     sor_ray ry;
-    if (prim < 0 || prim >= sor_prim_count(sor) || !sor_ray_setup(sor, ray, &ry))
+    sor_best best;
+    double smin;
+    if (prim < 0 || prim >= sor_prim_count(sor) || !ray_begin(sor, ray, tmin, tmax, &ry, &best, &smin))
         return 0;
-    sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc;
     int found = prim < sor->n_intervals ? sor_tree_intersect(sor, sor->interval_root[prim], &ry, smin, &best, 0)
                                         : sor_caps_intersect(sor, &ry, sor_prim_cap(sor, prim), smin, &best);
     return finish(sor, sor->pieces, &ry, &best, found, hit);
@@ -304,10 +316,10 @@ int sor_prim_intersect(const sor_t *sor, int prim, const ray3 *ray, double tmin,
 int sor_intersect_naive(const sor_t *sor, const ray3 *ray, double tmin, double tmax, sor_hit *hit)
 {
     sor_ray ry;
-    if (!sor_ray_setup(sor, ray, &ry))
+    sor_best best;
+    double smin;
+    if (!ray_begin(sor, ray, tmin, tmax, &ry, &best, &smin))
         return 0;
-    sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc;
     int found = sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best);
     for (int j = 0; j < sor->n_bez; j++)
         found |= sor_piece_intersect(sor, &sor->bez[j], j, &ry, smin, &best);
