@@ -19,6 +19,14 @@ typedef struct {
     recon_side side;
 } recon_options;
 
+/* How the mask was made. */
+typedef enum {
+    RECON_MASK_ALPHA = 0,      /* alpha channel, background transparent */
+    RECON_MASK_BACKGROUND,     /* automatic: |gray - background model| above an Otsu threshold */
+    RECON_MASK_GRAY_BELOW,     /* forced threshold, object darker than the background */
+    RECON_MASK_GRAY_ABOVE      /* forced threshold, object lighter than the background */
+} recon_mask_mode;
+
 /* Why an image was refused (all of these are bad input: exit code 2). */
 typedef enum {
     RECON_OK = 0,
@@ -31,10 +39,13 @@ typedef enum {
 
 typedef struct {
     int width, height;
-    uint8_t *mask;           /* width*height, 1 = vessel (largest object, holes filled) */
-    int threshold_used;      /* -1 when the mask came from alpha */
+    uint8_t *mask;           /* width*height, 1 = vessel: largest object, closed (radius 4), holes
+                                and rows filled, floor shadow trimmed at the foot */
+    recon_mask_mode mask_mode;
+    int threshold_used;      /* 0..255: on gray when forced, on |gray - background| when automatic;
+                                -1 when the mask came from alpha */
     int dropped_objects;     /* other connected objects removed from the mask */
-    int holes_filled;
+    int holes_filled;        /* background regions enclosed by the object, filled */
     int n_contour;
     vec2 *contour;           /* outer border, pixel centres, as traced (closed, no repeat) */
     int n_approx;
@@ -44,17 +55,25 @@ typedef struct {
     vec2 pca_axes[2];        /* unit eigenvectors, major first */
     double pca_eigenvalues[2];
     vec2 axis_origin, axis_direction; /* DESIGN.md: origin at h = 0, unit toward the rim */
-    double tilt_deg;         /* angle of the axis from the image vertical */
+    double tilt_deg;         /* angle of the axis from the image vertical; positive: rim leans right */
     recon_side side_used;
+    double edge_noise_px[2];  /* per side [0] left, [1] right: median |2nd difference| of the edge */
+    double edge_contrast[2];  /* per side: 10th percentile of |fg - bg| along the edge */
+    int axis_from_symmetry;   /* 1 when the axis was refined by left/right symmetry */
     int n_silhouette[2];     /* sub-pixel outline points, [0] left, [1] right, image coords */
-    vec2 *silhouette[2];
+    vec2 *silhouette[2];     /* at most one point per pixel row (y = row centre, x the sub-pixel
+                                outline), rim corner row to base corner row, top to bottom */
     int n_polyline;
-    vec2 *polyline;          /* (r, h), px, base to rim, on side_used */
+    vec2 *polyline;          /* (r, h), px, on side_used: (r, 0), the sub-pixel outline points with
+                                0 < h < H in increasing h, (r, H); H = rim corners' height */
     double ms_image_processing;
 } recon_result;
 
-/* Runs the image stages on a decoded photo. On failure returns the status and
- * writes a one-line reason (without the file name) to err. */
+/* Runs the image stages on a decoded photo (opt may be NULL: automatic
+ * threshold, automatic side). On failure returns the status, writes a one-line
+ * reason (without the file name) to err and leaves res without arrays (the
+ * scalars reached so far, e.g. threshold_used and dropped_objects, stay set);
+ * either way recon_result_free releases it. See docs/algorithms-recon.md. */
 recon_status recon_extract(const image_t *img, const recon_options *opt, recon_result *res, char *err,
                            size_t errlen);
 void recon_result_free(recon_result *res);

@@ -9,4 +9,7 @@ typedef struct {
     int (*run)(int argc, char **argv); /* argv[0] is the subcommand name */
 } cli_command;
 
+int cmd_mesh(int argc, char **argv);
+int cmd_render(int argc, char **argv);
+
 #endif

@@ -6,6 +6,8 @@
 #define CELADON_VERSION "0.1.0"
 
 static const cli_command commands[] = {
+    {"mesh", "profile.json -> triangle mesh (OBJ+MTL or PLY) at any resolution", cmd_mesh},
+    {"render", "Mitsuba 3 scene -> image (EXR/PNG/JPEG) with the path tracer", cmd_render},
     {NULL, NULL, NULL},
 };
 

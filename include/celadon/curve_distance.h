@@ -1,0 +1,23 @@
+/* Distances between a profile curve and points or a polyline. */
+#ifndef CELADON_CURVE_DISTANCE_H
+#define CELADON_CURVE_DISTANCE_H
+
+#include "celadon/bspline.h"
+#include "celadon/vecmath.h"
+
+/* Distance from p to the curve near parameter u_guess: Newton iterations on
+ * (C(u) - p) . C'(u) = 0 from u_guess, clamped to the domain, never returning
+ * a point farther than C(u_guess). *u_foot (may be NULL) receives the foot
+ * parameter. A local search: the caller supplies a good guess. */
+double curve_point_distance_near(const bspline_t *c, vec2 p, double u_guess, double *u_foot);
+
+/* The two one-sided Hausdorff distances between the curve and the polyline
+ * poly[0..n-1] (n >= 1): the largest distance from a curve point to the
+ * polyline, and from a polyline point (vertices and segment interiors) to the
+ * curve. Both sides are sampled densely (spacing <= 0.25 px), searched with a
+ * grid index, and the maxima polished locally (golden section; Newton foot
+ * points on the curve), so they are exact to about 1e-6 px. */
+void curve_polyline_hausdorff(const bspline_t *c, const vec2 *poly, int n, double *curve_to_polyline,
+                              double *polyline_to_curve);
+
+#endif

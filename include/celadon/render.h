@@ -1,0 +1,49 @@
+/* Rendering a built scene (scene.h) with the `path` integrator: unidirectional
+ * path tracing with next-event estimation and multiple importance sampling.
+ *
+ * Determinism: sample s of pixel (x, y) draws from rng_for_sample(seed, x, y,
+ * s) and each pixel's samples are added in order, so an image depends on the
+ * seed only, never on the thread count or schedule. */
+#ifndef CELADON_RENDER_H
+#define CELADON_RENDER_H
+
+#include "celadon/color.h"
+#include "celadon/film.h"
+#include "celadon/rng.h"
+#include "celadon/scene.h"
+
+enum { RENDER_AOV_DEPTH = 1u, RENDER_AOV_NORMAL = 2u, RENDER_AOV_ALBEDO = 4u };
+
+typedef struct {
+    int threads;       /* 0: OpenMP's default */
+    unsigned aovs;     /* RENDER_AOV_* mask: extra film channels, in that order */
+    int progress;      /* 1: progress bar on a TTY and a summary line on stderr */
+} render_options;
+
+typedef struct {
+    double seconds;
+    uint64_t samples;   /* camera samples traced */
+    int interrupted;    /* 1 when render_request_stop() cut the render short */
+} render_stats;
+
+/* Parses "depth,normal,albedo" (any subset, any order) into a mask; -1 for an
+ * unknown name. */
+int render_aov_parse(const char *list, unsigned *mask);
+
+/* Renders into film (initialised here with the scene's size and the AOVs;
+ * film_free it). Samples are taken in passes over all pixels, so a render
+ * stopped early leaves every pixel with a consistent, noisier average.
+ * Returns 0, or -1 with a reason in err. */
+int render_scene(const scene_t *s, const render_options *opt, film_t *film, render_stats *stats, char *err,
+                 size_t errlen);
+
+/* Asks render_scene to stop after the samples in flight (or, if called
+ * before it starts, as soon as it starts); the request is cleared when
+ * render_scene returns. Async-signal-safe (meant for a SIGINT handler). */
+void render_request_stop(void);
+
+/* Radiance along one camera ray of pixel sample rng (the `path` integrator);
+ * aov (may be NULL) receives depth, normal (3) and albedo (3) of the first hit. */
+rgb integrator_path_li(const scene_t *s, const ray3 *ray, double tmin, double tmax, rng_t *rng, double *aov);
+
+#endif

@@ -1,0 +1,163 @@
+/* celadon mesh: a saved profile revolved into a triangle mesh file. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+#include "celadon/mesh.h"
+#include "celadon/profile.h"
+#include "cli/commands.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: celadon mesh PROFILE.json -o OUT.{obj,ply} [--segments N] [--height H] [--mouth-cap]\n\n"
+               "Revolves the profile's B-spline into a triangle mesh: one ring per curvature\n"
+               "domain of the profile, N angular segments, the rim at height H (Y up, base at 0),\n"
+               "texture coordinates as in the texture the reconstruction wrote. The base is\n"
+               "capped; --mouth-cap closes the mouth too.\n\n"
+               "  -o OUT          .obj (with OUT.mtl referencing texture.png when one sits\n"
+               "                  beside the profile) or .ply (binary, with normals and uv)\n"
+               "  --segments N    angular segments, 3 to 1000000 (default 360)\n"
+               "  --height H      rim height in scene units (default 1)\n"
+               "  --mouth-cap     add a disc closing the mouth\n");
+}
+
+static int usage_error(const char *fmt, const char *arg)
+{
+    fprintf(stderr, "celadon mesh: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, " (try celadon mesh --help)\n");
+    return 2;
+}
+
+/* The folder part of path with a trailing slash ("" for a bare name). */
+static void folder_of(const char *path, char *out, size_t len)
+{
+    const char *slash = strrchr(path, '/');
+    snprintf(out, len, "%.*s", slash ? (int)(slash - path + 1) : 0, path);
+}
+
+static const char *extension(const char *path)
+{
+    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
+    return dot && (!slash || dot > slash) ? dot : "";
+}
+
+/* Writes OUT.mtl next to the OBJ when the profile has a texture.png beside
+ * it; fills mtl_name (for mtllib) and mtl_path, or leaves them empty.
+ * Returns 0, or -1 after telling the user why the material was not written. */
+static int write_material(const char *profile_path, const char *out, char *mtl_name, char *mtl_path, size_t len)
+{
+    char tex_dir[4096], out_dir[4096], tex[4200], tex_ref[4200];
+    mtl_name[0] = mtl_path[0] = '\0';
+    folder_of(profile_path, tex_dir, sizeof tex_dir);
+    snprintf(tex, sizeof tex, "%stexture.png", tex_dir);
+    if (access(tex, R_OK) != 0)
+        return 0;
+    folder_of(out, out_dir, sizeof out_dir);
+    /* Beside the OBJ the bare name works; elsewhere the absolute path does. */
+    char *abs = realpath(tex, NULL), *abs_out_dir = realpath(out_dir[0] ? out_dir : ".", NULL);
+    char *abs_tex_dir = realpath(tex_dir[0] ? tex_dir : ".", NULL);
+    int same = abs_out_dir && abs_tex_dir && !strcmp(abs_out_dir, abs_tex_dir);
+    snprintf(tex_ref, sizeof tex_ref, "%s", same || !abs ? "texture.png" : abs);
+    free(abs);
+    free(abs_out_dir);
+    free(abs_tex_dir);
+
+    const char *ext = extension(out);
+    const char *base = strrchr(out, '/') ? strrchr(out, '/') + 1 : out;
+    snprintf(mtl_path, len, "%.*s.mtl", (int)(ext - out), out);
+    snprintf(mtl_name, len, "%.*s.mtl", (int)(ext - base), base);
+    char err[4400];
+    if (mesh_write_mtl(mtl_path, tex_ref, err, sizeof err) != 0) {
+        fprintf(stderr, "celadon: %s\n", err);
+        return -1;
+    }
+    return 0;
+}
+
+int cmd_mesh(int argc, char **argv)
+{
+    const char *profile_path = NULL, *out = NULL;
+    long segments = 360;
+    double height = 1.0;
+    int mouth_cap = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        char *end;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            return 0;
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--segments") || !strcmp(a, "--height")) {
+            if (i + 1 >= argc)
+                return usage_error("%s needs a value", a);
+            const char *v = argv[++i];
+            if (!strcmp(a, "-o"))
+                out = v;
+            else if (!strcmp(a, "--segments")) {
+                errno = 0;
+                segments = strtol(v, &end, 10);
+                if (errno || end == v || *end || segments < 3 || segments > 1000000)
+                    return usage_error("--segments must be an integer from 3 to 1000000, not '%s'", v);
+            } else {
+                errno = 0;
+                height = strtod(v, &end);
+                if (errno || end == v || *end || !(height > 0.0) || height > 1e30)
+                    return usage_error("--height must be a positive number, not '%s'", v);
+            }
+        } else if (!strcmp(a, "--mouth-cap"))
+            mouth_cap = 1;
+        else if (a[0] == '-' && a[1])
+            return usage_error("unknown option '%s'", a);
+        else if (profile_path)
+            return usage_error("one profile at a time ('%s' is extra)", a);
+        else
+            profile_path = a;
+    }
+    if (!profile_path)
+        return usage_error("%s", "missing PROFILE.json");
+    if (!out)
+        return usage_error("%s", "missing -o OUT.obj or -o OUT.ply");
+    int ply = !strcasecmp(extension(out), ".ply");
+    if (!ply && strcasecmp(extension(out), ".obj")) {
+        fprintf(stderr, "celadon: %s: unknown mesh format (use .obj or .ply)\n", out);
+        return 2;
+    }
+
+    profile_t p;
+    char err[4400];
+    if (profile_read_json(profile_path, &p, err, sizeof err) != 0) {
+        fprintf(stderr, "celadon: %s: %s\n", profile_path, err);
+        return 2;
+    }
+    mesh_t m;
+    unsigned caps = MESH_CAP_BASE | (mouth_cap ? MESH_CAP_MOUTH : 0u);
+    if (mesh_revolve(&p.curve, p.domains, p.n_domains, height, (int)segments, caps, &m) != 0) {
+        fprintf(stderr, "celadon: %s: cannot revolve this profile at %ld segments (rim not above the base, "
+                        "or too many vertices)\n", profile_path, segments);
+        profile_free(&p);
+        return 2;
+    }
+    profile_free(&p);
+
+    int rc;
+    char mtl_name[4200] = "", mtl_path[4200] = "";
+    if (ply)
+        rc = mesh_write_ply(out, &m, err, sizeof err);
+    else if (write_material(profile_path, out, mtl_name, mtl_path, sizeof mtl_path) != 0) {
+        mesh_free(&m);
+        return 2;
+    } else if ((rc = mesh_write_obj(out, &m, mtl_name[0] ? mtl_name : NULL, err, sizeof err)) != 0 && mtl_path[0])
+        remove(mtl_path); /* nothing half-written stays behind */
+    if (rc != 0) {
+        fprintf(stderr, "celadon: %s\n", err);
+        mesh_free(&m);
+        return 2;
+    }
+    printf("%s: %d vertices, %d triangles%s%s\n", out, m.n_verts, m.n_tris, !ply && mtl_name[0] ? ", material " : "",
+           !ply && mtl_name[0] ? mtl_path : "");
+    mesh_free(&m);
+    return 0;
+}

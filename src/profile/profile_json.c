@@ -1,0 +1,375 @@
+/* profile.json (DESIGN.md contract) through jansson: writing, and reading
+ * with a one-line reason for anything malformed. */
+#include "celadon/profile.h"
+
+#include <errno.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "celadon/atomic_file.h"
+
+enum { PROFILE_VERSION = 1 };
+
+static const char *const corner_names[CORNER_COUNT] = {"rim_left", "rim_right", "base_left", "base_right"};
+
+/* ------------------------------------------------------------------ writing */
+
+static json_t *pair(vec2 v) { return json_pack("[f, f]", v.x, v.y); }
+
+static json_t *pairs(const vec2 *v, int n)
+{
+    json_t *a = json_array();
+    for (int i = 0; a && i < n; i++)
+        if (json_array_append_new(a, pair(v[i])) != 0) { /* NULL from a non-finite value */
+            json_decref(a);
+            return NULL;
+        }
+    return a;
+}
+
+static json_t *reals(const double *v, int n)
+{
+    json_t *a = json_array();
+    for (int i = 0; a && i < n; i++)
+        if (json_array_append_new(a, json_real(v[i])) != 0) {
+            json_decref(a);
+            return NULL;
+        }
+    return a;
+}
+
+static json_t *corners_json(const profile_t *p)
+{
+    json_t *o = json_object();
+    for (int k = 0; o && k < CORNER_COUNT; k++)
+        if (json_object_set_new(o, corner_names[k], pair(p->corners[k])) != 0) {
+            json_decref(o);
+            return NULL;
+        }
+    return o;
+}
+
+int profile_write_json(const char *path, const profile_t *p, char *err, size_t errlen)
+{
+    const char *bad = bspline_validate(&p->curve);
+    if (bad) {
+        snprintf(err, errlen, "invalid B-spline: %s", bad);
+        return -1;
+    }
+    /* "o" steals a reference and fails on NULL: a non-finite number anywhere
+     * (json_real refuses them) makes the whole pack fail. */
+    json_t *root = json_pack(
+        "{s:i, s:{s:s, s:i, s:i}, s:{s:o, s:o, s:f}, s:o, s:s, s:o, s:{s:i, s:o, s:o}, s:o, s:{s:f, s:f},"
+        " s:{s:i, s:i, s:i}, s:{s:f, s:f, s:f, s:f}}",
+        "version", PROFILE_VERSION,
+        "source", "path", p->source_path, "width", p->source_width, "height", p->source_height,
+        "axis", "origin", pair(p->axis_origin), "direction", pair(p->axis_direction), "tilt_deg", p->tilt_deg,
+        "corners", corners_json(p),
+        "side", p->side,
+        "polyline", pairs(p->polyline, p->n_polyline),
+        "bspline", "degree", p->curve.degree, "knots", reals(p->curve.knots, bspline_n_knots(&p->curve)),
+        "control_points", pairs(p->curve.ctrl, p->curve.n_ctrl),
+        "domains", reals(p->domains, p->n_domains),
+        "error_px", "curve_to_polyline", p->err_curve_to_polyline, "polyline_to_curve", p->err_polyline_to_curve,
+        "stats", "contour_points", p->contour_points, "control_points", p->curve.n_ctrl, "domains", p->n_domains,
+        "timings_ms", "image_processing", p->ms_image_processing, "bspline", p->ms_bspline, "texture",
+        p->ms_texture, "mesh", p->ms_mesh);
+    if (!root) {
+        snprintf(err, errlen, "cannot write %s: a value is not finite or a string is not UTF-8", path);
+        return -1;
+    }
+    atomic_file af;
+    errno = 0;
+    int rc = -1;
+    if (atomic_file_open(&af, path) == 0) {
+        if (json_dumpf(root, af.fp, JSON_INDENT(1) | JSON_REAL_PRECISION(17)) == 0 && fputc('\n', af.fp) != EOF)
+            rc = atomic_file_commit(&af);
+        else
+            atomic_file_abort(&af);
+    }
+    if (rc != 0)
+        snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno ? errno : EIO));
+    json_decref(root);
+    return rc;
+}
+
+/* ------------------------------------------------------------------ reading */
+
+typedef struct {
+    char *err;
+    size_t errlen;
+} reader;
+
+static int fail(reader *r, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->err, r->errlen, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+/* The member key of obj (named path in messages), which must exist. */
+static json_t *member(reader *r, json_t *obj, const char *key, const char *path)
+{
+    json_t *v = json_object_get(obj, key);
+    if (!v)
+        fail(r, "missing field '%s'", path);
+    return v;
+}
+
+static int as_number(reader *r, json_t *v, const char *path, double *out)
+{
+    if (!json_is_number(v))
+        return fail(r, "'%s' must be a number", path);
+    *out = json_number_value(v);
+    if (!isfinite(*out))
+        return fail(r, "'%s' is not finite", path);
+    return 0;
+}
+
+static int get_number(reader *r, json_t *obj, const char *key, const char *path, double *out)
+{
+    json_t *v = member(r, obj, key, path);
+    return v ? as_number(r, v, path, out) : -1;
+}
+
+static int get_count(reader *r, json_t *obj, const char *key, const char *path, int *out)
+{
+    json_t *v = member(r, obj, key, path);
+    if (!v)
+        return -1;
+    if (!json_is_integer(v) || json_integer_value(v) < 0 || json_integer_value(v) > 2147483647)
+        return fail(r, "'%s' must be a non-negative integer", path);
+    *out = (int)json_integer_value(v);
+    return 0;
+}
+
+static int as_pair(reader *r, json_t *v, const char *path, vec2 *out)
+{
+    if (!json_is_array(v) || json_array_size(v) != 2)
+        return fail(r, "'%s' must be an array of 2 numbers", path);
+    return as_number(r, json_array_get(v, 0), path, &out->x) || as_number(r, json_array_get(v, 1), path, &out->y)
+               ? -1
+               : 0;
+}
+
+static int get_pair(reader *r, json_t *obj, const char *key, const char *path, vec2 *out)
+{
+    json_t *v = member(r, obj, key, path);
+    return v ? as_pair(r, v, path, out) : -1;
+}
+
+static json_t *get_object(reader *r, json_t *obj, const char *key)
+{
+    json_t *v = member(r, obj, key, key);
+    if (v && !json_is_object(v)) {
+        fail(r, "'%s' must be an object", key);
+        return NULL;
+    }
+    return v;
+}
+
+/* An array of at least min_n elements; *n receives its size. */
+static json_t *get_array(reader *r, json_t *obj, const char *key, const char *path, size_t min_n, int *n)
+{
+    json_t *v = member(r, obj, key, path);
+    if (!v)
+        return NULL;
+    if (!json_is_array(v)) {
+        fail(r, "'%s' must be an array", path);
+        return NULL;
+    }
+    if (json_array_size(v) < min_n || json_array_size(v) > 100000000) {
+        fail(r, "'%s' must have at least %zu elements", path, min_n);
+        return NULL;
+    }
+    *n = (int)json_array_size(v);
+    return v;
+}
+
+static int read_pairs(reader *r, json_t *a, const char *path, vec2 *out)
+{
+    char elem[64];
+    for (size_t i = 0; i < json_array_size(a); i++) {
+        snprintf(elem, sizeof elem, "%s[%zu]", path, i);
+        if (as_pair(r, json_array_get(a, i), elem, &out[i]) != 0)
+            return -1;
+    }
+    return 0;
+}
+
+static int read_reals(reader *r, json_t *a, const char *path, double *out)
+{
+    char elem[64];
+    for (size_t i = 0; i < json_array_size(a); i++) {
+        snprintf(elem, sizeof elem, "%s[%zu]", path, i);
+        if (as_number(r, json_array_get(a, i), elem, &out[i]) != 0)
+            return -1;
+    }
+    return 0;
+}
+
+static int read_header(reader *r, json_t *root, profile_t *p)
+{
+    json_t *v = member(r, root, "version", "version");
+    if (!v)
+        return -1;
+    if (!json_is_integer(v) || json_integer_value(v) != PROFILE_VERSION)
+        return fail(r, "unsupported version (this reader knows version %d)", PROFILE_VERSION);
+
+    json_t *src = get_object(r, root, "source");
+    if (!src)
+        return -1;
+    json_t *path = member(r, src, "path", "source.path");
+    if (!path)
+        return -1;
+    if (!json_is_string(path) || json_string_length(path) >= sizeof p->source_path)
+        return fail(r, "'source.path' must be a string shorter than %zu bytes", sizeof p->source_path);
+    snprintf(p->source_path, sizeof p->source_path, "%s", json_string_value(path));
+    if (get_count(r, src, "width", "source.width", &p->source_width) ||
+        get_count(r, src, "height", "source.height", &p->source_height))
+        return -1;
+
+    json_t *axis = get_object(r, root, "axis");
+    if (!axis || get_pair(r, axis, "origin", "axis.origin", &p->axis_origin) ||
+        get_pair(r, axis, "direction", "axis.direction", &p->axis_direction) ||
+        get_number(r, axis, "tilt_deg", "axis.tilt_deg", &p->tilt_deg))
+        return -1;
+    if (fabs(v2_len(p->axis_direction) - 1.0) > 1e-6)
+        return fail(r, "'axis.direction' must be a unit vector");
+
+    json_t *corners = get_object(r, root, "corners");
+    if (!corners)
+        return -1;
+    for (int k = 0; k < CORNER_COUNT; k++) {
+        char name[32];
+        snprintf(name, sizeof name, "corners.%s", corner_names[k]);
+        if (get_pair(r, corners, corner_names[k], name, &p->corners[k]) != 0)
+            return -1;
+    }
+
+    json_t *side = member(r, root, "side", "side");
+    if (!side)
+        return -1;
+    if (!json_is_string(side) || (strcmp(json_string_value(side), "left") && strcmp(json_string_value(side), "right")))
+        return fail(r, "'side' must be \"left\" or \"right\"");
+    snprintf(p->side, sizeof p->side, "%s", json_string_value(side));
+    return 0;
+}
+
+static int read_curve(reader *r, json_t *root, profile_t *p)
+{
+    int n;
+    json_t *poly = get_array(r, root, "polyline", "polyline", 2, &n);
+    if (!poly)
+        return -1;
+    p->polyline = malloc((size_t)n * sizeof *p->polyline);
+    if (!p->polyline)
+        return fail(r, "out of memory");
+    p->n_polyline = n;
+    if (read_pairs(r, poly, "polyline", p->polyline) != 0)
+        return -1;
+
+    json_t *bs = get_object(r, root, "bspline");
+    if (!bs)
+        return -1;
+    json_t *deg = member(r, bs, "degree", "bspline.degree");
+    if (!deg)
+        return -1;
+    if (!json_is_integer(deg) || json_integer_value(deg) != 3)
+        return fail(r, "'bspline.degree' must be 3");
+    int nk, nc;
+    json_t *knots = get_array(r, bs, "knots", "bspline.knots", 8, &nk);
+    json_t *ctrl = knots ? get_array(r, bs, "control_points", "bspline.control_points", 4, &nc) : NULL;
+    if (!ctrl)
+        return -1;
+    if (nk != nc + 4)
+        return fail(r, "'bspline.knots' has %d values; %d control points need %d", nk, nc, nc + 4);
+    if (bspline_init(&p->curve, 3, nc) != 0)
+        return fail(r, "out of memory");
+    if (read_reals(r, knots, "bspline.knots", p->curve.knots) ||
+        read_pairs(r, ctrl, "bspline.control_points", p->curve.ctrl))
+        return -1;
+    const char *bad = bspline_validate(&p->curve);
+    if (bad)
+        return fail(r, "invalid B-spline: %s", bad);
+    if (p->curve.knots[0] != 0.0 || p->curve.knots[nk - 1] != 1.0)
+        return fail(r, "invalid B-spline: the parameter must run from 0 to 1");
+
+    json_t *dom = get_array(r, root, "domains", "domains", 2, &n);
+    if (!dom)
+        return -1;
+    p->domains = malloc((size_t)n * sizeof *p->domains);
+    if (!p->domains)
+        return fail(r, "out of memory");
+    p->n_domains = n;
+    if (read_reals(r, dom, "domains", p->domains) != 0)
+        return -1;
+    if (p->domains[0] != 0.0 || p->domains[n - 1] != 1.0)
+        return fail(r, "'domains' must start at 0 and end at 1");
+    for (int i = 1; i < n; i++)
+        if (!(p->domains[i] > p->domains[i - 1]))
+            return fail(r, "'domains' must be strictly increasing (domains[%d] = %.17g)", i, p->domains[i]);
+    return 0;
+}
+
+static int read_report(reader *r, json_t *root, profile_t *p)
+{
+    json_t *e = get_object(r, root, "error_px");
+    if (!e || get_number(r, e, "curve_to_polyline", "error_px.curve_to_polyline", &p->err_curve_to_polyline) ||
+        get_number(r, e, "polyline_to_curve", "error_px.polyline_to_curve", &p->err_polyline_to_curve))
+        return -1;
+    if (p->err_curve_to_polyline < 0.0 || p->err_polyline_to_curve < 0.0)
+        return fail(r, "'error_px' distances must not be negative");
+    json_t *st = get_object(r, root, "stats");
+    int ctrl, dom;
+    if (!st || get_count(r, st, "contour_points", "stats.contour_points", &p->contour_points) ||
+        get_count(r, st, "control_points", "stats.control_points", &ctrl) ||
+        get_count(r, st, "domains", "stats.domains", &dom))
+        return -1;
+    if (ctrl != p->curve.n_ctrl || dom != p->n_domains)
+        return fail(r, "'stats' disagrees with the bspline and domains it describes");
+    json_t *t = get_object(r, root, "timings_ms");
+    if (!t || get_number(r, t, "image_processing", "timings_ms.image_processing", &p->ms_image_processing) ||
+        get_number(r, t, "bspline", "timings_ms.bspline", &p->ms_bspline) ||
+        get_number(r, t, "texture", "timings_ms.texture", &p->ms_texture) ||
+        get_number(r, t, "mesh", "timings_ms.mesh", &p->ms_mesh))
+        return -1;
+    return 0;
+}
+
+int profile_read_json(const char *path, profile_t *p, char *err, size_t errlen)
+{
+    memset(p, 0, sizeof *p);
+    reader r = {err, errlen};
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return fail(&r, "cannot open: %s", strerror(errno));
+    json_error_t jerr;
+    json_t *root = json_loadf(f, JSON_REJECT_DUPLICATES, &jerr);
+    fclose(f);
+    if (!root)
+        return fail(&r, "not valid JSON (line %d): %s", jerr.line, jerr.text);
+    int rc = json_is_object(root) ? 0 : fail(&r, "the top level must be an object");
+    if (rc == 0)
+        rc = read_header(&r, root, p) || read_curve(&r, root, p) || read_report(&r, root, p) ? -1 : 0;
+    json_decref(root);
+    if (rc != 0)
+        profile_free(p);
+    return rc;
+}
+
+void profile_free(profile_t *p)
+{
+    free(p->polyline);
+    free(p->domains);
+    bspline_free(&p->curve);
+    p->polyline = NULL;
+    p->domains = NULL;
+    p->n_polyline = p->n_domains = 0;
+}

@@ -1,0 +1,157 @@
+/* The axis of revolution: PCA of the contour, and its refinement by the
+ * mirror symmetry of the sub-pixel left and right outlines. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "recon/recon_internal.h"
+
+void recon_pca(const vec2 *pts, int n, vec2 *mean, vec2 axes[2], double eig[2])
+{
+    double mx = 0, my = 0;
+    for (int i = 0; i < n; i++) {
+        mx += pts[i].x;
+        my += pts[i].y;
+    }
+    mx /= n > 0 ? n : 1;
+    my /= n > 0 ? n : 1;
+    double sxx = 0, sxy = 0, syy = 0;
+    for (int i = 0; i < n; i++) {
+        double dx = pts[i].x - mx, dy = pts[i].y - my;
+        sxx += dx * dx;
+        sxy += dx * dy;
+        syy += dy * dy;
+    }
+    if (n > 0) {
+        sxx /= n;
+        sxy /= n;
+        syy /= n;
+    }
+    /* Symmetric 2x2 eigenproblem in closed form. */
+    double tr = 0.5 * (sxx + syy), det = sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
+    eig[0] = tr + det;
+    eig[1] = tr - det;
+    double th = 0.5 * atan2(2 * sxy, sxx - syy); /* angle of the major axis */
+    *mean = v2(mx, my);
+    axes[0] = v2(cos(th), sin(th));
+    axes[1] = v2(-sin(th), cos(th));
+}
+
+typedef struct {
+    double h, r;
+} hr_t;
+
+static int cmp_h(const void *a, const void *b)
+{
+    double x = ((const hr_t *)a)->h, y = ((const hr_t *)b)->h;
+    return (x > y) - (x < y);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* r of the left outline at height h, by linear interpolation; NAN where the
+ * outline is missing, gappy or too flat to compare. */
+static double left_at(const hr_t *L, int nl, double h)
+{
+    int lo = 0, hi = nl - 1;
+    if (nl < 2 || h < L[0].h || h > L[nl - 1].h)
+        return NAN;
+    while (hi - lo > 1) {
+        int mid = (lo + hi) / 2;
+        if (L[mid].h <= h)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double dh = L[hi].h - L[lo].h;
+    if (dh <= 1e-9 || dh > 3 || fabs(L[hi].r - L[lo].r) > 2 * dh)
+        return NAN;
+    return L[lo].r + (h - L[lo].h) / dh * (L[hi].r - L[lo].r);
+}
+
+int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec2 *origin, vec2 *dir, double h_lo,
+                        double h_hi)
+{
+    hr_t *L = malloc((size_t)(nl > 0 ? nl : 1) * sizeof *L);
+    double *e = malloc((size_t)(nr > 0 ? nr : 1) * 3 * sizeof *e);
+    if (!L || !e) {
+        free(L);
+        free(e);
+        return 0;
+    }
+    double *hs = e + nr, *tmp = hs + nr;
+    vec2 o = *origin, d = *dir;
+    int ok = 0;
+    for (int iter = 0; iter < 6; iter++) {
+        vec2 n = v2(-d.y, d.x);
+        for (int i = 0; i < nl; i++) {
+            vec2 q = v2_sub(left[i], o);
+            L[i] = (hr_t){v2_dot(q, d), -v2_dot(q, n)};
+        }
+        qsort(L, (size_t)nl, sizeof *L, cmp_h);
+        int m = 0;
+        for (int i = 0; i < nr; i++) {
+            vec2 q = v2_sub(right[i], o);
+            double h = v2_dot(q, d);
+            if (h < h_lo || h > h_hi)
+                continue;
+            double rl = left_at(L, nl, h);
+            if (isnan(rl))
+                continue;
+            e[m] = v2_dot(q, n) - rl;
+            hs[m++] = h;
+        }
+        if (m < 20)
+            break;
+        /* Trim: residuals far from the median (highlights, notches). */
+        for (int i = 0; i < m; i++)
+            tmp[i] = e[i];
+        qsort(tmp, (size_t)m, sizeof *tmp, cmp_double);
+        double med = tmp[m / 2];
+        for (int i = 0; i < m; i++)
+            tmp[i] = fabs(e[i] - med);
+        qsort(tmp, (size_t)m, sizeof *tmp, cmp_double);
+        double tol = fmax(3 * 1.4826 * tmp[m / 2], 0.5);
+        /* Least squares e = 2 dc + 2 dth (h - hm) on the inliers. */
+        double hm = 0, cnt = 0;
+        for (int i = 0; i < m; i++)
+            if (fabs(e[i] - med) <= tol) {
+                hm += hs[i];
+                cnt++;
+            }
+        if (cnt < 20 || cnt < 0.3 * m)
+            break;
+        hm /= cnt;
+        double se = 0, sh = 0, shh = 0, seh = 0;
+        for (int i = 0; i < m; i++)
+            if (fabs(e[i] - med) <= tol) {
+                double x = hs[i] - hm;
+                se += e[i];
+                seh += e[i] * x;
+                shh += x * x;
+                sh += x;
+            }
+        if (shh <= 0)
+            break;
+        double dc = 0.5 * se / cnt, dth = 0.5 * seh / shh, delta = dc - dth * hm;
+        o = v2_add(o, v2_scale(n, delta));
+        d = v2_norm(v2_add(d, v2_scale(n, dth)));
+        ok = 1;
+        if (fabs(delta) < 1e-4 && fabs(dth) < 1e-7)
+            break;
+    }
+    free(L);
+    free(e);
+    /* A symmetric pair of outlines moves the axis a little; a large move means
+     * one outline is unreliable: keep the corner-based axis then. */
+    double turn = acos(fmin(1.0, fabs(v2_dot(d, *dir)))) * 180 / M_PI;
+    vec2 n0 = v2(-dir->y, dir->x);
+    if (!ok || turn > 8.0 || fabs(v2_dot(v2_sub(o, *origin), n0)) > 0.1 * (h_hi - h_lo) + 5)
+        return 0;
+    *origin = o;
+    *dir = d;
+    return 1;
+}

@@ -1,0 +1,207 @@
+/* The `sor` shape analytic: the exact intersector of sor.h in object space,
+ * plus sampling by area for area emitters. The wall's area element is
+ * dA = s^2 r(u) |C'(u)| du dphi (s the profile scale): u is drawn from a
+ * tabulated piecewise-constant CDF of r(u) |C'(u)|, phi uniformly; the caps
+ * are discs. A part is chosen with probability proportional to its area.
+ * Texture uv = (u_DESIGN, 1 - v_DESIGN): the image's top row is the rim, as
+ * for the exported meshes read with Mitsuba's flip_tex_coords. */
+#include <stdlib.h>
+
+#include <string.h>
+
+#include "celadon/mesh.h"
+#include "celadon/profile.h"
+#include "celadon/sampling.h"
+#include "celadon/sor.h"
+#include "render/scene_impl.h"
+
+enum { SOR_TABLE = 1024 };
+
+typedef struct {
+    sor_t *sor;
+    bspline_t curve;       /* profile, pixels */
+    double scale;          /* object units per pixel */
+    double height;
+    distribution1d wall_u; /* over u in [0,1) */
+    double part_prob[3];   /* wall, base, mouth */
+    double cap_radius[3];  /* object-space radius of the base and mouth discs */
+} sor_shape;
+
+static vec2 sor_tex_uv(double phi, double v)
+{
+    double tu = phi <= M_PI ? 1.0 - phi / M_PI : phi / M_PI - 1.0;
+    return v2(tu, 1.0 - v);
+}
+
+void *shape_sor_create(const char *profile_path, double height, bool caps, char *err, size_t errlen)
+{
+    profile_t prof;
+    char why[512];
+    if (profile_read_json(profile_path, &prof, why, sizeof why) != 0) {
+        snprintf(err, errlen, "%s", why);
+        return NULL;
+    }
+    sor_shape *s = calloc(1, sizeof *s);
+    unsigned mask = SOR_CAP_BASE | (caps ? SOR_CAP_MOUTH : 0u);
+    if (!s || bspline_copy(&s->curve, &prof.curve) != 0) {
+        snprintf(err, errlen, "out of memory");
+        free(s);
+        profile_free(&prof);
+        return NULL;
+    }
+    profile_free(&prof);
+    s->sor = sor_create(&s->curve, height, mask, why, sizeof why);
+    if (!s->sor) {
+        snprintf(err, errlen, "%s", why);
+        bspline_free(&s->curve);
+        free(s);
+        return NULL;
+    }
+    s->scale = sor_profile_scale(s->sor);
+    s->height = height;
+    double f[SOR_TABLE], wall = 0.0;
+    for (int i = 0; i < SOR_TABLE; i++) {
+        vec2 d[2];
+        bspline_eval_derivs(&s->curve, (i + 0.5) / SOR_TABLE, 1, d);
+        f[i] = fmax(d[0].x, 0.0) * v2_len(d[1]);
+        wall += f[i] / SOR_TABLE;
+    }
+    double area[3];
+    area[0] = 2.0 * M_PI * s->scale * s->scale * wall;
+    s->cap_radius[0] = 0.0;
+    s->cap_radius[SOR_PART_BASE] = s->scale * fmax(bspline_eval(&s->curve, 0.0).x, 0.0);
+    s->cap_radius[SOR_PART_MOUTH] = caps ? s->scale * fmax(bspline_eval(&s->curve, 1.0).x, 0.0) : 0.0;
+    area[1] = M_PI * s->cap_radius[1] * s->cap_radius[1];
+    area[2] = M_PI * s->cap_radius[2] * s->cap_radius[2];
+    double total = area[0] + area[1] + area[2];
+    if (distribution1d_init(&s->wall_u, f, SOR_TABLE) != 0 || !(total > 0.0)) {
+        snprintf(err, errlen, "profile has no area");
+        sor_destroy(s->sor);
+        bspline_free(&s->curve);
+        distribution1d_free(&s->wall_u);
+        free(s);
+        return NULL;
+    }
+    for (int i = 0; i < 3; i++)
+        s->part_prob[i] = area[i] / total;
+    return s;
+}
+
+static int sor_shape_intersect(const void *data, const ray3 *r, double tmin, double tmax, shape_local_hit *h)
+{
+    const sor_shape *s = data;
+    sor_hit sh;
+    if (!sor_intersect(s->sor, r, tmin, tmax, &sh))
+        return 0;
+    h->t = sh.t;
+    h->p = sh.p;
+    h->n = sh.ng;
+    h->uv = v2(sh.uv.x, 1.0 - sh.uv.y);
+    h->part = (int)sh.part;
+    h->param[0] = sh.u;
+    h->param[1] = sh.phi;
+    return 1;
+}
+
+/* Density per object area of a wall point at profile parameter u. */
+static double wall_pdf(const sor_shape *s, double u)
+{
+    vec2 d[2];
+    bspline_eval_derivs(&s->curve, u, 1, d);
+    double jac = s->scale * s->scale * d[0].x * v2_len(d[1]) * 2.0 * M_PI;
+    return jac > 0.0 ? s->part_prob[0] * distribution1d_pdf(&s->wall_u, fmin(u, 1.0 - 1e-12)) / jac : 0.0;
+}
+
+static double sor_shape_pdf(const void *data, const shape_local_hit *h)
+{
+    const sor_shape *s = data;
+    if (h->part == SOR_PART_WALL)
+        return wall_pdf(s, h->param[0]);
+    double rad = s->cap_radius[h->part];
+    return rad > 0.0 ? s->part_prob[h->part] / (M_PI * rad * rad) : 0.0;
+}
+
+static void sor_shape_sample(const void *data, vec3 u, shape_local_hit *h, double *pdf)
+{
+    const sor_shape *s = data;
+    double uz = u.z;
+    int part = uz < s->part_prob[0] ? 0 : (uz < s->part_prob[0] + s->part_prob[1] ? 1 : 2);
+    if (s->part_prob[part] <= 0.0) /* a zero-area part is never chosen; guard the u = boundary case */
+        part = 0;
+    h->t = 0.0;
+    h->part = part;
+    if (part == SOR_PART_WALL) {
+        double cell_pdf;
+        int cell;
+        double pu = distribution1d_sample_continuous(&s->wall_u, u.x, &cell_pdf, &cell);
+        double phi = 2.0 * M_PI * u.y;
+        vec2 d[2];
+        bspline_eval_derivs(&s->curve, pu, 1, d);
+        double c = cos(phi), sn = sin(phi);
+        h->p = v3(s->scale * d[0].x * c, s->scale * d[0].y, s->scale * d[0].x * sn);
+        h->n = v3_norm(v3(d[1].y * c, -d[1].x, d[1].y * sn));
+        h->uv = sor_tex_uv(phi, d[0].y * s->scale / s->height);
+        h->param[0] = pu;
+        h->param[1] = phi;
+        *pdf = wall_pdf(s, pu);
+        return;
+    }
+    vec2 q = warp_square_to_concentric_disk(v2(u.x, u.y));
+    double rad = s->cap_radius[part], y = part == SOR_PART_BASE ? 0.0 : s->height;
+    double phi = atan2(q.y, q.x);
+    phi = phi < 0.0 ? phi + 2.0 * M_PI : phi;
+    h->p = v3(rad * q.x, y, rad * q.y);
+    h->n = v3(0.0, part == SOR_PART_BASE ? -1.0 : 1.0, 0.0);
+    h->uv = sor_tex_uv(phi, part == SOR_PART_BASE ? 0.0 : 1.0);
+    h->param[0] = part == SOR_PART_BASE ? 0.0 : 1.0;
+    h->param[1] = phi;
+    *pdf = s->part_prob[part] / (M_PI * rad * rad);
+}
+
+static void sor_shape_bounds(const void *data, vec3 *lo, vec3 *hi)
+{
+    sor_bounds(((const sor_shape *)data)->sor, lo, hi);
+}
+
+static void sor_shape_destroy(void *data)
+{
+    sor_shape *s = data;
+    if (!s)
+        return;
+    sor_destroy(s->sor);
+    bspline_free(&s->curve);
+    distribution1d_free(&s->wall_u);
+    free(s);
+}
+
+const shape_analytic_ops shape_sor_ops = {"sor", sor_shape_intersect, sor_shape_sample, sor_shape_pdf,
+                                          sor_shape_bounds, sor_shape_destroy};
+
+int shape_sor_mesh(const char *profile_path, double height, bool caps, int segments, shape_mesh_data *m, char *err,
+                   size_t errlen)
+{
+    profile_t prof;
+    char why[512];
+    if (profile_read_json(profile_path, &prof, why, sizeof why) != 0) {
+        snprintf(err, errlen, "%s", why);
+        return -1;
+    }
+    mesh_t mesh;
+    unsigned mask = MESH_CAP_BASE | (caps ? MESH_CAP_MOUTH : 0u);
+    int rc = mesh_revolve(&prof.curve, prof.domains, prof.n_domains, height, segments, mask, &mesh);
+    profile_free(&prof);
+    if (rc != 0) {
+        snprintf(err, errlen, "cannot revolve the profile into %d segments", segments);
+        return -1;
+    }
+    memset(m, 0, sizeof *m);
+    m->n_verts = mesh.n_verts;
+    m->n_tris = mesh.n_tris;
+    m->pos = mesh.pos;
+    m->nrm = mesh.nrm;
+    m->uv = mesh.uv;
+    m->tri = mesh.tri;
+    for (int i = 0; i < m->n_verts; i++)
+        m->uv[2 * i + 1] = 1.0f - m->uv[2 * i + 1];
+    return 0;
+}

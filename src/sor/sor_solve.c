@@ -1,0 +1,272 @@
+/* The exact leaf solver. On a cubic piece (r(w), h(w)) a point of the ray is a
+ * hit when r(w)^2 = rho^2(s) and h(w) = hc + dy s. Eliminating s without
+ * dividing by dy gives the degree-6 polynomial
+ *     g(w) = dy^2 r(w)^2 - D(w) (a D(w) + 2 beta dy) - rho2c dy^2,  D = h - hc,
+ * built directly in the Bernstein basis of the piece (products of its cubic
+ * control values). Its real roots in [0,1] are isolated by Bernstein
+ * subdivision with Descartes' rule of signs (the number of sign changes of the
+ * coefficients bounds the roots and equals it when it is 0 or 1), then found
+ * by safeguarded Newton, and finally polished by Newton on the 2x2 system in
+ * (w, s), which stays well conditioned for near-horizontal rays where g's two
+ * roots (the ray entering and leaving the wall) coalesce. For dy = 0 the
+ * roots of h(w) - hc are isolated instead and the ray is horizontal. */
+#include <float.h>
+#include <math.h>
+
+#include "sor_internal.h"
+
+#define ISO_MAX_DEPTH 24  /* subdivision depth before a root cluster is taken as one seed */
+#define ISO_BUDGET 160    /* spans examined per piece at most (degenerate g = 0 stops here) */
+#define ISO_MAX_ITEMS 16
+
+typedef struct {
+    double lo, hi; /* a bracket with one sign change, or a seed point lo = hi */
+    double clo;    /* g at lo for a bracket */
+    int bracket;
+} iso_item;
+
+typedef struct {
+    double c[7];
+    double lo, hi;
+    int depth;
+} iso_span;
+
+static void bernstein_split_half(const double *c, int n, double *left, double *right)
+{
+    double tmp[7];
+    for (int k = 0; k <= n; k++)
+        tmp[k] = c[k];
+    left[0] = tmp[0];
+    right[n] = tmp[n];
+    for (int j = 1; j <= n; j++) {
+        for (int k = 0; k <= n - j; k++)
+            tmp[k] = 0.5 * (tmp[k] + tmp[k + 1]);
+        left[j] = tmp[0];
+        right[n - j] = tmp[n - j];
+    }
+}
+
+/* Roots of the Bernstein polynomial c (degree n <= 6) on [0,1]: brackets holding
+ * exactly one simple root, and seed points (a coefficient at a span end within
+ * tau of 0, or a cluster too tight to separate). */
+static int isolate(const double *c, int n, double tau, iso_item *items)
+{
+    int ni = 0, budget = ISO_BUDGET;
+    if (fabs(c[0]) <= tau)
+        items[ni++] = (iso_item){0.0, 0.0, 0.0, 0};
+    if (fabs(c[n]) <= tau)
+        items[ni++] = (iso_item){1.0, 1.0, 0.0, 0};
+    iso_span stack[ISO_MAX_DEPTH + 2];
+    int sp = 0;
+    stack[sp].lo = 0.0, stack[sp].hi = 1.0, stack[sp].depth = 0;
+    for (int k = 0; k <= n; k++)
+        stack[sp].c[k] = c[k];
+    sp++;
+    while (sp > 0 && ni < ISO_MAX_ITEMS - 1 && budget-- > 0) {
+        iso_span *S = &stack[--sp];
+        /* Ends within tau of zero are seeds already: they count as neither sign. */
+        int pos = 0, neg = 0, var = 0, last = 0;
+        for (int k = 0; k <= n; k++) {
+            double v = S->c[k];
+            int sg = ((k == 0 || k == n) && fabs(v) <= tau) ? 0 : (v > 0.0) - (v < 0.0);
+            pos += sg > 0, neg += sg < 0;
+            if (sg) {
+                var += last && sg != last;
+                last = sg;
+            }
+        }
+        if (!pos || !neg)
+            continue;
+        double mid = 0.5 * (S->lo + S->hi);
+        if (var == 1 && fabs(S->c[0]) > tau && fabs(S->c[n]) > tau) {
+            items[ni++] = (iso_item){S->lo, S->hi, S->c[0], 1};
+            continue;
+        }
+        if (S->depth >= ISO_MAX_DEPTH) {
+            items[ni++] = (iso_item){mid, mid, 0.0, 0};
+            continue;
+        }
+        iso_span L, R;
+        bernstein_split_half(S->c, n, L.c, R.c);
+        L.lo = S->lo, L.hi = mid, R.lo = mid, R.hi = S->hi;
+        L.depth = R.depth = S->depth + 1;
+        if (fabs(L.c[n]) <= tau)
+            items[ni++] = (iso_item){mid, mid, 0.0, 0};
+        stack[sp++] = R; /* left half first: S is overwritten only after its halves are copied */
+        stack[sp++] = L;
+    }
+    return ni;
+}
+
+typedef struct {
+    double r, h, rw, hw;
+} piece_point;
+
+static piece_point piece_eval(const sor_piece *pc, double w)
+{
+    double m = 1.0 - w;
+    double b0 = m * m * m, b1 = 3.0 * w * m * m, b2 = 3.0 * w * w * m, b3 = w * w * w;
+    double d0 = m * m, d1 = 2.0 * w * m, d2 = w * w;
+    piece_point q;
+    q.r = b0 * pc->r[0] + b1 * pc->r[1] + b2 * pc->r[2] + b3 * pc->r[3];
+    q.h = b0 * pc->h[0] + b1 * pc->h[1] + b2 * pc->h[2] + b3 * pc->h[3];
+    q.rw = 3.0 * (d0 * (pc->r[1] - pc->r[0]) + d1 * (pc->r[2] - pc->r[1]) + d2 * (pc->r[3] - pc->r[2]));
+    q.hw = 3.0 * (d0 * (pc->h[1] - pc->h[0]) + d1 * (pc->h[2] - pc->h[1]) + d2 * (pc->h[3] - pc->h[2]));
+    return q;
+}
+
+/* The function whose roots were isolated, and its derivative. */
+static double leaf_fn(const sor_piece *pc, const sor_ray *ry, double w, double *deriv)
+{
+    piece_point q = piece_eval(pc, w);
+    if (ry->dy == 0.0) {
+        *deriv = q.hw;
+        return q.h - ry->hc;
+    }
+    double D = q.h - ry->hc, dy2 = ry->dy * ry->dy, lin = 2.0 * ry->beta * ry->dy;
+    *deriv = 2.0 * dy2 * q.r * q.rw - q.hw * (2.0 * ry->a * D + lin);
+    return dy2 * q.r * q.r - D * (ry->a * D + lin) - ry->rho2c * dy2;
+}
+
+/* Newton safeguarded by bisection on a bracket with one sign change. */
+static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_item *it)
+{
+    double lo = it->lo, hi = it->hi, w = 0.5 * (lo + hi);
+    int slo = it->clo > 0.0;
+    for (int k = 0; k < 60; k++) {
+        double fp, f = leaf_fn(pc, ry, w, &fp);
+        if (f == 0.0)
+            return w;
+        if ((f > 0.0) == slo)
+            lo = w;
+        else
+            hi = w;
+        double wn = w - f / fp;
+        if (!(wn > lo && wn < hi))
+            wn = 0.5 * (lo + hi);
+        if (fabs(wn - w) <= 4.0 * DBL_EPSILON || hi - lo <= 4.0 * DBL_EPSILON)
+            return wn;
+        w = wn;
+    }
+    return w;
+}
+
+/* Distance in the (r, h) half-plane between the ray point at s and the piece point at w. */
+static double residual(const sor_ray *ry, const piece_point *q, double s, double *F1, double *F2)
+{
+    double rho2 = (ry->a * s + 2.0 * ry->beta) * s + ry->rho2c;
+    *F1 = q->r * q->r - rho2;
+    *F2 = q->h - ry->hc - ry->dy * s;
+    double rho = sqrt(fmax(rho2, 0.0));
+    return fmax(fabs(q->r - rho), fabs(*F2));
+}
+
+/* Newton on F1 = r(w)^2 - rho^2(s), F2 = h(w) - hc - dy s from (w, s); keeps
+ * the best iterate. Returns its distance from the surface. */
+static double polish(const sor_piece *pc, const sor_ray *ry, double tol, double *w, double *s)
+{
+    double bw = *w, bs = *s, F1, F2;
+    piece_point q = piece_eval(pc, bw);
+    double best = residual(ry, &q, bs, &F1, &F2);
+    double cw = bw, cs = bs;
+    for (int it = 0; it < 4 && best > 1e-3 * tol; it++) {
+        double J11 = 2.0 * q.r * q.rw, J12 = -2.0 * (ry->a * cs + ry->beta), J21 = q.hw, J22 = -ry->dy;
+        double det = J11 * J22 - J12 * J21;
+        if (!(fabs(det) > 1e-14 * (fabs(J11 * J22) + fabs(J12 * J21))))
+            break;
+        double dw = (J12 * F2 - J22 * F1) / det, ds = (J21 * F1 - J11 * F2) / det;
+        cw += dw, cs += ds;
+        if (!(cw > -0.5 && cw < 1.5))
+            break;
+        q = piece_eval(pc, cw);
+        double e = residual(ry, &q, cs, &F1, &F2);
+        if (!(e < best))
+            break;
+        best = e, bw = cw, bs = cs;
+    }
+    *w = bw, *s = bs;
+    return best;
+}
+
+/* Offers the hit candidates at piece parameter w: s from whichever equation
+ * determines it better, then polished and checked. */
+static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *ry, double w, double smin,
+                 sor_best *best)
+{
+    piece_point q = piece_eval(pc, w);
+    double cand[2];
+    int nc = 0;
+    if (ry->steep) {
+        cand[nc++] = (q.h - ry->hc) / ry->dy;
+    } else {
+        double S = sqrt(fmax(0.0, (q.r * q.r - ry->d2) / ry->a));
+        double sp = ry->s_star + S, sm = ry->s_star - S;
+        double ep = fabs(q.h - ry->hc - ry->dy * sp), em = fabs(q.h - ry->hc - ry->dy * sm);
+        if (fmax(ep, em) <= sor->tol || S == 0.0) {
+            cand[nc++] = sm;
+            if (S > 0.0)
+                cand[nc++] = sp;
+        } else {
+            cand[nc++] = ep < em ? sp : sm;
+        }
+    }
+    int found = 0;
+    for (int k = 0; k < nc; k++) {
+        double cw = w, cs = cand[k];
+        double e = polish(pc, ry, sor->tol, &cw, &cs);
+        if (e <= sor->tol && cw >= -1e-9 && cw <= 1.0 + 1e-9 && cs > smin && cs < best->s) {
+            best->s = cs, best->w = fmin(1.0, fmax(0.0, cw)), best->piece = idx, best->part = SOR_PART_WALL;
+            found = 1;
+        }
+    }
+    return found;
+}
+
+int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *ry, double smin,
+                        sor_best *best)
+{
+    double c[7], mag = 0.0;
+    int n;
+    if (ry->dy != 0.0) {
+        double p[4], q[4], dy2 = ry->dy * ry->dy, lin = 2.0 * ry->beta * ry->dy, K = ry->rho2c * dy2;
+        for (int i = 0; i < 4; i++) {
+            p[i] = pc->h[i] - ry->hc;
+            q[i] = ry->a * p[i] + lin;
+        }
+        double pq[7];
+        pq[0] = p[0] * q[0];
+        pq[1] = 0.5 * (p[0] * q[1] + p[1] * q[0]);
+        pq[2] = (p[0] * q[2] + 3.0 * p[1] * q[1] + p[2] * q[0]) / 5.0;
+        pq[3] = (p[0] * q[3] + 9.0 * (p[1] * q[2] + p[2] * q[1]) + p[3] * q[0]) / 20.0;
+        pq[4] = (p[1] * q[3] + 3.0 * p[2] * q[2] + p[3] * q[1]) / 5.0;
+        pq[5] = 0.5 * (p[2] * q[3] + p[3] * q[2]);
+        pq[6] = p[3] * q[3];
+        int pos = 0, neg = 0;
+        for (int k = 0; k < 7; k++) {
+            double A = dy2 * pc->r2[k], B = pq[k] + K;
+            c[k] = A - B;
+            mag = fmax(mag, fabs(A) + fabs(B));
+            pos += c[k] > 0.0, neg += c[k] < 0.0;
+        }
+        n = 6;
+        /* Fast exit: the hull of g stays clear of zero (ends with margin). */
+        double tau = 64.0 * DBL_EPSILON * mag;
+        if ((pos == 7 || neg == 7) && fabs(c[0]) > tau && fabs(c[6]) > tau)
+            return 0;
+    } else {
+        for (int i = 0; i < 4; i++) {
+            c[i] = pc->h[i] - ry->hc;
+            mag = fmax(mag, fabs(pc->h[i]) + fabs(ry->hc));
+        }
+        n = 3;
+    }
+    double tau = 64.0 * DBL_EPSILON * mag;
+    iso_item items[ISO_MAX_ITEMS];
+    int ni = isolate(c, n, tau, items);
+    int found = 0;
+    for (int k = 0; k < ni; k++) {
+        double w = items[k].bracket ? bracket_root(pc, ry, &items[k]) : items[k].lo;
+        found |= offer(sor, pc, idx, ry, w, smin, best);
+    }
+    return found;
+}

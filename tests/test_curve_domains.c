@@ -1,0 +1,142 @@
+/* Curvature domains: knots kept, every domain within tolerance of its chord,
+ * no needless split, denser where the curve bends harder. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "celadon/curve_domains.h"
+#include "test_curve_shapes.h"
+
+/* Brute-force sagitta of the curve on [a, b] about its chord. */
+static double sagitta_ref(const bspline_t *c, double a, double b)
+{
+    vec2 p = bspline_eval(c, a), q = bspline_eval(c, b), d = v2_sub(q, p);
+    double worst = 0;
+    for (int i = 1; i < 400; i++) {
+        vec2 x = v2_sub(bspline_eval(c, a + (b - a) * i / 400.0), p);
+        double t = fmin(1, fmax(0, v2_dot(x, d) / v2_dot(d, d)));
+        worst = fmax(worst, v2_len(v2_sub(x, v2_scale(d, t))));
+    }
+    return worst;
+}
+
+/* A single cubic span: the parabola y = x^2 / 200 on [0, 200] (a degree-
+ * elevated quadratic Bezier), curvature 1/100 at x = 0 down to ~1/1118. */
+static bspline_t parabola(void)
+{
+    bspline_t c;
+    cr_assert_eq(bspline_init(&c, 3, 4), 0);
+    const vec2 P[] = {{0, 0}, {200.0 / 3, 0}, {400.0 / 3, 200.0 / 3}, {200, 200}};
+    for (int i = 0; i < 4; i++) {
+        c.knots[i] = 0;
+        c.knots[i + 4] = 1;
+        c.ctrl[i] = P[i];
+    }
+    return c;
+}
+
+Test(curve_domains, knots_kept_and_every_domain_within_tolerance)
+{
+    bspline_t c = test_vase_curve();
+    const double tol = 0.05;
+    double *u;
+    int n;
+    cr_assert_eq(curve_domains_by_curvature(&c, tol, &u, &n), 0);
+    cr_assert_eq(u[0], 0.0);
+    cr_assert_eq(u[n - 1], 1.0);
+    for (int i = 1; i < n; i++)
+        cr_assert_lt(u[i - 1], u[i]);
+    for (int k = 4; k < 8; k++) { /* interior knots 0.1, 0.35, 0.35, 0.7 */
+        int found = 0;
+        for (int i = 0; i < n; i++)
+            found |= u[i] == c.knots[k];
+        cr_assert(found, "knot %g is a boundary", c.knots[k]);
+    }
+    /* Within tolerance, and minimal: the aligned parent interval each domain
+     * was bisected from (inside its knot span) is out of tolerance. */
+    const double spans[] = {0, 0.1, 0.35, 0.7, 1};
+    for (int i = 0; i + 1 < n; i++) {
+        double a = u[i], b = u[i + 1], w = b - a;
+        cr_assert_leq(sagitta_ref(&c, a, b), 1.05 * tol, "domain [%g, %g]", a, b);
+        int s = 0;
+        while (spans[s + 1] < b)
+            s++;
+        double k0 = spans[s], k1 = spans[s + 1];
+        if (w < k1 - k0 - 1e-12) {
+            double pa = k0 + floor((a - k0) / (2 * w) + 1e-9) * 2 * w;
+            cr_assert_gt(sagitta_ref(&c, pa, pa + 2 * w), 0.95 * tol, "[%g, %g] need not be split", pa, pa + 2 * w);
+        }
+    }
+    free(u);
+    bspline_free(&c);
+}
+
+Test(curve_domains, denser_where_the_curve_bends_harder)
+{
+    bspline_t c = parabola();
+    double *u;
+    int n;
+    cr_assert_eq(curve_domains_by_curvature(&c, 0.01, &u, &n), 0);
+    cr_assert_gt(n, 10);
+    /* Domain chord lengths grow as the curvature falls along the parabola,
+     * roughly as 1/sqrt(kappa): compare the first and last quarter of x. */
+    double len_lo = 0, len_hi = 0;
+    int n_lo = 0, n_hi = 0;
+    for (int i = 0; i + 1 < n; i++) {
+        vec2 a = bspline_eval(&c, u[i]), b = bspline_eval(&c, u[i + 1]);
+        double mid = 0.5 * (a.x + b.x), len = v2_len(v2_sub(b, a));
+        if (mid < 50)
+            len_lo += len, n_lo++;
+        else if (mid > 150)
+            len_hi += len, n_hi++;
+    }
+    cr_assert_gt(n_lo, 0);
+    cr_assert_gt(n_hi, 0);
+    double ratio = (len_hi / n_hi) / (len_lo / n_lo);
+    cr_assert_gt(ratio, 2.0, "mean domain length ratio %g", ratio);
+    free(u);
+    bspline_free(&c);
+
+    /* A straight line (travelled at uneven speed) needs no split at all. */
+    cr_assert_eq(bspline_init(&c, 3, 4), 0);
+    const double y[] = {0, 10, 150, 160};
+    for (int i = 0; i < 4; i++) {
+        c.knots[i] = 0;
+        c.knots[i + 4] = 1;
+        c.ctrl[i] = v2(10 + 0.5 * y[i], y[i]);
+    }
+    cr_assert_eq(curve_domains_by_curvature(&c, 0.01, &u, &n), 0);
+    cr_assert_eq(n, 2);
+    free(u);
+    bspline_free(&c);
+}
+
+Test(curve_domains, finer_tolerance_more_domains)
+{
+    bspline_t c = test_vase_curve();
+    int prev = 0;
+    for (double tol = 1.0; tol > 0.002; tol /= 4) {
+        double *u;
+        int n;
+        cr_assert_eq(curve_domains_by_curvature(&c, tol, &u, &n), 0);
+        cr_assert_gt(n, prev);
+        prev = n;
+        free(u);
+    }
+    bspline_free(&c);
+}
+
+Test(curve_domains, bad_input)
+{
+    bspline_t c = test_vase_curve();
+    double *u = (double *)&c;
+    int n = 7;
+    cr_assert_eq(curve_domains_by_curvature(&c, 0.0, &u, &n), -1);
+    cr_assert_null(u);
+    cr_assert_eq(n, 0);
+    cr_assert_eq(curve_domains_by_curvature(&c, NAN, &u, &n), -1);
+    cr_assert_eq(curve_domains_by_curvature(&c, -1, &u, &n), -1);
+    c.knots[0] = 0.5; /* not clamped */
+    cr_assert_eq(curve_domains_by_curvature(&c, 0.1, &u, &n), -1);
+    bspline_free(&c);
+}

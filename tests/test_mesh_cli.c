@@ -1,0 +1,191 @@
+/* celadon mesh end to end: the binary from CELADON_BIN on a saved profile,
+ * good and bad. */
+#include <criterion/criterion.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "celadon/profile.h"
+#include "test_curve_shapes.h"
+
+extern char **environ;
+
+static char dir[64];
+
+static void setup(void)
+{
+    snprintf(dir, sizeof dir, "/tmp/celadon-test-meshcli-XXXXXX");
+    cr_assert_not_null(mkdtemp(dir));
+}
+
+static void teardown(void)
+{
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    cr_assert_eq(system(cmd), 0);
+}
+
+static const char *celadon_bin(void)
+{
+    const char *bin = getenv("CELADON_BIN");
+    if (!bin || !*bin)
+        cr_skip_test("CELADON_BIN is not set");
+    return bin;
+}
+
+/* Runs celadon with args; stderr goes to err (NUL-terminated). Returns the exit code. */
+static int run(const char *const *args, char *err, size_t errlen)
+{
+    char errpath[128];
+    snprintf(errpath, sizeof errpath, "%s/stderr.txt", dir);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, errpath, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    char *argv[16];
+    int n = 0;
+    argv[n++] = (char *)celadon_bin();
+    for (; *args; args++)
+        argv[n++] = (char *)*args;
+    argv[n] = NULL;
+    pid_t pid;
+    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, argv, environ), 0);
+    posix_spawn_file_actions_destroy(&fa);
+    int status;
+    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    FILE *f = fopen(errpath, "r");
+    size_t k = fread(err, 1, errlen - 1, f);
+    err[k] = '\0';
+    fclose(f);
+    remove(errpath);
+    cr_assert(WIFEXITED(status), "celadon died from a signal; stderr: %s", err);
+    return WEXITSTATUS(status);
+}
+
+static void write_profile(const char *path, int version_edit)
+{
+    profile_t p;
+    memset(&p, 0, sizeof p);
+    snprintf(p.source_path, sizeof p.source_path, "photo.jpg");
+    p.axis_direction = v2(0, -1);
+    snprintf(p.side, sizeof p.side, "right");
+    p.curve = test_vase_curve();
+    vec2 poly[2] = {{30, 0}, {33, 140}};
+    p.polyline = poly;
+    p.n_polyline = 2;
+    double dom[] = {0, 0.1, 0.35, 0.5, 0.7, 1};
+    p.domains = dom;
+    p.n_domains = 6;
+    char err[256];
+    cr_assert_eq(profile_write_json(path, &p, err, sizeof err), 0, "%s", err);
+    bspline_free(&p.curve);
+    if (version_edit) { /* turn it into a version-2 file */
+        FILE *f = fopen(path, "r+");
+        char buf[1 << 16];
+        size_t n = fread(buf, 1, sizeof buf - 1, f);
+        buf[n] = '\0';
+        char *v = strstr(buf, "\"version\": 1");
+        cr_assert_not_null(v);
+        v[11] = '2';
+        rewind(f);
+        fwrite(buf, 1, n, f);
+        fclose(f);
+    }
+}
+
+static int exists(const char *path) { return access(path, F_OK) == 0; }
+
+static int count_prefix(const char *path, const char *prefix)
+{
+    FILE *f = fopen(path, "r");
+    char line[512];
+    int n = 0;
+    while (fgets(line, sizeof line, f))
+        n += !strncmp(line, prefix, strlen(prefix));
+    fclose(f);
+    return n;
+}
+
+Test(mesh_cli, obj_with_material_and_ply, .init = setup, .fini = teardown)
+{
+    char prof[128], tex[128], obj[128], mtl[128], ply[128], err[4096];
+    snprintf(prof, sizeof prof, "%s/profile.json", dir);
+    snprintf(tex, sizeof tex, "%s/texture.png", dir);
+    snprintf(obj, sizeof obj, "%s/vase.obj", dir);
+    snprintf(mtl, sizeof mtl, "%s/vase.mtl", dir);
+    snprintf(ply, sizeof ply, "%s/vase.ply", dir);
+    write_profile(prof, 0);
+    fclose(fopen(tex, "w")); /* the material only needs it to exist */
+
+    cr_assert_eq(run((const char *[]){"mesh", prof, "-o", obj, "--segments", "24", NULL}, err, sizeof err), 0, "%s",
+                 err);
+    cr_assert_str_empty(err);
+    /* 6 rings of 24, plus the base cap's centre and ring. */
+    cr_assert_eq(count_prefix(obj, "v "), 6 * 24 + 25);
+    cr_assert_eq(count_prefix(obj, "f "), 2 * 24 * 5 + 24);
+    cr_assert_eq(count_prefix(obj, "mtllib vase.mtl"), 1);
+    cr_assert_eq(count_prefix(mtl, "map_Kd texture.png"), 1);
+
+    cr_assert_eq(run((const char *[]){"mesh", prof, "-o", ply, "--segments", "10", "--height", "0.3", "--mouth-cap",
+                                      NULL},
+                     err, sizeof err),
+                 0, "%s", err);
+    cr_assert_eq(count_prefix(ply, "element vertex 82"), 1); /* 6*10 + 2*11 */
+    cr_assert_eq(count_prefix(ply, "element face 120"), 1);  /* 2*10*5 + 2*10 */
+}
+
+/* A bad run: exit 2, exactly one stderr line naming want, and no output. */
+static void expect_bad(const char *const *args, const char *want, const char *out)
+{
+    char err[4096];
+    int rc = run(args, err, sizeof err);
+    cr_assert_eq(rc, 2, "exit %d; stderr: %s", rc, err);
+    size_t len = strlen(err);
+    cr_assert(len > 0 && err[len - 1] == '\n' && !memchr(err, '\n', len - 1), "one line: '%s'", err);
+    cr_assert_not_null(strstr(err, want), "stderr '%s' lacks '%s'", err, want);
+    cr_assert(!exists(out), "%s was written", out);
+}
+
+Test(mesh_cli, bad_input_exits_2_with_one_line_and_no_output, .init = setup, .fini = teardown)
+{
+    char prof[128], bad[128], obj[128], mtl[128], txt[128];
+    snprintf(prof, sizeof prof, "%s/profile.json", dir);
+    snprintf(bad, sizeof bad, "%s/v2.json", dir);
+    snprintf(obj, sizeof obj, "%s/out.obj", dir);
+    snprintf(mtl, sizeof mtl, "%s/out.mtl", dir);
+    snprintf(txt, sizeof txt, "%s/out.txt", dir);
+    write_profile(prof, 0);
+    write_profile(bad, 1);
+    char expect[256];
+    snprintf(expect, sizeof expect, "celadon: %s: unsupported version", bad);
+    expect_bad((const char *[]){"mesh", bad, "-o", obj, NULL}, expect, obj);
+    cr_assert(!exists(mtl));
+    expect_bad((const char *[]){"mesh", "/nonexistent.json", "-o", obj, NULL}, "/nonexistent.json", obj);
+    expect_bad((const char *[]){"mesh", prof, "-o", obj, "--segments", "2", NULL}, "--segments", obj);
+    expect_bad((const char *[]){"mesh", prof, "-o", obj, "--segments", "12x", NULL}, "--segments", obj);
+    expect_bad((const char *[]){"mesh", prof, "-o", obj, "--height", "-1", NULL}, "--height", obj);
+    expect_bad((const char *[]){"mesh", prof, "-o", obj, "--height", "nan", NULL}, "--height", obj);
+    expect_bad((const char *[]){"mesh", prof, "-o", txt, NULL}, "unknown mesh format", txt);
+    expect_bad((const char *[]){"mesh", prof, NULL}, "missing -o", obj);
+    expect_bad((const char *[]){"mesh", prof, "-o", obj, "--bogus", NULL}, "unknown option", obj);
+    char deep[160];
+    snprintf(deep, sizeof deep, "%s/no/such/dir/out.obj", dir);
+    expect_bad((const char *[]){"mesh", prof, "-o", deep, NULL}, deep, deep);
+    /* The profile is a folder, or garbage. */
+    expect_bad((const char *[]){"mesh", dir, "-o", obj, NULL}, dir, obj);
+    FILE *f = fopen(bad, "w");
+    fputs("{\"version\": 1, \"bspline\": [", f);
+    fclose(f);
+    expect_bad((const char *[]){"mesh", bad, "-o", obj, NULL}, "not valid JSON", obj);
+}
+
+Test(mesh_cli, help_exits_0, .init = setup, .fini = teardown)
+{
+    char err[4096];
+    cr_assert_eq(run((const char *[]){"mesh", "--help", NULL}, err, sizeof err), 0);
+    cr_assert_str_empty(err);
+}

@@ -1,0 +1,214 @@
+/* profile.json: exact round trip, and a one-line reason for each kind of
+ * malformed file (made by editing a good file with jansson). */
+#include <criterion/criterion.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "celadon/profile.h"
+#include "test_curve_shapes.h"
+
+static char dir[64], path[128];
+
+static void setup(void)
+{
+    snprintf(dir, sizeof dir, "/tmp/celadon-test-profile-XXXXXX");
+    cr_assert_not_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/profile.json", dir);
+}
+
+static void teardown(void)
+{
+    remove(path);
+    rmdir(dir);
+}
+
+/* A profile with every field set to something recognisable. */
+static profile_t sample_profile(void)
+{
+    profile_t p;
+    memset(&p, 0, sizeof p);
+    snprintf(p.source_path, sizeof p.source_path, "photos/vase \"1\".jpg");
+    p.source_width = 900;
+    p.source_height = 1200;
+    p.axis_origin = v2(451.2, 1103.0);
+    p.axis_direction = v2_norm(v2(0.001, -1.0));
+    p.tilt_deg = 0.0573;
+    for (int k = 0; k < CORNER_COUNT; k++)
+        p.corners[k] = v2(100.5 + k, 200.25 * k);
+    snprintf(p.side, sizeof p.side, "right");
+    p.n_polyline = 50;
+    p.polyline = malloc(50 * sizeof *p.polyline);
+    for (int i = 0; i < 50; i++)
+        p.polyline[i] = v2(30 + sin(i * 0.1) / 3.0, i * 140.0 / 49);
+    p.curve = test_vase_curve();
+    p.n_domains = 7;
+    p.domains = malloc(7 * sizeof *p.domains);
+    const double d[] = {0, 0.1, 0.2, 1.0 / 3, 0.35, 0.7, 1};
+    memcpy(p.domains, d, sizeof d);
+    p.err_curve_to_polyline = 0.8;
+    p.err_polyline_to_curve = 0.9;
+    p.contour_points = 812;
+    p.ms_image_processing = 3.1;
+    p.ms_bspline = 0.9;
+    p.ms_texture = 1.2;
+    p.ms_mesh = 4.0;
+    return p;
+}
+
+Test(profile_json, round_trip_is_exact, .init = setup, .fini = teardown)
+{
+    profile_t a = sample_profile(), b;
+    char err[256];
+    cr_assert_eq(profile_write_json(path, &a, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(profile_read_json(path, &b, err, sizeof err), 0, "%s", err);
+    cr_assert_str_eq(b.source_path, a.source_path);
+    cr_assert_eq(b.source_width, 900);
+    cr_assert_eq(b.source_height, 1200);
+    cr_assert(b.axis_origin.x == a.axis_origin.x && b.axis_origin.y == a.axis_origin.y);
+    cr_assert(b.axis_direction.x == a.axis_direction.x && b.axis_direction.y == a.axis_direction.y);
+    cr_assert_eq(b.tilt_deg, a.tilt_deg);
+    for (int k = 0; k < CORNER_COUNT; k++)
+        cr_assert(b.corners[k].x == a.corners[k].x && b.corners[k].y == a.corners[k].y);
+    cr_assert_str_eq(b.side, "right");
+    cr_assert_eq(b.n_polyline, a.n_polyline);
+    for (int i = 0; i < a.n_polyline; i++)
+        cr_assert(b.polyline[i].x == a.polyline[i].x && b.polyline[i].y == a.polyline[i].y, "polyline[%d]", i);
+    cr_assert_eq(b.curve.degree, 3);
+    cr_assert_eq(b.curve.n_ctrl, a.curve.n_ctrl);
+    for (int i = 0; i < bspline_n_knots(&a.curve); i++)
+        cr_assert_eq(b.curve.knots[i], a.curve.knots[i]);
+    for (int i = 0; i < a.curve.n_ctrl; i++)
+        cr_assert(b.curve.ctrl[i].x == a.curve.ctrl[i].x && b.curve.ctrl[i].y == a.curve.ctrl[i].y);
+    cr_assert_eq(b.n_domains, a.n_domains);
+    for (int i = 0; i < a.n_domains; i++)
+        cr_assert_eq(b.domains[i], a.domains[i]);
+    cr_assert_eq(b.err_curve_to_polyline, 0.8);
+    cr_assert_eq(b.err_polyline_to_curve, 0.9);
+    cr_assert_eq(b.contour_points, 812);
+    cr_assert(b.ms_image_processing == 3.1 && b.ms_bspline == 0.9 && b.ms_texture == 1.2 && b.ms_mesh == 4.0);
+
+    /* The stats block says what it describes. */
+    json_t *root = json_load_file(path, 0, NULL);
+    json_t *st = json_object_get(root, "stats");
+    cr_assert_eq(json_integer_value(json_object_get(st, "control_points")), 8);
+    cr_assert_eq(json_integer_value(json_object_get(st, "domains")), 7);
+    cr_assert_eq(json_integer_value(json_object_get(root, "version")), 1);
+    json_decref(root);
+    profile_free(&a);
+    profile_free(&b);
+}
+
+/* Writes the sample profile, applies edit to its JSON, and expects the reader
+ * to refuse it with a one-line reason containing want. */
+static void expect_refused(void (*edit)(json_t *root), const char *want)
+{
+    profile_t a = sample_profile(), b;
+    char err[512] = "";
+    cr_assert_eq(profile_write_json(path, &a, err, sizeof err), 0, "%s", err);
+    json_t *root = json_load_file(path, 0, NULL);
+    edit(root);
+    cr_assert_eq(json_dump_file(root, path, 0), 0);
+    json_decref(root);
+    cr_assert_eq(profile_read_json(path, &b, err, sizeof err), -1, "accepted a file edited for '%s'", want);
+    cr_assert_not_null(strstr(err, want), "reason '%s' lacks '%s'", err, want);
+    cr_assert_null(strchr(err, '\n'));
+    cr_assert_null(b.polyline);
+    cr_assert_null(b.curve.knots);
+    profile_free(&a);
+}
+
+static json_t *bs(json_t *root) { return json_object_get(root, "bspline"); }
+static void no_version(json_t *r) { json_object_del(r, "version"); }
+static void version_2(json_t *r) { json_object_set_new(r, "version", json_integer(2)); }
+static void no_bspline(json_t *r) { json_object_del(r, "bspline"); }
+static void knots_string(json_t *r) { json_object_set_new(bs(r), "knots", json_string("0 0 0 0 1 1 1 1")); }
+static void knot_string(json_t *r) { json_array_set_new(json_object_get(bs(r), "knots"), 5, json_string("0.3")); }
+static void knots_decreasing(json_t *r) { json_array_set_new(json_object_get(bs(r), "knots"), 5, json_real(0.05)); }
+static void knots_unclamped(json_t *r) { json_array_set_new(json_object_get(bs(r), "knots"), 3, json_real(0.01)); }
+static void knots_short(json_t *r) { json_array_remove(json_object_get(bs(r), "knots"), 5); }
+static void degree_2(json_t *r) { json_object_set_new(bs(r), "degree", json_integer(2)); }
+static void ctrl_triple(json_t *r)
+{
+    json_array_append_new(json_array_get(json_object_get(bs(r), "control_points"), 3), json_real(1));
+}
+static void domains_repeat(json_t *r) { json_array_set_new(json_object_get(r, "domains"), 2, json_real(0.1)); }
+static void domains_start(json_t *r) { json_array_set_new(json_object_get(r, "domains"), 0, json_real(0.01)); }
+static void side_up(json_t *r) { json_object_set_new(r, "side", json_string("up")); }
+static void axis_long(json_t *r) { json_object_set_new(json_object_get(r, "axis"), "direction", json_pack("[f,f]", 0.0, -2.0)); }
+static void no_corner(json_t *r) { json_object_del(json_object_get(r, "corners"), "base_left"); }
+static void polyline_null(json_t *r) { json_array_set_new(json_object_get(r, "polyline"), 7, json_null()); }
+static void stats_wrong(json_t *r) { json_object_set_new(json_object_get(r, "stats"), "control_points", json_integer(9)); }
+static void error_negative(json_t *r)
+{
+    json_object_set_new(json_object_get(r, "error_px"), "curve_to_polyline", json_real(-1));
+}
+static void no_timings(json_t *r) { json_object_del(r, "timings_ms"); }
+static void width_real(json_t *r) { json_object_set_new(json_object_get(r, "source"), "width", json_real(9.5)); }
+
+Test(profile_json, malformed_files_are_refused_with_a_reason, .init = setup, .fini = teardown)
+{
+    expect_refused(no_version, "missing field 'version'");
+    expect_refused(version_2, "unsupported version");
+    expect_refused(no_bspline, "missing field 'bspline'");
+    expect_refused(knots_string, "'bspline.knots' must be an array");
+    expect_refused(knot_string, "'bspline.knots[5]' must be a number");
+    expect_refused(knots_decreasing, "invalid B-spline: knots are not non-decreasing");
+    expect_refused(knots_unclamped, "invalid B-spline: knot vector is not clamped");
+    expect_refused(knots_short, "control points need");
+    expect_refused(degree_2, "'bspline.degree' must be 3");
+    expect_refused(ctrl_triple, "'bspline.control_points[3]' must be an array of 2 numbers");
+    expect_refused(domains_repeat, "'domains' must be strictly increasing");
+    expect_refused(domains_start, "'domains' must start at 0");
+    expect_refused(side_up, "'side' must be");
+    expect_refused(axis_long, "'axis.direction' must be a unit vector");
+    expect_refused(no_corner, "missing field 'corners.base_left'");
+    expect_refused(polyline_null, "'polyline[7]' must be an array of 2 numbers");
+    expect_refused(stats_wrong, "'stats' disagrees");
+    expect_refused(error_negative, "must not be negative");
+    expect_refused(no_timings, "missing field 'timings_ms'");
+    expect_refused(width_real, "'source.width' must be a non-negative integer");
+}
+
+static void expect_text_refused(const char *text, const char *want)
+{
+    FILE *f = fopen(path, "w");
+    fputs(text, f);
+    fclose(f);
+    profile_t b;
+    char err[512] = "";
+    cr_assert_eq(profile_read_json(path, &b, err, sizeof err), -1);
+    cr_assert_not_null(strstr(err, want), "reason '%s' lacks '%s'", err, want);
+    cr_assert_null(strchr(err, '\n'));
+}
+
+Test(profile_json, unreadable_files_are_refused, .init = setup, .fini = teardown)
+{
+    expect_text_refused("", "not valid JSON");
+    expect_text_refused("{\"version\": 1,", "not valid JSON");
+    expect_text_refused("[1, 2, 3]", "the top level must be an object");
+    expect_text_refused("{\"version\": 1e999}", "not valid JSON"); /* overflows: not finite */
+    expect_text_refused("{\"version\": NaN}", "not valid JSON");
+    profile_t b;
+    char err[512];
+    cr_assert_eq(profile_read_json("/nonexistent/profile.json", &b, err, sizeof err), -1);
+    cr_assert_not_null(strstr(err, "cannot open"));
+}
+
+Test(profile_json, writer_refuses_what_it_cannot_write, .init = setup, .fini = teardown)
+{
+    profile_t a = sample_profile();
+    char err[512];
+    a.polyline[3].x = NAN;
+    cr_assert_eq(profile_write_json(path, &a, err, sizeof err), -1);
+    cr_assert_neq(access(path, F_OK), 0, "no file after a refused write");
+    a.polyline[3].x = 1;
+    a.curve.knots[5] = 0.05;
+    cr_assert_eq(profile_write_json(path, &a, err, sizeof err), -1);
+    cr_assert_not_null(strstr(err, "invalid B-spline"));
+    cr_assert_neq(access(path, F_OK), 0);
+    profile_free(&a);
+}

@@ -1,0 +1,194 @@
+/* recon_extract on drawn vessels with exactly known geometry (synth_vessel):
+ * axis tilt, corners and the profile against the analytic truth, through
+ * every input path (RGB, RGBA with transparent background, 16-bit PNG, JPEG,
+ * textured, light-on-dark). */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "celadon/recon.h"
+#include "support/synth_vessel.h"
+
+typedef struct {
+    double tilt_err, mean_err, max_err, corner_err, base_err, rim_err;
+    int n;
+} accuracy;
+
+/* Distance of the profile polyline, mapped back into the image with the
+ * recovered axis, from the true outline (normal distance in the true frame),
+ * on heights more than `margin` px from the base and the rim. */
+static accuracy measure(const synth_params *p, const recon_result *r, double margin)
+{
+    synth_truth t = synth_truth_of(p);
+    accuracy a = {0};
+    a.tilt_err = fabs(r->tilt_deg - t.tilt_deg);
+    for (int q = 0; q < CORNER_COUNT; q++)
+        a.corner_err = fmax(a.corner_err, v2_len(v2_sub(r->corners[q], t.corners[q])));
+    vec2 tn = v2(-t.axis_direction.y, t.axis_direction.x);
+    int sign = r->side_used == RECON_SIDE_RIGHT ? 1 : -1;
+    double sum = 0;
+    for (int k = 0; k < r->n_polyline; k++) {
+        vec2 q = recon_profile_to_image(r->axis_origin, r->axis_direction, r->polyline[k].x, r->polyline[k].y, sign);
+        vec2 rel = v2_sub(q, t.axis_origin);
+        double h = v2_dot(rel, t.axis_direction), s = fabs(v2_dot(rel, tn));
+        if (h < margin || h > t.height_px - margin)
+            continue;
+        double slope = (synth_radius(p, h + 0.01) - synth_radius(p, h - 0.01)) / 0.02;
+        double e = fabs(s - synth_radius(p, h)) / sqrt(1 + slope * slope);
+        sum += e;
+        a.max_err = fmax(a.max_err, e);
+        a.n++;
+    }
+    a.mean_err = a.n ? sum / a.n : INFINITY;
+    /* End heights: the polyline spans base (h = 0) to rim (h = H). */
+    vec2 base = r->axis_origin;
+    a.base_err = v2_len(v2_sub(base, t.axis_origin));
+    a.rim_err = fabs(r->polyline[r->n_polyline - 1].y - t.height_px);
+    return a;
+}
+
+/* Optionally round-trips through a file (".png" 8/16 bit or ".jpg"). */
+static accuracy run_case(const synth_params *p, const char *ext, int bits, recon_result *out)
+{
+    image_t img;
+    cr_assert_eq(synth_draw(p, &img), 0);
+    if (ext) {
+        char path[64], err[256];
+        snprintf(path, sizeof path, "/tmp/celadon_recon_XXXXXX%s", ext);
+        int fd = mkstemps(path, (int)strlen(ext));
+        cr_assert_geq(fd, 0);
+        close(fd);
+        cr_assert_eq(synth_write(path, &img, bits, err, sizeof err), 0, "%s", err);
+        image_free(&img);
+        cr_assert_eq(image_read(path, &img, err, sizeof err), 0, "%s", err);
+        unlink(path);
+    }
+    recon_options opt = {-1, RECON_SIDE_AUTO};
+    char err[256] = "";
+    recon_result r;
+    recon_status st = recon_extract(&img, &opt, &r, err, sizeof err);
+    image_free(&img);
+    cr_assert_eq(st, RECON_OK, "status %d: %s", st, err);
+    accuracy a = measure(p, &r, 4);
+    if (out)
+        *out = r;
+    else
+        recon_result_free(&r);
+    return a;
+}
+
+static void expect_accurate(const char *what, accuracy a)
+{
+    cr_log_info("%-28s tilt err %.4f deg  profile mean %.3f max %.3f px (%d pts)  corners <= %.2f px  base %.2f "
+                "rim %.2f px",
+                what, a.tilt_err, a.mean_err, a.max_err, a.n, a.corner_err, a.base_err, a.rim_err);
+    cr_expect_gt(a.n, 100, "%s: %d profile points", what, a.n);
+    cr_expect_leq(a.tilt_err, 0.05, "%s: tilt error %.4f deg", what, a.tilt_err);
+    cr_expect_leq(a.mean_err, 0.25, "%s: mean profile error %.3f px", what, a.mean_err);
+    cr_expect_leq(a.max_err, 1.5, "%s: max profile error %.3f px", what, a.max_err);
+    cr_expect_leq(a.corner_err, 2.0, "%s: corner error %.2f px", what, a.corner_err);
+    cr_expect_leq(a.base_err, 1.5, "%s: base origin error %.2f px", what, a.base_err);
+    cr_expect_leq(a.rim_err, 1.5, "%s: rim height error %.2f px", what, a.rim_err);
+}
+
+Test(recon_extract, upright_dark_on_light_vase)
+{
+    synth_params p = synth_defaults(SYNTH_VASE, 300, 400);
+    expect_accurate("vase upright", run_case(&p, NULL, 8, NULL));
+}
+
+Test(recon_extract, tilted_plus3_bottle)
+{
+    synth_params p = synth_defaults(SYNTH_BOTTLE, 320, 400);
+    p.tilt_deg = 3;
+    expect_accurate("bottle +3 deg", run_case(&p, NULL, 8, NULL));
+}
+
+Test(recon_extract, tilted_minus3_bowl)
+{
+    synth_params p = synth_defaults(SYNTH_BOWL, 400, 300);
+    p.tilt_deg = -3;
+    expect_accurate("bowl -3 deg", run_case(&p, NULL, 8, NULL));
+}
+
+Test(recon_extract, light_on_dark_jar)
+{
+    synth_params p = synth_defaults(SYNTH_JAR, 300, 360);
+    const float fg[3] = {0.85f, 0.82f, 0.70f}, bg[3] = {0.08f, 0.09f, 0.12f};
+    memcpy(p.fg, fg, sizeof fg);
+    memcpy(p.bg, bg, sizeof bg);
+    p.tilt_deg = 1.2;
+    expect_accurate("jar light on dark", run_case(&p, NULL, 8, NULL));
+}
+
+Test(recon_extract, rgba_transparent_background)
+{
+    synth_params p = synth_defaults(SYNTH_VASE, 300, 400);
+    p.rgba = 1;
+    p.tilt_deg = -2;
+    recon_result r;
+    expect_accurate("vase RGBA", run_case(&p, ".png", 8, &r));
+    cr_expect_eq(r.mask_mode, RECON_MASK_ALPHA);
+    cr_expect_eq(r.threshold_used, -1);
+    recon_result_free(&r);
+}
+
+Test(recon_extract, png_16bit)
+{
+    synth_params p = synth_defaults(SYNTH_BOTTLE, 300, 400);
+    p.tilt_deg = -3;
+    expect_accurate("bottle 16-bit PNG", run_case(&p, ".png", 16, NULL));
+}
+
+Test(recon_extract, jpeg_textured)
+{
+    synth_params p = synth_defaults(SYNTH_VASE, 300, 400);
+    p.textured = 1;
+    p.tilt_deg = 2.5;
+    expect_accurate("vase textured JPEG", run_case(&p, ".jpg", 8, NULL));
+}
+
+Test(recon_extract, textured_jar)
+{
+    synth_params p = synth_defaults(SYNTH_JAR, 300, 360);
+    p.textured = 1;
+    expect_accurate("jar textured", run_case(&p, NULL, 8, NULL));
+}
+
+Test(recon_extract, side_option_is_honoured)
+{
+    synth_params p = synth_defaults(SYNTH_VASE, 300, 400);
+    image_t img;
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    char err[256];
+    for (int s = RECON_SIDE_LEFT; s <= RECON_SIDE_RIGHT; s++) {
+        recon_options opt = {-1, (recon_side)s};
+        recon_result r;
+        cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
+        cr_expect_eq(r.side_used, (recon_side)s);
+        accuracy a = measure(&p, &r, 4);
+        cr_expect_leq(a.mean_err, 0.25, "side %d: mean %.3f", s, a.mean_err);
+        /* Polyline: base to rim, h increasing, r positive. */
+        for (int k = 1; k < r.n_polyline; k++) {
+            cr_expect_gt(r.polyline[k].y, r.polyline[k - 1].y);
+            cr_expect_gt(r.polyline[k].x, 0);
+        }
+        recon_result_free(&r);
+    }
+    image_free(&img);
+}
+
+Test(recon_extract, profile_to_image_frame)
+{
+    /* DESIGN.md: image point = origin + r·right + h·direction, right = (-d.y, d.x). */
+    vec2 o = v2(100, 200), d = v2_norm(v2(0.1, -1));
+    vec2 q = recon_profile_to_image(o, d, 10, 50, 1);
+    vec2 e = v2_add(o, v2_add(v2_scale(v2(-d.y, d.x), 10), v2_scale(d, 50)));
+    cr_assert_float_eq(q.x, e.x, 1e-12);
+    cr_assert_float_eq(q.y, e.y, 1e-12);
+    vec2 l = recon_profile_to_image(o, d, 10, 50, -1);
+    cr_assert_float_eq(l.x + q.x, 2 * (o.x + 50 * d.x), 1e-12);
+}

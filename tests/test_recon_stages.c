@@ -1,0 +1,335 @@
+/* The hand-written stages against independent truths: Suzuki–Abe border
+ * following on hand-made masks (checked against a brute-force border set),
+ * Douglas–Peucker's deviation bound, the Gaussian's normalisation and the
+ * Shi–Tomasi response on an L corner versus a straight edge. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "recon/recon_internal.h"
+
+/* Mask from rows of '#' (object) and '.' (background). */
+static uint8_t *mask_from(const char **rows, int *w, int *h)
+{
+    *h = 0;
+    while (rows[*h])
+        (*h)++;
+    *w = (int)strlen(rows[0]);
+    uint8_t *m = malloc((size_t)*w * *h);
+    for (int j = 0; j < *h; j++)
+        for (int i = 0; i < *w; i++)
+            m[j * *w + i] = rows[j][i] == '#';
+    return m;
+}
+
+/* Brute force: label the background 4-components (outside the image counts
+ * as the outer one, label 1), then a border of background component c is the
+ * set of object pixels 4-adjacent to c. */
+static int *bg_labels(const uint8_t *m, int w, int h)
+{
+    int *lab = calloc((size_t)w * h, sizeof *lab), *stack = malloc((size_t)w * h * sizeof *stack), next = 2;
+    for (int s = 0; s < w * h; s++) {
+        if (m[s] || lab[s])
+            continue;
+        int outer = 0, top = 0;
+        /* flood fill, noting whether it reaches the frame */
+        int cur = next++;
+        lab[s] = cur;
+        stack[top++] = s;
+        int *members = malloc((size_t)w * h * sizeof *members), nm = 0;
+        while (top) {
+            int p = stack[--top], x = p % w, y = p / w;
+            members[nm++] = p;
+            if (x == 0 || y == 0 || x == w - 1 || y == h - 1)
+                outer = 1;
+            const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+            for (int k = 0; k < 4; k++) {
+                int u = x + dx[k], v = y + dy[k];
+                if (u < 0 || v < 0 || u >= w || v >= h)
+                    continue;
+                int q = v * w + u;
+                if (!m[q] && !lab[q]) {
+                    lab[q] = cur;
+                    stack[top++] = q;
+                }
+            }
+        }
+        if (outer)
+            for (int k = 0; k < nm; k++)
+                lab[members[k]] = 1;
+        free(members);
+    }
+    free(stack);
+    return lab;
+}
+
+/* 1 when pixel (x, y) (an object pixel) touches background label L. */
+static int touches(const uint8_t *m, const int *lab, int w, int h, int x, int y, int L)
+{
+    const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+    for (int k = 0; k < 4; k++) {
+        int u = x + dx[k], v = y + dy[k];
+        if (u < 0 || v < 0 || u >= w || v >= h) {
+            if (L == 1)
+                return 1;
+            continue;
+        }
+        if (!m[v * w + u] && lab[v * w + u] == L)
+            return 1;
+    }
+    return 0;
+}
+
+/* Every traced border: consecutive points 8-adjacent (closed), and its point
+ * set equals the brute-force border of the background it faces. */
+static void check_borders(const uint8_t *m, int w, int h, const recon_border_set *bs)
+{
+    int *lab = bg_labels(m, w, h);
+    for (int b = 0; b < bs->n_borders; b++) {
+        const recon_border *B = &bs->borders[b];
+        const int *p = bs->points + 2 * B->start;
+        for (int k = 0; k < B->count; k++) {
+            int k2 = (k + 1) % B->count;
+            cr_assert_leq(abs(p[2 * k] - p[2 * k2]), 1, "border %d not 8-connected at %d", b, k);
+            cr_assert_leq(abs(p[2 * k + 1] - p[2 * k2 + 1]), 1);
+            cr_assert(m[p[2 * k + 1] * w + p[2 * k]], "border point on background");
+        }
+        /* The background it faces: the raster scan starts an outer border at
+         * an object pixel whose left neighbour is background, a hole border
+         * at one whose right neighbour is. */
+        int x0 = p[0] + (B->is_hole ? 1 : -1), y0 = p[1];
+        int L = (x0 < 0 || x0 >= w) ? 1 : lab[y0 * w + x0];
+        cr_assert_geq(L, 1, "border %d faces no background", b);
+        /* Set equality with the brute force, restricted to this object: the
+         * brute-force pixels 8-connected to the border's first point. */
+        uint8_t *in = calloc((size_t)w * h, 1);
+        for (int k = 0; k < B->count; k++)
+            in[p[2 * k + 1] * w + p[2 * k]] = 1;
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++)
+                if (m[y * w + x] && touches(m, lab, w, h, x, y, L) && !in[y * w + x]) {
+                    /* only pixels of the same object count: flood from p[0] */
+                    uint8_t *obj = calloc((size_t)w * h, 1);
+                    int *st = malloc((size_t)w * h * sizeof *st), top = 0;
+                    obj[p[1] * w + p[0]] = 1;
+                    st[top++] = p[1] * w + p[0];
+                    while (top) {
+                        int q = st[--top], qx = q % w, qy = q / w;
+                        for (int dy = -1; dy <= 1; dy++)
+                            for (int dx = -1; dx <= 1; dx++) {
+                                int u = qx + dx, v = qy + dy;
+                                if (u >= 0 && v >= 0 && u < w && v < h && m[v * w + u] && !obj[v * w + u]) {
+                                    obj[v * w + u] = 1;
+                                    st[top++] = v * w + u;
+                                }
+                            }
+                    }
+                    int same = obj[y * w + x];
+                    free(obj);
+                    free(st);
+                    cr_assert(!same, "border %d misses pixel (%d,%d)", b, x, y);
+                }
+        free(in);
+    }
+    free(lab);
+}
+
+static recon_border_set trace(const char **rows, int *w, int *h, uint8_t **m)
+{
+    *m = mask_from(rows, w, h);
+    recon_border_set bs;
+    cr_assert_eq(recon_border_follow(*m, *w, *h, &bs), 0);
+    check_borders(*m, *w, *h, &bs);
+    return bs;
+}
+
+Test(recon_border, single_pixel)
+{
+    const char *rows[] = {"...", ".#.", "...", NULL};
+    int w, h;
+    uint8_t *m;
+    recon_border_set bs = trace(rows, &w, &h, &m);
+    cr_assert_eq(bs.n_borders, 1);
+    cr_assert_eq(bs.borders[0].count, 1);
+    cr_assert_eq(bs.points[0], 1);
+    cr_assert_eq(bs.points[1], 1);
+    cr_assert_eq(bs.borders[0].is_hole, 0);
+    cr_assert_eq(bs.borders[0].parent, -1);
+    recon_border_set_free(&bs);
+    free(m);
+}
+
+Test(recon_border, one_pixel_lines_go_there_and_back)
+{
+    const char *rows[] = {".....", ".###.", ".....", ".#...", ".#...", ".#...", NULL};
+    int w, h;
+    uint8_t *m;
+    recon_border_set bs = trace(rows, &w, &h, &m);
+    cr_assert_eq(bs.n_borders, 2);
+    /* A line of n pixels is traced out and back: 2n - 2 points. */
+    cr_assert_eq(bs.borders[0].count, 4);
+    cr_assert_eq(bs.borders[1].count, 4);
+    recon_border_set_free(&bs);
+    free(m);
+}
+
+Test(recon_border, diagonal_neighbours_are_one_object)
+{
+    const char *rows[] = {"......", ".#....", "..#...", "...#..", "....#.", "......", NULL};
+    int w, h;
+    uint8_t *m;
+    recon_border_set bs = trace(rows, &w, &h, &m);
+    cr_assert_eq(bs.n_borders, 1, "8-connected diagonal: one border");
+    cr_assert_eq(bs.borders[0].count, 6);
+    recon_border_set_free(&bs);
+    free(m);
+}
+
+Test(recon_border, holes_and_hierarchy)
+{
+    const char *rows[] = {"...........", ".#########.", ".#.......#.", ".#.##.##.#.", ".#.##.##.#.",
+                          ".#.......#.", ".#########.", "...........", "..##.......", NULL};
+    int w, h;
+    uint8_t *m;
+    recon_border_set bs = trace(rows, &w, &h, &m);
+    /* ring outer, ring hole, two inner blocks (inside the hole), one block outside */
+    cr_assert_eq(bs.n_borders, 5);
+    int outer = 0, holes = 0;
+    for (int b = 0; b < bs.n_borders; b++) {
+        const recon_border *B = &bs.borders[b];
+        if (B->is_hole) {
+            holes++;
+            cr_assert_eq(B->parent, 0, "the hole belongs to the ring");
+        } else if (B->parent == -1)
+            outer++;
+        else
+            cr_assert(bs.borders[B->parent].is_hole, "blocks inside the hole have it as parent");
+    }
+    cr_assert_eq(holes, 1);
+    cr_assert_eq(outer, 2);
+    recon_border_set_free(&bs);
+    free(m);
+}
+
+Test(recon_border, concave_shape_and_rectangle_count)
+{
+    const char *rows[] = {"..........", ".########.", ".########.", ".##....##.", ".##....##.",
+                          ".##....##.", "..........", "...#####..", "...#####..", "...#####..", "..........", NULL};
+    int w, h;
+    uint8_t *m;
+    recon_border_set bs = trace(rows, &w, &h, &m);
+    cr_assert_eq(bs.n_borders, 2);
+    /* A filled 5x3 rectangle: 2(5+3) - 4 border pixels, each once. */
+    cr_assert_eq(bs.borders[1].count, 12);
+    recon_border_set_free(&bs);
+    free(m);
+}
+
+Test(recon_border, object_on_image_frame)
+{
+    const char *rows[] = {"###", "###", NULL};
+    int w, h;
+    uint8_t *m;
+    recon_border_set bs = trace(rows, &w, &h, &m);
+    cr_assert_eq(bs.n_borders, 1);
+    cr_assert_eq(bs.borders[0].count, 6);
+    recon_border_set_free(&bs);
+    free(m);
+}
+
+/* ---- Douglas–Peucker */
+
+static double seg_dist(vec2 p, vec2 a, vec2 b)
+{
+    vec2 ab = v2_sub(b, a);
+    double t = v2_dot(v2_sub(p, a), ab) / fmax(v2_dot(ab, ab), 1e-300);
+    t = fmax(0, fmin(1, t));
+    return v2_len(v2_sub(p, v2_add(a, v2_scale(ab, t))));
+}
+
+Test(recon_dp, deviation_stays_within_eps)
+{
+    enum { N = 720 };
+    vec2 pts[N];
+    int keep[N];
+    for (int i = 0; i < N; i++) {
+        double t = 2 * M_PI * i / N, r = 100 + 15 * sin(5 * t) + 0.4 * sin(97 * t);
+        pts[i] = v2(r * cos(t), r * sin(t));
+    }
+    const double eps[] = {0.5, 1.0, 3.0, 10.0};
+    int prev = N + 1;
+    for (int e = 0; e < 4; e++) {
+        int m = recon_douglas_peucker_closed(pts, N, eps[e], keep);
+        cr_assert_geq(m, 3);
+        cr_assert_lt(m, prev, "larger eps, fewer vertices");
+        prev = m;
+        for (int k = 0; k < m; k++) {
+            int a = keep[k], b = keep[(k + 1) % m];
+            if (k > 0)
+                cr_assert_gt(keep[k], keep[k - 1]);
+            for (int i = a + 1; i != (k + 1 == m ? N : b); i++)
+                cr_assert_leq(seg_dist(pts[i], pts[a], pts[b]), eps[e] + 1e-9, "eps %g point %d", eps[e], i);
+        }
+    }
+}
+
+Test(recon_dp, square_keeps_its_corners)
+{
+    vec2 pts[40];
+    int keep[40], n = 0;
+    for (int i = 0; i < 10; i++)
+        pts[n++] = v2(i, 0);
+    for (int i = 0; i < 10; i++)
+        pts[n++] = v2(10, i);
+    for (int i = 0; i < 10; i++)
+        pts[n++] = v2(10 - i, 10);
+    for (int i = 0; i < 10; i++)
+        pts[n++] = v2(0, 10 - i);
+    int m = recon_douglas_peucker_closed(pts, n, 0.5, keep);
+    cr_assert_eq(m, 4);
+    for (int k = 0; k < 4; k++)
+        cr_assert_eq(keep[k], 10 * k);
+}
+
+/* ---- Gaussian and Shi–Tomasi */
+
+Test(recon_shi_tomasi, gaussian_is_normalised)
+{
+    enum { W = 20, H = 16 };
+    float img[W * H], tmp[W * H];
+    for (int i = 0; i < W * H; i++)
+        img[i] = 0.7f;
+    recon_gaussian7(img, tmp, W, H);
+    for (int i = 0; i < W * H; i++)
+        cr_assert_float_eq(img[i], 0.7f, 1e-5);
+}
+
+Test(recon_shi_tomasi, corner_responds_edge_does_not)
+{
+    enum { W = 40, H = 40 };
+    float img[W * H], tmp[W * H], resp[W * H];
+    /* An L of one-pixel lines: horizontal y = 20 for x >= 20, vertical x = 20 for y >= 20. */
+    memset(img, 0, sizeof img);
+    for (int i = 20; i < W; i++) {
+        img[20 * W + i] = 1;
+        img[i * W + 20] = 1;
+    }
+    recon_gaussian7(img, tmp, W, H);
+    recon_shi_tomasi(img, W, H, resp);
+    float corner = 0;
+    for (int y = 17; y <= 23; y++)
+        for (int x = 17; x <= 23; x++)
+            corner = fmaxf(corner, resp[y * W + x]);
+    /* Along the straight arms, away from the corner and the image border. */
+    float edge = 0;
+    for (int i = 28; i < 34; i++)
+        for (int d = -3; d <= 3; d++) {
+            edge = fmaxf(edge, resp[(20 + d) * W + i]);
+            edge = fmaxf(edge, resp[i * W + 20 + d]);
+        }
+    cr_assert_gt(corner, 0);
+    cr_assert_lt(edge, 1e-3f * corner, "edge %g vs corner %g", edge, corner);
+    /* The response peaks near the corner. */
+    cr_assert_float_eq(recon_shi_tomasi_at(img, W, H, 21, 21), resp[21 * W + 21], 1e-6);
+}

@@ -1,0 +1,97 @@
+/* Helpers of the renderer tests: a temporary folder holding a profile.json
+ * of one of the test vessels and a scene file, and renders of it to memory. */
+#ifndef CELADON_TEST_RENDER_UTIL_H
+#define CELADON_TEST_RENDER_UTIL_H
+
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "celadon/profile.h"
+#include "celadon/render.h"
+#include "support/sor_profiles.h"
+
+typedef struct {
+    char dir[64];
+} render_fixture;
+
+static inline void render_fixture_open(render_fixture *f)
+{
+    snprintf(f->dir, sizeof f->dir, "/tmp/celadon-test-render-XXXXXX");
+    cr_assert_not_null(mkdtemp(f->dir));
+}
+
+static inline void render_fixture_close(render_fixture *f)
+{
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", f->dir);
+    cr_assert_eq(system(cmd), 0);
+}
+
+/* Writes dir/name as profile.json of test profile `which` ("plum", ...),
+ * with 200 uniform curvature domains (the rings of a revolved mesh). */
+static inline void render_write_profile(const render_fixture *f, const char *name, const char *which)
+{
+    int idx = -1;
+    for (int i = 0; i < sor_test_profile_count(); i++)
+        if (!strcmp(sor_test_profile_name(i), which))
+            idx = i;
+    cr_assert_geq(idx, 0);
+    profile_t p;
+    memset(&p, 0, sizeof p);
+    snprintf(p.source_path, sizeof p.source_path, "synthetic");
+    p.axis_direction = v2(0, -1);
+    snprintf(p.side, sizeof p.side, "right");
+    sor_test_profile(idx, &p.curve);
+    vec2 poly[2] = {bspline_eval(&p.curve, 0.0), bspline_eval(&p.curve, 1.0)};
+    p.polyline = poly;
+    p.n_polyline = 2;
+    enum { ND = 201 };
+    double dom[ND];
+    for (int i = 0; i < ND; i++)
+        dom[i] = (double)i / (ND - 1);
+    p.domains = dom;
+    p.n_domains = ND;
+    char path[256], err[256];
+    snprintf(path, sizeof path, "%s/%s", f->dir, name);
+    cr_assert_eq(profile_write_json(path, &p, err, sizeof err), 0, "%s", err);
+    bspline_free(&p.curve);
+}
+
+/* Writes text to dir/name; returns the path in out. */
+static inline void render_write_file(const render_fixture *f, const char *name, const char *text, char *out,
+                                     size_t outlen)
+{
+    snprintf(out, outlen, "%s/%s", f->dir, name);
+    FILE *fp = fopen(out, "w");
+    cr_assert_not_null(fp);
+    fputs(text, fp);
+    fclose(fp);
+}
+
+/* Loads and renders a scene file to averaged float pixels (nchannels per
+ * pixel, malloc'd). */
+static inline float *render_to_pixels(const char *scene_path, int mesh_segments, long long seed, int threads,
+                                      unsigned aovs, int *w, int *h, int *nch)
+{
+    char err[1024];
+    scene_build_options bo = scene_build_defaults();
+    bo.mesh_segments = mesh_segments;
+    bo.seed = seed;
+    scene_t *s = scene_load(scene_path, NULL, 0, &bo, err, sizeof err);
+    cr_assert_not_null(s, "%s", err);
+    render_options ro = {threads, aovs, 0};
+    film_t film;
+    cr_assert_eq(render_scene(s, &ro, &film, NULL, err, sizeof err), 0, "%s", err);
+    *w = film.width, *h = film.height, *nch = film.nchannels;
+    float *px = malloc(sizeof *px * (size_t)film.width * film.height * film.nchannels);
+    cr_assert_not_null(px);
+    film_develop(&film, px);
+    film_free(&film);
+    scene_free(s);
+    return px;
+}
+
+#endif
