@@ -113,3 +113,12 @@ clean:
 	rm -rf build out
 
 -include $(shell find build -name '*.d' 2>/dev/null)
+
+# ---------------------------------------------------------------- rendering benchmark
+# The showcase scene analytic vs. meshed, and its cross-check error table
+# (docs/BENCHMARKS.md, "Rendering"). `make bench` runs every bench/*.c, this one too.
+.PHONY: bench-render
+bench-render: check-deps-stamp
+	@$(MAKE) --no-print-directory build/bench/bench_render
+	@mkdir -p out/bench
+	build/bench/bench_render | tee out/bench/bench_render.txt
