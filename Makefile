@@ -114,6 +114,16 @@ clean:
 
 -include $(shell find build -name '*.d' 2>/dev/null)
 
+# ---------------------------------------------------------------- SOR benchmark
+# The test profiles are the benchmark's workload, so their source links in.
+BENCH_SOR_SRC := bench/bench_sor.c tests/support/sor_profiles.c
+build/bench/bench_sor: $(BENCH_SOR_SRC) build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -O3 -Itests -o $@ $(BENCH_SOR_SRC) build/opt/libceladon.a $(LDLIBS)
+bench-sor: check-deps-stamp
+	@$(MAKE) --no-print-directory -j2 build/bench/bench_sor
+	./build/bench/bench_sor
+
 # ---------------------------------------------------------------- rendering benchmark
 # The showcase scene analytic vs. meshed, and its cross-check error table
 # (docs/BENCHMARKS.md, "Rendering"). `make bench` runs every bench/*.c, this one too.

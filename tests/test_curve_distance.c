@@ -113,3 +113,46 @@ Test(curve_distance, newton_finds_the_foot_point)
     }
     bspline_free(&c);
 }
+
+Test(curve_distance, degenerate_input)
+{
+    bspline_t c = line_curve(0, 0, 0, 100);
+    double c2p, p2c;
+    /* A single point: both sides measure to it. */
+    const vec2 one[] = {{3, 50}};
+    curve_polyline_hausdorff(&c, one, 1, &c2p, &p2c);
+    cr_assert_float_eq(p2c, 3.0, 1e-9);
+    cr_assert_float_eq(c2p, sqrt(9.0 + 2500.0), 1e-9);
+    /* Repeated points are a point too. */
+    const vec2 same[] = {{3, 50}, {3, 50}, {3, 50}};
+    curve_polyline_hausdorff(&c, same, 3, &c2p, &p2c);
+    cr_assert_float_eq(p2c, 3.0, 1e-9);
+    /* Refusals: NaN out. */
+    const vec2 bad[] = {{0, 0}, {NAN, 1}}, huge[] = {{0, 0}, {1e200, 1}};
+    curve_polyline_hausdorff(&c, bad, 2, &c2p, &p2c);
+    cr_assert(isnan(c2p) && isnan(p2c));
+    curve_polyline_hausdorff(&c, huge, 2, &c2p, &p2c);
+    cr_assert(isnan(c2p) && isnan(p2c));
+    curve_polyline_hausdorff(&c, one, 0, &c2p, &p2c);
+    cr_assert(isnan(c2p) && isnan(p2c));
+    c.knots[0] = 0.5; /* invalid curve */
+    curve_polyline_hausdorff(&c, one, 1, &c2p, &p2c);
+    cr_assert(isnan(c2p) && isnan(p2c));
+    bspline_free(&c);
+}
+
+Test(curve_distance, many_scales_at_once)
+{
+    /* A polyline with one vertex ten thousand pixels away: the far side is
+     * measured exactly and the near part stays fast. */
+    bspline_t c = line_curve(0, 0, 0, 100);
+    vec2 poly[202];
+    for (int i = 0; i <= 200; i++)
+        poly[i] = v2(0.5, i * 0.5);
+    poly[201] = v2(1e4, 100);
+    double c2p, p2c;
+    curve_polyline_hausdorff(&c, poly, 202, &c2p, &p2c);
+    cr_assert_float_eq(p2c, 1e4, 1e-6);
+    cr_assert_float_eq(c2p, 0.5, 1e-9);
+    bspline_free(&c);
+}

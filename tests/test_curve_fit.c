@@ -276,3 +276,34 @@ Test(curve_fit, repeated_points_change_nothing)
     free(twice);
     free(p);
 }
+
+Test(curve_fit, hostile_input_never_crashes)
+{
+    /* Small polylines from a palette of awkward values (repeats, huge, tiny,
+     * nearly equal); every result is either a refusal or a valid, finite
+     * curve. */
+    const double palette[] = {0, 1, -1, 1e-300, 1e300, -1e300, 3.5, 1e8, 1e8 + 1e-8, 2e-9, 42, 1e154};
+    const int np = sizeof palette / sizeof palette[0];
+    uint64_t seed = 99;
+    for (int trial = 0; trial < 300; trial++) {
+        vec2 p[14];
+        seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
+        int n = (int)(seed % 15);
+        for (int i = 0; i < n; i++) {
+            seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
+            p[i] = v2(palette[seed % np], palette[(seed >> 8) % np]);
+        }
+        bspline_t f;
+        bspline_fit_info info;
+        int rc = trial % 2 ? bspline_fit_profile(p, n, 1.0, &f, &info) : bspline_fit_smoothing(p, n, 0.5, &f, &info);
+        cr_assert(rc == 0 || rc == -1);
+        if (rc != 0) {
+            cr_assert_null(f.ctrl);
+            continue;
+        }
+        cr_assert_null(bspline_validate(&f), "trial %d", trial);
+        for (int i = 0; i < f.n_ctrl; i++)
+            cr_assert(isfinite(f.ctrl[i].x) && isfinite(f.ctrl[i].y));
+        bspline_free(&f);
+    }
+}

@@ -212,6 +212,12 @@ Test(mesh_revolve, rejects_bad_arguments)
     cr_assert_eq(mesh_revolve(&c, nan_u, 3, 1.0, 16, 0, &m), -1);
     cr_assert_eq(mesh_revolve(&c, NULL, 100000, 1.0, 100000, 0, &m), -1); /* indices overflow */
     cr_assert_null(m.pos);
+    c.ctrl[3].x = 1e300; /* beyond float range once scaled */
+    cr_assert_eq(mesh_revolve(&c, NULL, 4, 1.0, 16, 0, &m), -1);
+    c.ctrl[3].x = 20;
+    c.ctrl[7].y = -5; /* rim below the base */
+    cr_assert_eq(mesh_revolve(&c, NULL, 4, 1.0, 16, 0, &m), -1);
+    c.ctrl[7].y = 140;
     c.knots[5] = 0.05; /* invalid knot vector */
     cr_assert_eq(mesh_revolve(&c, NULL, 4, 1.0, 16, 0, &m), -1);
     bspline_free(&c);

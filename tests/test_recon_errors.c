@@ -169,3 +169,20 @@ Test(recon_errors, forced_threshold_and_polarity)
     recon_result_free(&r);
     image_free(&img);
 }
+
+Test(recon_errors, nan_pixels_and_transparent_images)
+{
+    char err[256];
+    synth_params p = synth_defaults(SYNTH_VASE, 120, 160);
+    image_t img;
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    for (int i = 0; i < 120 * 160 * 3; i += 97)
+        img.data[i] = i % 2 ? NAN : INFINITY;
+    cr_expect_neq(run(&img, err, sizeof err), RECON_ERR_INTERNAL);
+    image_free(&img);
+    /* RGBA, everything transparent: nothing to reconstruct. */
+    image_t clear = image_alloc(64, 64, 4);
+    clear.has_alpha = 1;
+    cr_expect_eq(run(&clear, err, sizeof err), RECON_ERR_NO_OBJECT);
+    image_free(&clear);
+}

@@ -55,3 +55,42 @@ Test(render_geometry, analytic_and_fine_mesh_agree_coarse_mesh_does_not)
     free(ana), free(ana2), free(fine), free(coarse);
     render_fixture_close(&f);
 }
+
+/* An emitting SOR lighting a floor: the analytic SOR's emitter sampling (a
+ * tabulated CDF over the profile) and the mesh's (a CDF over triangles) are
+ * independent, so with direct lighting only the two floors must agree to
+ * within Monte Carlo noise: the mean's standard deviation is ~0.5% here
+ * (measured: 0.6% apart at 512 spp, 0.3% at 2048 spp). */
+static const char *lamp_xml =
+    "<scene version=\"3.0.0\">\n"
+    "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"2\"/>"
+    "<boolean name=\"hide_emitters\" value=\"true\"/></integrator>\n"
+    "  <sensor type=\"perspective\"><float name=\"fov\" value=\"60\"/>\n"
+    "    <transform name=\"to_world\"><lookat origin=\"0, 3, 0.01\" target=\"0, 0, 0\" up=\"0, 1, 0\"/></transform>\n"
+    "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"256\"/></sampler>\n"
+    "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"24\"/><integer name=\"height\" value=\"24\"/></film>\n"
+    "  </sensor>\n"
+    "  <shape type=\"rectangle\"><transform name=\"to_world\"><rotate x=\"1\" angle=\"-90\"/><scale value=\"3\"/></transform></shape>\n"
+    "  <shape type=\"sor\"><string name=\"filename\" value=\"profile.json\"/>\n"
+    "    <transform name=\"to_world\"><rotate z=\"1\" angle=\"70\"/><translate x=\"0.5\" y=\"0.8\"/></transform>\n"
+    "    <emitter type=\"area\"><rgb name=\"radiance\" value=\"2\"/></emitter></shape>\n"
+    "</scene>\n";
+
+Test(render_geometry, emitting_sor_analytic_and_meshed_light_the_same)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    render_write_profile(&f, "profile.json", "plum");
+    char path[256];
+    render_write_file(&f, "scene.xml", lamp_xml, path, sizeof path);
+    int w, h, nch;
+    float *ana = render_to_pixels(path, 0, 1, 2, 0, &w, &h, &nch);
+    float *mesh = render_to_pixels(path, 2048, 1, 2, 0, &w, &h, &nch);
+    double sa = 0.0, sm = 0.0;
+    for (int i = 0; i < w * h; i++)
+        sa += ana[i * nch + 1], sm += mesh[i * nch + 1];
+    cr_expect_gt(sa, 0.0);
+    cr_expect_float_eq(sa, sm, 0.02 * sa, "analytic mean %g, mesh mean %g", sa / (w * h), sm / (w * h));
+    free(ana), free(mesh);
+    render_fixture_close(&f);
+}

@@ -15,8 +15,10 @@ double curve_point_distance_near(const bspline_t *c, vec2 p, double u_guess, dou
  * poly[0..n-1] (n >= 1): the largest distance from a curve point to the
  * polyline, and from a polyline point (vertices and segment interiors) to the
  * curve. Both sides are sampled densely (spacing <= 0.25 px), searched with a
- * grid index, and the maxima polished locally (golden section; Newton foot
- * points on the curve), so they are exact to about 1e-6 px. */
+ * bounding-box tree over segments, and the maxima polished locally (golden section; Newton foot
+ * points on the curve), so they are exact to about 1e-6 px. Both are NaN
+ * when the curve is invalid, n < 1, or a coordinate (polyline point or
+ * control point) is not finite or exceeds 1e100 in magnitude. */
 void curve_polyline_hausdorff(const bspline_t *c, const vec2 *poly, int n, double *curve_to_polyline,
                               double *polyline_to_curve);
 

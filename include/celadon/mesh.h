@@ -35,7 +35,9 @@ enum { MESH_CAP_BASE = 1u, MESH_CAP_MOUTH = 2u };
  *         copy of the end ring (normal -Y for the base, +Y for the mouth, so
  *         the crease stays sharp), segments triangles. A cap whose end ring
  *         lies on the axis (r = 0) would have no area and is left out.
- * Returns 0, or -1 on bad arguments or allocation failure (out zeroed). */
+ * Returns 0, or -1 on bad arguments (including a profile whose rim is not
+ * above h = 0, or that would not fit in float range once scaled) or
+ * allocation failure (out zeroed). */
 int mesh_revolve(const bspline_t *profile, const double *u_rings, int n_rings, double height, int segments,
                  unsigned caps, mesh_t *out);
 void mesh_free(mesh_t *m);

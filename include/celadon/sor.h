@@ -34,7 +34,8 @@ typedef struct {
 
 /* Builds the SOR. The profile must be a valid clamped cubic with r >= 0,
  * h(0) = 0 < h(1); height > 0. caps is a mask of SOR_CAP_*. Returns NULL with a
- * one-line reason in err on invalid input. */
+ * one-line reason in err on invalid input. Control points with r or h(0) off
+ * by rounding (within 1e-9 of the largest control coordinate) are snapped. */
 sor_t *sor_create(const bspline_t *profile, double height, unsigned caps, char *err, size_t errlen);
 void sor_destroy(sor_t *s);
 

@@ -62,14 +62,28 @@ static int parametrise(const vec2 *pts, int n, fit_data *d)
         m++;
     }
     double total = d->u[m - 1];
-    if (m < 4 || !(total > 0.0) || !isfinite(total)) {
+    if (!(total > 0.0)) {
         fit_data_free(d);
         return -1;
     }
-    for (int i = 1; i < m - 1; i++)
-        d->u[i] /= total;
-    d->u[m - 1] = 1.0;
-    d->n = m;
+    /* Normalise; a step too small to separate two parameters in double
+     * precision counts as a repeat too (the knots must stay distinct). The
+     * last point stays: it is the rim corner. */
+    int k = 1;
+    for (int i = 1; i < m; i++) {
+        double u = i == m - 1 ? 1.0 : d->u[i] / total;
+        if (!(u > d->u[k - 1]))
+            continue;
+        if (u == 1.0 && i < m - 1)
+            continue;
+        d->u[k] = u;
+        d->q[k++] = d->q[i];
+    }
+    if (k < 4) {
+        fit_data_free(d);
+        return -1;
+    }
+    d->n = k;
     return 0;
 }
 

@@ -2,7 +2,7 @@
  *
  * Each side is sampled with spacing <= SPACING px (the curve per knot span,
  * by the length of the span's control polygon, which bounds the arc length).
- * Distances to the other side come from a grid index; polyline points measure
+ * Distances to the other side come from a segment tree; polyline points measure
  * to the curve through the nearest chord of the dense curve samples and then a
  * Newton foot point on the curve itself. A distance function is 1-Lipschitz
  * along either side, so the true maximum lies near a sampled local maximum
@@ -13,14 +13,18 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "segment_grid.h"
+#include "segment_tree.h"
 
 #define SPACING 0.25
+/* Samples per side at most: beyond it (curves thousands of times larger than
+ * a photograph) the spacing grows instead. */
+#define MAX_SAMPLES 65536.0
+#define MAX_COORD 1e100
 
 typedef struct {
     const bspline_t *c;
-    const segment_grid *poly_grid;  /* the polyline */
-    const segment_grid *curve_grid; /* chords of the dense curve samples */
+    const segment_tree *poly_index;  /* the polyline */
+    const segment_tree *curve_index; /* chords of the dense curve samples */
     const double *cu;               /* parameters of the dense curve samples */
     vec2 a, b;                      /* the polyline segment being scanned */
 } context;
@@ -28,7 +32,7 @@ typedef struct {
 /* Distance from the curve point at u to the polyline. */
 static double curve_side(const context *x, double u)
 {
-    return segment_grid_nearest(x->poly_grid, bspline_eval(x->c, u), NULL, NULL);
+    return segment_tree_nearest(x->poly_index, bspline_eval(x->c, u), NULL, NULL);
 }
 
 /* Distance from the point at t on segment a b to the curve. */
@@ -37,7 +41,7 @@ static double polyline_side(const context *x, double t)
     vec2 q = v2_lerp(x->a, x->b, t);
     int s;
     double ts;
-    segment_grid_nearest(x->curve_grid, q, &s, &ts);
+    segment_tree_nearest(x->curve_index, q, &s, &ts);
     double guess = x->cu[s] + ts * (x->cu[s + 1] - x->cu[s]);
     return curve_point_distance_near(x->c, q, guess, NULL);
 }
@@ -93,19 +97,31 @@ static double polished_max(side_fn f, const context *x, const double *s, const d
 static int sample_curve(const bspline_t *c, double **pu, vec2 **pp)
 {
     int p = c->degree, nk = bspline_n_knots(c), total = 1;
+    double *len = malloc((size_t)nk * sizeof *len), sum = 0.0;
     int *per_span = malloc((size_t)nk * sizeof *per_span);
-    if (!per_span)
+    if (!len || !per_span) {
+        free(len);
+        free(per_span);
         return -1;
+    }
     for (int k = p; k < c->n_ctrl; k++) {
-        per_span[k] = 0;
-        if (!(c->knots[k + 1] > c->knots[k]))
-            continue;
-        double len = 0.0;
-        for (int j = k - p; j < k; j++)
-            len += v2_len(v2_sub(c->ctrl[j + 1], c->ctrl[j]));
-        per_span[k] = 2 + (int)fmin(ceil(len / SPACING), 1e6);
+        len[k] = 0.0;
+        if (c->knots[k + 1] > c->knots[k])
+            for (int j = k - p; j < k; j++)
+                len[k] += v2_len(v2_sub(c->ctrl[j + 1], c->ctrl[j]));
+        sum += len[k];
+    }
+    double spacing = fmax(SPACING, sum / MAX_SAMPLES);
+    if (!isfinite(spacing)) { /* control points so far apart their distance overflows */
+        free(len);
+        free(per_span);
+        return -1;
+    }
+    for (int k = p; k < c->n_ctrl; k++) {
+        per_span[k] = c->knots[k + 1] > c->knots[k] ? 2 + (int)ceil(len[k] / spacing) : 0;
         total += per_span[k];
     }
+    free(len);
     double *u = malloc((size_t)total * sizeof *u);
     vec2 *pt = malloc((size_t)total * sizeof *pt);
     if (!u || !pt) {
@@ -125,6 +141,15 @@ static int sample_curve(const bspline_t *c, double **pu, vec2 **pp)
     *pu = u;
     *pp = pt;
     return m;
+}
+
+/* Coordinates whose squared distances cannot overflow (|x| <= MAX_COORD). */
+static int within_range(const vec2 *p, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!(fabs(p[i].x) <= MAX_COORD) || !(fabs(p[i].y) <= MAX_COORD))
+            return 0;
+    return 1;
 }
 
 /* Grows the three scratch arrays to hold n values. Returns 0 or -1. */
@@ -147,9 +172,11 @@ void curve_polyline_hausdorff(const bspline_t *c, const vec2 *poly, int n, doubl
     double *cu = NULL, *val = NULL, *par = NULL, *step = NULL;
     vec2 *cp = NULL;
     int cap = 0;
-    segment_grid pg = {0}, cg = {0};
-    int m = n >= 1 ? sample_curve(c, &cu, &cp) : -1;
-    if (m < 2 || segment_grid_build(&pg, poly, n) != 0 || segment_grid_build(&cg, cp, m) != 0 ||
+    segment_tree pg = {0}, cg = {0};
+    if (n < 1 || bspline_validate(c) || !within_range(poly, n) || !within_range(c->ctrl, c->n_ctrl))
+        return;
+    int m = sample_curve(c, &cu, &cp);
+    if (m < 2 || segment_tree_build(&pg, poly, n) != 0 || segment_tree_build(&cg, cp, m) != 0 ||
         reserve(&val, &par, &step, &cap, m) != 0)
         goto done;
     context x = {c, &pg, &cg, cu, {0, 0}, {0, 0}};
@@ -157,18 +184,23 @@ void curve_polyline_hausdorff(const bspline_t *c, const vec2 *poly, int n, doubl
     /* Curve side. The arc between dense samples exceeds its chord by far
      * less than the 1% margin given to the Lipschitz bound. */
     for (int i = 0; i < m; i++) {
-        val[i] = segment_grid_nearest(&pg, cp[i], NULL, NULL);
+        val[i] = segment_tree_nearest(&pg, cp[i], NULL, NULL);
         step[i] = i + 1 < m ? 1.01 * v2_len(v2_sub(cp[i + 1], cp[i])) : 0.0;
     }
     double c2p = polished_max(curve_side, &x, cu, val, step, m, 0.0);
 
     /* Polyline side, one segment at a time (a lone point is a segment of length 0). */
-    double p2c = 0.0;
+    double p2c = 0.0, poly_len = 0.0;
+    for (int s = 0; s + 1 < n; s++)
+        poly_len += v2_len(v2_sub(poly[s + 1], poly[s]));
+    double spacing = fmax(SPACING, poly_len / MAX_SAMPLES);
+    if (!isfinite(spacing))
+        goto done;
     for (int s = 0; s < (n > 1 ? n - 1 : 1); s++) {
         x.a = poly[s];
         x.b = poly[n > 1 ? s + 1 : s];
         double len = v2_len(v2_sub(x.b, x.a));
-        int k = 1 + (int)fmin(ceil(len / SPACING), 1e6);
+        int k = 1 + (int)ceil(len / spacing);
         if (reserve(&val, &par, &step, &cap, k + 1) != 0)
             goto done;
         for (int i = 0; i <= k; i++) {
@@ -181,8 +213,8 @@ void curve_polyline_hausdorff(const bspline_t *c, const vec2 *poly, int n, doubl
     *curve_to_polyline = c2p;
     *polyline_to_curve = p2c;
 done:
-    segment_grid_free(&pg);
-    segment_grid_free(&cg);
+    segment_tree_free(&pg);
+    segment_tree_free(&cg);
     free(cu);
     free(cp);
     free(val);

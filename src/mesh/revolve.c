@@ -1,6 +1,7 @@
 /* Revolving a profile curve into a triangle mesh (the layout is in mesh.h). */
 #include "celadon/mesh.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,17 +17,17 @@ void mesh_free(mesh_t *m)
 
 /* The outward unit normal of the profile in the (r, h) half-plane, (h', -r')
  * normalised. Where the derivative vanishes (a cusp, or repeated control
- * points) the direction comes from a small central chord instead; a curve that
- * does not move at all gets the radial direction. */
+ * points) or overflows, the direction comes from a small central chord
+ * instead; failing that, the radial direction. */
 static vec2 profile_normal(const bspline_t *c, double u, vec2 d1)
 {
     double len = v2_len(d1);
-    if (!(len > 1e-12)) {
+    if (!(len > 1e-12) || !isfinite(len)) {
         double lo = c->knots[0], hi = c->knots[bspline_n_knots(c) - 1], du = 1e-6 * (hi - lo);
         double ua = u - du < lo ? lo : u - du, ub = u + du > hi ? hi : u + du;
         d1 = v2_sub(bspline_eval(c, ub), bspline_eval(c, ua));
         len = v2_len(d1);
-        if (!(len > 0.0))
+        if (!(len > 0.0) || !isfinite(len))
             return v2(1.0, 0.0);
     }
     return v2(d1.y / len, -d1.x / len);
@@ -101,6 +102,11 @@ int mesh_revolve(const bspline_t *profile, const double *u_rings, int n_rings, d
     if (!(h_rim > 0.0) || !isfinite(h_rim))
         return -1;
     double scale = height / h_rim;
+    /* The curve lies in the hull of its control points: if they fit in float
+     * range after scaling, every vertex does. */
+    for (int i = 0; i < profile->n_ctrl; i++)
+        if (!(fabs(profile->ctrl[i].x) * scale < 0.5 * FLT_MAX) || !(fabs(profile->ctrl[i].y) * scale < 0.5 * FLT_MAX))
+            return -1;
 
     vec2 d_first[2], d_last[2];
     bspline_eval_derivs(profile, u_rings ? u_rings[0] : ulo, 1, d_first);

@@ -52,9 +52,9 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* r of the left outline at height h, by linear interpolation; NAN where the
- * outline is missing, gappy or too flat to compare. */
-static double left_at(const hr_t *L, int nl, double h)
+/* r of the left outline at height h, by linear interpolation, and its slope
+ * dr/dh; NAN where the outline is missing, gappy or too flat to compare. */
+static double left_at(const hr_t *L, int nl, double h, double *slope)
 {
     int lo = 0, hi = nl - 1;
     if (nl < 2 || h < L[0].h || h > L[nl - 1].h)
@@ -69,6 +69,7 @@ static double left_at(const hr_t *L, int nl, double h)
     double dh = L[hi].h - L[lo].h;
     if (dh <= 1e-9 || dh > 3 || fabs(L[hi].r - L[lo].r) > 2 * dh)
         return NAN;
+    *slope = (L[hi].r - L[lo].r) / dh;
     return L[lo].r + (h - L[lo].h) / dh * (L[hi].r - L[lo].r);
 }
 
@@ -98,11 +99,14 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
             double h = v2_dot(q, d);
             if (h < h_lo || h > h_hi)
                 continue;
-            double rl = left_at(L, nl, h);
+            double slope, rl = left_at(L, nl, h, &slope);
             if (isnan(rl))
                 continue;
+            /* Rotating the axis by dth also moves each point's height by
+             * -+dth r, which shifts the left outline by its slope: the
+             * residual's derivative in dth is 2 (h + slope r). */
             e[m] = v2_dot(q, n) - rl;
-            hs[m++] = h;
+            hs[m++] = h + slope * rl;
         }
         if (m < 20)
             break;
@@ -115,7 +119,11 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
             tmp[i] = fabs(e[i] - med);
         qsort(tmp, (size_t)m, sizeof *tmp, cmp_double);
         double tol = fmax(3 * 1.4826 * tmp[m / 2], 0.5);
-        /* Least squares e = 2 dc + 2 dth (h - hm) on the inliers. */
+        /* Once roughly aligned, a row more than 1.5 px from the median is not
+         * symmetric, whatever the spread of the rest (a washed-out side). */
+        if (iter >= 2)
+            tol = fmin(tol, 1.5);
+        /* Least squares e = 2 dc + 2 dth (x - xm) on the inliers, x = h + slope r. */
         double hm = 0, cnt = 0;
         for (int i = 0; i < m; i++)
             if (fabs(e[i] - med) <= tol) {

@@ -107,11 +107,14 @@ int recon_find_corners(const vec2 *contour, int n, const int *approx_idx, int n_
     int at_q[CORNER_COUNT] = {-1, -1, -1, -1};
     const int SU[CORNER_COUNT] = {1, 1, -1, -1}, SR[CORNER_COUNT] = {-1, 1, -1, 1};
     for (int q = 0; q < CORNER_COUNT; q++) {
-        /* The rim (base) corners end the outline at the top (bottom): among
-         * the corners of the quadrant (a Shi–Tomasi response of 5% of the
-         * strongest, and a turn of 12° or more over 5 contour points, which
-         * rejects the vertices of smooth arcs), the highest (lowest); within
-         * 2 px of that height, the strongest. */
+        /* The rim (base) corners end the outline at the top (bottom). A
+         * candidate has a Shi–Tomasi response of 5% of the strongest and is a
+         * convex turn of 20° or more between chords of 8 contour points
+         * (rejects the pixel staircase and the vertices of smooth arcs) and
+         * still 15° over 24 points (rejects small steps in the outline).
+         * Among the quadrant's candidates: the highest (lowest), and within
+         * 2% of the object's height of it the outermost (the end of the rim
+         * or base line, or of its ellipse arc in a perspective view). */
         double top = -INFINITY;
         for (int pass = 0; pass < 2; pass++) {
             double best = -1;

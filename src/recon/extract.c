@@ -82,8 +82,6 @@ static double quantile(const double *v, int n, double q, double *tmp)
     return tmp[k];
 }
 
-static int cmp_double(const void *a, const void *b);
-
 /* Drops points more than 1 px from the median x of their 7-row neighbourhood
  * (a decoration or a highlight spoiling one row's ramp); an outline is smooth
  * at that scale, and the median of a straight run is its centre value. */
@@ -167,6 +165,7 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     res->mask = malloc(n);
     recon_border_set bs = {0};
     int *keep = NULL, *ext = NULL;
+    double *con = NULL;
     if (!gray || !res->mask) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
@@ -287,28 +286,42 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
         ext[j] = p ? (int)(p - m) : -1;
         ext[h + j] = p ? b : -1;
     }
+    int cap = h;
+    con = malloc((size_t)cap * 4 * sizeof *con);
+    if (!con) {
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
+        goto out;
+    }
+    double *tmp = con + 2 * cap, median[2];
     for (int s = 0; s < 2; s++) {
         int side = s ? 1 : -1;
         vec2 rc = res->corners[s ? CORNER_RIM_RIGHT : CORNER_RIM_LEFT];
         vec2 bc = res->corners[s ? CORNER_BASE_RIGHT : CORNER_BASE_LEFT];
         int j0 = (int)floor(fmin(rc.y, bc.y)), j1 = (int)floor(fmax(rc.y, bc.y));
-        int cap = j1 - j0 + 1;
         res->silhouette[s] = malloc((size_t)cap * sizeof(vec2));
-        double *contrast = malloc((size_t)cap * 3 * sizeof(double));
-        if (!res->silhouette[s] || !contrast) {
-            free(contrast);
+        if (!res->silhouette[s]) {
             st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
             goto out;
         }
         /* Half the mask threshold (at least 3/255) separates object from
          * background noise and JPEG ringing. */
         double delta = res->mask_mode == RECON_MASK_ALPHA ? 0.05 : fmax(0.5 * res->threshold_used, 3.0) / 255;
-        res->n_silhouette[s] =
-            trace_side(gray, ext + (size_t)s * h, w, h, j0, j1, side, delta, res->silhouette[s], contrast);
-        int m = res->n_silhouette[s];
-        res->edge_contrast[s] = quantile(contrast, m, 0.1, contrast + cap);
-        res->edge_noise_px[s] = roughness(res->silhouette[s], m, contrast + cap, contrast + 2 * cap);
-        free(contrast);
+        int m = trace_side(gray, ext + (size_t)s * h, w, h, j0, j1, side, delta, res->silhouette[s], con + s * cap);
+        res->n_silhouette[s] = m;
+        res->edge_contrast[s] = quantile(con + s * cap, m, 0.1, tmp);
+        res->edge_noise_px[s] = roughness(res->silhouette[s], m, tmp, tmp + cap);
+        median[s] = quantile(con + s * cap, m, 0.5, tmp);
+    }
+    /* Rows whose edge contrast is under a quarter of the better side's
+     * typical contrast are washed out (a highlight on the edge, a glaze as
+     * light as the backdrop): their position is not the outline. */
+    for (int s = 0; s < 2; s++) {
+        double floor_c = 0.25 * fmax(median[0], median[1]);
+        int m = 0;
+        for (int k = 0; k < res->n_silhouette[s]; k++)
+            if (con[s * cap + k] >= floor_c)
+                res->silhouette[s][m++] = res->silhouette[s][k];
+        res->n_silhouette[s] = m;
     }
 
     /* 6. Refine the axis by left/right symmetry on the middle 90% of the
@@ -374,6 +387,7 @@ out:
     free(gray);
     free(keep);
     free(ext);
+    free(con);
     recon_border_set_free(&bs);
     if (st != RECON_OK)
         free_arrays(res);

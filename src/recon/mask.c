@@ -6,6 +6,9 @@
 
 #include "recon/recon_internal.h"
 
+/* Clamps a signal value to [0, 1]; NaN (HDR or broken files) becomes 0. */
+static inline float finite01(float v) { return v > 0 ? (v < 1 ? v : 1) : 0; }
+
 /* Median of 5 values (the border curves are denoised with it). */
 static float median5(float a, float b, float c, float d, float e)
 {
@@ -98,7 +101,7 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
             clear += (px[(size_t)j * w * c + c - 1] < 0.5f) + (px[((size_t)j * w + w - 1) * c + c - 1] < 0.5f);
         if (2 * clear > total) {
             for (size_t i = 0; i < n; i++) {
-                gray[i] = px[i * c + c - 1];
+                gray[i] = finite01(px[i * c + c - 1]);
                 mask[i] = gray[i] >= 0.5f;
             }
             *threshold_used = -1;
@@ -107,7 +110,7 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
     }
     for (size_t i = 0; i < n; i++) {
         const float *p = px + i * c;
-        gray[i] = c >= 3 ? 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2] : p[0];
+        gray[i] = finite01(c >= 3 ? 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2] : p[0]);
     }
 
     /* Background model: the Coons patch of the four (denoised) border curves,
@@ -373,13 +376,10 @@ long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *ho
     return kept;
 }
 
-/* A sharp step at pixel i of row j: across it along the row or the column. */
-static int sharp(const float *gray, int w, int h, int i, int j, float step)
+/* A sharp step across pixel i of a row, at least step over two pixels. */
+static int sharp(const float *g, int w, int i, float step)
 {
-    if (i < 1 || i + 1 >= w || j < 1 || j + 1 >= h)
-        return 1;
-    const float *g = gray + (size_t)j * w + i;
-    return fabsf(g[-1] - g[1]) >= step || fabsf(g[-w] - g[w]) >= step;
+    return i < 1 || i + 1 >= w || fabsf(g[i - 1] - g[i + 1]) >= step;
 }
 
 int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float step)
@@ -393,9 +393,10 @@ int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float s
         }
     if (top < 0)
         return 0;
-    int trimmed = 0;
+    int trimmed = 0, plo = -1, phi = -1;
     for (int j = bottom - (bottom - top) / 8; j <= bottom; j++) {
         uint8_t *m = mask + (size_t)j * w;
+        const float *g = gray + (size_t)j * w;
         int a = 0, b = w - 1;
         while (a < w && !m[a])
             a++;
@@ -403,19 +404,27 @@ int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float s
             b--;
         if (a >= w)
             continue;
-        /* From each end inward, to the first sharp step; rows without one
-         * stay as they are. */
-        int r = b, l = a;
-        while (r >= a && !sharp(gray, w, h, r, j, step))
-            r--;
-        while (l <= r && !sharp(gray, w, h, l, j, step))
-            l++;
-        if (r < a || l > r)
-            continue;
+        /* An end that juts out more than 3 px past the row above moves
+         * inward to the first sharp step (none: it stays). */
+        int l = a, r = b;
+        if (phi >= 0 && b > phi + 3) {
+            while (r > a && !sharp(g, w, r, step))
+                r--;
+            if (r <= a)
+                r = b;
+        }
+        if (plo >= 0 && a < plo - 3) {
+            while (l < r && !sharp(g, w, l, step))
+                l++;
+            if (l >= r)
+                l = a;
+        }
         if (l > a || r < b)
             trimmed = 1;
         memset(m + a, 0, (size_t)(l - a));
         memset(m + r + 1, 0, (size_t)(b - r));
+        plo = l;
+        phi = r;
     }
     return trimmed;
 }

@@ -32,11 +32,12 @@ int recon_mask_close(uint8_t *mask, int w, int h, int r);
 /* Opening, likewise: removes slivers thinner than 2r+1 px. */
 int recon_mask_open(uint8_t *mask, int w, int h, int r);
 
-/* Floor shadows are soft and touch the vessel only at its foot: on each row of
- * the object's lowest eighth, moves the object's ends inward to the first
- * sharp step (over two pixels along the row or the column, at least step), so
- * a shadow that joined the mask is cut off at the vessel. Rows without a sharp
- * step stay. Returns 1 when anything changed. */
+/* Floor shadows are soft and touch the vessel only at its foot: on the rows
+ * of the object's lowest eighth, top to bottom, an end of the row that juts
+ * out more than 3 px past the (trimmed) row above moves inward to the first
+ * sharp step along the row (over two pixels, at least step; none: it stays). A vessel's outline changes smoothly from row to
+ * row; a shadow that joined the mask does not. Returns 1 when anything
+ * changed. */
 int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float step);
 
 /* ---- Suzuki–Abe border following (border_follow.c) */
@@ -82,12 +83,13 @@ float recon_shi_tomasi_at(const float *img, int w, int h, int x, int y);
 /* ---- corners (corners.c) */
 
 /* Finds the four corners on the closed contour (pixel centres): rasterises the
- * Douglas–Peucker approximation (approx_idx into contour), blurs it, samples
- * the Shi–Tomasi response along the contour and picks, in the frame of the
- * PCA axis (up = axis_up), the strongest corner extreme toward each of the
- * four diagonal directions; snapped to the contour point of sharpest turn.
- * Returns a bit set of the corners found (all four: 0xF); corner_idx holds
- * contour indices. */
+ * Douglas–Peucker approximation (approx_idx into contour) around each vertex,
+ * blurs it (7x7 Gaussian) and takes the Shi–Tomasi response there; among the
+ * convex, corner-like vertices of each quadrant of the PCA frame (up =
+ * axis_up, split at mean) picks the highest (rim) or lowest (base), then the
+ * outermost near that height; snapped to the contour point of sharpest turn.
+ * Returns a bit set of the corners found (bit q for CORNER_q; all: 0xF);
+ * corner_idx holds contour indices. */
 int recon_find_corners(const vec2 *contour, int n, const int *approx_idx, int n_approx, vec2 mean, vec2 axis_up,
                        int corner_idx[CORNER_COUNT]);
 

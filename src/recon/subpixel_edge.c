@@ -12,12 +12,20 @@
 
 #include "recon/recon_internal.h"
 
-/* Object length inside [a0, a1] measured from its inner end, and the contrast. */
+/* Object length inside [a0, a1] measured from its inner end, and the contrast.
+ * A glossy glaze at grazing angles reflects its surroundings, i.e. the
+ * backdrop: its level drifts toward the backdrop's over the last pixels
+ * before the outline, so the nearest pure pixel lags behind the level under
+ * the edge. When the two pixels inside trend toward bg, fg is extrapolated one
+ * pixel along that trend (by at most half the contrast). */
 static int ramp(const float *row, int w, int a0, int a1, int side, double *len, double *contrast)
 {
-    if (a0 < 1 || a1 > w - 2 || a1 < a0)
+    if (a0 < 2 || a1 > w - 3 || a1 < a0)
         return 0;
     double fg = side > 0 ? row[a0 - 1] : row[a1 + 1], bg = side > 0 ? row[a1 + 1] : row[a0 - 1];
+    double fg2 = side > 0 ? row[a0 - 2] : row[a1 + 2], ext = 2 * fg - fg2;
+    if ((ext - fg) * (bg - fg) > 0 && fabs(ext - fg) < 0.5 * fabs(bg - fg))
+        fg = ext;
     *contrast = fabs(fg - bg);
     if (*contrast < 1e-4)
         return 0;

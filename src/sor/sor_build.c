@@ -41,7 +41,20 @@ void sor_cubic_split(const double p[4], double w, double left[4], double right[4
     right[0] = m, right[1] = bc, right[2] = c, right[3] = p[3];
 }
 
-static void piece_finish(sor_piece *pc) { sor_bernstein_square3(pc->r, pc->r2); }
+static void power_basis(const double b[4], double p[4])
+{
+    p[0] = b[0];
+    p[1] = 3.0 * (b[1] - b[0]);
+    p[2] = 3.0 * (b[2] - 2.0 * b[1] + b[0]);
+    p[3] = b[3] - 3.0 * b[2] + 3.0 * b[1] - b[0];
+}
+
+static void piece_finish(sor_piece *pc)
+{
+    sor_bernstein_square3(pc->r, pc->r2);
+    power_basis(pc->r, pc->rp);
+    power_basis(pc->h, pc->hp);
+}
 
 /* Splits pc at local parameter w into two pieces sharing the split point bit for bit. */
 static void piece_split(const sor_piece *pc, double w, sor_piece *left, sor_piece *right)
@@ -180,11 +193,17 @@ static int load_profile(sor_t *s, const bspline_t *profile, char *err, size_t er
     int n = bspline_to_bezier(profile, &bz);
     if (n <= 0)
         return fail(err, errlen, "profile: cannot split into Bezier pieces");
-    double h1 = bz[n - 1].p[3].y;
-    if (bz[0].p[0].y != 0.0 || !(h1 > 0.0)) {
+    /* Fitted profiles may miss r >= 0 and h(0) = 0 by rounding: within 1e-9 of
+     * the profile's extent they are snapped, beyond that rejected. */
+    double ext = 0.0;
+    for (int i = 0; i < profile->n_ctrl; i++)
+        ext = fmax(ext, fmax(fabs(profile->ctrl[i].x), fabs(profile->ctrl[i].y)));
+    double snap = 1e-9 * ext, h1 = bz[n - 1].p[3].y;
+    if (!(fabs(bz[0].p[0].y) <= snap) || !(h1 > snap)) {
         free(bz);
         return fail(err, errlen, "profile: need h(0) = 0 < h(1)");
     }
+    bz[0].p[0].y = 0.0;
     s->scale = s->height / h1;
     s->bez = calloc((size_t)n, sizeof *s->bez);
     if (!s->bez) {
@@ -196,10 +215,11 @@ static int load_profile(sor_t *s, const bspline_t *profile, char *err, size_t er
     for (int j = 0; j < n; j++) {
         sor_piece *pc = &s->bez[j];
         for (int k = 0; k < 4; k++) {
-            if (!(bz[j].p[k].x >= 0.0)) {
+            if (!(bz[j].p[k].x >= -snap)) {
                 free(bz);
                 return fail(err, errlen, "profile: control point with r < 0");
             }
+            bz[j].p[k].x = fmax(bz[j].p[k].x, 0.0);
             /* Shared joints stay bit-identical: the same doubles times the same scale. */
             pc->r[k] = bz[j].p[k].x * s->scale;
             pc->h[k] = bz[j].p[k].y * s->scale;
@@ -211,6 +231,7 @@ static int load_profile(sor_t *s, const bspline_t *profile, char *err, size_t er
         piece_finish(pc);
     }
     s->bez[n - 1].h[3] = s->height;
+    piece_finish(&s->bez[n - 1]);
     free(bz);
     s->r_base = s->bez[0].r[0];
     s->r_mouth = s->bez[n - 1].r[3];
@@ -327,6 +348,8 @@ sor_t *sor_create(const bspline_t *profile, double height, unsigned caps, char *
         return NULL;
     }
     free(iv_of_leaf);
+    double slack = BOX_SLACK * s->size, R = s->r_max + slack;
+    s->bound = (sor_node){0.0, R * R, s->h_min - slack, s->h_max + slack, -1, -1};
     return s;
 }
 

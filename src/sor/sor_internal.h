@@ -15,7 +15,8 @@
 typedef struct {
     double r[4], h[4];
     double r2[7];
-    double u0, u1; /* profile parameter range covered */
+    double rp[4], hp[4]; /* power-basis coefficients (p0 + p1 w + p2 w^2 + p3 w^3) for fast evaluation */
+    double u0, u1;       /* profile parameter range covered */
     int interval;  /* monotone interval of a leaf (its primitive index) */
 } sor_piece;
 
@@ -38,6 +39,7 @@ struct sor {
     double r_base, r_mouth; /* cap radii */
     int n_pieces;           /* monotone leaves, in profile order */
     sor_piece *pieces;
+    sor_node bound;         /* the bounding cylinder of wall and caps */
     int n_nodes;
     sor_node *nodes;
     int n_intervals;        /* monotone intervals: one subtree each */
@@ -87,6 +89,10 @@ void sor_fill_hit(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
 
 /* SOR_CAP_BASE or SOR_CAP_MOUTH: the cap a primitive index past the intervals names. */
 unsigned sor_prim_cap(const sor_t *sor, int prim);
+
+/* min/max that compile to one instruction (fmin/fmax are libm calls here). */
+static inline double sor_max(double a, double b) { return a > b ? a : b; }
+static inline double sor_min(double a, double b) { return a < b ? a : b; }
 
 /* Bernstein helpers shared by the build and the solver. */
 void sor_bernstein_square3(const double p[4], double out[7]);

@@ -23,6 +23,7 @@ typedef struct {
     double lo, hi; /* a bracket with one sign change, or a seed point lo = hi */
     double clo;    /* g at lo for a bracket */
     int bracket;
+    double c[7];   /* a bracket's Bernstein coefficients */
 } iso_item;
 
 typedef struct {
@@ -53,9 +54,9 @@ static int isolate(const double *c, int n, double tau, iso_item *items)
 {
     int ni = 0, budget = ISO_BUDGET;
     if (fabs(c[0]) <= tau)
-        items[ni++] = (iso_item){0.0, 0.0, 0.0, 0};
+        items[ni++] = (iso_item){0.0, 0.0, 0.0, 0, {0}};
     if (fabs(c[n]) <= tau)
-        items[ni++] = (iso_item){1.0, 1.0, 0.0, 0};
+        items[ni++] = (iso_item){1.0, 1.0, 0.0, 0, {0}};
     iso_span stack[ISO_MAX_DEPTH + 2];
     int sp = 0;
     stack[sp].lo = 0.0, stack[sp].hi = 1.0, stack[sp].depth = 0;
@@ -79,11 +80,14 @@ static int isolate(const double *c, int n, double tau, iso_item *items)
             continue;
         double mid = 0.5 * (S->lo + S->hi);
         if (var == 1 && fabs(S->c[0]) > tau && fabs(S->c[n]) > tau) {
-            items[ni++] = (iso_item){S->lo, S->hi, S->c[0], 1};
+            iso_item *it = &items[ni++];
+            it->lo = S->lo, it->hi = S->hi, it->clo = S->c[0], it->bracket = 1;
+            for (int k = 0; k <= n; k++)
+                it->c[k] = S->c[k];
             continue;
         }
         if (S->depth >= ISO_MAX_DEPTH) {
-            items[ni++] = (iso_item){mid, mid, 0.0, 0};
+            items[ni++] = (iso_item){mid, mid, 0.0, 0, {0}};
             continue;
         }
         iso_span L, R;
@@ -91,7 +95,7 @@ static int isolate(const double *c, int n, double tau, iso_item *items)
         L.lo = S->lo, L.hi = mid, R.lo = mid, R.hi = S->hi;
         L.depth = R.depth = S->depth + 1;
         if (fabs(L.c[n]) <= tau)
-            items[ni++] = (iso_item){mid, mid, 0.0, 0};
+            items[ni++] = (iso_item){mid, mid, 0.0, 0, {0}};
         stack[sp++] = R; /* left half first: S is overwritten only after its halves are copied */
         stack[sp++] = L;
     }
@@ -102,16 +106,16 @@ typedef struct {
     double r, h, rw, hw;
 } piece_point;
 
+/* The piece and its derivative at w, by Horner on the power basis (the
+ * Bernstein values stay the reference for everything exact at the ends). */
 static piece_point piece_eval(const sor_piece *pc, double w)
 {
-    double m = 1.0 - w;
-    double b0 = m * m * m, b1 = 3.0 * w * m * m, b2 = 3.0 * w * w * m, b3 = w * w * w;
-    double d0 = m * m, d1 = 2.0 * w * m, d2 = w * w;
+    const double *r = pc->rp, *h = pc->hp;
     piece_point q;
-    q.r = b0 * pc->r[0] + b1 * pc->r[1] + b2 * pc->r[2] + b3 * pc->r[3];
-    q.h = b0 * pc->h[0] + b1 * pc->h[1] + b2 * pc->h[2] + b3 * pc->h[3];
-    q.rw = 3.0 * (d0 * (pc->r[1] - pc->r[0]) + d1 * (pc->r[2] - pc->r[1]) + d2 * (pc->r[3] - pc->r[2]));
-    q.hw = 3.0 * (d0 * (pc->h[1] - pc->h[0]) + d1 * (pc->h[2] - pc->h[1]) + d2 * (pc->h[3] - pc->h[2]));
+    q.r = ((r[3] * w + r[2]) * w + r[1]) * w + r[0];
+    q.h = ((h[3] * w + h[2]) * w + h[1]) * w + h[0];
+    q.rw = (3.0 * r[3] * w + 2.0 * r[2]) * w + r[1];
+    q.hw = (3.0 * h[3] * w + 2.0 * h[2]) * w + h[1];
     return q;
 }
 
@@ -128,13 +132,24 @@ static double leaf_fn(const sor_piece *pc, const sor_ray *ry, double w, double *
     return dy2 * q.r * q.r - D * (ry->a * D + lin) - ry->rho2c * dy2;
 }
 
-/* Newton safeguarded by bisection on a bracket with one sign change. */
-static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_item *it)
+/* Newton safeguarded by bisection on a bracket with one sign change, started
+ * where the bracket's control polygon crosses zero (c: its Bernstein
+ * coefficients, n the degree). It stops once a step is below 1e-7 of the
+ * piece, when the error is ~1e-14: the Newton polish in (w, s) that follows
+ * takes it to rounding level. */
+static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_item *it, const double *c, int n)
 {
-    double lo = it->lo, hi = it->hi, w = 0.5 * (lo + hi);
+    double lo = it->lo, hi = it->hi, fp, w = 0.5 * (lo + hi);
     int slo = it->clo > 0.0;
+    for (int k = 0; k < n; k++)
+        if ((c[k] > 0.0) != (c[k + 1] > 0.0)) {
+            w = lo + (hi - lo) * (k + c[k] / (c[k] - c[k + 1])) / n;
+            break;
+        }
+    if (!(w > lo && w < hi))
+        w = 0.5 * (lo + hi);
     for (int k = 0; k < 60; k++) {
-        double fp, f = leaf_fn(pc, ry, w, &fp);
+        double f = leaf_fn(pc, ry, w, &fp);
         if (f == 0.0)
             return w;
         if ((f > 0.0) == slo)
@@ -144,7 +159,7 @@ static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_ite
         double wn = w - f / fp;
         if (!(wn > lo && wn < hi))
             wn = 0.5 * (lo + hi);
-        if (fabs(wn - w) <= 4.0 * DBL_EPSILON || hi - lo <= 4.0 * DBL_EPSILON)
+        if (fabs(wn - w) <= 1e-7 || hi - lo <= 1e-10)
             return wn;
         w = wn;
     }
@@ -157,25 +172,27 @@ static double residual(const sor_ray *ry, const piece_point *q, double s, double
     double rho2 = (ry->a * s + 2.0 * ry->beta) * s + ry->rho2c;
     *F1 = q->r * q->r - rho2;
     *F2 = q->h - ry->hc - ry->dy * s;
-    double rho = sqrt(fmax(rho2, 0.0));
-    return fmax(fabs(q->r - rho), fabs(*F2));
+    double rho = sqrt(sor_max(rho2, 0.0));
+    return sor_max(fabs(q->r - rho), fabs(*F2));
 }
 
-/* Newton on F1 = r(w)^2 - rho^2(s), F2 = h(w) - hc - dy s from (w, s); keeps
- * the best iterate. Returns its distance from the surface. */
-static double polish(const sor_piece *pc, const sor_ray *ry, double tol, double *w, double *s)
+/* Newton on F1 = r(w)^2 - rho^2(s), F2 = h(w) - hc - dy s from (w, s), keeping
+ * the best iterate; q is the piece at w. One step is enough from a bracketed
+ * root; more are taken only while the distance to the surface exceeds tol.
+ * Returns that distance. */
+static double polish(const sor_piece *pc, const sor_ray *ry, double tol, piece_point q, double *w, double *s)
 {
-    double bw = *w, bs = *s, F1, F2;
-    piece_point q = piece_eval(pc, bw);
-    double best = residual(ry, &q, bs, &F1, &F2);
-    double cw = bw, cs = bs;
-    for (int it = 0; it < 4 && best > 1e-3 * tol; it++) {
+    double bw = *w, bs = *s, cw = bw, cs = bs, best = INFINITY, F1, F2;
+    double rho2 = (ry->a * cs + 2.0 * ry->beta) * cs + ry->rho2c;
+    F1 = q.r * q.r - rho2;
+    F2 = q.h - ry->hc - ry->dy * cs;
+    for (int it = 0; it < 4; it++) {
         double J11 = 2.0 * q.r * q.rw, J12 = -2.0 * (ry->a * cs + ry->beta), J21 = q.hw, J22 = -ry->dy;
         double det = J11 * J22 - J12 * J21;
         if (!(fabs(det) > 1e-14 * (fabs(J11 * J22) + fabs(J12 * J21))))
-            break;
-        double dw = (J12 * F2 - J22 * F1) / det, ds = (J21 * F1 - J11 * F2) / det;
-        cw += dw, cs += ds;
+            break; /* tangent: the seed is as good as it gets */
+        cw += (J12 * F2 - J22 * F1) / det;
+        cs += (J21 * F1 - J11 * F2) / det;
         if (!(cw > -0.5 && cw < 1.5))
             break;
         q = piece_eval(pc, cw);
@@ -183,41 +200,55 @@ static double polish(const sor_piece *pc, const sor_ray *ry, double tol, double 
         if (!(e < best))
             break;
         best = e, bw = cw, bs = cs;
+        if (e <= 1e-3 * tol)
+            break;
+    }
+    if (best > tol) { /* no step helped enough (e.g. at a tangency): judge the seed too */
+        q = piece_eval(pc, *w);
+        double e = residual(ry, &q, *s, &F1, &F2);
+        if (e < best)
+            return e;
     }
     *w = bw, *s = bs;
     return best;
 }
 
-/* Offers the hit candidates at piece parameter w: s from whichever equation
- * determines it better, then polished and checked. */
-static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *ry, double w, double smin,
-                 sor_best *best)
+/* Offers the hit candidates at piece parameter w, a root isolated in
+ * [wlo, whi]: s from whichever equation determines it better, then polished
+ * and checked. A shallow ray meets the circle of radius r(w) at two s. From a
+ * bracketed root the height tells which; should the polish leave the bracket
+ * (it went to another root), the other s is tried. A seed may stand for a
+ * cluster of roots (the entry and exit of a nearly horizontal ray at almost
+ * the same w), so seeds try both. */
+static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *ry, double w, double wlo, double whi,
+                 int seed, double smin, sor_best *best)
 {
     piece_point q = piece_eval(pc, w);
     double cand[2];
-    int nc = 0;
+    int nc = 0, both = 1;
     if (ry->steep) {
         cand[nc++] = (q.h - ry->hc) / ry->dy;
     } else {
-        double S = sqrt(fmax(0.0, (q.r * q.r - ry->d2) / ry->a));
+        double S = sqrt(sor_max(0.0, (q.r * q.r - ry->d2) / ry->a));
         double sp = ry->s_star + S, sm = ry->s_star - S;
         double ep = fabs(q.h - ry->hc - ry->dy * sp), em = fabs(q.h - ry->hc - ry->dy * sm);
-        if (fmax(ep, em) <= sor->tol || S == 0.0) {
-            cand[nc++] = sm;
-            if (S > 0.0)
-                cand[nc++] = sp;
-        } else {
-            cand[nc++] = ep < em ? sp : sm;
-        }
+        cand[nc++] = ep < em ? sp : sm;
+        if (S > 0.0)
+            cand[nc++] = ep < em ? sm : sp;
+        both = seed || sor_max(ep, em) <= sor->tol;
     }
     int found = 0;
     for (int k = 0; k < nc; k++) {
         double cw = w, cs = cand[k];
-        double e = polish(pc, ry, sor->tol, &cw, &cs);
-        if (e <= sor->tol && cw >= -1e-9 && cw <= 1.0 + 1e-9 && cs > smin && cs < best->s) {
-            best->s = cs, best->w = fmin(1.0, fmax(0.0, cw)), best->piece = idx, best->part = SOR_PART_WALL;
+        double e = polish(pc, ry, sor->tol, q, &cw, &cs);
+        if (!(e <= sor->tol && cw >= wlo - 1e-9 && cw <= whi + 1e-9))
+            continue;
+        if (cs > smin && cs < best->s) {
+            best->s = cs, best->w = sor_min(1.0, sor_max(0.0, cw)), best->piece = idx, best->part = SOR_PART_WALL;
             found = 1;
         }
+        if (!both)
+            break;
     }
     return found;
 }
@@ -241,22 +272,27 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
         pq[4] = (p[1] * q[3] + 3.0 * p[2] * q[2] + p[3] * q[1]) / 5.0;
         pq[5] = 0.5 * (p[2] * q[3] + p[3] * q[2]);
         pq[6] = p[3] * q[3];
-        int pos = 0, neg = 0;
+        int var = 0;
         for (int k = 0; k < 7; k++) {
             double A = dy2 * pc->r2[k], B = pq[k] + K;
             c[k] = A - B;
-            mag = fmax(mag, fabs(A) + fabs(B));
-            pos += c[k] > 0.0, neg += c[k] < 0.0;
+            mag = sor_max(mag, fabs(A) + fabs(B));
+            var += k > 0 && (c[k] > 0.0) != (c[k - 1] > 0.0);
         }
         n = 6;
-        /* Fast exit: the hull of g stays clear of zero (ends with margin). */
+        /* Fast paths, the common cases: the hull of g stays clear of zero, or
+         * crosses it once with both ends clear of zero (exactly one root). */
         double tau = 64.0 * DBL_EPSILON * mag;
-        if ((pos == 7 || neg == 7) && fabs(c[0]) > tau && fabs(c[6]) > tau)
-            return 0;
+        if (fabs(c[0]) > tau && fabs(c[6]) > tau && var <= 1) {
+            if (var == 0)
+                return 0;
+            iso_item it = {0.0, 1.0, c[0], 1, {0}};
+            return offer(sor, pc, idx, ry, bracket_root(pc, ry, &it, c, 6), 0.0, 1.0, 0, smin, best);
+        }
     } else {
         for (int i = 0; i < 4; i++) {
             c[i] = pc->h[i] - ry->hc;
-            mag = fmax(mag, fabs(pc->h[i]) + fabs(ry->hc));
+            mag = sor_max(mag, fabs(pc->h[i]) + fabs(ry->hc));
         }
         n = 3;
     }
@@ -265,8 +301,11 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
     int ni = isolate(c, n, tau, items);
     int found = 0;
     for (int k = 0; k < ni; k++) {
-        double w = items[k].bracket ? bracket_root(pc, ry, &items[k]) : items[k].lo;
-        found |= offer(sor, pc, idx, ry, w, smin, best);
+        const iso_item *it = &items[k];
+        if (it->bracket)
+            found |= offer(sor, pc, idx, ry, bracket_root(pc, ry, it, it->c, n), it->lo, it->hi, 0, smin, best);
+        else
+            found |= offer(sor, pc, idx, ry, it->lo, 0.0, 1.0, 1, smin, best);
     }
     return found;
 }

@@ -13,59 +13,51 @@ int sor_ray_setup(const sor_t *sor, const ray3 *ray, sor_ray *ry)
     double a = d.x * d.x + d.z * d.z, dy = d.y;
     if (!(a + dy * dy > 0.0) || !isfinite(a + dy * dy) || !isfinite(o.x + o.y + o.z))
         return 0;
-    ry->o = o, ry->d = d, ry->a = a, ry->dy = dy;
-    ry->inv_dy = dy != 0.0 ? 1.0 / dy : 0.0;
+    /* A tilt so small that 1/dy (or 1/a) overflows is horizontal (vertical) to
+     * double precision. */
+    double inv_dy = 1.0 / dy, inv_a = 1.0 / a;
+    if (!isfinite(inv_dy))
+        dy = 0.0, inv_dy = 0.0;
+    if (!isfinite(inv_a))
+        a = 0.0, inv_a = 0.0;
+    ry->o = o, ry->d = d, ry->a = a, ry->dy = dy, ry->inv_dy = inv_dy;
     ry->steep = a < dy * dy;
-    ry->tc = ry->steep ? (0.5 * (sor->h_min + sor->h_max) - o.y) / dy : -(o.x * d.x + o.z * d.z) / a;
+    ry->tc = ry->steep ? (0.5 * (sor->h_min + sor->h_max) - o.y) * inv_dy : -(o.x * d.x + o.z * d.z) * inv_a;
     vec3 pc = v3_add(o, v3_scale(d, ry->tc));
     ry->pc = pc;
     ry->hc = pc.y;
     ry->rho2c = pc.x * pc.x + pc.z * pc.z;
     ry->beta = ry->steep ? pc.x * d.x + pc.z * d.z : 0.0;
-    if (a > 0.0) {
-        double cr = pc.x * d.z - pc.z * d.x; /* invariant along the ray: no cancellation */
-        ry->s_star = -ry->beta / a;
-        ry->d2 = cr * cr / a;
-    } else {
-        ry->s_star = 0.0;
-        ry->d2 = ry->rho2c;
-    }
+    double cr = pc.x * d.z - pc.z * d.x; /* invariant along the ray: no cancellation */
+    ry->s_star = -ry->beta * inv_a;
+    ry->d2 = a > 0.0 ? cr * cr * inv_a : ry->rho2c;
     return 1;
 }
 
 /* Can the ray meet the annulus r^2 in [q0,q1], h in [h0,h1] for s in [smin, smax]?
- * On success *slo is a lower bound of s over the meeting. */
+ * On success *slo is a lower bound of s over the meeting. The usual case
+ * (dy != 0, a > 0) is branch-free: min/max compile to single instructions,
+ * and the tests are combined at the end. */
 static inline int node_hit(const sor_node *nd, const sor_ray *ry, double smin, double smax, double *slo)
 {
     double sa, sb;
     if (ry->dy != 0.0) {
-        sa = (nd->h0 - ry->hc) * ry->inv_dy;
-        sb = (nd->h1 - ry->hc) * ry->inv_dy;
-        if (sa > sb) {
-            double t = sa;
-            sa = sb, sb = t;
-        }
-        sa = fmax(sa, smin), sb = fmin(sb, smax);
-        if (!(sa <= sb))
-            return 0;
+        double s0 = (nd->h0 - ry->hc) * ry->inv_dy, s1 = (nd->h1 - ry->hc) * ry->inv_dy;
+        sa = sor_max(sor_min(s0, s1), smin);
+        sb = sor_min(sor_max(s0, s1), smax);
     } else {
         if (ry->hc < nd->h0 || ry->hc > nd->h1)
             return 0;
         sa = smin, sb = smax;
     }
+    *slo = sa;
     if (ry->a > 0.0) {
         double ea = sa - ry->s_star, eb = sb - ry->s_star;
-        double fa = ry->a * ea * ea + ry->d2, fb = ry->a * eb * eb + ry->d2;
-        if (fmax(fa, fb) < nd->q0)
-            return 0;
-        double em = ea > 0.0 ? ea : (eb < 0.0 ? eb : 0.0);
-        if (ry->a * em * em + ry->d2 > nd->q1)
-            return 0;
-    } else if (ry->rho2c < nd->q0 || ry->rho2c > nd->q1) {
-        return 0;
+        double em = sor_max(ea, sor_min(eb, 0.0)); /* the vertex clamped into [ea, eb] */
+        double fa = ry->a * ea * ea, fb = ry->a * eb * eb, fm = ry->a * em * em;
+        return (sa <= sb) & (sor_max(fa, fb) + ry->d2 >= nd->q0) & (fm + ry->d2 <= nd->q1);
     }
-    *slo = sa;
-    return 1;
+    return (sa <= sb) & (ry->rho2c >= nd->q0) & (ry->rho2c <= nd->q1);
 }
 
 int sor_tree_intersect(const sor_t *sor, int root, const sor_ray *ry, double smin, sor_best *best, int any)
@@ -86,7 +78,7 @@ int sor_tree_intersect(const sor_t *sor, int root, const sor_ray *ry, double smi
                     return 1;
             }
         } else {
-            double s0, s1;
+            double s0 = 0.0, s1 = 0.0;
             int h0 = node_hit(&nodes[node + 1], ry, smin, best->s, &s0);
             int h1 = node_hit(&nodes[nd->skip], ry, smin, best->s, &s1);
             if (h0 && h1) {
@@ -123,7 +115,7 @@ int sor_caps_intersect(const sor_t *sor, const sor_ray *ry, unsigned which, doub
         if (!(which & cap))
             continue;
         double y = cap == SOR_CAP_BASE ? 0.0 : sor->height, R = cap == SOR_CAP_BASE ? sor->r_base : sor->r_mouth;
-        double s = (y - ry->hc) / ry->dy;
+        double s = (y - ry->hc) * ry->inv_dy;
         if (!(s > smin && s < best->s))
             continue;
         double x = ry->pc.x + s * ry->d.x, z = ry->pc.z + s * ry->d.z, lim = R + sor->tol;
@@ -141,7 +133,7 @@ void sor_fill_hit(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
 {
     double t = ry->tc + best->s;
     vec3 p = v3_add(ry->pc, v3_scale(ry->d, best->s));
-    double rho = hypot(p.x, p.z), c = 1.0, sn = 0.0, phi = 0.0;
+    double rho = sqrt(p.x * p.x + p.z * p.z), c = 1.0, sn = 0.0, phi = 0.0;
     if (rho > 0.0) {
         c = p.x / rho, sn = p.z / rho;
         phi = atan2(p.z, p.x);
@@ -159,7 +151,7 @@ void sor_fill_hit(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
         double hw = m * m * (pc->h[1] - pc->h[0]) + 2.0 * w * m * (pc->h[2] - pc->h[1]) + w * w * (pc->h[3] - pc->h[2]);
         double scale = fabs(pc->r[3] - pc->r[0]) + fabs(pc->h[3] - pc->h[0]) + fabs(pc->r[1] - pc->r[0]) +
                        fabs(pc->h[1] - pc->h[0]) + fabs(pc->r[2] - pc->r[3]) + fabs(pc->h[2] - pc->h[3]);
-        if (hypot(rw, hw) <= 1e-12 * scale) {
+        if (fabs(rw) + fabs(hw) <= 1e-12 * scale) {
             /* A vanishing tangent (coincident control points at an end): the
              * tangent's limit is the direction to the next distinct control point. */
             int end = w > 0.5;
@@ -181,7 +173,7 @@ void sor_fill_hit(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
     hit->shading.s = v3(-sn, 0.0, c);
     hit->shading.t = v3_cross(n, hit->shading.s);
     double tu = phi <= M_PI ? 1.0 - phi / M_PI : phi / M_PI - 1.0;
-    hit->uv = v2(tu, fmin(1.0, fmax(0.0, p.y / sor->height)));
+    hit->uv = v2(tu, sor_min(1.0, sor_max(0.0, p.y / sor->height)));
     hit->part = best->part;
     hit->prim = prim;
 }
@@ -223,7 +215,9 @@ int sor_intersect(const sor_t *sor, const ray3 *ray, double tmin, double tmax, s
     if (!sor_ray_setup(sor, ray, &ry))
         return 0;
     sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc;
+    double smin = tmin - ry.tc, slo;
+    if (!node_hit(&sor->bound, &ry, smin, best.s, &slo))
+        return 0;
     int found = sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best);
     found |= sor_tree_intersect(sor, 0, &ry, smin, &best, 0);
     return finish(sor, sor->pieces, &ry, &best, found, hit);
@@ -235,7 +229,9 @@ int sor_occluded(const sor_t *sor, const ray3 *ray, double tmin, double tmax)
     if (!sor_ray_setup(sor, ray, &ry))
         return 0;
     sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc;
+    double smin = tmin - ry.tc, slo;
+    if (!node_hit(&sor->bound, &ry, smin, best.s, &slo))
+        return 0;
     return sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best) || sor_tree_intersect(sor, 0, &ry, smin, &best, 1);
 }
 

@@ -6,6 +6,7 @@
  * curve whose lip overhangs (h not monotone). */
 #include "sor_profiles.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 
 typedef struct {
@@ -81,4 +82,18 @@ void sor_test_profile(int i, bspline_t *out)
         out->knots[4 + j] = d->interior[j];
     for (int j = 0; j < d->n_ctrl; j++)
         out->ctrl[j] = d->ctrl[j];
+}
+
+sor_t *sor_test_create(int i, unsigned caps)
+{
+    bspline_t c;
+    sor_test_profile(i, &c);
+    char err[160];
+    sor_t *s = sor_create(&c, 1.0, caps, err, sizeof err);
+    bspline_free(&c);
+    if (!s) {
+        fprintf(stderr, "sor_test_create(%s): %s\n", sor_test_profile_name(i), err);
+        abort();
+    }
+    return s;
 }

@@ -8,6 +8,8 @@
  * tangency too close to call. */
 #include "sor_reference.h"
 
+#include "sor_profiles.h"
+
 #include <math.h>
 #include <stdlib.h>
 
@@ -17,6 +19,7 @@ typedef struct {
     ld u0, u1;
     ld r[4], h[4];         /* power coefficients in x = (u - u0) / (u1 - u0) */
     ld rmax, drmax, dhmax; /* bounds of |r|, |dr/dx|, |dh/dx| on the span */
+    ld d2rmax, d2hmax;     /* bounds of |r''|, |h''| */
 } ref_span;
 
 struct sor_ref {
@@ -99,19 +102,40 @@ static ld magnitude(const search *q, ld r, ld h)
     }
 }
 
-static ld lipschitz(const ref_span *s, const search *q, ld ha, ld hb, ld w)
+/* f'(x), for the local Lipschitz bound. */
+static ld fn_deriv(const ref_span *s, const search *q, ld x)
+{
+    ld r = horner(s->r, x), h = horner(s->h, x), dr = horner_d(s->r, x), dh = horner_d(s->h, x);
+    switch (q->mode) {
+    case MODE_RAY:
+        return 2.0L * q->dy * q->dy * r * dr - (2.0L * q->a * (h - q->oy) + 2.0L * q->b * q->dy) * dh;
+    case MODE_R:
+        return dr;
+    default:
+        return dh;
+    }
+}
+
+/* A bound of |f''| on the span (|D| <= Dmax there). */
+static ld second_bound(const ref_span *s, const search *q, ld Dmax)
 {
     switch (q->mode) {
-    case MODE_RAY: {
-        ld Dmax = fmaxl(fabsl(ha - q->oy), fabsl(hb - q->oy)) + 0.5L * s->dhmax * w;
-        return 2.0L * q->dy * q->dy * s->rmax * s->drmax +
-               (2.0L * q->a * Dmax + 2.0L * fabsl(q->b * q->dy)) * s->dhmax;
-    }
+    case MODE_RAY:
+        return 2.0L * q->dy * q->dy * (s->drmax * s->drmax + s->rmax * s->d2rmax) + 2.0L * q->a * s->dhmax * s->dhmax +
+               (2.0L * q->a * Dmax + 2.0L * fabsl(q->b * q->dy)) * s->d2hmax;
     case MODE_R:
-        return s->drmax;
+        return s->d2rmax;
     default:
-        return s->dhmax;
+        return s->d2hmax;
     }
+}
+
+/* A rigorous bound of |f'| on [xa, xb]: |f'(mid)| plus |f''| times half the width. */
+static ld lipschitz(const ref_span *s, const search *q, ld xa, ld xb, ld ha, ld hb)
+{
+    ld w = xb - xa, Dmax = fmaxl(fabsl(ha - q->oy), fabsl(hb - q->oy)) + 0.5L * s->dhmax * w;
+    ld L = fabsl(fn_deriv(s, q, 0.5L * (xa + xb))) + 0.5L * w * second_bound(s, q, Dmax);
+    return L * (1.0L + 1e-12L) + 1e-30L;
 }
 
 /* Candidate t of the wall point (r, h) on the ray (re-origined, t' = t - t0). */
@@ -150,7 +174,7 @@ static void bisect(const ref_span *s, int span, search *q, ld xa, ld xb, ld fa, 
 {
     ld w = xb - xa;
     int change = (fa < 0) != (fb < 0);
-    if (!change && fminl(fabsl(fa), fabsl(fb)) > 0.5L * lipschitz(s, q, ha, hb, w) * w)
+    if (!change && fminl(fabsl(fa), fabsl(fb)) > 0.5L * lipschitz(s, q, xa, xb, ha, hb) * w)
         return;
     if (q->mode == MODE_RAY && !ray_reaches(s, q, ra, ha, rb, hb, w))
         return;
@@ -277,6 +301,8 @@ sor_ref *sor_ref_create(const bspline_t *c, double height, unsigned caps)
         ld hmax;
         bounds(s->r, &s->rmax, &s->drmax);
         bounds(s->h, &hmax, &s->dhmax);
+        s->d2rmax = (2.0L * fabsl(s->r[2]) + 6.0L * fabsl(s->r[3])) * (1.0L + 1e-15L);
+        s->d2hmax = (2.0L * fabsl(s->h[2]) + 6.0L * fabsl(s->h[3])) * (1.0L + 1e-15L);
         for (int i = 0; i <= 64; i++) {
             ld x = i / 64.0L, r = horner(s->r, x), h = horner(s->h, x);
             ref->rmax = fmax(ref->rmax, (double)r);
@@ -287,6 +313,15 @@ sor_ref *sor_ref_create(const bspline_t *c, double height, unsigned caps)
     ref->rbase = (caps & 1u) ? (ld)c->ctrl[0].x * scale : -1.0L;
     ref->rmouth = (caps & 2u) ? (ld)c->ctrl[c->n_ctrl - 1].x * scale : -1.0L;
     ref->size = fmax(ref->hmax - ref->hmin, 2.0 * ref->rmax);
+    return ref;
+}
+
+sor_ref *sor_ref_create_profile(int i, unsigned caps)
+{
+    bspline_t c;
+    sor_test_profile(i, &c);
+    sor_ref *ref = sor_ref_create(&c, 1.0, caps);
+    bspline_free(&c);
     return ref;
 }
 
@@ -430,6 +465,9 @@ vec3 sor_ref_wall_point(const sor_ref *ref, double u, double phi)
     ld r = horner(s->r, x), h = horner(s->h, x);
     return v3((double)(r * cosl(phi)), (double)h, (double)(r * sinl(phi)));
 }
+
+int sor_ref_joint_count(const sor_ref *ref) { return ref->n - 1; }
+double sor_ref_joint(const sor_ref *ref, int k) { return (double)ref->sp[k].u1; }
 
 vec3 sor_ref_wall_normal(const sor_ref *ref, double u, double phi)
 {

@@ -19,6 +19,8 @@ enum { SOR_REF_MISS = 0, SOR_REF_HIT = 1, SOR_REF_AMBIGUOUS = -1 };
 /* Same meaning of profile, height and caps as sor_create. NULL on bad input. */
 sor_ref *sor_ref_create(const bspline_t *profile, double height, unsigned caps);
 void sor_ref_destroy(sor_ref *ref);
+/* The reference for test profile i (sor_profiles.h) at height 1. */
+sor_ref *sor_ref_create_profile(int i, unsigned caps);
 
 /* Nearest t in (tmin, tmax) where the ray meets the closed surface. Returns
  * SOR_REF_HIT (and *t), SOR_REF_MISS, or SOR_REF_AMBIGUOUS when a tangency
@@ -35,6 +37,9 @@ double sor_ref_surface_distance(const sor_ref *ref, vec3 p);
 
 /* The wall point at profile parameter u and angle phi, object space. */
 vec3 sor_ref_wall_point(const sor_ref *ref, double u, double phi);
+/* Interior joints of the profile: the distinct interior knots (Bézier joints). */
+int sor_ref_joint_count(const sor_ref *ref);
+double sor_ref_joint(const sor_ref *ref, int k);
 /* The outward normal direction of the wall there (unnormalised). */
 vec3 sor_ref_wall_normal(const sor_ref *ref, double u, double phi);
 

@@ -1,0 +1,418 @@
+/* The scene: an Embree device and scene, one record per geometry, and the
+ * double-precision front end of rtcIntersect1 / rtcOccluded1. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "accel/accel_internal.h"
+#include "celadon/curve_domains.h"
+
+static void embree_error(void *user, enum RTCError code, const char *msg)
+{
+    (void)user;
+    fprintf(stderr, "embree: error %d: %s\n", (int)code, msg ? msg : "");
+}
+
+accel_t *accel_create(accel_build build, char *err, size_t errlen)
+{
+    accel_t *acc = calloc(1, sizeof *acc);
+    if (!acc) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    acc->device = rtcNewDevice(NULL);
+    if (!acc->device) {
+        snprintf(err, errlen, "cannot create an Embree device (error %d)", (int)rtcGetDeviceError(NULL));
+        free(acc);
+        return NULL;
+    }
+    rtcSetDeviceErrorFunction(acc->device, embree_error, NULL);
+    acc->scene = rtcNewScene(acc->device);
+    if (!acc->scene) {
+        snprintf(err, errlen, "cannot create an Embree scene");
+        rtcReleaseDevice(acc->device);
+        free(acc);
+        return NULL;
+    }
+    rtcSetSceneBuildQuality(acc->scene, build == ACCEL_BUILD_BEST ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
+    return acc;
+}
+
+static void geom_free(accel_geom *g)
+{
+    if (!g)
+        return;
+    free(g->vtx);
+    sor_destroy(g->sor);
+    free(g);
+}
+
+void accel_destroy(accel_t *acc)
+{
+    if (!acc)
+        return;
+    rtcReleaseScene(acc->scene);
+    rtcReleaseDevice(acc->device);
+    for (int i = 0; i < acc->n_geoms; i++)
+        geom_free(acc->geoms[i]);
+    free(acc->geoms);
+    free(acc);
+}
+
+/* Finite, affine, and its carried inverse really inverts it (a singular
+ * scale, say, leaves infinities there). */
+static int transform_valid(const transform4 *t)
+{
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            if (!isfinite(t->m[i][j]) || !isfinite(t->inv[i][j]))
+                return 0;
+    if (t->m[3][0] != 0 || t->m[3][1] != 0 || t->m[3][2] != 0 || t->m[3][3] != 1)
+        return 0;
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            double p = 0, scale = 0;
+            for (int k = 0; k < 3; k++) {
+                p += t->m[i][k] * t->inv[k][j];
+                scale += fabs(t->m[i][k] * t->inv[k][j]);
+            }
+            if (!(fabs(p - (i == j)) <= 1e-9 * scale))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* A record with its transforms; NULL with a reason when to_world is unusable. */
+static accel_geom *geom_new(accel_kind kind, const transform4 *to_world, char *err, size_t errlen)
+{
+    accel_geom *g = calloc(1, sizeof *g);
+    if (!g) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    g->kind = kind;
+    g->to_world = to_world ? *to_world : transform_identity();
+    if (!transform_valid(&g->to_world)) {
+        snprintf(err, errlen, "transform is singular or not finite");
+        free(g);
+        return NULL;
+    }
+    g->to_object = transform_inverse(&g->to_world);
+    return g;
+}
+
+/* Attaches geom (taking our reference) and files g under Embree's id. */
+static unsigned attach(accel_t *acc, RTCGeometry geom, accel_geom *g, char *err, size_t errlen)
+{
+    if (acc->n_geoms == acc->cap_geoms) {
+        int cap = acc->cap_geoms ? 2 * acc->cap_geoms : 8;
+        accel_geom **p = realloc(acc->geoms, (size_t)cap * sizeof *p);
+        if (!p) {
+            snprintf(err, errlen, "out of memory");
+            rtcReleaseGeometry(geom);
+            geom_free(g);
+            return ACCEL_INVALID_ID;
+        }
+        acc->geoms = p;
+        acc->cap_geoms = cap;
+    }
+    rtcCommitGeometry(geom);
+    unsigned id = rtcAttachGeometry(acc->scene, geom);
+    rtcReleaseGeometry(geom);
+    /* Ids are handed out in order from 0 while nothing is detached. */
+    if (id != (unsigned)acc->n_geoms) {
+        snprintf(err, errlen, "Embree returned geometry id %u, expected %d", id, acc->n_geoms);
+        if (id != RTC_INVALID_GEOMETRY_ID)
+            rtcDetachGeometry(acc->scene, id);
+        geom_free(g);
+        return ACCEL_INVALID_ID;
+    }
+    acc->geoms[acc->n_geoms++] = g;
+    return id;
+}
+
+static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, const transform4 *to_world, char *err,
+                              size_t errlen)
+{
+    if (!m || m->n_verts < 3 || m->n_tris < 1 || !m->pos || !m->tri) {
+        snprintf(err, errlen, "mesh has no triangles");
+        return ACCEL_INVALID_ID;
+    }
+    for (size_t i = 0; i < 3 * (size_t)m->n_tris; i++) {
+        if (m->tri[i] >= (uint32_t)m->n_verts) {
+            snprintf(err, errlen, "mesh triangle %zu refers to vertex %u of %d", i / 3, m->tri[i], m->n_verts);
+            return ACCEL_INVALID_ID;
+        }
+    }
+    accel_geom *g = geom_new(kind, to_world, err, errlen);
+    if (!g)
+        return ACCEL_INVALID_ID;
+    g->n_verts = m->n_verts;
+    g->n_tris = m->n_tris;
+    size_t nv = (size_t)m->n_verts;
+    if (!(g->vtx = calloc(nv, sizeof *g->vtx))) {
+        snprintf(err, errlen, "out of memory");
+        geom_free(g);
+        return ACCEL_INVALID_ID;
+    }
+    RTCGeometry geom = rtcNewGeometry(acc->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    float *pos = geom ? rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                3 * sizeof(float), (size_t)m->n_verts)
+                      : NULL;
+    uint32_t *tri = pos ? rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                  3 * sizeof(uint32_t), (size_t)m->n_tris)
+                        : NULL;
+    if (!tri) {
+        snprintf(err, errlen, "cannot allocate Embree buffers for %d vertices", m->n_verts);
+        if (geom)
+            rtcReleaseGeometry(geom);
+        geom_free(g);
+        return ACCEL_INVALID_ID;
+    }
+    for (int i = 0; i < m->n_verts; i++) {
+        vec3 p = transform_point(&g->to_world, v3(m->pos[3 * i], m->pos[3 * i + 1], m->pos[3 * i + 2]));
+        if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z)) {
+            snprintf(err, errlen, "mesh vertex %d is not finite", i);
+            rtcReleaseGeometry(geom);
+            geom_free(g);
+            return ACCEL_INVALID_ID;
+        }
+        pos[3 * i] = (float)p.x;
+        pos[3 * i + 1] = (float)p.y;
+        pos[3 * i + 2] = (float)p.z;
+    }
+    g->has_nrm = m->nrm != NULL;
+    g->has_uv = m->uv != NULL;
+    for (size_t i = 0; i < nv; i++) {
+        memcpy(g->vtx[i].p, m->pos + 3 * i, sizeof g->vtx[i].p);
+        if (m->nrm)
+            memcpy(g->vtx[i].n, m->nrm + 3 * i, sizeof g->vtx[i].n);
+        if (m->uv)
+            memcpy(g->vtx[i].uv, m->uv + 2 * i, sizeof g->vtx[i].uv);
+    }
+    memcpy(tri, m->tri, 3 * sizeof(uint32_t) * (size_t)m->n_tris);
+    g->tri = tri;
+    return attach(acc, geom, g, err, errlen);
+}
+
+unsigned accel_add_mesh(accel_t *acc, const mesh_t *mesh, const transform4 *to_world, char *err, size_t errlen)
+{
+    return add_triangles(acc, mesh, ACCEL_KIND_MESH, to_world, err, errlen);
+}
+
+static unsigned add_sor_analytic(accel_t *acc, const bspline_t *profile, double height, unsigned caps,
+                                 const transform4 *to_world, char *err, size_t errlen)
+{
+    accel_geom *g = geom_new(ACCEL_KIND_SOR_ANALYTIC, to_world, err, errlen);
+    if (!g)
+        return ACCEL_INVALID_ID;
+    g->sor = sor_create(profile, height, caps, err, errlen);
+    if (!g->sor) {
+        geom_free(g);
+        return ACCEL_INVALID_ID;
+    }
+    RTCGeometry geom = sor_user_geometry_new(acc->device, g);
+    if (!geom) {
+        snprintf(err, errlen, "cannot create an Embree user geometry");
+        geom_free(g);
+        return ACCEL_INVALID_ID;
+    }
+    return attach(acc, geom, g, err, errlen);
+}
+
+static unsigned add_sor_mesh(accel_t *acc, const bspline_t *profile, double height, unsigned caps,
+                             const transform4 *to_world, const accel_sor_mode *mode, char *err, size_t errlen)
+{
+    /* sor_create validates the profile, height and caps the same way for both forms. */
+    sor_t *check = sor_create(profile, height, caps, err, errlen);
+    if (!check)
+        return ACCEL_INVALID_ID;
+    sor_destroy(check);
+    double *rings = NULL;
+    const double *u = mode->u_rings;
+    int n = mode->n_rings;
+    if (!u) {
+        if (!(mode->tol_px > 0) || curve_domains_by_curvature(profile, mode->tol_px, &rings, &n) != 0) {
+            snprintf(err, errlen, "cannot place mesh rings at curvature tolerance %g px", mode->tol_px);
+            return ACCEL_INVALID_ID;
+        }
+        u = rings;
+    }
+    unsigned mesh_caps = (caps & SOR_CAP_BASE ? MESH_CAP_BASE : 0u) | (caps & SOR_CAP_MOUTH ? MESH_CAP_MOUTH : 0u);
+    mesh_t m;
+    int rc = mesh_revolve(profile, u, n, height, mode->segments, mesh_caps, &m);
+    free(rings);
+    if (rc != 0) {
+        snprintf(err, errlen, "cannot revolve the profile (%d rings, %d segments)", n, mode->segments);
+        return ACCEL_INVALID_ID;
+    }
+    unsigned id = add_triangles(acc, &m, ACCEL_KIND_SOR_MESH, to_world, err, errlen);
+    mesh_free(&m);
+    return id;
+}
+
+unsigned accel_add_sor(accel_t *acc, const bspline_t *profile, double height, unsigned caps, const transform4 *to_world,
+                       const accel_sor_mode *mode, char *err, size_t errlen)
+{
+    if (!mode || mode->segments == 0)
+        return add_sor_analytic(acc, profile, height, caps, to_world, err, errlen);
+    if (mode->segments < 3) {
+        snprintf(err, errlen, "a meshed SOR needs at least 3 angular segments, got %d", mode->segments);
+        return ACCEL_INVALID_ID;
+    }
+    return add_sor_mesh(acc, profile, height, caps, to_world, mode, err, errlen);
+}
+
+int accel_commit(accel_t *acc, char *err, size_t errlen)
+{
+    rtcCommitScene(acc->scene);
+    enum RTCError e = rtcGetDeviceError(acc->device);
+    if (e != RTC_ERROR_NONE) {
+        snprintf(err, errlen, "Embree scene build failed (error %d)", (int)e);
+        return -1;
+    }
+    return 0;
+}
+
+static void context_init(accel_context *ctx, const accel_t *acc, const ray3 *ray, double tmin, double tmax)
+{
+    rtcInitIntersectContext(&ctx->rtc);
+    ctx->acc = acc;
+    ctx->ray = *ray;
+    ctx->tmin = tmin;
+    ctx->tbest = tmax;
+    ctx->obj_geom = ACCEL_INVALID_ID;
+    ctx->sor_geom = ACCEL_INVALID_ID;
+}
+
+static void embree_ray(struct RTCRay *r, const ray3 *ray, double tmin, double tmax)
+{
+    r->org_x = (float)ray->o.x;
+    r->org_y = (float)ray->o.y;
+    r->org_z = (float)ray->o.z;
+    r->dir_x = (float)ray->d.x;
+    r->dir_y = (float)ray->d.y;
+    r->dir_z = (float)ray->d.z;
+    r->tnear = fmaxf(0.0f, float_down(tmin));
+    r->tfar = float_up(tmax);
+    r->time = 0.0f;
+    r->mask = 0xffffffffu;
+    r->id = 0;
+    r->flags = 0;
+}
+
+/* Möller–Trumbore in double: the triangle hit of the double ray itself, not
+ * Embree's float estimate. Returns 0 when the ray is parallel to the triangle
+ * (then Embree's t, u, v stand). */
+static int triangle_refine(vec3 a, vec3 b, vec3 c, const ray3 *ray, double *t, double *u, double *v)
+{
+    vec3 e1 = v3_sub(b, a), e2 = v3_sub(c, a);
+    vec3 pv = v3_cross(ray->d, e2);
+    double det = v3_dot(e1, pv);
+    if (det == 0.0 || !isfinite(det))
+        return 0;
+    vec3 tv = v3_sub(ray->o, a), qv = v3_cross(tv, e1);
+    *u = v3_dot(tv, pv) / det;
+    *v = v3_dot(ray->d, qv) / det;
+    *t = v3_dot(e2, qv) / det;
+    return 1;
+}
+
+static vec3 f3(const float *a) { return v3(a[0], a[1], a[2]); }
+
+/* Embree found the triangle in world space (float); the hit itself is
+ * recomputed in object space, on the vertices as given, from the double ray
+ * mapped there, so a transform costs no precision. */
+static void triangle_hit(const accel_geom *g, const struct RTCRayHit *rh, const ray3 *ray, accel_hit *hit)
+{
+    const uint32_t *t = g->tri + 3 * (size_t)rh->hit.primID;
+    const accel_vertex *va = &g->vtx[t[0]], *vb = &g->vtx[t[1]], *vc = &g->vtx[t[2]];
+    vec3 a = f3(va->p), b = f3(vb->p), c = f3(vc->p);
+    ray3 ro = {transform_point(&g->to_object, ray->o), transform_vector(&g->to_object, ray->d)};
+    double tt = rh->ray.tfar, bu = rh->hit.u, bv = rh->hit.v;
+    triangle_refine(a, b, c, &ro, &tt, &bu, &bv);
+    double bw = 1.0 - bu - bv;
+    hit->t = tt;
+    hit->p = transform_point(&g->to_world, v3_add(v3_add(v3_scale(a, bw), v3_scale(b, bu)), v3_scale(c, bv)));
+    /* The counter-clockwise side in object space, carried by A^-T (which keeps
+     * it on the same side of the surface even when the transform mirrors). */
+    hit->ng = world_normal(g, v3_cross(v3_sub(b, a), v3_sub(c, a)));
+    hit->ns = hit->ng;
+    if (g->has_nrm) {
+        vec3 n = v3_add(v3_add(v3_scale(f3(va->n), bw), v3_scale(f3(vb->n), bu)), v3_scale(f3(vc->n), bv));
+        if (v3_len(n) > 0)
+            hit->ns = world_normal(g, n);
+    }
+    hit->uv = g->has_uv ? v2(bw * va->uv[0] + bu * vb->uv[0] + bv * vc->uv[0],
+                             bw * va->uv[1] + bu * vb->uv[1] + bv * vc->uv[1])
+                        : v2(bu, bv);
+    hit->part = SOR_PART_WALL;
+}
+
+static void analytic_hit(const accel_geom *g, const sor_hit *h, accel_hit *hit)
+{
+    hit->t = h->t;
+    hit->p = transform_point(&g->to_world, h->p);
+    hit->ng = world_normal(g, h->ng);
+    hit->ns = world_normal(g, h->shading.n);
+    hit->uv = h->uv;
+    hit->part = h->part;
+}
+
+int accel_intersect(const accel_t *acc, const ray3 *ray, double tmin, double tmax, accel_hit *hit)
+{
+    accel_context ctx;
+    context_init(&ctx, acc, ray, tmin, tmax);
+    struct RTCRayHit rh;
+    embree_ray(&rh.ray, ray, tmin, tmax);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(acc->scene, &ctx.rtc, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        hit->geom_id = ACCEL_INVALID_ID;
+        return 0;
+    }
+    const accel_geom *g = acc->geoms[rh.hit.geomID];
+    hit->geom_id = rh.hit.geomID;
+    hit->prim = rh.hit.primID;
+    hit->kind = g->kind;
+    if (g->kind == ACCEL_KIND_SOR_ANALYTIC)
+        analytic_hit(g, &ctx.sor_hit, hit); /* the last accepted analytic hit is this geometry's */
+    else
+        triangle_hit(g, &rh, ray, hit);
+    return 1;
+}
+
+int accel_occluded(const accel_t *acc, const ray3 *ray, double tmin, double tmax)
+{
+    accel_context ctx;
+    context_init(&ctx, acc, ray, tmin, tmax);
+    struct RTCRay r;
+    embree_ray(&r, ray, tmin, tmax);
+    rtcOccluded1(acc->scene, &ctx.rtc, &r);
+    return r.tfar == -INFINITY;
+}
+
+accel_kind accel_geometry_kind(const accel_t *acc, unsigned id)
+{
+    return id < (unsigned)acc->n_geoms ? acc->geoms[id]->kind : ACCEL_KIND_MESH;
+}
+
+const sor_t *accel_geometry_sor(const accel_t *acc, unsigned id)
+{
+    return id < (unsigned)acc->n_geoms ? acc->geoms[id]->sor : NULL;
+}
+
+int accel_geometry_triangles(const accel_t *acc, unsigned id)
+{
+    return id < (unsigned)acc->n_geoms ? acc->geoms[id]->n_tris : 0;
+}
+
+void accel_bounds(const accel_t *acc, vec3 *lo, vec3 *hi)
+{
+    struct RTCBounds b;
+    rtcGetSceneBounds(acc->scene, &b);
+    *lo = v3(b.lower_x, b.lower_y, b.lower_z);
+    *hi = v3(b.upper_x, b.upper_y, b.upper_z);
+}

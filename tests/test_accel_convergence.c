@@ -1,0 +1,119 @@
+/* The meshed SOR through Embree converges to the exact surface: the largest
+ * distance of its hit points from the analytic surface falls as N^-2 with the
+ * number N of angular segments (the chord sagitta r (1 - cos(pi/N)) ~ 4.93 r/N^2),
+ * when the rings (curvature domains) are refined along with it. The distance
+ * itself is checked first against points placed at known offsets. */
+#include <criterion/criterion.h>
+#include <stdlib.h>
+
+#include "celadon/accel.h"
+#include "support/sor_profiles.h"
+#include "test_accel_support.h"
+
+#define HEIGHT 1.3
+
+/* Points pushed off the wall along its normal (computed here from the
+ * profile's derivative) lie at exactly that distance while the offset is
+ * below the local radius of curvature and nothing else is nearer. */
+Test(accel_convergence, surface_distance_of_offset_points)
+{
+    for (int p = 0; p < sor_test_profile_count(); p++) {
+        bspline_t c;
+        sor_test_profile(p, &c);
+        double scale = HEIGHT / c.ctrl[c.n_ctrl - 1].y;
+        test_rng rng = {5 + (uint64_t)p};
+        int checked = 0;
+        for (int i = 0; i < 200; i++) {
+            double u = 0.05 + 0.9 * test_rng_uniform(&rng), phi = 2 * M_PI * test_rng_uniform(&rng);
+            double delta = 1e-4 * (2 * test_rng_uniform(&rng) - 1);
+            vec2 d[3];
+            bspline_eval_derivs(&c, u, 2, d);
+            double speed = v2_len(d[1]);
+            if (speed < 1e-6 || fabs(bspline_curvature(&c, u)) * 1e-4 / scale > 0.1 || d[0].x < 1e-3)
+                continue; /* near a cusp, a tight bend or the axis: the offset is not the distance */
+            vec2 n = v2(d[1].y / speed, -d[1].x / speed);
+            vec2 q = v2_add(d[0], v2_scale(n, delta / scale));
+            vec3 pt = v3(q.x * scale * cos(phi), q.y * scale, q.x * scale * sin(phi));
+            double dist = accel_sor_distance(&c, HEIGHT, SOR_CAPS_ALL, pt);
+            cr_assert_float_eq(dist, fabs(delta), 1e-9, "%s u=%g delta=%g: %.17g", sor_test_profile_name(p), u, delta,
+                               dist);
+            checked++;
+        }
+        cr_assert_gt(checked, 100, "%s", sor_test_profile_name(p));
+        /* Points on the caps are at distance 0, points above the mouth at their height. */
+        vec2 c0 = c.ctrl[0], c1 = c.ctrl[c.n_ctrl - 1];
+        cr_assert_float_eq(accel_sor_distance(&c, HEIGHT, SOR_CAPS_ALL, v3(0.5 * c0.x * scale, 0, 0)), 0.0, 1e-15);
+        cr_assert_float_eq(accel_sor_distance(&c, HEIGHT, SOR_CAPS_ALL, v3(0, HEIGHT, 0.5 * c1.x * scale)), 0.0, 1e-15);
+        bspline_free(&c);
+    }
+}
+
+/* Least-squares slope of log(err) against log(N). */
+static double loglog_slope(const int *N, const double *err, int n)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int i = 0; i < n; i++) {
+        double x = log(N[i]), y = log(err[i]);
+        sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+static void check_convergence(int profile)
+{
+    enum { LEVELS = 7, RAYS = 1500 };
+    const int N[LEVELS] = {16, 32, 64, 128, 256, 512, 1024};
+    bspline_t c;
+    sor_test_profile(profile, &c);
+    const char *name = sor_test_profile_name(profile);
+    double scale = HEIGHT / c.ctrl[c.n_ctrl - 1].y, rmax = 0;
+    for (int i = 0; i < c.n_ctrl; i++)
+        rmax = fmax(rmax, c.ctrl[i].x * scale); /* the hull bounds r */
+    double err[LEVELS];
+    for (int l = 0; l < LEVELS; l++) {
+        char msg[256] = "";
+        accel_t *acc = accel_create(ACCEL_BUILD_FAST, msg, sizeof msg);
+        cr_assert_not_null(acc, "%s", msg);
+        /* Rings refined with the segments: the profile's chord tolerance equal
+         * to the angular sagitta bound, so both errors fall as N^-2 and their
+         * sum stays below twice the sagitta. */
+        double sagitta = 4.93 * rmax / ((double)N[l] * N[l]);
+        accel_sor_mode mode = {.segments = N[l], .tol_px = sagitta / scale};
+        cr_assert_eq(accel_add_sor(acc, &c, HEIGHT, SOR_CAPS_ALL, NULL, &mode, msg, sizeof msg), 0u, "%s: %s", name,
+                     msg);
+        cr_assert_eq(accel_commit(acc, msg, sizeof msg), 0, "%s", msg);
+        cr_assert_eq(accel_geometry_kind(acc, 0), ACCEL_KIND_SOR_MESH);
+        vec3 lo, hi;
+        accel_bounds(acc, &lo, &hi);
+        test_rng rng = {77};
+        double worst = 0;
+        int hits = 0;
+        for (int i = 0; i < RAYS; i++) {
+            ray3 r = test_ray_toward_box(&rng, lo, hi);
+            accel_hit h;
+            if (!accel_intersect(acc, &r, 0, INFINITY, &h))
+                continue;
+            hits++;
+            worst = fmax(worst, accel_sor_distance(&c, HEIGHT, SOR_CAPS_ALL, h.p));
+        }
+        cr_assert_gt(hits, RAYS / 3, "%s N=%d: %d hits", name, N[l], hits);
+        /* Angular chord error plus profile chord error (5% for float vertices). */
+        cr_assert_leq(worst, 2.1 * sagitta, "%s N=%d: %g beyond twice the sagitta %g", name, N[l], worst, sagitta);
+        err[l] = worst;
+        accel_destroy(acc);
+    }
+    double slope = loglog_slope(N, err, LEVELS);
+    cr_assert(slope > -2.3 && slope < -1.7, "%s: error ~ N^%.3f (%g at N=16, %g at N=1024)", name, slope, err[0],
+              err[LEVELS - 1]);
+    bspline_free(&c);
+}
+
+Test(accel_convergence, bowl_mesh_error_falls_as_n_minus_2, .timeout = 60)
+{
+    check_convergence(0);
+}
+
+Test(accel_convergence, recon_mesh_error_falls_as_n_minus_2, .timeout = 60)
+{
+    check_convergence(6);
+}

@@ -1,0 +1,151 @@
+/* Emitters against closed forms: a diffuse plane (albedo rho) seen straight
+ * down through a narrow camera, lit by one emitter, direct lighting only.
+ * Its radiance is rho/pi times the irradiance E:
+ *   point light, intensity I at height d:      E = I / d^2
+ *   directional light, irradiance E0 along -y: E = E0
+ *   disk of radiance L, radius R at height h:  E = pi L R^2 / (h^2 + R^2)
+ *   sphere of radiance L, radius R, centre at distance d: E = pi L (R/d)^2
+ * and the envmap's orientation and sampling density. */
+#include "celadon/film.h"
+#include "render/scene_impl.h"
+#include "test_render_util.h"
+
+static const char *plane_fmt =
+    "<scene version=\"3.0.0\">\n"
+    "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"2\"/></integrator>\n"
+    "  <sensor type=\"perspective\"><float name=\"fov\" value=\"1\"/>\n"
+    "    <transform name=\"to_world\"><lookat origin=\"0, 0.5, 0\" target=\"0, 0, 0\" up=\"0, 0, -1\"/></transform>\n"
+    "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"64\"/></sampler>\n"
+    "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/></film>\n"
+    "  </sensor>\n"
+    "  <shape type=\"rectangle\"><transform name=\"to_world\"><rotate x=\"1\" angle=\"-90\"/><scale value=\"10\"/></transform>\n"
+    "    <bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.8\"/></bsdf></shape>\n"
+    "  %s\n"
+    "</scene>\n";
+
+static double plane_radiance(const char *emitter)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    char xml[4096], path[256];
+    snprintf(xml, sizeof xml, plane_fmt, emitter);
+    render_write_file(&f, "scene.xml", xml, path, sizeof path);
+    int w, h, nch;
+    float *px = render_to_pixels(path, 0, 3, 2, 0, &w, &h, &nch);
+    double sum = 0.0;
+    for (int i = 0; i < w * h; i++)
+        sum += px[i * nch + 1];
+    free(px);
+    render_fixture_close(&f);
+    return sum / (w * h);
+}
+
+Test(render_lights, point_and_directional)
+{
+    const double rho = 0.8;
+    double lp = plane_radiance("<emitter type=\"point\"><point name=\"position\" value=\"0, 2, 0\"/>"
+                               "<rgb name=\"intensity\" value=\"3\"/></emitter>");
+    cr_expect_float_eq(lp, rho / M_PI * 3.0 / 4.0, 1e-3 * lp, "point: %g", lp);
+    double ld = plane_radiance("<emitter type=\"directional\"><vector name=\"direction\" value=\"0, -1, 0\"/>"
+                               "<rgb name=\"irradiance\" value=\"2\"/></emitter>");
+    cr_expect_float_eq(ld, rho / M_PI * 2.0, 1e-6, "directional: %g", ld);
+}
+
+Test(render_lights, disk_and_sphere_area_lights)
+{
+    const double rho = 0.8;
+    double ldisk = plane_radiance("<shape type=\"disk\"><transform name=\"to_world\"><scale value=\"1.5\"/>"
+                                  "<rotate x=\"1\" angle=\"90\"/><translate y=\"1\"/></transform>"
+                                  "<emitter type=\"area\"><rgb name=\"radiance\" value=\"2\"/></emitter></shape>");
+    double e_disk = M_PI * 2.0 * 2.25 / (1.0 + 2.25);
+    cr_expect_float_eq(ldisk, rho / M_PI * e_disk, 0.02 * ldisk, "disk: %g, want %g", ldisk, rho / M_PI * e_disk);
+    double lsph = plane_radiance("<shape type=\"sphere\"><point name=\"center\" value=\"0, 2, 0\"/>"
+                                 "<float name=\"radius\" value=\"0.5\"/>"
+                                 "<emitter type=\"area\"><rgb name=\"radiance\" value=\"10\"/></emitter></shape>");
+    double e_sph = M_PI * 10.0 * 0.0625;
+    cr_expect_float_eq(lsph, rho / M_PI * e_sph, 0.02 * lsph, "sphere: %g, want %g", lsph, rho / M_PI * e_sph);
+}
+
+/* A 4x2 envmap with a distinct value per texel: Mitsuba's convention puts
+ * the top row around +y, u = 0 at -z, u = 0.25 at +x, u = 0.5 at +z. The
+ * direction of (u, v) is (sin t sin p, cos t, -sin t cos p), p = 2 pi u,
+ * t = pi v. */
+Test(render_lights, envmap_orientation_and_density)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    char path[256], err[256];
+    snprintf(path, sizeof path, "%s/env.exr", f.dir);
+    float px[4 * 2 * 3];
+    for (int i = 0; i < 8; i++)
+        px[3 * i] = px[3 * i + 1] = px[3 * i + 2] = (float)(i + 1);
+    const char *names[] = {"R", "G", "B"};
+    cr_assert_eq(exr_write_float(path, 4, 2, 3, names, px, err, sizeof err), 0, "%s", err);
+    envmap_data env = {0};
+    env.to_world = transform_identity();
+    env.to_local = transform_identity();
+    env.scale = 1.0;
+    cr_assert_eq(emitter_envmap_load(&env, path, err, sizeof err), 0, "%s", err);
+    const double s = sqrt(0.5);
+    /* phi = atan2(x, -z): column 0 holds x > 0, z < 0; column 1 x > 0, z > 0;
+     * column 2 x < 0, z > 0; column 3 x < 0, z < 0. Row 0 is y > 0. */
+    cr_expect_float_eq(emitter_envmap_eval(&env, v3(0.5, s, -0.5)).g, 1.0, 1e-6);
+    cr_expect_float_eq(emitter_envmap_eval(&env, v3(0.5, s, 0.5)).g, 2.0, 1e-6);
+    cr_expect_float_eq(emitter_envmap_eval(&env, v3(-0.5, s, 0.5)).g, 3.0, 1e-6);
+    cr_expect_float_eq(emitter_envmap_eval(&env, v3(-0.5, s, -0.5)).g, 4.0, 1e-6);
+    cr_expect_float_eq(emitter_envmap_eval(&env, v3(-0.5, -s, -0.5)).g, 8.0, 1e-6);
+    cr_expect_leq(emitter_envmap_eval(&env, v3(0.0, 1.0, 0.0)).g, 4.0, "straight up is in the top row");
+    /* Sampled directions carry the density emitter_envmap_pdf reports, and
+     * the density integrates to 1 over the sphere. */
+    rng_t rng;
+    rng_seed(&rng, 9, 1);
+    double integral = 0.0;
+    enum { N = 20000 };
+    for (int i = 0; i < N; i++) {
+        vec3 d;
+        rgb val;
+        double pdf;
+        vec2 u = v2(rng_next_double(&rng), rng_next_double(&rng));
+        if (emitter_envmap_sample(&env, u, &d, &val, &pdf)) {
+            cr_assert_float_eq(emitter_envmap_pdf(&env, d), pdf, 1e-6 * pdf);
+            cr_assert_float_eq(emitter_envmap_eval(&env, d).g, val.g, 1e-9);
+        }
+        vec3 w = warp_square_to_uniform_sphere(v2(rng_next_double(&rng), rng_next_double(&rng)));
+        integral += emitter_envmap_pdf(&env, w) * 4.0 * M_PI / N;
+    }
+    cr_expect_float_eq(integral, 1.0, 0.03, "density integrates to %g", integral);
+    emitter_envmap_free(&env);
+    render_fixture_close(&f);
+}
+
+/* Integrator settings: max_depth = 1 shows only emitters seen directly
+ * (the sphere is black, the background the environment's 0.5);
+ * hide_emitters hides that background too. */
+static void depth_one(const char *extra, double want_bg)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    char xml[2048], path[256];
+    snprintf(xml, sizeof xml,
+             "<scene version=\"3.0.0\"><integrator type=\"path\"><integer name=\"max_depth\" value=\"1\"/>%s"
+             "</integrator><sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>"
+             "<transform name=\"to_world\"><lookat origin=\"0, 0, 4\" target=\"0, 0, 0\" up=\"0, 1, 0\"/></transform>"
+             "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"
+             "<film type=\"hdrfilm\"><integer name=\"width\" value=\"16\"/><integer name=\"height\" value=\"16\"/></film>"
+             "</sensor><shape type=\"sphere\"/><emitter type=\"constant\"><rgb name=\"radiance\" value=\"0.5\"/></emitter>"
+             "</scene>",
+             extra);
+    render_write_file(&f, "scene.xml", xml, path, sizeof path);
+    int w, h, nch;
+    float *px = render_to_pixels(path, 0, 1, 2, 0, &w, &h, &nch);
+    cr_expect_float_eq(px[(8 * w + 8) * nch], 0.0, 1e-12, "centre (the sphere)");
+    cr_expect_float_eq(px[0], want_bg, 1e-12, "corner (the background)");
+    free(px);
+    render_fixture_close(&f);
+}
+
+Test(render_lights, max_depth_one_and_hide_emitters)
+{
+    depth_one("", 0.5);
+    depth_one("<boolean name=\"hide_emitters\" value=\"true\"/>", 0.0);
+}
