@@ -132,3 +132,44 @@ bench-render: check-deps-stamp
 	@$(MAKE) --no-print-directory build/bench/bench_render
 	@mkdir -p out/bench
 	build/bench/bench_render | tee out/bench/bench_render.txt
+
+# ---------------------------------------------------------------- demo and benchmarks
+# `make demo` reconstructs the bundled catalogue photo; `make demo-photo`
+# redraws that photo (tests/tools/draw_demo_photo.c) from its analytic vessel.
+.PHONY: demo-photo
+build/tools/draw_demo_photo: tests/tools/draw_demo_photo.c tests/support/synth_vessel.c build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -o $@ tests/tools/draw_demo_photo.c tests/support/synth_vessel.c build/opt/libceladon.a $(LDLIBS)
+
+demo-photo: check-deps-stamp
+	@$(MAKE) --no-print-directory build/tools/draw_demo_photo
+	@mkdir -p scenes/demo
+	build/tools/draw_demo_photo scenes/demo/photo.png
+
+demo: check-deps-stamp
+	@$(MAKE) --no-print-directory build/celadon
+	build/celadon reconstruct scenes/demo/photo.png -o out/demo
+	@echo "celadon: demo results in out/demo/: overlay.png (what was detected), profile.json,"
+	@echo "         texture.png, model.obj + model.mtl and model.ply (open in any 3D viewer)"
+
+# Every bench/*.c program; bench_recon draws its photos with the test drawer.
+# Results are printed and kept in out/bench/.
+BENCH_BIN := $(patsubst bench/%.c,build/bench/%,$(BENCH_C))
+# The OpenCV reference uses Debian's python3-opencv, if installed (not by deps).
+PYTHON_CV ?= /usr/bin/python3
+build/bench/bench_recon: bench/bench_recon.c tests/support/synth_vessel.c build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_recon.c tests/support/synth_vessel.c build/opt/libceladon.a $(LDLIBS)
+
+bench: check-deps-stamp
+	@$(MAKE) --no-print-directory build/celadon $(BENCH_BIN)
+	@mkdir -p out/bench
+	@for b in $(BENCH_BIN); do \
+	  echo "== $$b"; CELADON_BIN=$(CURDIR)/build/celadon $$b > out/bench/$$(basename $$b).txt || exit 1; \
+	  cat out/bench/$$(basename $$b).txt; \
+	done
+	@if [ -f bench/opencv_recon.py ] && $(PYTHON_CV) -c "import cv2" 2>/dev/null; then \
+	  echo "== bench/opencv_recon.py (OpenCV reference)"; \
+	  $(PYTHON_CV) bench/opencv_recon.py out/bench/bench_recon_photo.png out/bench/bench_recon_mask.png | tee out/bench/opencv_recon.txt; \
+	fi
+	@echo "celadon: benchmark results in out/bench/*.txt (docs/BENCHMARKS.md explains them)"

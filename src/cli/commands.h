@@ -12,5 +12,6 @@ typedef struct {
 int cmd_mesh(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_crosscheck(int argc, char **argv);
+int cmd_reconstruct(int argc, char **argv);
 
 #endif

@@ -1,0 +1,160 @@
+/* Scanline texture extraction (the layout and the column mapping are in recon_texture.h). */
+#include "celadon/recon_texture.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void recon_texture_free(recon_texture_t *t)
+{
+    free(t->rgb);
+    memset(t, 0, sizeof *t);
+}
+
+/* Row j (0 = top = rim) of a texture with `rows` rows lies at this height. */
+static double row_height(int j, int rows, double H) { return H * (1.0 - (j + 0.5) / rows); }
+
+/* Records, for every texture row that one silhouette crosses, its signed
+ * distance s from the axis there (along the right-hand normal), keeping the
+ * outermost crossing: the smallest s for the left side (sign -1), the largest
+ * for the right one (sign +1). Walks the outline's segments once. */
+static void silhouette_on_rows(const vec2 *pts, int n, vec2 origin, vec2 dir, double H, int rows, int sign,
+                               double *s_row, unsigned char *hit)
+{
+    vec2 right = v2(-dir.y, dir.x);
+    for (int i = 0; i + 1 < n; i++) {
+        vec2 a = v2_sub(pts[i], origin), b = v2_sub(pts[i + 1], origin);
+        double ha = v2_dot(a, dir), hb = v2_dot(b, dir), sa = v2_dot(a, right), sb = v2_dot(b, right);
+        double lo = fmin(ha, hb), hi = fmax(ha, hb);
+        double f0 = ceil(rows * (1.0 - hi / H) - 0.5), f1 = floor(rows * (1.0 - lo / H) - 0.5);
+        if (!(f0 <= f1) || f1 < 0.0 || f0 > rows - 1.0)
+            continue;
+        int j0 = f0 < 0.0 ? 0 : (int)f0, j1 = f1 > rows - 1.0 ? rows - 1 : (int)f1;
+        for (int j = j0; j <= j1; j++) {
+            double h = row_height(j, rows, H);
+            double t = hb != ha ? (h - ha) / (hb - ha) : 0.0;
+            double s = sa + t * (sb - sa);
+            if (!hit[j] || sign * s > sign * s_row[j])
+                s_row[j] = s;
+            hit[j] = 1;
+        }
+    }
+}
+
+/* Rows the outline missed (slivers at the base and the rim) take the nearest
+ * row that it crossed. Returns 0, or -1 when it crossed none. */
+static int fill_missing_rows(double *s_row, const unsigned char *hit, int rows)
+{
+    int first = -1;
+    for (int j = 0; j < rows && first < 0; j++)
+        if (hit[j])
+            first = j;
+    if (first < 0)
+        return -1;
+    for (int j = 0; j < first; j++)
+        s_row[j] = s_row[first];
+    int last = first;
+    for (int j = first + 1; j < rows; j++) {
+        if (hit[j])
+            last = j;
+        else
+            s_row[j] = s_row[last];
+    }
+    return 0;
+}
+
+/* Bilinear sample of the photo's colour at the continuous point p (pixel
+ * (i, j) has its centre at (i + 0.5, j + 0.5)); gray photos give gray. */
+static void sample_rgb(const image_t *img, vec2 p, float out[3])
+{
+    double fx = p.x - 0.5, fy = p.y - 0.5;
+    fx = fmin(fmax(fx, 0.0), img->width - 1.0);
+    fy = fmin(fmax(fy, 0.0), img->height - 1.0);
+    int x0 = (int)fx, y0 = (int)fy;
+    int x1 = x0 + 1 < img->width ? x0 + 1 : x0, y1 = y0 + 1 < img->height ? y0 + 1 : y0;
+    float tx = (float)(fx - x0), ty = (float)(fy - y0);
+    int C = img->channels;
+    const float *p00 = img->data + ((size_t)y0 * img->width + x0) * C, *p10 = img->data + ((size_t)y0 * img->width + x1) * C;
+    const float *p01 = img->data + ((size_t)y1 * img->width + x0) * C, *p11 = img->data + ((size_t)y1 * img->width + x1) * C;
+    for (int k = 0; k < 3; k++) {
+        int c = C >= 3 ? k : 0;
+        float top = p00[c] + tx * (p10[c] - p00[c]), bottom = p01[c] + tx * (p11[c] - p01[c]);
+        out[k] = top + ty * (bottom - top);
+    }
+}
+
+static uint8_t to_u8(float v)
+{
+    v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
+    return (uint8_t)lrintf(v * 255.0f);
+}
+
+int recon_texture_from_photo(const image_t *photo, const recon_result *res, recon_texture_t *out, char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    double H = res->n_polyline > 0 ? res->polyline[res->n_polyline - 1].y : 0.0;
+    if (!(H >= 1.0) || !isfinite(H) || H > 1e6) {
+        snprintf(err, errlen, "texture: the profile has no height");
+        return -1;
+    }
+    int rows = (int)lround(H);
+    double *s_row[2] = {calloc((size_t)rows, sizeof(double)), calloc((size_t)rows, sizeof(double))};
+    unsigned char *hit[2] = {calloc((size_t)rows, 1), calloc((size_t)rows, 1)};
+    int status = -1;
+    if (!s_row[0] || !s_row[1] || !hit[0] || !hit[1]) {
+        snprintf(err, errlen, "texture: out of memory");
+        goto done;
+    }
+    for (int k = 0; k < 2; k++) {
+        silhouette_on_rows(res->silhouette[k], res->n_silhouette[k], res->axis_origin, res->axis_direction, H, rows,
+                           k ? 1 : -1, s_row[k], hit[k]);
+        if (fill_missing_rows(s_row[k], hit[k], rows) != 0) {
+            snprintf(err, errlen, "texture: the %s silhouette does not reach the profile's heights",
+                     k ? "right" : "left");
+            goto done;
+        }
+    }
+    double widest = 0.0;
+    for (int j = 0; j < rows; j++)
+        widest = fmax(widest, s_row[1][j] - s_row[0][j]);
+    if (!(widest >= 1.0) || widest > 1e6) {
+        snprintf(err, errlen, "texture: the silhouettes enclose no width");
+        goto done;
+    }
+    out->width = (int)ceil(widest);
+    out->height = rows;
+    out->rgb = malloc((size_t)out->width * rows * 3);
+    double *cos_u = malloc((size_t)out->width * sizeof(double));
+    if (!out->rgb || !cos_u) {
+        free(cos_u);
+        recon_texture_free(out);
+        snprintf(err, errlen, "texture: out of memory");
+        goto done;
+    }
+    for (int i = 0; i < out->width; i++)
+        cos_u[i] = cos(M_PI * (i + 0.5) / out->width);
+    vec2 dir = res->axis_direction, right = v2(-dir.y, dir.x);
+    for (int j = 0; j < rows; j++) {
+        double c = 0.5 * (s_row[0][j] + s_row[1][j]), a = 0.5 * (s_row[1][j] - s_row[0][j]);
+        /* The outermost half pixel is a mix of vessel and background: sample
+         * just inside the silhouette instead. */
+        a = fmax(0.0, a - fmin(0.5, 0.25 * a));
+        vec2 on_axis = v2_add(res->axis_origin, v2_scale(dir, row_height(j, rows, H)));
+        uint8_t *px = out->rgb + (size_t)j * out->width * 3;
+        for (int i = 0; i < out->width; i++) {
+            float rgb[3];
+            sample_rgb(photo, v2_add(on_axis, v2_scale(right, c - a * cos_u[i])), rgb);
+            for (int k = 0; k < 3; k++)
+                px[3 * i + k] = to_u8(rgb[k]);
+        }
+    }
+    free(cos_u);
+    status = 0;
+done:
+    for (int k = 0; k < 2; k++) {
+        free(s_row[k]);
+        free(hit[k]);
+    }
+    return status;
+}

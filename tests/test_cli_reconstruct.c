@@ -1,0 +1,525 @@
+/* End to end: `celadon reconstruct` run as a process ($CELADON_BIN, the
+ * sanitized CLI under `make test-asan`) on drawn photos with known geometry,
+ * and on every kind of bad input. */
+#include <criterion/criterion.h>
+#include <dirent.h>
+#include <fcntl.h>
+#include <ftw.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "celadon/profile.h"
+#include "support/synth_vessel.h"
+
+#define SEGMENTS 48
+
+static char workdir[256];
+
+static void make_workdir(void)
+{
+    if (!getenv("CELADON_BIN"))
+        cr_skip_test("CELADON_BIN is not set (run through make test)");
+    snprintf(workdir, sizeof workdir, "/tmp/celadon-cli-XXXXXX");
+    cr_assert_not_null(mkdtemp(workdir));
+}
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+static void remove_workdir(void)
+{
+    if (workdir[0])
+        nftw(workdir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+TestSuite(cli_reconstruct, .init = make_workdir, .fini = remove_workdir);
+
+/* Slurps a whole file (NUL-terminated); *len may be NULL. */
+static char *read_all(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f, "cannot open %s", path);
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *buf = malloc((size_t)n + 1);
+    cr_assert_not_null(buf);
+    cr_assert_eq(fread(buf, 1, (size_t)n, f), (size_t)n);
+    buf[n] = 0;
+    fclose(f);
+    if (len)
+        *len = (size_t)n;
+    return buf;
+}
+
+typedef struct {
+    int status;
+    char *out, *err;
+} run_result;
+
+/* Runs `celadon reconstruct ARGS...` (NULL-terminated), capturing stdout and stderr. */
+static run_result run_reconstruct(const char *const *args)
+{
+    char out_path[300], err_path[300];
+    snprintf(out_path, sizeof out_path, "%s/stdout.txt", workdir);
+    snprintf(err_path, sizeof err_path, "%s/stderr.txt", workdir);
+    const char *argv[64] = {getenv("CELADON_BIN"), "reconstruct"};
+    int n = 2;
+    for (; args[n - 2]; n++)
+        argv[n] = args[n - 2];
+    argv[n] = NULL;
+    pid_t pid = fork();
+    cr_assert_neq(pid, -1);
+    if (pid == 0) {
+        int fo = open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644), fe = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(fo, 1);
+        dup2(fe, 2);
+        execv(argv[0], (char *const *)argv);
+        _exit(127);
+    }
+    int st;
+    cr_assert_eq(waitpid(pid, &st, 0), pid);
+    cr_assert(WIFEXITED(st), "the CLI died (signal %d)", WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+    run_result r = {WEXITSTATUS(st), read_all(out_path, NULL), read_all(err_path, NULL)};
+    remove(out_path);
+    remove(err_path);
+    return r;
+}
+
+static void free_run(run_result *r)
+{
+    free(r->out);
+    free(r->err);
+}
+
+static void path_in(char *buf, size_t len, const char *name) { snprintf(buf, len, "%s/%s", workdir, name); }
+
+static void draw_photo(const char *name, synth_shape shape, double tilt_deg, int width, int height)
+{
+    synth_params p = synth_defaults(shape, width, height);
+    p.tilt_deg = tilt_deg;
+    p.textured = 1;
+    p.subrows = 4; /* anti-aliased enough, and four times faster to draw */
+    p.fg2[0] = 0.8f, p.fg2[1] = 0.75f, p.fg2[2] = 0.3f;
+    image_t img;
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    char path[300], err[256];
+    path_in(path, sizeof path, name);
+    cr_assert_eq(synth_write(path, &img, 8, err, sizeof err), 0, "%s", err);
+    image_free(&img);
+}
+
+static int count_entries(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return -1;
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));)
+        n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
+    closedir(d);
+    return n;
+}
+
+static int count_lines(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += *s == '\n';
+    return n;
+}
+
+/* Lines of an OBJ file starting with the given tag ("v ", "vt ", "f "...). */
+static int count_obj(const char *text, const char *tag)
+{
+    int n = 0;
+    size_t len = strlen(tag);
+    for (const char *line = text; line && *line; line = strchr(line, '\n'), line = line ? line + 1 : NULL)
+        n += !strncmp(line, tag, len);
+    return n;
+}
+
+/* The vertex and face counts of the profile's mesh at s segments with a base
+ * cap (mesh.h): one ring per domain parameter, the base ring again with its
+ * centre. */
+static void expected_mesh(const profile_t *p, int s, int *verts, int *faces)
+{
+    *verts = p->n_domains * s + s + 1;
+    *faces = 2 * s * (p->n_domains - 1) + s;
+}
+
+static void check_outputs(const char *dir, const synth_params *truth, int *verts, int *faces)
+{
+    static const char *const names[] = {"profile.json", "texture.png", "model.obj", "model.mtl", "model.ply",
+                                        "overlay.png"};
+    char path[512], err[256];
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        struct stat st;
+        cr_assert(stat(path, &st) == 0 && st.st_size > 0, "%s missing or empty", path);
+    }
+    cr_expect_eq(count_entries(dir), 6, "%s holds exactly the six outputs", dir);
+
+    profile_t p;
+    snprintf(path, sizeof path, "%s/profile.json", dir);
+    cr_assert_eq(profile_read_json(path, &p, err, sizeof err), 0, "%s", err);
+    cr_expect_leq(p.err_curve_to_polyline, 2.0);
+    cr_expect_leq(p.err_polyline_to_curve, 2.0);
+    cr_expect_gt(p.contour_points, 100);
+    cr_expect_geq(p.n_domains, 2);
+    cr_expect_gt(p.ms_image_processing, 0.0);
+    cr_expect_gt(p.ms_mesh, 0.0);
+    synth_truth t = synth_truth_of(truth);
+    cr_expect(fabs(p.tilt_deg - t.tilt_deg) < 1.0, "tilt %.2f, drawn %.2f", p.tilt_deg, t.tilt_deg);
+    /* The curve ends at the drawn rim height, and follows the drawn profile
+     * r(h) between 10% and 90% of it (px). */
+    vec2 rim = bspline_eval(&p.curve, 1.0);
+    cr_expect(fabs(rim.y - t.height_px) < 3.0, "rim at h = %.1f, drawn %.1f", rim.y, t.height_px);
+    enum { SAMPLES = 4000 };
+    vec2 *c = malloc(SAMPLES * sizeof *c);
+    cr_assert_not_null(c);
+    for (int i = 0; i < SAMPLES; i++)
+        c[i] = bspline_eval(&p.curve, i / (SAMPLES - 1.0));
+    for (double f = 0.1; f <= 0.9; f += 0.05) {
+        double h = f * t.height_px;
+        int best = 0;
+        for (int i = 1; i < SAMPLES; i++)
+            if (fabs(c[i].y - h) < fabs(c[best].y - h))
+                best = i;
+        cr_expect(fabs(c[best].x - synth_radius(truth, c[best].y)) < 1.5, "at h = %.1f: r = %.2f, drawn %.2f",
+                  c[best].y, c[best].x, synth_radius(truth, c[best].y));
+    }
+    free(c);
+
+    expected_mesh(&p, SEGMENTS, verts, faces);
+    snprintf(path, sizeof path, "%s/model.obj", dir);
+    char *obj = read_all(path, NULL);
+    cr_expect_eq(count_obj(obj, "v "), *verts);
+    cr_expect_eq(count_obj(obj, "vt "), *verts);
+    cr_expect_eq(count_obj(obj, "vn "), *verts);
+    cr_expect_eq(count_obj(obj, "f "), *faces);
+    cr_expect_not_null(strstr(obj, "mtllib model.mtl"));
+    free(obj);
+    snprintf(path, sizeof path, "%s/model.mtl", dir);
+    char *mtl = read_all(path, NULL);
+    cr_expect_not_null(strstr(mtl, "map_Kd texture.png"));
+    free(mtl);
+
+    /* Binary PLY: header counts, then 8 floats per vertex and 1 + 3*4 bytes per face. */
+    size_t len;
+    snprintf(path, sizeof path, "%s/model.ply", dir);
+    char *ply = read_all(path, &len);
+    int nv = -1, nf = -1;
+    const char *v = strstr(ply, "element vertex "), *f = strstr(ply, "element face "), *end = strstr(ply, "end_header\n");
+    cr_assert(v && f && end);
+    sscanf(v, "element vertex %d", &nv);
+    sscanf(f, "element face %d", &nf);
+    cr_expect_eq(nv, *verts);
+    cr_expect_eq(nf, *faces);
+    size_t header = (size_t)(end - ply) + strlen("end_header\n");
+    cr_expect_eq(len, header + (size_t)nv * 32 + (size_t)nf * 13);
+    free(ply);
+    profile_free(&p);
+}
+
+Test(cli_reconstruct, one_photo_gives_every_output)
+{
+    draw_photo("vase.png", SYNTH_VASE, 2.0, 300, 400);
+    synth_params truth = synth_defaults(SYNTH_VASE, 300, 400);
+    truth.tilt_deg = 2.0;
+    char photo[300], out[300];
+    path_in(photo, sizeof photo, "vase.png");
+    path_in(out, sizeof out, "out");
+    run_result r = run_reconstruct((const char *const[]){photo, "-o", out, "--segments", "48", NULL});
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_expect_str_empty(r.out);
+    cr_expect_not_null(strstr(r.err, "vase.png"), "a human summary on stderr");
+    int verts, faces;
+    check_outputs(out, &truth, &verts, &faces);
+    free_run(&r);
+}
+
+Test(cli_reconstruct, transparent_background_photo)
+{
+    synth_params p = synth_defaults(SYNTH_BOTTLE, 200, 260);
+    p.rgba = 1;
+    image_t img;
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    char photo[300], out[300], err[256], path[400];
+    path_in(photo, sizeof photo, "bottle.png");
+    cr_assert_eq(synth_write(photo, &img, 8, err, sizeof err), 0, "%s", err);
+    image_free(&img);
+    path_in(out, sizeof out, "out");
+    run_result r = run_reconstruct((const char *const[]){photo, "-o", out, "--segments", "16", "--json", NULL});
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    json_t *rep = json_loads(r.out, 0, NULL);
+    cr_assert_not_null(rep);
+    cr_expect_eq(json_integer_value(json_object_get(rep, "threshold")), -1, "the mask came from alpha");
+    json_decref(rep);
+    snprintf(path, sizeof path, "%s/texture.png", out);
+    cr_expect_eq(access(path, R_OK), 0);
+    free_run(&r);
+}
+
+Test(cli_reconstruct, json_report_has_the_table_1_columns)
+{
+    draw_photo("jar.png", SYNTH_JAR, -1.0, 280, 360);
+    char photo[300], out[300], path[400], err[256];
+    path_in(photo, sizeof photo, "jar.png");
+    path_in(out, sizeof out, "out");
+    run_result r = run_reconstruct((const char *const[]){"--json", "--segments", "48", "--side", "left", photo, "-o",
+                                                         out, "--lod", "8,16", NULL});
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    json_error_t jerr;
+    json_t *rep = json_loads(r.out, 0, &jerr);
+    cr_assert_not_null(rep, "stdout is not JSON: %s", jerr.text);
+    cr_assert(json_is_object(rep), "one photo: one object");
+
+    profile_t p;
+    snprintf(path, sizeof path, "%s/profile.json", out);
+    cr_assert_eq(profile_read_json(path, &p, err, sizeof err), 0, "%s", err);
+    cr_expect_str_eq(p.side, "left");
+    cr_expect_str_eq(json_string_value(json_object_get(rep, "side")), "left");
+    cr_expect_eq(json_integer_value(json_object_get(rep, "contour_points")), p.contour_points);
+    cr_expect_eq(json_integer_value(json_object_get(rep, "control_points")), p.curve.n_ctrl);
+    cr_expect_eq(json_integer_value(json_object_get(rep, "domains")), p.n_domains);
+    int verts, faces;
+    expected_mesh(&p, SEGMENTS, &verts, &faces);
+    cr_expect_eq(json_integer_value(json_object_get(rep, "vertices")), verts);
+    cr_expect_eq(json_integer_value(json_object_get(rep, "faces")), faces);
+    json_t *e = json_object_get(rep, "error_px");
+    cr_expect_float_eq(json_real_value(json_object_get(e, "curve_to_polyline")), p.err_curve_to_polyline, 1e-5);
+    cr_expect_float_eq(json_real_value(json_object_get(e, "polyline_to_curve")), p.err_polyline_to_curve, 1e-5);
+    json_t *t = json_object_get(rep, "timings_ms");
+    static const char *const stages[] = {"decode", "image_processing", "bspline", "domains", "hausdorff",
+                                         "texture", "mesh", "overlay", "write", "total"};
+    double sum = 0;
+    for (size_t i = 0; i < sizeof stages / sizeof *stages; i++) {
+        json_t *v = json_object_get(t, stages[i]);
+        cr_assert(json_is_real(v), "timings_ms.%s", stages[i]);
+        cr_expect_geq(json_real_value(v), 0.0);
+        if (i + 1 < sizeof stages / sizeof *stages)
+            sum += json_real_value(v);
+    }
+    cr_expect_leq(sum, json_real_value(json_object_get(t, "total")) + 1e-3, "the stages fit in the total");
+    /* The LODs: model_8 and model_16, counts by the same formula. */
+    json_t *lods = json_object_get(rep, "lods");
+    cr_assert_eq(json_array_size(lods), 2);
+    for (int k = 0; k < 2; k++) {
+        int s = 8 << k;
+        json_t *l = json_array_get(lods, (size_t)k);
+        expected_mesh(&p, s, &verts, &faces);
+        cr_expect_eq(json_integer_value(json_object_get(l, "segments")), s);
+        cr_expect_eq(json_integer_value(json_object_get(l, "faces")), faces);
+        snprintf(path, sizeof path, "%s/model_%d.obj", out, s);
+        char *obj = read_all(path, NULL);
+        cr_expect_eq(count_obj(obj, "f "), faces);
+        free(obj);
+        snprintf(path, sizeof path, "%s/model_%d.ply", out, s);
+        cr_expect_eq(access(path, R_OK), 0);
+    }
+    cr_expect_eq(count_entries(out), 10);
+    profile_free(&p);
+    json_decref(rep);
+    free_run(&r);
+}
+
+Test(cli_reconstruct, batch_gives_one_folder_per_photo)
+{
+    char a[300], b[300], c[300], out[300], sub[400];
+    path_in(a, sizeof a, "a");
+    path_in(b, sizeof b, "b");
+    cr_assert_eq(mkdir(a, 0755), 0);
+    cr_assert_eq(mkdir(b, 0755), 0);
+    draw_photo("a/pot.png", SYNTH_VASE, 0.0, 240, 320);
+    draw_photo("b/pot.png", SYNTH_BOTTLE, 1.5, 240, 320);
+    draw_photo("bowl.png", SYNTH_BOWL, -2.0, 320, 240);
+    path_in(a, sizeof a, "a/pot.png");
+    path_in(b, sizeof b, "b/pot.png");
+    path_in(c, sizeof c, "bowl.png");
+    path_in(out, sizeof out, "batch");
+    run_result r = run_reconstruct((const char *const[]){"--json", "--segments", "48", a, b, c, "-o", out, NULL});
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    json_t *rep = json_loads(r.out, 0, NULL);
+    cr_assert(json_is_array(rep) && json_array_size(rep) == 3, "several photos: an array, in order");
+    static const char *const folders[] = {"pot", "pot-2", "bowl"};
+    static const synth_shape shapes[] = {SYNTH_VASE, SYNTH_BOTTLE, SYNTH_BOWL};
+    static const double tilts[] = {0.0, 1.5, -2.0};
+    for (int i = 0; i < 3; i++) {
+        snprintf(sub, sizeof sub, "%s/%s", out, folders[i]);
+        cr_expect_str_eq(json_string_value(json_object_get(json_array_get(rep, (size_t)i), "output")), sub);
+        synth_params truth = synth_defaults(shapes[i], i == 2 ? 320 : 240, i == 2 ? 240 : 320);
+        truth.tilt_deg = tilts[i];
+        int verts, faces;
+        check_outputs(sub, &truth, &verts, &faces);
+    }
+    cr_expect_eq(count_entries(out), 3, "no temporary folder left");
+    json_decref(rep);
+    free_run(&r);
+}
+
+/* Runs one bad photo into an existing empty folder: exit 2, one stderr line
+ * naming the file, nothing written. */
+static void expect_refused(const char *photo, const char *why)
+{
+    char out[300];
+    path_in(out, sizeof out, "out");
+    mkdir(out, 0755);
+    run_result r = run_reconstruct((const char *const[]){photo, "-o", out, NULL});
+    cr_expect_eq(r.status, 2, "%s: exit %d, stderr: %s", why, r.status, r.err);
+    cr_expect_eq(count_lines(r.err), 1, "%s: stderr: %s", why, r.err);
+    char prefix[400];
+    snprintf(prefix, sizeof prefix, "celadon: %s: ", photo);
+    cr_expect(!strncmp(r.err, prefix, strlen(prefix)), "%s: stderr: %s", why, r.err);
+    cr_expect_eq(count_entries(out), 0, "%s: the output folder stays empty", why);
+    free_run(&r);
+}
+
+Test(cli_reconstruct, a_failed_run_creates_no_output_folder)
+{
+    char photo[300], fresh[300], parent[300];
+    path_in(photo, sizeof photo, "missing.png");
+    path_in(fresh, sizeof fresh, "fresh/deeper");
+    path_in(parent, sizeof parent, "fresh");
+    run_result r = run_reconstruct((const char *const[]){photo, "-o", fresh, NULL});
+    cr_expect_eq(r.status, 2);
+    cr_expect_neq(access(parent, F_OK), 0, "the folders made for the outputs are removed again");
+    free_run(&r);
+}
+
+static void write_bytes(const char *name, const void *data, size_t n, char *path, size_t len)
+{
+    path_in(path, len, name);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    cr_assert_eq(fwrite(data, 1, n, f), n);
+    fclose(f);
+}
+
+Test(cli_reconstruct, unusable_files_are_refused)
+{
+    char path[300];
+    path_in(path, sizeof path, "missing.png");
+    expect_refused(path, "missing file");
+    write_bytes("empty.png", "", 0, path, sizeof path);
+    expect_refused(path, "empty file");
+    write_bytes("notes.png", "these are not pixels\n", 21, path, sizeof path);
+    expect_refused(path, "not an image");
+    path_in(path, sizeof path, "folder.png");
+    cr_assert_eq(mkdir(path, 0755), 0);
+    expect_refused(path, "a folder");
+    expect_refused("/dev/null", "not a regular file");
+    if (geteuid() != 0) { /* root reads anything */
+        draw_photo("locked.png", SYNTH_JAR, 0.0, 64, 80);
+        path_in(path, sizeof path, "locked.png");
+        cr_assert_eq(chmod(path, 0), 0);
+        expect_refused(path, "unreadable");
+    }
+
+    /* A real PNG cut in half. */
+    draw_photo("whole.png", SYNTH_VASE, 0.0, 200, 260);
+    char whole[300];
+    path_in(whole, sizeof whole, "whole.png");
+    size_t len;
+    char *bytes = read_all(whole, &len);
+    write_bytes("truncated.png", bytes, len / 2, path, sizeof path);
+    free(bytes);
+    expect_refused(path, "truncated PNG");
+
+    /* Sizes, from headers alone: 20x20 pixels, and 20000x20000 (400 MP). */
+    static const char small[] = "P6\n20 20\n255\n";
+    char pix[sizeof small - 1 + 1200];
+    memcpy(pix, small, sizeof small - 1);
+    memset(pix + sizeof small - 1, 200, 1200);
+    write_bytes("small.ppm", pix, sizeof pix, path, sizeof path);
+    expect_refused(path, "too small");
+    static const char big[] = "P6\n20000 20000\n255\n\1\2\3";
+    write_bytes("big.ppm", big, sizeof big - 1, path, sizeof path);
+    expect_refused(path, "too large");
+}
+
+Test(cli_reconstruct, photos_without_a_usable_vessel_are_refused)
+{
+    char path[300], err[256];
+    /* Nothing but background. */
+    image_t img = image_alloc(120, 160, 3);
+    for (size_t i = 0; i < (size_t)120 * 160 * 3; i++)
+        img.data[i] = 0.9f;
+    path_in(path, sizeof path, "blank.png");
+    cr_assert_eq(synth_write(path, &img, 8, err, sizeof err), 0, "%s", err);
+    expect_refused(path, "no object");
+
+    /* A triangle standing on its base: one corner at the top, not two. */
+    for (int y = 0; y < 160; y++)
+        for (int x = 0; x < 120; x++)
+            if (y + 0.5 > 25 && y + 0.5 < 135 && fabs(x + 0.5 - 60) < 0.45 * (y + 0.5 - 25))
+                for (int k = 0; k < 3; k++)
+                    img.data[3 * ((size_t)y * 120 + x) + k] = 0.2f;
+    path_in(path, sizeof path, "triangle.png");
+    cr_assert_eq(synth_write(path, &img, 8, err, sizeof err), 0, "%s", err);
+    expect_refused(path, "no four corners");
+    image_free(&img);
+
+    /* A vessel whose base runs off the bottom of the photo. */
+    synth_params p = synth_defaults(SYNTH_VASE, 200, 260);
+    p.base_center.y = 270;
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    path_in(path, sizeof path, "cut.png");
+    cr_assert_eq(synth_write(path, &img, 8, err, sizeof err), 0, "%s", err);
+    image_free(&img);
+    expect_refused(path, "touches the border");
+}
+
+Test(cli_reconstruct, a_bad_photo_in_a_batch_spares_the_others)
+{
+    draw_photo("good.png", SYNTH_JAR, 0.0, 200, 260);
+    char good[300], bad[300], out[300];
+    path_in(good, sizeof good, "good.png");
+    path_in(bad, sizeof bad, "nothing-here.jpg");
+    path_in(out, sizeof out, "out");
+    run_result r = run_reconstruct((const char *const[]){bad, good, "--segments", "16", "-o", out, NULL});
+    cr_expect_eq(r.status, 2);
+    char line[400];
+    snprintf(line, sizeof line, "celadon: %s: ", bad);
+    const char *at = strstr(r.err, line);
+    cr_expect_not_null(at, "stderr: %s", r.err);
+    cr_expect(at && !strstr(at + 1, line), "exactly one line for the bad photo");
+    cr_expect_eq(count_entries(out), 1, "only the good photo's folder");
+    char sub[400];
+    snprintf(sub, sizeof sub, "%s/good/profile.json", out);
+    cr_expect_eq(access(sub, R_OK), 0);
+    free_run(&r);
+}
+
+Test(cli_reconstruct, usage_errors_exit_2)
+{
+    char out[300];
+    path_in(out, sizeof out, "out");
+    static const char *const cases[][6] = {
+        {"photo.png", NULL},                                 /* no -o */
+        {"-o", "x", NULL},                                   /* no photo */
+        {"photo.png", "-o", "x", "--side", "up", NULL},      /* bad side */
+        {"photo.png", "-o", "x", "--segments", "2", NULL},   /* too few segments */
+        {"photo.png", "-o", "x", "--threshold", "300", NULL},
+        {"photo.png", "-o", "x", "--frobnicate", NULL},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        run_result r = run_reconstruct(cases[i]);
+        cr_expect_eq(r.status, 2, "case %zu: exit %d", i, r.status);
+        cr_expect_eq(count_lines(r.err), 1, "case %zu: %s", i, r.err);
+        free_run(&r);
+    }
+    run_result r = run_reconstruct((const char *const[]){"--help", NULL});
+    cr_expect_eq(r.status, 0);
+    cr_expect_not_null(strstr(r.out, "usage: celadon reconstruct"));
+    free_run(&r);
+}
