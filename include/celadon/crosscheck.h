@@ -12,7 +12,8 @@
  *    cross a silhouette differently still add noise; these can floor.
  *  - geometry (deterministic, no noise): k x k primary rays per pixel at the
  *    centres of a regular subpixel grid, each traced to its first hit in both
- *    scenes:
+ *    scenes (passing straight through thindielectric panes, which do not
+ *    bend rays, so that vessels in glass cases count):
  *      coverage_rays   rays whose first-hit shape differs (one hits an SOR
  *                      where the other hits another shape or nothing),
  *      coverage_area   coverage_rays / k^2: the area in pixels between the two

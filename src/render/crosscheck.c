@@ -91,6 +91,22 @@ static void image_metrics(const float *a, const float *m, size_t n, crosscheck_r
     row->mean_abs_diff = ae / (double)n;
 }
 
+/* The first hit along r that is not a thin dielectric pane: those let the
+ * transmitted ray through unbent, so a vessel in a glass case is still the
+ * first thing a primary ray meets. Returns the shape index or -1. */
+static int first_opaque_hit(const scene_t *s, const camera_ray_t *cr, surface_hit *hit)
+{
+    double tmin = cr->tmin;
+    for (int pane = 0; pane < 64; pane++) {
+        if (!scene_intersect(s, &cr->ray, tmin, cr->tmax, hit))
+            return -1;
+        if (strcmp(bsdf_plugin_name(s->shapes[hit->shape].bsdf), "thindielectric") != 0)
+            return hit->shape;
+        tmin = hit->t + hit->eps;
+    }
+    return -1;
+}
+
 /* The primary-hit metrics of the header, over k x k rays per pixel. */
 static void geometry_metrics(const scene_t *an, const scene_t *me, const crosscheck_params *p, crosscheck_row *row,
                              long long *sor_rays)
@@ -108,8 +124,7 @@ static void geometry_metrics(const scene_t *an, const scene_t *me, const crossch
                 for (int i = 0; i < k; i++) {
                     camera_ray_t cr = camera_ray(cam, x, y, (i + 0.5) / k, (j + 0.5) / k);
                     surface_hit ha, hm;
-                    int fa = scene_intersect(an, &cr.ray, cr.tmin, cr.tmax, &ha) ? ha.shape : -1;
-                    int fm = scene_intersect(me, &cr.ray, cr.tmin, cr.tmax, &hm) ? hm.shape : -1;
+                    int fa = first_opaque_hit(an, &cr, &ha), fm = first_opaque_hit(me, &cr, &hm);
                     int sa = fa >= 0 && is_sor(an, fa), sm = fm >= 0 && is_sor(an, fm);
                     on_sor += sa;
                     if (fa != fm && (sa || sm)) {
