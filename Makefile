@@ -4,9 +4,9 @@
 
 CC      ?= cc
 CXX     ?= c++
-PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0
+PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
-            libgsl-dev libjansson-dev libxml2-dev libcriterion-dev
+            libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
@@ -114,6 +114,25 @@ clean:
 
 -include $(shell find build -name '*.d' 2>/dev/null)
 
+# ---------------------------------------------------------------- SOR benchmark
+# The test profiles are the benchmark's workload, so their source links in.
+BENCH_SOR_SRC := bench/bench_sor.c tests/support/sor_profiles.c
+build/bench/bench_sor: $(BENCH_SOR_SRC) build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -O3 -Itests -o $@ $(BENCH_SOR_SRC) build/opt/libceladon.a $(LDLIBS)
+bench-sor: check-deps-stamp
+	@$(MAKE) --no-print-directory -j2 build/bench/bench_sor
+	./build/bench/bench_sor
+
+# ---------------------------------------------------------------- rendering benchmark
+# The showcase scene analytic vs. meshed, and its cross-check error table
+# (docs/BENCHMARKS.md, "Rendering"). `make bench` runs every bench/*.c, this one too.
+.PHONY: bench-render
+bench-render: check-deps-stamp
+	@$(MAKE) --no-print-directory build/bench/bench_render
+	@mkdir -p out/bench
+	build/bench/bench_render | tee out/bench/bench_render.txt
+
 # ---------------------------------------------------------------- demo and benchmarks
 # `make demo` reconstructs the bundled catalogue photo; `make demo-photo`
 # redraws that photo (tests/tools/draw_demo_photo.c) from its analytic vessel.
@@ -154,13 +173,3 @@ bench: check-deps-stamp
 	  $(PYTHON_CV) bench/opencv_recon.py out/bench/bench_recon_photo.png out/bench/bench_recon_mask.png | tee out/bench/opencv_recon.txt; \
 	fi
 	@echo "celadon: benchmark results in out/bench/*.txt (docs/BENCHMARKS.md explains them)"
-
-# ---------------------------------------------------------------- SOR benchmark
-# The test profiles are the benchmark's workload, so their source links in.
-BENCH_SOR_SRC := bench/bench_sor.c tests/support/sor_profiles.c
-build/bench/bench_sor: $(BENCH_SOR_SRC) build/opt/libceladon.a
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -O3 -Itests -o $@ $(BENCH_SOR_SRC) build/opt/libceladon.a $(LDLIBS)
-bench-sor: check-deps-stamp
-	@$(MAKE) --no-print-directory -j2 build/bench/bench_sor
-	./build/bench/bench_sor

@@ -3,7 +3,6 @@
  * and on every kind of bad input. */
 #include <criterion/criterion.h>
 #include <dirent.h>
-#include <fcntl.h>
 #include <ftw.h>
 #include <jansson.h>
 #include <math.h>
@@ -11,10 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "celadon/profile.h"
+#include "support/cli_run.h"
 #include "support/synth_vessel.h"
 
 #define SEGMENTS 48
@@ -61,44 +60,15 @@ static char *read_all(const char *path, size_t *len)
     return buf;
 }
 
-typedef struct {
-    int status;
-    char *out, *err;
-} run_result;
-
 /* Runs `celadon reconstruct ARGS...` (NULL-terminated), capturing stdout and stderr. */
-static run_result run_reconstruct(const char *const *args)
+static cli_result run_reconstruct(const char *const *args)
 {
-    char out_path[300], err_path[300];
-    snprintf(out_path, sizeof out_path, "%s/stdout.txt", workdir);
-    snprintf(err_path, sizeof err_path, "%s/stderr.txt", workdir);
-    const char *argv[64] = {getenv("CELADON_BIN"), "reconstruct"};
-    int n = 2;
-    for (; args[n - 2]; n++)
-        argv[n] = args[n - 2];
+    const char *argv[64] = {"reconstruct"};
+    int n = 1;
+    for (; args[n - 1] && n < 63; n++)
+        argv[n] = args[n - 1];
     argv[n] = NULL;
-    pid_t pid = fork();
-    cr_assert_neq(pid, -1);
-    if (pid == 0) {
-        int fo = open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644), fe = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(fo, 1);
-        dup2(fe, 2);
-        execv(argv[0], (char *const *)argv);
-        _exit(127);
-    }
-    int st;
-    cr_assert_eq(waitpid(pid, &st, 0), pid);
-    cr_assert(WIFEXITED(st), "the CLI died (signal %d)", WIFSIGNALED(st) ? WTERMSIG(st) : 0);
-    run_result r = {WEXITSTATUS(st), read_all(out_path, NULL), read_all(err_path, NULL)};
-    remove(out_path);
-    remove(err_path);
-    return r;
-}
-
-static void free_run(run_result *r)
-{
-    free(r->out);
-    free(r->err);
+    return cli_run(workdir, argv);
 }
 
 static void path_in(char *buf, size_t len, const char *name) { snprintf(buf, len, "%s/%s", workdir, name); }
@@ -239,13 +209,13 @@ Test(cli_reconstruct, one_photo_gives_every_output)
     char photo[300], out[300];
     path_in(photo, sizeof photo, "vase.png");
     path_in(out, sizeof out, "out");
-    run_result r = run_reconstruct((const char *const[]){photo, "-o", out, "--segments", "48", NULL});
+    cli_result r = run_reconstruct((const char *const[]){photo, "-o", out, "--segments", "48", NULL});
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     cr_expect_str_empty(r.out);
     cr_expect_not_null(strstr(r.err, "vase.png"), "a human summary on stderr");
     int verts, faces;
     check_outputs(out, &truth, &verts, &faces);
-    free_run(&r);
+    cli_result_free(&r);
 }
 
 Test(cli_reconstruct, transparent_background_photo)
@@ -259,7 +229,7 @@ Test(cli_reconstruct, transparent_background_photo)
     cr_assert_eq(synth_write(photo, &img, 8, err, sizeof err), 0, "%s", err);
     image_free(&img);
     path_in(out, sizeof out, "out");
-    run_result r = run_reconstruct((const char *const[]){photo, "-o", out, "--segments", "16", "--json", NULL});
+    cli_result r = run_reconstruct((const char *const[]){photo, "-o", out, "--segments", "16", "--json", NULL});
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     json_t *rep = json_loads(r.out, 0, NULL);
     cr_assert_not_null(rep);
@@ -267,7 +237,7 @@ Test(cli_reconstruct, transparent_background_photo)
     json_decref(rep);
     snprintf(path, sizeof path, "%s/texture.png", out);
     cr_expect_eq(access(path, R_OK), 0);
-    free_run(&r);
+    cli_result_free(&r);
 }
 
 Test(cli_reconstruct, json_report_has_the_table_1_columns)
@@ -276,7 +246,7 @@ Test(cli_reconstruct, json_report_has_the_table_1_columns)
     char photo[300], out[300], path[400], err[256];
     path_in(photo, sizeof photo, "jar.png");
     path_in(out, sizeof out, "out");
-    run_result r = run_reconstruct((const char *const[]){"--json", "--segments", "48", "--side", "left", photo, "-o",
+    cli_result r = run_reconstruct((const char *const[]){"--json", "--segments", "48", "--side", "left", photo, "-o",
                                                          out, "--lod", "8,16", NULL});
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     json_error_t jerr;
@@ -330,7 +300,7 @@ Test(cli_reconstruct, json_report_has_the_table_1_columns)
     cr_expect_eq(count_entries(out), 10);
     profile_free(&p);
     json_decref(rep);
-    free_run(&r);
+    cli_result_free(&r);
 }
 
 Test(cli_reconstruct, batch_gives_one_folder_per_photo)
@@ -347,7 +317,7 @@ Test(cli_reconstruct, batch_gives_one_folder_per_photo)
     path_in(b, sizeof b, "b/pot.png");
     path_in(c, sizeof c, "bowl.png");
     path_in(out, sizeof out, "batch");
-    run_result r = run_reconstruct((const char *const[]){"--json", "--segments", "48", a, b, c, "-o", out, NULL});
+    cli_result r = run_reconstruct((const char *const[]){"--json", "--segments", "48", a, b, c, "-o", out, NULL});
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     json_t *rep = json_loads(r.out, 0, NULL);
     cr_assert(json_is_array(rep) && json_array_size(rep) == 3, "several photos: an array, in order");
@@ -364,7 +334,7 @@ Test(cli_reconstruct, batch_gives_one_folder_per_photo)
     }
     cr_expect_eq(count_entries(out), 3, "no temporary folder left");
     json_decref(rep);
-    free_run(&r);
+    cli_result_free(&r);
 }
 
 /* Runs one bad photo into an existing empty folder: exit 2, one stderr line
@@ -374,14 +344,14 @@ static void expect_refused(const char *photo, const char *why)
     char out[300];
     path_in(out, sizeof out, "out");
     mkdir(out, 0755);
-    run_result r = run_reconstruct((const char *const[]){photo, "-o", out, NULL});
+    cli_result r = run_reconstruct((const char *const[]){photo, "-o", out, NULL});
     cr_expect_eq(r.status, 2, "%s: exit %d, stderr: %s", why, r.status, r.err);
     cr_expect_eq(count_lines(r.err), 1, "%s: stderr: %s", why, r.err);
     char prefix[400];
     snprintf(prefix, sizeof prefix, "celadon: %s: ", photo);
     cr_expect(!strncmp(r.err, prefix, strlen(prefix)), "%s: stderr: %s", why, r.err);
     cr_expect_eq(count_entries(out), 0, "%s: the output folder stays empty", why);
-    free_run(&r);
+    cli_result_free(&r);
 }
 
 Test(cli_reconstruct, a_failed_run_creates_no_output_folder)
@@ -390,10 +360,10 @@ Test(cli_reconstruct, a_failed_run_creates_no_output_folder)
     path_in(photo, sizeof photo, "missing.png");
     path_in(fresh, sizeof fresh, "fresh/deeper");
     path_in(parent, sizeof parent, "fresh");
-    run_result r = run_reconstruct((const char *const[]){photo, "-o", fresh, NULL});
+    cli_result r = run_reconstruct((const char *const[]){photo, "-o", fresh, NULL});
     cr_expect_eq(r.status, 2);
     cr_expect_neq(access(parent, F_OK), 0, "the folders made for the outputs are removed again");
-    free_run(&r);
+    cli_result_free(&r);
 }
 
 static void write_bytes(const char *name, const void *data, size_t n, char *path, size_t len)
@@ -486,7 +456,7 @@ Test(cli_reconstruct, a_bad_photo_in_a_batch_spares_the_others)
     path_in(good, sizeof good, "good.png");
     path_in(bad, sizeof bad, "nothing-here.jpg");
     path_in(out, sizeof out, "out");
-    run_result r = run_reconstruct((const char *const[]){bad, good, "--segments", "16", "-o", out, NULL});
+    cli_result r = run_reconstruct((const char *const[]){bad, good, "--segments", "16", "-o", out, NULL});
     cr_expect_eq(r.status, 2);
     char line[400];
     snprintf(line, sizeof line, "celadon: %s: ", bad);
@@ -497,7 +467,7 @@ Test(cli_reconstruct, a_bad_photo_in_a_batch_spares_the_others)
     char sub[400];
     snprintf(sub, sizeof sub, "%s/good/profile.json", out);
     cr_expect_eq(access(sub, R_OK), 0);
-    free_run(&r);
+    cli_result_free(&r);
 }
 
 Test(cli_reconstruct, usage_errors_exit_2)
@@ -513,13 +483,13 @@ Test(cli_reconstruct, usage_errors_exit_2)
         {"photo.png", "-o", "x", "--frobnicate", NULL},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-        run_result r = run_reconstruct(cases[i]);
+        cli_result r = run_reconstruct(cases[i]);
         cr_expect_eq(r.status, 2, "case %zu: exit %d", i, r.status);
         cr_expect_eq(count_lines(r.err), 1, "case %zu: %s", i, r.err);
-        free_run(&r);
+        cli_result_free(&r);
     }
-    run_result r = run_reconstruct((const char *const[]){"--help", NULL});
+    cli_result r = run_reconstruct((const char *const[]){"--help", NULL});
     cr_expect_eq(r.status, 0);
     cr_expect_not_null(strstr(r.out, "usage: celadon reconstruct"));
-    free_run(&r);
+    cli_result_free(&r);
 }

@@ -1,18 +1,15 @@
 /* celadon mesh end to end: the binary from CELADON_BIN on a saved profile,
  * good and bad. */
 #include <criterion/criterion.h>
-#include <fcntl.h>
-#include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "celadon/profile.h"
+#include "support/cli_run.h"
 #include "test_curve_shapes.h"
 
-extern char **environ;
 
 static char dir[64];
 
@@ -29,41 +26,13 @@ static void teardown(void)
     cr_assert_eq(system(cmd), 0);
 }
 
-static const char *celadon_bin(void)
-{
-    const char *bin = getenv("CELADON_BIN");
-    if (!bin || !*bin)
-        cr_skip_test("CELADON_BIN is not set");
-    return bin;
-}
-
 /* Runs celadon with args; stderr goes to err (NUL-terminated). Returns the exit code. */
 static int run(const char *const *args, char *err, size_t errlen)
 {
-    char errpath[128];
-    snprintf(errpath, sizeof errpath, "%s/stderr.txt", dir);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 2, errpath, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    char *argv[16];
-    int n = 0;
-    argv[n++] = (char *)celadon_bin();
-    for (; *args; args++)
-        argv[n++] = (char *)*args;
-    argv[n] = NULL;
-    pid_t pid;
-    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, argv, environ), 0);
-    posix_spawn_file_actions_destroy(&fa);
-    int status;
-    cr_assert_eq(waitpid(pid, &status, 0), pid);
-    FILE *f = fopen(errpath, "r");
-    size_t k = fread(err, 1, errlen - 1, f);
-    err[k] = '\0';
-    fclose(f);
-    remove(errpath);
-    cr_assert(WIFEXITED(status), "celadon died from a signal; stderr: %s", err);
-    return WEXITSTATUS(status);
+    cli_result r = cli_run(dir, args);
+    snprintf(err, errlen, "%s", r.err);
+    cli_result_free(&r);
+    return r.status;
 }
 
 static void write_profile(const char *path, int version_edit)

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include "celadon/image.h"
+#include "support/cli_run.h"
 #include "test_render_util.h"
 
 extern char **environ;
@@ -25,41 +26,13 @@ static const char *tiny_xml =
     "  <emitter type=\"point\"><point name=\"position\" value=\"1, 2, 1\"/><rgb name=\"intensity\" value=\"2\"/></emitter>\n"
     "</scene>\n";
 
-static const char *celadon_bin(void)
-{
-    const char *bin = getenv("CELADON_BIN");
-    if (!bin || !*bin)
-        cr_skip_test("CELADON_BIN is not set");
-    return bin;
-}
-
 /* Runs celadon with args (NULL-terminated); stderr into err. Exit code. */
 static int run(const render_fixture *f, const char *const *args, char *err, size_t errlen)
 {
-    char errpath[128];
-    snprintf(errpath, sizeof errpath, "%s/stderr.txt", f->dir);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 2, errpath, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    char *argv[32];
-    int n = 0;
-    argv[n++] = (char *)celadon_bin();
-    for (; *args; args++)
-        argv[n++] = (char *)*args;
-    argv[n] = NULL;
-    pid_t pid;
-    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, argv, environ), 0);
-    posix_spawn_file_actions_destroy(&fa);
-    int status;
-    cr_assert_eq(waitpid(pid, &status, 0), pid);
-    FILE *fp = fopen(errpath, "r");
-    size_t k = fread(err, 1, errlen - 1, fp);
-    err[k] = '\0';
-    fclose(fp);
-    remove(errpath);
-    cr_assert(WIFEXITED(status), "celadon died from a signal; stderr: %s", err);
-    return WEXITSTATUS(status);
+    cli_result r = cli_run(f->dir, args);
+    snprintf(err, errlen, "%s", r.err);
+    cli_result_free(&r);
+    return r.status;
 }
 
 static int count_lines(const char *s)
@@ -161,7 +134,7 @@ Test(render_cli, sigint_writes_the_partial_image)
     render_write_file(&f, "scene.xml", tiny_xml, scene, sizeof scene);
     snprintf(out, sizeof out, "%s/partial.exr", f.dir);
     snprintf(errpath, sizeof errpath, "%s/stderr.txt", f.dir);
-    char *argv[] = {(char *)celadon_bin(), "render", scene, "-o", out, "--spp", "10000000", "--threads", "2", NULL};
+    char *argv[] = {(char *)cli_bin(), "render", scene, "-o", out, "--spp", "10000000", "--threads", "2", NULL};
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
     posix_spawn_file_actions_addopen(&fa, 2, errpath, O_WRONLY | O_CREAT | O_TRUNC, 0644);

@@ -10,7 +10,8 @@ typedef struct {
 } cli_command;
 
 int cmd_mesh(int argc, char **argv);
-int cmd_reconstruct(int argc, char **argv);
 int cmd_render(int argc, char **argv);
+int cmd_crosscheck(int argc, char **argv);
+int cmd_reconstruct(int argc, char **argv);
 
 #endif

@@ -54,6 +54,8 @@ static void piece_finish(sor_piece *pc)
     sor_bernstein_square3(pc->r, pc->r2);
     power_basis(pc->r, pc->rp);
     power_basis(pc->h, pc->hp);
+    pc->tangent_floor = 1e-12 * (fabs(pc->r[3] - pc->r[0]) + fabs(pc->h[3] - pc->h[0]) + fabs(pc->r[1] - pc->r[0]) +
+                                 fabs(pc->h[1] - pc->h[0]) + fabs(pc->r[2] - pc->r[3]) + fabs(pc->h[2] - pc->h[3]));
 }
 
 /* Splits pc at local parameter w into two pieces sharing the split point bit for bit. */
@@ -290,11 +292,21 @@ static int build_tree(sor_t *s, const int *iv_of_leaf)
 {
     int cap = 2 * s->n_pieces;
     s->nodes = calloc((size_t)cap, sizeof *s->nodes);
+    s->pairs = calloc((size_t)cap, sizeof *s->pairs);
     s->interval_root = malloc((size_t)s->n_intervals * sizeof *s->interval_root);
     tree_build tb = {s, iv_of_leaf, malloc((size_t)cap * sizeof(int)), malloc((size_t)cap * sizeof(int))};
-    int ok = s->nodes && s->interval_root && tb.range_lo && tb.range_hi;
+    int ok = s->nodes && s->pairs && s->interval_root && tb.range_lo && tb.range_hi;
     if (ok) {
         build_node(&tb, 0, s->n_pieces);
+        for (int k = 0; k < s->n_nodes; k++) {
+            if (s->nodes[k].piece >= 0)
+                continue;
+            const sor_node *child[2] = {&s->nodes[k + 1], &s->nodes[s->nodes[k].skip]};
+            for (int j = 0; j < 2; j++) {
+                s->pairs[k].q0[j] = child[j]->q0, s->pairs[k].q1[j] = child[j]->q1;
+                s->pairs[k].h0[j] = child[j]->h0, s->pairs[k].h1[j] = child[j]->h1;
+            }
+        }
         /* Each interval's leaves form one node's range: find the topmost such node. */
         for (int iv = 0; iv < s->n_intervals; iv++)
             s->interval_root[iv] = -1;
@@ -334,7 +346,7 @@ sor_t *sor_create(const bspline_t *profile, double height, unsigned caps, char *
         fail(err, errlen, "out of memory");
         return NULL;
     }
-    s->height = height;
+    s->height = height, s->inv_height = 1.0 / height;
     s->caps = caps;
     if (load_profile(s, profile, err, errlen) != 0) {
         sor_destroy(s);
@@ -359,6 +371,7 @@ void sor_destroy(sor_t *s)
         return;
     free(s->pieces);
     free(s->nodes);
+    free(s->pairs);
     free(s->interval_root);
     free(s->bez);
     free(s);

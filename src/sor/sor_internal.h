@@ -17,6 +17,7 @@ typedef struct {
     double r2[7];
     double rp[4], hp[4]; /* power-basis coefficients (p0 + p1 w + p2 w^2 + p3 w^3) for fast evaluation */
     double u0, u1;       /* profile parameter range covered */
+    double tangent_floor; /* |r'| + |h'| below this is a vanishing tangent (1e-12 of the control polygon) */
     int interval;  /* monotone interval of a leaf (its primitive index) */
 } sor_piece;
 
@@ -30,8 +31,15 @@ typedef struct {
     int32_t piece;
 } sor_node;
 
+/* The annuli of an internal node's two children (node + 1 and skip) side by
+ * side, so that the usual ray tests both at once (two lanes of a vector). */
+typedef struct {
+    double q0[2], q1[2], h0[2], h1[2];
+} sor_pair;
+
 struct sor {
     double height, scale;   /* rim height; object units per profile unit */
+    double inv_height;
     double size;            /* max(height, rim/base extent): the tolerance scale */
     double tol;             /* a hit is accepted within tol of the surface */
     double r_max, h_min, h_max;
@@ -42,6 +50,7 @@ struct sor {
     sor_node bound;         /* the bounding cylinder of wall and caps */
     int n_nodes;
     sor_node *nodes;
+    sor_pair *pairs;        /* per node; set for internal nodes */
     int n_intervals;        /* monotone intervals: one subtree each */
     int *interval_root;
     int n_bez;              /* raw Bézier pieces for sor_intersect_naive */

@@ -137,10 +137,11 @@ static double leaf_fn(const sor_piece *pc, const sor_ray *ry, double w, double *
  * coefficients, n the degree). It stops once a step is below 1e-7 of the
  * piece, when the error is ~1e-14: the Newton polish in (w, s) that follows
  * takes it to rounding level. */
-static double bracket_root(const sor_piece *pc, const sor_ray *ry, const iso_item *it, const double *c, int n)
+static double bracket_root(const sor_piece *pc, const sor_ray *ry, double lo, double hi, double clo, const double *c,
+                           int n)
 {
-    double lo = it->lo, hi = it->hi, fp, w = 0.5 * (lo + hi);
-    int slo = it->clo > 0.0;
+    double fp, w = 0.5 * (lo + hi);
+    int slo = clo > 0.0;
     for (int k = 0; k < n; k++)
         if ((c[k] > 0.0) != (c[k + 1] > 0.0)) {
             w = lo + (hi - lo) * (k + c[k] / (c[k] - c[k + 1])) / n;
@@ -191,8 +192,9 @@ static double polish(const sor_piece *pc, const sor_ray *ry, double tol, piece_p
         double det = J11 * J22 - J12 * J21;
         if (!(fabs(det) > 1e-14 * (fabs(J11 * J22) + fabs(J12 * J21))))
             break; /* tangent: the seed is as good as it gets */
-        cw += (J12 * F2 - J22 * F1) / det;
-        cs += (J21 * F1 - J11 * F2) / det;
+        double inv_det = 1.0 / det;
+        cw += (J12 * F2 - J22 * F1) * inv_det;
+        cs += (J21 * F1 - J11 * F2) * inv_det;
         if (!(cw > -0.5 && cw < 1.5))
             break;
         q = piece_eval(pc, cw);
@@ -227,7 +229,7 @@ static int offer(const sor_t *sor, const sor_piece *pc, int idx, const sor_ray *
     double cand[2];
     int nc = 0, both = 1;
     if (ry->steep) {
-        cand[nc++] = (q.h - ry->hc) / ry->dy;
+        cand[nc++] = (q.h - ry->hc) * ry->inv_dy;
     } else {
         double S = sqrt(sor_max(0.0, (q.r * q.r - ry->d2) / ry->a));
         double sp = ry->s_star + S, sm = ry->s_star - S;
@@ -267,27 +269,29 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
         double pq[7];
         pq[0] = p[0] * q[0];
         pq[1] = 0.5 * (p[0] * q[1] + p[1] * q[0]);
-        pq[2] = (p[0] * q[2] + 3.0 * p[1] * q[1] + p[2] * q[0]) / 5.0;
-        pq[3] = (p[0] * q[3] + 9.0 * (p[1] * q[2] + p[2] * q[1]) + p[3] * q[0]) / 20.0;
-        pq[4] = (p[1] * q[3] + 3.0 * p[2] * q[2] + p[3] * q[1]) / 5.0;
+        pq[2] = (p[0] * q[2] + 3.0 * p[1] * q[1] + p[2] * q[0]) * 0.2;
+        pq[3] = (p[0] * q[3] + 9.0 * (p[1] * q[2] + p[2] * q[1]) + p[3] * q[0]) * 0.05;
+        pq[4] = (p[1] * q[3] + 3.0 * p[2] * q[2] + p[3] * q[1]) * 0.2;
         pq[5] = 0.5 * (p[2] * q[3] + p[3] * q[2]);
         pq[6] = p[3] * q[3];
-        int var = 0;
+        unsigned positive = 0; /* bit k: c[k] > 0 */
+#pragma GCC unroll 7
         for (int k = 0; k < 7; k++) {
             double A = dy2 * pc->r2[k], B = pq[k] + K;
             c[k] = A - B;
             mag = sor_max(mag, fabs(A) + fabs(B));
-            var += k > 0 && (c[k] > 0.0) != (c[k - 1] > 0.0);
+            positive |= (unsigned)(c[k] > 0.0) << k;
         }
         n = 6;
         /* Fast paths, the common cases: the hull of g stays clear of zero, or
-         * crosses it once with both ends clear of zero (exactly one root). */
+         * crosses it once with both ends clear of zero (exactly one root).
+         * Bit k of `change` marks a sign change between c[k] and c[k+1]. */
+        unsigned change = (positive ^ (positive >> 1)) & 0x3fu;
         double tau = 64.0 * DBL_EPSILON * mag;
-        if (fabs(c[0]) > tau && fabs(c[6]) > tau && var <= 1) {
-            if (var == 0)
+        if (fabs(c[0]) > tau && fabs(c[6]) > tau && (change & (change - 1)) == 0) {
+            if (change == 0)
                 return 0;
-            iso_item it = {0.0, 1.0, c[0], 1, {0}};
-            return offer(sor, pc, idx, ry, bracket_root(pc, ry, &it, c, 6), 0.0, 1.0, 0, smin, best);
+            return offer(sor, pc, idx, ry, bracket_root(pc, ry, 0.0, 1.0, c[0], c, 6), 0.0, 1.0, 0, smin, best);
         }
     } else {
         for (int i = 0; i < 4; i++) {
@@ -303,7 +307,8 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
     for (int k = 0; k < ni; k++) {
         const iso_item *it = &items[k];
         if (it->bracket)
-            found |= offer(sor, pc, idx, ry, bracket_root(pc, ry, it, it->c, n), it->lo, it->hi, 0, smin, best);
+            found |= offer(sor, pc, idx, ry, bracket_root(pc, ry, it->lo, it->hi, it->clo, it->c, n), it->lo, it->hi, 0,
+                           smin, best);
         else
             found |= offer(sor, pc, idx, ry, it->lo, 0.0, 1.0, 1, smin, best);
     }

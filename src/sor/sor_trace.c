@@ -2,6 +2,9 @@
  * node first, culling annuli the ray's hyperbola cannot reach), the analytic
  * caps, and the hit record. */
 #include <math.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include "sor_internal.h"
 
@@ -35,13 +38,16 @@ int sor_ray_setup(const sor_t *sor, const ray3 *ray, sor_ray *ry)
 }
 
 /* Can the ray meet the annulus r^2 in [q0,q1], h in [h0,h1] for s in [smin, smax]?
- * On success *slo is a lower bound of s over the meeting. The usual case
- * (dy != 0, a > 0) is branch-free: min/max compile to single instructions,
- * and the tests are combined at the end. */
-static inline int node_hit(const sor_node *nd, const sor_ray *ry, double smin, double smax, double *slo)
+ * On success *slo is a lower bound of s over the meeting. Over the node's
+ * h-slab, rho^2 is a parabola in s: its maximum is at an end of the slab, its
+ * minimum at the vertex clamped into it. `usual` (dy != 0 and a > 0, known
+ * per ray) selects the branch-free test: min/max compile to single
+ * instructions, and the comparisons are combined at the end. */
+static inline __attribute__((always_inline)) int node_hit(const sor_node *nd, const sor_ray *ry, double smin,
+                                                          double smax, double *slo, int usual)
 {
     double sa, sb;
-    if (ry->dy != 0.0) {
+    if (usual || ry->dy != 0.0) {
         double s0 = (nd->h0 - ry->hc) * ry->inv_dy, s1 = (nd->h1 - ry->hc) * ry->inv_dy;
         sa = sor_max(sor_min(s0, s1), smin);
         sb = sor_min(sor_max(s0, s1), smax);
@@ -51,7 +57,7 @@ static inline int node_hit(const sor_node *nd, const sor_ray *ry, double smin, d
         sa = smin, sb = smax;
     }
     *slo = sa;
-    if (ry->a > 0.0) {
+    if (usual || ry->a > 0.0) {
         double ea = sa - ry->s_star, eb = sb - ry->s_star;
         double em = sor_max(ea, sor_min(eb, 0.0)); /* the vertex clamped into [ea, eb] */
         double fa = ry->a * ea * ea, fb = ry->a * eb * eb, fm = ry->a * em * em;
@@ -60,14 +66,48 @@ static inline int node_hit(const sor_node *nd, const sor_ray *ry, double smin, d
     return (sa <= sb) & (ry->rho2c >= nd->q0) & (ry->rho2c <= nd->q1);
 }
 
-int sor_tree_intersect(const sor_t *sor, int root, const sor_ray *ry, double smin, sor_best *best, int any)
+/* Which children of internal node `node` the ray can meet (bit 0: node + 1,
+ * bit 1: skip), with their lower bounds of s in slo[]. For the usual ray both
+ * are tested at once, the same arithmetic as node_hit in two vector lanes. */
+static inline __attribute__((always_inline)) int children_hit(const sor_t *sor, int node, const sor_ray *ry,
+                                                              double smin, double smax, double slo[2], int usual)
+{
+#ifdef __SSE2__
+    if (usual) {
+        const sor_pair *pr = &sor->pairs[node];
+        __m128d hc = _mm_set1_pd(ry->hc), inv_dy = _mm_set1_pd(ry->inv_dy), s_star = _mm_set1_pd(ry->s_star);
+        __m128d a = _mm_set1_pd(ry->a), d2 = _mm_set1_pd(ry->d2);
+        __m128d s0 = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(pr->h0), hc), inv_dy);
+        __m128d s1 = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(pr->h1), hc), inv_dy);
+        __m128d sa = _mm_max_pd(_mm_min_pd(s0, s1), _mm_set1_pd(smin));
+        __m128d sb = _mm_min_pd(_mm_max_pd(s0, s1), _mm_set1_pd(smax));
+        __m128d ea = _mm_sub_pd(sa, s_star), eb = _mm_sub_pd(sb, s_star);
+        __m128d em = _mm_max_pd(ea, _mm_min_pd(eb, _mm_setzero_pd()));
+        __m128d fa = _mm_mul_pd(_mm_mul_pd(a, ea), ea), fb = _mm_mul_pd(_mm_mul_pd(a, eb), eb);
+        __m128d fm = _mm_mul_pd(_mm_mul_pd(a, em), em);
+        __m128d ok = _mm_and_pd(_mm_cmple_pd(sa, sb),
+                                _mm_and_pd(_mm_cmpge_pd(_mm_add_pd(_mm_max_pd(fa, fb), d2), _mm_loadu_pd(pr->q0)),
+                                           _mm_cmple_pd(_mm_add_pd(fm, d2), _mm_loadu_pd(pr->q1))));
+        _mm_storeu_pd(slo, sa);
+        return _mm_movemask_pd(ok);
+    }
+#endif
+    const sor_node *nodes = sor->nodes;
+    return node_hit(&nodes[node + 1], ry, smin, smax, &slo[0], usual) |
+           node_hit(&nodes[nodes[node].skip], ry, smin, smax, &slo[1], usual) << 1;
+}
+
+/* The walk, nearest child first; `usual` as in node_hit, so the usual rays get
+ * a copy of the loop without the degenerate branches. */
+static inline __attribute__((always_inline)) int tree_walk(const sor_t *sor, int root, const sor_ray *ry, double smin,
+                                                           sor_best *best, int any, int usual)
 {
     const sor_node *nodes = sor->nodes;
     int stack_n[TREE_STACK];
     double stack_s[TREE_STACK];
     int sp = 0, found = 0, node = root;
     double slo;
-    if (!node_hit(&nodes[root], ry, smin, best->s, &slo))
+    if (!node_hit(&nodes[root], ry, smin, best->s, &slo, usual))
         return 0;
     for (;;) {
         const sor_node *nd = &nodes[node];
@@ -78,17 +118,16 @@ int sor_tree_intersect(const sor_t *sor, int root, const sor_ray *ry, double smi
                     return 1;
             }
         } else {
-            double s0 = 0.0, s1 = 0.0;
-            int h0 = node_hit(&nodes[node + 1], ry, smin, best->s, &s0);
-            int h1 = node_hit(&nodes[nd->skip], ry, smin, best->s, &s1);
-            if (h0 && h1) {
-                int near = s0 <= s1 ? node + 1 : nd->skip, far = s0 <= s1 ? nd->skip : node + 1;
-                stack_n[sp] = far, stack_s[sp] = s0 <= s1 ? s1 : s0, sp++;
-                node = near;
+            double s[2] = {0.0, 0.0};
+            int hit = children_hit(sor, node, ry, smin, best->s, s, usual);
+            if (hit == 3) {
+                int first = s[0] <= s[1];
+                stack_n[sp] = first ? nd->skip : node + 1, stack_s[sp] = first ? s[1] : s[0], sp++;
+                node = first ? node + 1 : nd->skip;
                 continue;
             }
-            if (h0 || h1) {
-                node = h0 ? node + 1 : nd->skip;
+            if (hit) {
+                node = hit == 1 ? node + 1 : nd->skip;
                 continue;
             }
         }
@@ -103,6 +142,20 @@ int sor_tree_intersect(const sor_t *sor, int root, const sor_ray *ry, double smi
             }
         }
     }
+}
+
+static inline int ray_usual(const sor_ray *ry) { return ry->dy != 0.0 && ry->a > 0.0; }
+
+/* The bounding cylinder of wall and caps. */
+static inline int bound_hit(const sor_t *sor, const sor_ray *ry, double smin, double smax)
+{
+    double slo;
+    return ray_usual(ry) ? node_hit(&sor->bound, ry, smin, smax, &slo, 1) : node_hit(&sor->bound, ry, smin, smax, &slo, 0);
+}
+
+int sor_tree_intersect(const sor_t *sor, int root, const sor_ray *ry, double smin, sor_best *best, int any)
+{
+    return ray_usual(ry) ? tree_walk(sor, root, ry, smin, best, any, 1) : tree_walk(sor, root, ry, smin, best, any, 0);
 }
 
 int sor_caps_intersect(const sor_t *sor, const sor_ray *ry, unsigned which, double smin, sor_best *best)
@@ -135,7 +188,8 @@ void sor_fill_hit(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
     vec3 p = v3_add(ry->pc, v3_scale(ry->d, best->s));
     double rho = sqrt(p.x * p.x + p.z * p.z), c = 1.0, sn = 0.0, phi = 0.0;
     if (rho > 0.0) {
-        c = p.x / rho, sn = p.z / rho;
+        double inv_rho = 1.0 / rho;
+        c = p.x * inv_rho, sn = p.z * inv_rho;
         phi = atan2(p.z, p.x);
         if (phi < 0.0)
             phi += 2.0 * M_PI;
@@ -149,16 +203,16 @@ void sor_fill_hit(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
         double w = best->w, m = 1.0 - w;
         double rw = m * m * (pc->r[1] - pc->r[0]) + 2.0 * w * m * (pc->r[2] - pc->r[1]) + w * w * (pc->r[3] - pc->r[2]);
         double hw = m * m * (pc->h[1] - pc->h[0]) + 2.0 * w * m * (pc->h[2] - pc->h[1]) + w * w * (pc->h[3] - pc->h[2]);
-        double scale = fabs(pc->r[3] - pc->r[0]) + fabs(pc->h[3] - pc->h[0]) + fabs(pc->r[1] - pc->r[0]) +
-                       fabs(pc->h[1] - pc->h[0]) + fabs(pc->r[2] - pc->r[3]) + fabs(pc->h[2] - pc->h[3]);
-        if (fabs(rw) + fabs(hw) <= 1e-12 * scale) {
+        if (fabs(rw) + fabs(hw) <= pc->tangent_floor) {
             /* A vanishing tangent (coincident control points at an end): the
              * tangent's limit is the direction to the next distinct control point. */
             int end = w > 0.5;
             rw = end ? pc->r[3] - pc->r[1] : pc->r[2] - pc->r[0];
             hw = end ? pc->h[3] - pc->h[1] : pc->h[2] - pc->h[0];
         }
-        n = v3_norm(v3(hw * c, -rw, hw * sn));
+        double len2 = hw * hw + rw * rw; /* |(hw c, -rw, hw sn)|^2, as c^2 + sn^2 = 1 */
+        double inv_len = len2 > 0.0 ? 1.0 / sqrt(len2) : 0.0;
+        n = v3(hw * c * inv_len, -rw * inv_len, hw * sn * inv_len);
         u = pc->u0 + w * (pc->u1 - pc->u0);
     } else {
         n = v3(0.0, best->part == SOR_PART_BASE ? -1.0 : 1.0, 0.0);
@@ -172,8 +226,8 @@ void sor_fill_hit(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
     hit->shading.n = n;
     hit->shading.s = v3(-sn, 0.0, c);
     hit->shading.t = v3_cross(n, hit->shading.s);
-    double tu = phi <= M_PI ? 1.0 - phi / M_PI : phi / M_PI - 1.0;
-    hit->uv = v2(tu, sor_min(1.0, sor_max(0.0, p.y / sor->height)));
+    double tu = phi <= M_PI ? 1.0 - phi * M_1_PI : phi * M_1_PI - 1.0;
+    hit->uv = v2(tu, sor_min(1.0, sor_max(0.0, p.y * sor->inv_height)));
     hit->part = best->part;
     hit->prim = prim;
 }
@@ -201,6 +255,18 @@ static int hit_prim(const sor_t *sor, const sor_piece *pieces, const sor_best *b
     return sor->pieces[lo].interval;
 }
 
+/* Per-ray state shared by every query: the ray in the solver's frame, no hit
+ * yet, and the search window (tmin, tmax) in the frame's parameter s = t - tc. */
+static inline int ray_begin(const sor_t *sor, const ray3 *ray, double tmin, double tmax, sor_ray *ry, sor_best *best,
+                            double *smin)
+{
+    if (!sor_ray_setup(sor, ray, ry))
+        return 0;
+    *best = (sor_best){tmax - ry->tc, -1, 0.0, SOR_PART_WALL};
+    *smin = tmin - ry->tc;
+    return 1;
+}
+
 static int finish(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, const sor_best *best, int found,
                   sor_hit *hit)
 {
@@ -212,11 +278,11 @@ static int finish(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
 int sor_intersect(const sor_t *sor, const ray3 *ray, double tmin, double tmax, sor_hit *hit)
 {
     sor_ray ry;
-    if (!sor_ray_setup(sor, ray, &ry))
+    sor_best best;
+    double smin;
+    if (!ray_begin(sor, ray, tmin, tmax, &ry, &best, &smin))
         return 0;
-    sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc, slo;
-    if (!node_hit(&sor->bound, &ry, smin, best.s, &slo))
+    if (!bound_hit(sor, &ry, smin, best.s))
         return 0;
     int found = sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best);
     found |= sor_tree_intersect(sor, 0, &ry, smin, &best, 0);
@@ -226,11 +292,11 @@ int sor_intersect(const sor_t *sor, const ray3 *ray, double tmin, double tmax, s
 int sor_occluded(const sor_t *sor, const ray3 *ray, double tmin, double tmax)
 {
     sor_ray ry;
-    if (!sor_ray_setup(sor, ray, &ry))
+    sor_best best;
+    double smin;
+    if (!ray_begin(sor, ray, tmin, tmax, &ry, &best, &smin))
         return 0;
-    sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc, slo;
-    if (!node_hit(&sor->bound, &ry, smin, best.s, &slo))
+    if (!bound_hit(sor, &ry, smin, best.s))
         return 0;
     return sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best) || sor_tree_intersect(sor, 0, &ry, smin, &best, 1);
 }
@@ -238,10 +304,10 @@ int sor_occluded(const sor_t *sor, const ray3 *ray, double tmin, double tmax)
 int sor_prim_intersect(const sor_t *sor, int prim, const ray3 *ray, double tmin, double tmax, sor_hit *hit)
 {
     sor_ray ry;
-    if (prim < 0 || prim >= sor_prim_count(sor) || !sor_ray_setup(sor, ray, &ry))
+    sor_best best;
+    double smin;
+    if (prim < 0 || prim >= sor_prim_count(sor) || !ray_begin(sor, ray, tmin, tmax, &ry, &best, &smin))
         return 0;
-    sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc;
     int found = prim < sor->n_intervals ? sor_tree_intersect(sor, sor->interval_root[prim], &ry, smin, &best, 0)
                                         : sor_caps_intersect(sor, &ry, sor_prim_cap(sor, prim), smin, &best);
     return finish(sor, sor->pieces, &ry, &best, found, hit);
@@ -250,10 +316,10 @@ int sor_prim_intersect(const sor_t *sor, int prim, const ray3 *ray, double tmin,
 int sor_intersect_naive(const sor_t *sor, const ray3 *ray, double tmin, double tmax, sor_hit *hit)
 {
     sor_ray ry;
-    if (!sor_ray_setup(sor, ray, &ry))
+    sor_best best;
+    double smin;
+    if (!ray_begin(sor, ray, tmin, tmax, &ry, &best, &smin))
         return 0;
-    sor_best best = {tmax - ry.tc, -1, 0.0, SOR_PART_WALL};
-    double smin = tmin - ry.tc;
     int found = sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best);
     for (int j = 0; j < sor->n_bez; j++)
         found |= sor_piece_intersect(sor, &sor->bez[j], j, &ry, smin, &best);

@@ -1,0 +1,102 @@
+/* The analytic-vs-meshed cross-check: one scene rendered with its SORs
+ * intersected exactly and revolved into N angular segments for several N,
+ * with identical sampler seeds, and the differences measured against the
+ * analytic image. A revolved mesh is inscribed in the surface, so its
+ * distance to it, and every error it causes, should fall as N^-2.
+ *
+ * Metrics of one N (docs/crosscheck.md):
+ *  - image: over every pixel and RGB channel of the rendered images,
+ *      rel_mse       = mean (m - a)^2 / (a^2 + 0.01)   (a analytic, m meshed)
+ *      mean_abs_diff = mean |m - a|
+ *    Shared seeds make the two images' noise almost identical, but paths that
+ *    cross a silhouette differently still add noise; these can floor.
+ *  - geometry (deterministic, no noise): k x k primary rays per pixel at the
+ *    centres of a regular subpixel grid, each traced to its first hit in both
+ *    scenes (passing straight through thindielectric panes, which do not
+ *    bend rays, so that vessels in glass cases count):
+ *      coverage_rays   rays whose first-hit shape differs (one hits an SOR
+ *                      where the other hits another shape or nothing),
+ *      coverage_area   coverage_rays / k^2: the area in pixels between the two
+ *                      silhouettes,
+ *      coverage_pixels pixels with at least one such ray,
+ *      depth_rel_err   mean |t_m - t_a| / t_a over rays whose first hit is the
+ *                      same SOR in both scenes (t: distance along the ray),
+ *      normal_err_deg  mean angle between the shading normals of those hits. */
+#ifndef CELADON_CROSSCHECK_H
+#define CELADON_CROSSCHECK_H
+
+#include <stddef.h>
+
+#include "celadon/scene.h"
+
+typedef struct {
+    const char *scene_path;
+    const scene_define *defs; /* -D overrides */
+    int ndefs;
+    scene_build_options build; /* size, spp, seed; mesh_segments is ignored */
+    int threads;               /* 0: OpenMP's default */
+    const int *segments;       /* N values, >= 3, strictly increasing, at least 2 */
+    int nsegments;
+    int geo_grid;              /* k: primary rays per pixel side of the geometry metrics */
+    int progress;              /* 1: one line per render on stderr */
+} crosscheck_params;
+
+typedef struct {
+    int segments;
+    double seconds; /* render time of the meshed image */
+    double rel_mse, mean_abs_diff;
+    long long coverage_rays, coverage_pixels;
+    double coverage_area, depth_rel_err, normal_err_deg;
+} crosscheck_row;
+
+/* Least-squares fit log10(error) = slope log10(N) + intercept over the rows
+ * where the error is positive; n_used < 2 means no fit (slope NaN). */
+typedef struct {
+    double slope, intercept;
+    int n_used;
+} crosscheck_fit;
+
+enum {
+    CROSSCHECK_REL_MSE,
+    CROSSCHECK_MEAN_ABS_DIFF,
+    CROSSCHECK_COVERAGE_AREA,
+    CROSSCHECK_DEPTH_REL_ERR,
+    CROSSCHECK_NORMAL_ERR,
+    CROSSCHECK_METRIC_COUNT
+};
+
+/* The metric of report.json's fitted_slope: the image error itself. */
+#define CROSSCHECK_PRIMARY_METRIC CROSSCHECK_MEAN_ABS_DIFF
+
+typedef struct {
+    int width, height, spp, geo_grid;
+    unsigned long long seed;
+    int sor_shapes;
+    long long sor_rays;   /* geometry rays whose analytic first hit is an SOR */
+    double analytic_seconds;
+    int nrows;
+    crosscheck_row *rows;
+    crosscheck_fit fits[CROSSCHECK_METRIC_COUNT];
+} crosscheck_result;
+
+/* Name of a metric as in report.json ("rel_mse", ...), and its value in a row. */
+const char *crosscheck_metric_name(int metric);
+double crosscheck_metric_value(const crosscheck_row *row, int metric);
+
+/* Renders and compares. Writes into outdir (which must exist) analytic.exr,
+ * analytic.png, mesh-N.exr and mesh-N.png per N. Returns 0; -2 for bad input
+ * (unreadable scene, a scene without an SOR, bad parameters) with one line
+ * in err; -1 for other failures. */
+int crosscheck_run(const crosscheck_params *p, const char *outdir, crosscheck_result *res, char *err,
+                   size_t errlen);
+void crosscheck_result_free(crosscheck_result *res);
+
+/* report.json at path, and the log-log plot of every metric with its fitted
+ * line and an N^-2 reference (plot_width x plot_height PNG). Return 0 or -1
+ * with a reason. */
+int crosscheck_write_report(const crosscheck_result *res, const crosscheck_params *p, const char *path, char *err,
+                            size_t errlen);
+int crosscheck_write_plot(const crosscheck_result *res, const char *path, int plot_width, int plot_height,
+                          char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,250 @@
+/* celadon crosscheck: a scene rendered analytic and meshed at several segment
+ * counts with identical seeds; images, report.json and a convergence plot in
+ * one folder, which appears whole or not at all (built in a hidden sibling
+ * folder and renamed into place). */
+#define _XOPEN_SOURCE 700
+#include <dirent.h>
+#include <errno.h>
+#include <ftw.h>
+#include <libgen.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "celadon/crosscheck.h"
+#include "cli/commands.h"
+
+enum { MAX_DEFINES = 64, MAX_SEGMENTS = 32, PLOT_W = 900, PLOT_H = 600 };
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: celadon crosscheck SCENE.xml --segments N1,N2,... -o DIR [--spp N] [--res WxH]\n"
+               "                          [--threads N] [--seed S] [--grid K] [-D name=value]...\n\n"
+               "Renders the scene with its SORs intersected exactly and revolved into each N\n"
+               "angular segments (same sampler seeds), and measures how the meshed images and\n"
+               "first hits converge to the analytic ones (docs/crosscheck.md). DIR receives\n"
+               "analytic.{exr,png}, mesh-N.{exr,png}, report.json and convergence.png.\n\n"
+               "  --segments L    at least two increasing segment counts >= 3 (e.g. 16,64,256,1024)\n"
+               "  -o DIR          output folder (new, empty, or an earlier crosscheck's, replaced)\n"
+               "  --spp N         samples per pixel (default: the scene's sampler)\n"
+               "  --res WxH       film size (default: the scene's film)\n"
+               "  --threads N     OpenMP threads (default: all cores)\n"
+               "  --seed S        sampler seed shared by every render (default: the scene's)\n"
+               "  --grid K        K x K primary rays per pixel for the geometry metrics (default 4)\n"
+               "  -D name=value   sets a scene <default> parameter\n");
+}
+
+static int usage_error(const char *fmt, const char *arg)
+{
+    fprintf(stderr, "celadon crosscheck: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, " (try celadon crosscheck --help)\n");
+    return 2;
+}
+
+static int parse_int(const char *s, long long lo, long long hi, long long *out)
+{
+    char *end;
+    errno = 0;
+    long long v = strtoll(s, &end, 10);
+    if (end == s || *end || errno || v < lo || v > hi)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+/* "16,64,256": strictly increasing counts from 3 to 1000000. */
+static int parse_segments(const char *s, int *out, int *n)
+{
+    char buf[512];
+    if (snprintf(buf, sizeof buf, "%s", s) >= (int)sizeof buf)
+        return -1;
+    *n = 0;
+    char *save, *tok = strtok_r(buf, ",", &save);
+    for (; tok; tok = strtok_r(NULL, ",", &save)) {
+        long long v;
+        if (*n == MAX_SEGMENTS || parse_int(tok, 3, 1000000, &v) != 0 || (*n > 0 && v <= out[*n - 1]))
+            return -1;
+        out[(*n)++] = (int)v;
+    }
+    return *n >= 2 ? 0 : -1;
+}
+
+static int remove_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw)
+{
+    (void)sb, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+static void remove_tree(const char *dir) { nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
+
+/* 0: dir does not exist; 1: empty; 2: holds a report.json (an earlier
+ * crosscheck); -1: something else is there. */
+static int out_dir_state(const char *dir)
+{
+    struct stat st;
+    if (stat(dir, &st) != 0)
+        return errno == ENOENT ? 0 : -1;
+    if (!S_ISDIR(st.st_mode))
+        return -1;
+    DIR *d = opendir(dir);
+    if (!d)
+        return -1;
+    int entries = 0, report = 0;
+    struct dirent *e;
+    while ((e = readdir(d)))
+        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
+            entries++;
+            report |= !strcmp(e->d_name, "report.json");
+        }
+    closedir(d);
+    return !entries ? 1 : report ? 2 : -1;
+}
+
+/* A hidden sibling folder of dir to build the outputs in. */
+static int make_staging(const char *dir, char *out, size_t outlen)
+{
+    char a[4096], b[4096];
+    snprintf(a, sizeof a, "%s", dir);
+    snprintf(b, sizeof b, "%s", dir);
+    if (snprintf(out, outlen, "%s/.%s.crosscheck-XXXXXX", dirname(a), basename(b)) >= (int)outlen)
+        return -1;
+    if (!mkdtemp(out))
+        return -1;
+    mode_t mask = umask(0); /* mkdtemp makes it 0700; give it a plain folder's mode */
+    umask(mask);
+    return chmod(out, 0777 & ~mask);
+}
+
+/* Moves the finished staging folder to dir (replacing an earlier crosscheck). */
+static int install(const char staging[4200], const char *dir, int state)
+{
+    if (state != 2)
+        return rename(staging, dir);
+    char old[4300];
+    snprintf(old, sizeof old, "%s.old", staging);
+    if (rename(dir, old) != 0)
+        return -1;
+    if (rename(staging, dir) != 0) {
+        rename(old, dir);
+        return -1;
+    }
+    remove_tree(old);
+    return 0;
+}
+
+static int run(crosscheck_params *p, const char *dir)
+{
+    int state = out_dir_state(dir);
+    if (state < 0) {
+        fprintf(stderr, "celadon crosscheck: %s exists and is not empty nor an earlier crosscheck's folder\n", dir);
+        return 2;
+    }
+    char staging[4200], err[2048], path[4400];
+    if (make_staging(dir, staging, sizeof staging) != 0) {
+        fprintf(stderr, "celadon crosscheck: cannot create a folder next to %s: %s\n", dir, strerror(errno));
+        return 2;
+    }
+    crosscheck_result res;
+    int rc = crosscheck_run(p, staging, &res, err, sizeof err);
+    if (rc == 0) {
+        snprintf(path, sizeof path, "%s/report.json", staging);
+        rc = crosscheck_write_report(&res, p, path, err, sizeof err);
+    }
+    if (rc == 0) {
+        snprintf(path, sizeof path, "%s/convergence.png", staging);
+        rc = crosscheck_write_plot(&res, path, PLOT_W, PLOT_H, err, sizeof err);
+    }
+    if (rc == 0 && install(staging, dir, state) != 0) {
+        snprintf(err, sizeof err, "cannot move the results to %s: %s", dir, strerror(errno));
+        rc = -1;
+    }
+    if (rc != 0) {
+        remove_tree(staging);
+        fprintf(stderr, "celadon: %s\n", err);
+    } else {
+        printf("crosscheck: %dx%d, %d spp, analytic %.2f s", res.width, res.height, res.spp, res.analytic_seconds);
+        for (int m = 0; m < CROSSCHECK_METRIC_COUNT; m++)
+            printf("%s %s slope %.2f", m ? "," : ";", crosscheck_metric_name(m), res.fits[m].slope);
+        printf("\ncrosscheck: wrote %s/report.json and %s/convergence.png\n", dir, dir);
+    }
+    crosscheck_result_free(&res);
+    return rc == 0 ? 0 : rc == -2 ? 2 : 1;
+}
+
+int cmd_crosscheck(int argc, char **argv)
+{
+    const char *dir = NULL;
+    int segments[MAX_SEGMENTS], nseg = 0;
+    scene_define defs[MAX_DEFINES];
+    crosscheck_params p = {NULL, defs, 0, scene_build_defaults(), 0, segments, 0, 4, 1};
+    int rc = -1;
+    for (int i = 1; i < argc && rc < 0; i++) {
+        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+        long long v;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            rc = 0;
+        } else if (a[0] != '-' || !a[1]) {
+            if (p.scene_path)
+                rc = usage_error("unexpected argument '%s'", a);
+            p.scene_path = a;
+        } else if (!val) {
+            rc = usage_error("option %s needs a value", a);
+        } else if (i++, !strcmp(a, "-o")) {
+            dir = val;
+        } else if (!strcmp(a, "--segments")) {
+            if (parse_segments(val, segments, &nseg) != 0)
+                rc = usage_error("--segments wants at least two increasing counts from 3 to 1000000, not '%s'",
+                                 val);
+        } else if (!strcmp(a, "--spp")) {
+            if (parse_int(val, 1, 1 << 24, &v) != 0)
+                rc = usage_error("--spp wants an integer from 1 to 16777216, not '%s'", val);
+            p.build.spp = (int)v;
+        } else if (!strcmp(a, "--res")) {
+            int w, h, n = 0;
+            if (sscanf(val, "%dx%d%n", &w, &h, &n) != 2 || val[n] || w < 1 || h < 1 || w > 65536 || h > 65536)
+                rc = usage_error("--res wants WxH with sizes from 1 to 65536, not '%s'", val);
+            p.build.width = w, p.build.height = h;
+        } else if (!strcmp(a, "--threads")) {
+            if (parse_int(val, 1, 1024, &v) != 0)
+                rc = usage_error("--threads wants an integer from 1 to 1024, not '%s'", val);
+            p.threads = (int)v;
+        } else if (!strcmp(a, "--seed")) {
+            if (parse_int(val, 0, (long long)(~0ull >> 1), &v) != 0)
+                rc = usage_error("--seed wants a non-negative integer, not '%s'", val);
+            p.build.seed = v;
+        } else if (!strcmp(a, "--grid")) {
+            if (parse_int(val, 1, 64, &v) != 0)
+                rc = usage_error("--grid wants an integer from 1 to 64, not '%s'", val);
+            p.geo_grid = (int)v;
+        } else if (!strcmp(a, "-D")) {
+            const char *eq = strchr(val, '=');
+            if (!eq || eq == val || p.ndefs == MAX_DEFINES)
+                rc = usage_error("-D wants name=value, not '%s'", val);
+            else if (!(defs[p.ndefs].name = strndup(val, (size_t)(eq - val))))
+                rc = 1;
+            else
+                defs[p.ndefs++].value = eq + 1;
+        } else {
+            rc = usage_error("unknown option '%s'", a);
+        }
+    }
+    if (rc < 0) {
+        if (!p.scene_path)
+            rc = usage_error("%s", "missing SCENE.xml");
+        else if (!nseg)
+            rc = usage_error("%s", "missing --segments N1,N2,...");
+        else if (!dir || !*dir)
+            rc = usage_error("%s", "missing -o DIR");
+    }
+    if (rc < 0) {
+        p.nsegments = nseg;
+        rc = run(&p, dir);
+    }
+    for (int i = 0; i < p.ndefs; i++)
+        free((char *)defs[i].name);
+    return rc;
+}

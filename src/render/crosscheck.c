@@ -1,0 +1,252 @@
+/* The analytic-vs-meshed cross-check (include/celadon/crosscheck.h): the
+ * renders, the image metrics, the deterministic primary-hit metrics and the
+ * log-log fits. It traces primary rays itself through the renderer's private
+ * scene_intersect, so that the geometry metrics see the exact first hits. */
+#include <gsl/gsl_fit.h>
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "celadon/crosscheck.h"
+#include "celadon/progress.h"
+#include "celadon/render.h"
+#include "render/scene_impl.h"
+
+/* relMSE's epsilon (as in pbrt's and Mitsuba's image comparisons): keeps
+ * black pixels from dominating. */
+#define REL_MSE_EPS 0.01
+
+static const char *const metric_names[CROSSCHECK_METRIC_COUNT] = {"rel_mse", "mean_abs_diff", "coverage_area",
+                                                                  "depth_rel_err", "normal_err_deg"};
+
+const char *crosscheck_metric_name(int metric) { return metric_names[metric]; }
+
+double crosscheck_metric_value(const crosscheck_row *row, int metric)
+{
+    switch (metric) {
+    case CROSSCHECK_REL_MSE: return row->rel_mse;
+    case CROSSCHECK_MEAN_ABS_DIFF: return row->mean_abs_diff;
+    case CROSSCHECK_COVERAGE_AREA: return row->coverage_area;
+    case CROSSCHECK_DEPTH_REL_ERR: return row->depth_rel_err;
+    default: return row->normal_err_deg;
+    }
+}
+
+static int is_sor(const scene_t *analytic, int shape)
+{
+    const shape_t *sh = &analytic->shapes[shape];
+    return !sh->is_mesh && sh->ops == &shape_sor_ops;
+}
+
+/* Loads the scene with SORs analytic (segments 0) or revolved. */
+static scene_t *load(const crosscheck_params *p, int segments, char *err, size_t errlen)
+{
+    scene_build_options bo = p->build;
+    bo.mesh_segments = segments;
+    return scene_load(p->scene_path, p->defs, p->ndefs, &bo, err, errlen);
+}
+
+/* Renders s, writes outdir/stem.exr and .png, returns the RGB pixels. */
+static float *render_and_write(const scene_t *s, const crosscheck_params *p, const char *outdir, const char *stem,
+                               double *seconds, char *err, size_t errlen)
+{
+    render_options ro = {p->threads, 0, 0};
+    film_t film;
+    render_stats st;
+    if (render_scene(s, &ro, &film, &st, err, errlen) != 0)
+        return NULL;
+    *seconds = st.seconds;
+    float *px = malloc(sizeof *px * 3 * (size_t)film.width * (size_t)film.height);
+    char path[4200];
+    int ok = px != NULL;
+    for (int k = 0; k < 2 && ok; k++) {
+        snprintf(path, sizeof path, "%s/%s.%s", outdir, stem, k ? "png" : "exr");
+        ok = film_write(&film, path, err, errlen) == 0;
+    }
+    if (ok)
+        film_develop(&film, px);
+    else if (!px)
+        snprintf(err, errlen, "out of memory");
+    film_free(&film);
+    if (!ok) {
+        free(px);
+        return NULL;
+    }
+    if (p->progress)
+        fprintf(stderr, "crosscheck: %s: %.2f s\n", stem, *seconds);
+    return px;
+}
+
+static void image_metrics(const float *a, const float *m, size_t n, crosscheck_row *row)
+{
+    double se = 0.0, ae = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double d = (double)m[i] - (double)a[i];
+        se += d * d / ((double)a[i] * a[i] + REL_MSE_EPS);
+        ae += fabs(d);
+    }
+    row->rel_mse = se / (double)n;
+    row->mean_abs_diff = ae / (double)n;
+}
+
+/* The first hit along r that is not a thin dielectric pane: those let the
+ * transmitted ray through unbent, so a vessel in a glass case is still the
+ * first thing a primary ray meets. Returns the shape index or -1. */
+static int first_opaque_hit(const scene_t *s, const camera_ray_t *cr, surface_hit *hit)
+{
+    double tmin = cr->tmin;
+    for (int pane = 0; pane < 64; pane++) {
+        if (!scene_intersect(s, &cr->ray, tmin, cr->tmax, hit))
+            return -1;
+        if (strcmp(bsdf_plugin_name(s->shapes[hit->shape].bsdf), "thindielectric") != 0)
+            return hit->shape;
+        tmin = hit->t + hit->eps;
+    }
+    return -1;
+}
+
+/* The primary-hit metrics of the header, over k x k rays per pixel. */
+static void geometry_metrics(const scene_t *an, const scene_t *me, const crosscheck_params *p, crosscheck_row *row,
+                             long long *sor_rays)
+{
+    const camera_t *cam = scene_camera(an);
+    int k = p->geo_grid;
+    long long cov_rays = 0, cov_px = 0, same = 0, on_sor = 0;
+    double depth = 0.0, angle = 0.0;
+#pragma omp parallel for schedule(dynamic, 4) num_threads(p->threads > 0 ? p->threads : omp_get_max_threads()) \
+    reduction(+ : cov_rays, cov_px, same, on_sor, depth, angle)
+    for (int y = 0; y < cam->height; y++)
+        for (int x = 0; x < cam->width; x++) {
+            int differs = 0;
+            for (int j = 0; j < k; j++)
+                for (int i = 0; i < k; i++) {
+                    camera_ray_t cr = camera_ray(cam, x, y, (i + 0.5) / k, (j + 0.5) / k);
+                    surface_hit ha, hm;
+                    int fa = first_opaque_hit(an, &cr, &ha), fm = first_opaque_hit(me, &cr, &hm);
+                    int sa = fa >= 0 && is_sor(an, fa), sm = fm >= 0 && is_sor(an, fm);
+                    on_sor += sa;
+                    if (fa != fm && (sa || sm)) {
+                        cov_rays++;
+                        differs = 1;
+                    } else if (sa) {
+                        same++;
+                        depth += fabs(hm.t - ha.t) / ha.t;
+                        double c = v3_dot(ha.sh.n, hm.sh.n);
+                        angle += acos(c > 1.0 ? 1.0 : c < -1.0 ? -1.0 : c);
+                    }
+                }
+            cov_px += differs;
+        }
+    row->coverage_rays = cov_rays;
+    row->coverage_pixels = cov_px;
+    row->coverage_area = (double)cov_rays / ((double)k * k);
+    row->depth_rel_err = same ? depth / (double)same : 0.0;
+    row->normal_err_deg = same ? angle / (double)same * 180.0 / M_PI : 0.0;
+    *sor_rays = on_sor;
+}
+
+static crosscheck_fit fit_metric(const crosscheck_row *rows, int n, int metric)
+{
+    double lx[n > 0 ? n : 1], ly[n > 0 ? n : 1];
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        double v = crosscheck_metric_value(&rows[i], metric);
+        if (v > 0.0 && isfinite(v)) {
+            lx[m] = log10((double)rows[i].segments);
+            ly[m] = log10(v);
+            m++;
+        }
+    }
+    crosscheck_fit f = {NAN, NAN, m};
+    if (m >= 2) {
+        double cov00, cov01, cov11, sumsq;
+        gsl_fit_linear(lx, 1, ly, 1, (size_t)m, &f.intercept, &f.slope, &cov00, &cov01, &cov11, &sumsq);
+    }
+    return f;
+}
+
+static int check_params(const crosscheck_params *p, char *err, size_t errlen)
+{
+    if (p->nsegments < 2) {
+        snprintf(err, errlen, "at least two segment counts are needed for a convergence fit");
+        return -1;
+    }
+    for (int i = 0; i < p->nsegments; i++)
+        if (p->segments[i] < 3 || (i > 0 && p->segments[i] <= p->segments[i - 1])) {
+            snprintf(err, errlen, "segment counts must be >= 3 and strictly increasing");
+            return -1;
+        }
+    if (p->geo_grid < 1 || p->geo_grid > 64) {
+        snprintf(err, errlen, "the geometry grid must be from 1 to 64 rays per pixel side");
+        return -1;
+    }
+    return 0;
+}
+
+int crosscheck_run(const crosscheck_params *p, const char *outdir, crosscheck_result *res, char *err,
+                   size_t errlen)
+{
+    memset(res, 0, sizeof *res);
+    if (check_params(p, err, errlen) != 0)
+        return -2;
+    scene_t *an = load(p, 0, err, errlen);
+    if (!an)
+        return -2;
+    for (int i = 0; i < an->nshapes; i++)
+        res->sor_shapes += is_sor(an, i);
+    if (res->sor_shapes == 0) {
+        snprintf(err, errlen, "%s: the scene has no sor shape: nothing to cross-check", p->scene_path);
+        scene_free(an);
+        return -2;
+    }
+    const camera_t *cam = scene_camera(an);
+    res->width = cam->width, res->height = cam->height;
+    res->spp = scene_spp(an), res->seed = scene_seed(an), res->geo_grid = p->geo_grid;
+    int rc = -1;
+    float *img_a = NULL;
+    res->rows = calloc((size_t)p->nsegments, sizeof *res->rows);
+    if (!res->rows) {
+        snprintf(err, errlen, "out of memory");
+        goto done;
+    }
+    img_a = render_and_write(an, p, outdir, "analytic", &res->analytic_seconds, err, errlen);
+    if (!img_a)
+        goto done;
+    size_t nval = 3 * (size_t)res->width * (size_t)res->height;
+    for (int i = 0; i < p->nsegments; i++) {
+        crosscheck_row *row = &res->rows[i];
+        row->segments = p->segments[i];
+        scene_t *me = load(p, row->segments, err, errlen);
+        if (!me) {
+            rc = -2;
+            goto done;
+        }
+        char stem[32];
+        snprintf(stem, sizeof stem, "mesh-%d", row->segments);
+        float *img_m = render_and_write(me, p, outdir, stem, &row->seconds, err, errlen);
+        if (img_m) {
+            image_metrics(img_a, img_m, nval, row);
+            geometry_metrics(an, me, p, row, &res->sor_rays);
+        }
+        free(img_m);
+        scene_free(me);
+        if (!img_m)
+            goto done;
+        res->nrows = i + 1;
+    }
+    for (int m = 0; m < CROSSCHECK_METRIC_COUNT; m++)
+        res->fits[m] = fit_metric(res->rows, res->nrows, m);
+    rc = 0;
+done:
+    free(img_a);
+    scene_free(an);
+    return rc;
+}
+
+void crosscheck_result_free(crosscheck_result *res)
+{
+    free(res->rows);
+    memset(res, 0, sizeof *res);
+}

@@ -1,0 +1,120 @@
+/* The cross-check's outputs: report.json (jansson) and the convergence plot
+ * (plot_loglog). Field meanings: include/celadon/crosscheck.h and
+ * docs/crosscheck.md. */
+#include <errno.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "celadon/atomic_file.h"
+#include "celadon/crosscheck.h"
+#include "celadon/plot_loglog.h"
+
+/* A real, or null for NaN/inf (JSON has neither). */
+static json_t *real_or_null(double v) { return isfinite(v) ? json_real(v) : json_null(); }
+
+static json_t *row_json(const crosscheck_row *r)
+{
+    char exr[32], png[32];
+    snprintf(exr, sizeof exr, "mesh-%d.exr", r->segments);
+    snprintf(png, sizeof png, "mesh-%d.png", r->segments);
+    return json_pack("{s:i, s:s, s:s, s:f, s:o, s:o, s:I, s:I, s:o, s:o, s:o}", "n", r->segments, "image", exr,
+                     "png", png, "seconds", r->seconds, "rel_mse", real_or_null(r->rel_mse), "mean_abs_diff",
+                     real_or_null(r->mean_abs_diff), "coverage_pixels", (json_int_t)r->coverage_pixels,
+                     "coverage_rays", (json_int_t)r->coverage_rays, "coverage_area_px", real_or_null(r->coverage_area),
+                     "depth_rel_err", real_or_null(r->depth_rel_err), "normal_err_deg",
+                     real_or_null(r->normal_err_deg));
+}
+
+int crosscheck_write_report(const crosscheck_result *res, const crosscheck_params *p, const char *path, char *err,
+                            size_t errlen)
+{
+    json_t *rows = json_array(), *fits = json_object();
+    for (int i = 0; i < res->nrows; i++)
+        json_array_append_new(rows, row_json(&res->rows[i]));
+    for (int m = 0; m < CROSSCHECK_METRIC_COUNT; m++)
+        json_object_set_new(fits, crosscheck_metric_name(m),
+                            json_pack("{s:o, s:o, s:i}", "slope", real_or_null(res->fits[m].slope), "intercept",
+                                      real_or_null(res->fits[m].intercept), "points", res->fits[m].n_used));
+    json_t *root = json_pack(
+        "{s:i, s:s, s:i, s:i, s:i, s:I, s:i, s:i, s:I, s:{s:s, s:s, s:f}, s:s, s:o, s:o, s:o, s:s}", "version", 1,
+        "scene", p->scene_path, "width", res->width, "height", res->height, "spp", res->spp, "seed",
+        (json_int_t)res->seed, "geo_grid", res->geo_grid, "sor_shapes", res->sor_shapes, "sor_rays",
+        (json_int_t)res->sor_rays, "analytic", "image", "analytic.exr", "png", "analytic.png", "seconds",
+        res->analytic_seconds, "fitted_slope_metric", crosscheck_metric_name(CROSSCHECK_PRIMARY_METRIC),
+        "fitted_slope", real_or_null(res->fits[CROSSCHECK_PRIMARY_METRIC].slope), "fits", fits, "segments", rows,
+        "plot", "convergence.png");
+    if (!root) {
+        snprintf(err, errlen, "cannot write %s: the scene path is not UTF-8", path);
+        return -1;
+    }
+    atomic_file af;
+    errno = 0;
+    int rc = -1;
+    if (atomic_file_open(&af, path) == 0) {
+        if (json_dumpf(root, af.fp, JSON_INDENT(2) | JSON_REAL_PRECISION(10)) == 0 && fputc('\n', af.fp) != EOF)
+            rc = atomic_file_commit(&af);
+        else
+            atomic_file_abort(&af);
+    }
+    if (rc != 0)
+        snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno ? errno : EIO));
+    json_decref(root);
+    return rc;
+}
+
+int crosscheck_write_plot(const crosscheck_result *res, const char *path, int plot_width, int plot_height,
+                          char *err, size_t errlen)
+{
+    static const double colors[CROSSCHECK_METRIC_COUNT][3] = {
+        {0.84, 0.15, 0.16}, {0.12, 0.47, 0.71}, {0.17, 0.63, 0.17}, {0.58, 0.40, 0.74}, {1.00, 0.50, 0.05}};
+    int n = res->nrows;
+    double x[n > 0 ? n : 1], y[CROSSCHECK_METRIC_COUNT][n > 0 ? n : 1];
+    double fx[CROSSCHECK_METRIC_COUNT][2], fy[CROSSCHECK_METRIC_COUNT][2], rx[2], ry[2];
+    char labels[CROSSCHECK_METRIC_COUNT][96];
+    plot_series s[2 * CROSSCHECK_METRIC_COUNT + 1];
+    int ns = 0;
+    for (int i = 0; i < n; i++)
+        x[i] = res->rows[i].segments;
+    for (int m = 0; m < CROSSCHECK_METRIC_COUNT; m++) {
+        const crosscheck_fit *f = &res->fits[m];
+        for (int i = 0; i < n; i++)
+            y[m][i] = crosscheck_metric_value(&res->rows[i], m);
+        /* The fitted line spans the points it was fitted to (error > 0). */
+        int first = -1, last = -1;
+        for (int i = 0; i < n; i++)
+            if (y[m][i] > 0.0 && isfinite(y[m][i]))
+                last = i, first = first < 0 ? i : first;
+        int k0 = snprintf(labels[m], sizeof labels[m], "%s: ", crosscheck_metric_name(m));
+        if (f->n_used < 2)
+            snprintf(labels[m] + k0, sizeof labels[m] - (size_t)k0, "no fit");
+        else if (f->n_used < n)
+            snprintf(labels[m] + k0, sizeof labels[m] - (size_t)k0, "slope %.2f (%d of %d points > 0)", f->slope,
+                     f->n_used, n);
+        else
+            snprintf(labels[m] + k0, sizeof labels[m] - (size_t)k0, "slope %.2f", f->slope);
+        s[ns++] = (plot_series){labels[m], x, y[m], n, PLOT_POINTS, {colors[m][0], colors[m][1], colors[m][2]}};
+        if (f->n_used >= 2) {
+            for (int k = 0; k < 2; k++) {
+                fx[m][k] = x[k ? last : first];
+                fy[m][k] = pow(10.0, f->intercept + f->slope * log10(fx[m][k]));
+            }
+            s[ns++] = (plot_series){NULL, fx[m], fy[m], 2, PLOT_LINE, {colors[m][0], colors[m][1], colors[m][2]}};
+        }
+    }
+    /* N^-2 through the primary metric's first point. */
+    const crosscheck_fit *pf = &res->fits[CROSSCHECK_PRIMARY_METRIC];
+    if (n > 0 && pf->n_used >= 2) {
+        rx[0] = x[0], rx[1] = x[n - 1];
+        double y0 = pow(10.0, pf->intercept + pf->slope * log10(rx[0]));
+        ry[0] = y0, ry[1] = y0 * pow(rx[1] / rx[0], -2.0);
+        s[ns++] = (plot_series){"reference N^-2", rx, ry, 2, PLOT_LINE | PLOT_DASHED, {0.35, 0.35, 0.35}};
+    }
+    char title[160];
+    snprintf(title, sizeof title, "analytic vs. meshed SOR: error against segments N (%dx%d, %d spp)", res->width,
+             res->height, res->spp);
+    plot_loglog pl = {title, "angular segments N", "error (each metric in its own unit)", plot_width, plot_height, s,
+                      ns};
+    return plot_loglog_write_png(&pl, path, err, errlen);
+}

@@ -1,0 +1,74 @@
+#include "cli_run.h"
+
+#include <criterion/criterion.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+
+extern char **environ;
+
+const char *cli_bin(void)
+{
+    const char *bin = getenv("CELADON_BIN");
+    if (!bin || !*bin)
+        cr_skip_test("CELADON_BIN is not set");
+    return bin;
+}
+
+static char *slurp_and_remove(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f, "cannot read back %s", path);
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    cr_assert_not_null(buf);
+    for (size_t k; (k = fread(buf + n, 1, cap - n - 1, f)) > 0;) {
+        n += k;
+        if (cap - n - 1 == 0) {
+            cap *= 2;
+            buf = realloc(buf, cap);
+            cr_assert_not_null(buf);
+        }
+    }
+    buf[n] = '\0';
+    fclose(f);
+    remove(path);
+    return buf;
+}
+
+cli_result cli_run(const char *scratch_dir, const char *const *args)
+{
+    char out_path[512], err_path[512];
+    snprintf(out_path, sizeof out_path, "%s/cli-stdout.txt", scratch_dir);
+    snprintf(err_path, sizeof err_path, "%s/cli-stderr.txt", scratch_dir);
+    char *argv[64];
+    int n = 0;
+    argv[n++] = (char *)cli_bin();
+    for (; *args && n < 63; args++)
+        argv[n++] = (char *)*args;
+    argv[n] = NULL;
+
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&fa, 2, err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid;
+    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, argv, environ), 0, "cannot start %s", argv[0]);
+    posix_spawn_file_actions_destroy(&fa);
+    int status;
+    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    cli_result r = {0, slurp_and_remove(out_path), slurp_and_remove(err_path)};
+    cr_assert(WIFEXITED(status), "celadon died from signal %d; stderr: %s", WIFSIGNALED(status) ? WTERMSIG(status) : 0,
+              r.err);
+    r.status = WEXITSTATUS(status);
+    return r;
+}
+
+void cli_result_free(cli_result *r)
+{
+    free(r->out);
+    free(r->err);
+    r->out = r->err = NULL;
+}

@@ -1,0 +1,21 @@
+/* Runs the celadon CLI under test ($CELADON_BIN: the optimised or the
+ * sanitized build) as a child process and captures what it prints. */
+#ifndef CELADON_TEST_CLI_RUN_H
+#define CELADON_TEST_CLI_RUN_H
+
+typedef struct {
+    int status; /* exit code */
+    char *out;  /* everything written to stdout, NUL-terminated */
+    char *err;  /* everything written to stderr, NUL-terminated */
+} cli_result;
+
+/* The binary; skips the calling test when CELADON_BIN is not set. */
+const char *cli_bin(void);
+
+/* Runs `$CELADON_BIN args...` (args NULL-terminated), with its output captured
+ * through files in scratch_dir. Fails the test if the child is killed by a
+ * signal (a crash is never an acceptable answer to any input). */
+cli_result cli_run(const char *scratch_dir, const char *const *args);
+void cli_result_free(cli_result *r);
+
+#endif

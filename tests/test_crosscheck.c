@@ -1,0 +1,211 @@
+/* celadon crosscheck end to end on a tiny scene: a near-cylinder vessel whose
+ * profile the revolved mesh's rings follow exactly (200 rings on a straight
+ * wall), so every difference comes from the angular segments N and the
+ * inscribed polygon's sagitta r (1 - cos(pi/N)) ~ N^-2 must show in the
+ * deterministic geometry metrics. Also: bad input exits 2 and leaves nothing. */
+#include <fcntl.h>
+#include <jansson.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include "celadon/image.h"
+#include "test_render_util.h"
+
+extern char **environ;
+
+static const char *scene_xml =
+    "<scene version=\"3.0.0\">\n"
+    "  <sensor type=\"perspective\">\n"
+    "    <float name=\"fov\" value=\"30\"/>\n"
+    "    <transform name=\"to_world\"><lookat origin=\"0, 1.5, 3\" target=\"0, 0.45, 0\" up=\"0, 1, 0\"/></transform>\n"
+    "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>\n"
+    "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"48\"/><integer name=\"height\" value=\"40\"/></film>\n"
+    "  </sensor>\n"
+    "  <shape type=\"sor\"><string name=\"filename\" value=\"profile.json\"/>\n"
+    "    <bsdf type=\"plastic\"><rgb name=\"diffuse_reflectance\" value=\"0.2, 0.5, 0.3\"/></bsdf></shape>\n"
+    "  <shape type=\"rectangle\"><transform name=\"to_world\"><rotate x=\"1\" angle=\"-90\"/><scale value=\"3\"/></transform></shape>\n"
+    "  <shape type=\"disk\"><transform name=\"to_world\"><rotate x=\"1\" angle=\"90\"/><translate y=\"3\"/></transform>\n"
+    "    <emitter type=\"area\"><rgb name=\"radiance\" value=\"5\"/></emitter></shape>\n"
+    "  <emitter type=\"constant\"><rgb name=\"radiance\" value=\"0.3\"/></emitter>\n"
+    "</scene>\n";
+
+static const char *no_sor_xml =
+    "<scene version=\"3.0.0\">\n"
+    "  <sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/>"
+    "<integer name=\"height\" value=\"8\"/></film></sensor>\n"
+    "  <shape type=\"sphere\"/>\n"
+    "</scene>\n";
+
+static const char *celadon_bin(void)
+{
+    const char *bin = getenv("CELADON_BIN");
+    if (!bin || !*bin)
+        cr_skip_test("CELADON_BIN is not set");
+    return bin;
+}
+
+/* Runs celadon with args (NULL-terminated), stdout to /dev/null, stderr into
+ * err. Returns the exit code. */
+static int run_celadon(const render_fixture *f, const char *const *args, char *err, size_t errlen)
+{
+    char errpath[128];
+    snprintf(errpath, sizeof errpath, "%s/stderr.txt", f->dir);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, errpath, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    char *argv[40];
+    int n = 0;
+    argv[n++] = (char *)celadon_bin();
+    for (; *args && n < 39; args++)
+        argv[n++] = (char *)*args;
+    argv[n] = NULL;
+    pid_t pid;
+    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, argv, environ), 0);
+    posix_spawn_file_actions_destroy(&fa);
+    int status;
+    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    FILE *fp = fopen(errpath, "r");
+    cr_assert_not_null(fp);
+    size_t k = fread(err, 1, errlen - 1, fp);
+    err[k] = '\0';
+    fclose(fp);
+    remove(errpath);
+    cr_assert(WIFEXITED(status), "celadon died from a signal; stderr: %s", err);
+    return WEXITSTATUS(status);
+}
+
+static int exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+static int count_newlines(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += *s == '\n';
+    return n;
+}
+
+static double number(json_t *obj, const char *key)
+{
+    json_t *v = json_object_get(obj, key);
+    cr_assert(json_is_number(v), "report field '%s' missing or not a number", key);
+    return json_number_value(v);
+}
+
+Test(crosscheck, geometry_converges_as_n_minus_2, .timeout = 120)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    render_write_profile(&f, "profile.json", "cylinder");
+    char scene[256], dir[256], path[320], err[4096];
+    render_write_file(&f, "scene.xml", scene_xml, scene, sizeof scene);
+    snprintf(dir, sizeof dir, "%s/xc", f.dir);
+    const char *args[] = {"crosscheck", scene, "--segments", "8,16,32,64", "-o", dir, "--threads", "2", NULL};
+    cr_assert_eq(run_celadon(&f, args, err, sizeof err), 0, "stderr: %s", err);
+
+    snprintf(path, sizeof path, "%s/report.json", dir);
+    json_error_t jerr;
+    json_t *rep = json_load_file(path, 0, &jerr);
+    cr_assert_not_null(rep, "report.json: %s", jerr.text);
+    cr_assert_eq(number(rep, "width"), 48);
+    cr_assert_eq(number(rep, "height"), 40);
+    cr_assert_eq(number(rep, "sor_shapes"), 1);
+    cr_assert_gt(number(rep, "sor_rays"), 0);
+    double slope = number(rep, "fitted_slope");
+    cr_assert_lt(slope, 0.0, "fitted slope %g", slope);
+    json_t *fits = json_object_get(rep, "fits");
+    double depth_slope = number(json_object_get(fits, "depth_rel_err"), "slope");
+    cr_assert(depth_slope > -2.25 && depth_slope < -1.75, "depth error slope %g, expected about -2", depth_slope);
+    double normal_slope = number(json_object_get(fits, "normal_err_deg"), "slope");
+    cr_assert_lt(normal_slope, -1.0, "normal error slope %g", normal_slope);
+
+    json_t *rows = json_object_get(rep, "segments");
+    cr_assert_eq(json_array_size(rows), 4);
+    static const char *keys[] = {"seconds", "rel_mse", "mean_abs_diff", "coverage_pixels", "coverage_rays",
+                                 "coverage_area_px", "depth_rel_err", "normal_err_deg"};
+    double prev_mad = INFINITY, prev_depth = INFINITY, prev_cov = INFINITY;
+    for (size_t i = 0; i < json_array_size(rows); i++) {
+        json_t *r = json_array_get(rows, i);
+        for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
+            cr_assert_geq(number(r, keys[k]), 0.0, "%s", keys[k]);
+        int n = (int)number(r, "n");
+        double mad = number(r, "mean_abs_diff"), depth = number(r, "depth_rel_err");
+        double cov = number(r, "coverage_area_px");
+        cr_assert_lt(mad, prev_mad, "mean_abs_diff does not fall at N = %d", n);
+        cr_assert_lt(depth, prev_depth, "depth error does not fall at N = %d", n);
+        cr_assert_leq(cov, prev_cov, "coverage difference grows at N = %d", n);
+        prev_mad = mad, prev_depth = depth, prev_cov = cov;
+        /* The images of every N are there. */
+        snprintf(path, sizeof path, "%s/%s", dir, json_string_value(json_object_get(r, "image")));
+        cr_assert(exists(path), "%s", path);
+        snprintf(path, sizeof path, "%s/mesh-%d.png", dir, n);
+        cr_assert(exists(path), "%s", path);
+    }
+    /* The coarsest mesh misses some silhouette coverage that the finest does not. */
+    cr_assert_gt(number(json_array_get(rows, 0), "coverage_pixels"), 0);
+    json_decref(rep);
+
+    snprintf(path, sizeof path, "%s/convergence.png", dir);
+    int w, h, c;
+    cr_assert_eq(image_probe(path, &w, &h, &c, err, sizeof err), 0, "%s", err);
+    cr_assert(w == 900 && h == 600, "plot is %dx%d", w, h);
+    snprintf(path, sizeof path, "%s/analytic.exr", dir);
+    cr_assert(exists(path));
+
+    /* A second run into the same folder replaces the earlier results. */
+    const char *again[] = {"crosscheck", scene, "--segments", "8,16", "-o", dir, "--res", "16x12", NULL};
+    cr_assert_eq(run_celadon(&f, again, err, sizeof err), 0, "stderr: %s", err);
+    snprintf(path, sizeof path, "%s/mesh-64.exr", dir);
+    cr_assert(!exists(path), "the earlier run's files survived");
+    render_fixture_close(&f);
+}
+
+/* Every bad input exits 2 with one line and creates nothing at DIR. */
+Test(crosscheck, bad_input_exits_2_and_writes_nothing, .timeout = 60)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    render_write_profile(&f, "profile.json", "cylinder");
+    char scene[256], nosor[256], broken[256], missing[256], dir[256], err[4096];
+    render_write_file(&f, "scene.xml", scene_xml, scene, sizeof scene);
+    render_write_file(&f, "nosor.xml", no_sor_xml, nosor, sizeof nosor);
+    render_write_file(&f, "broken.xml", "<scene version=\"3.0.0\"><shape type=\"sor\">", broken, sizeof broken);
+    snprintf(missing, sizeof missing, "%s/missing.xml", f.dir);
+    snprintf(dir, sizeof dir, "%s/out", f.dir);
+    const char *cases[][12] = {
+        {"crosscheck", missing, "--segments", "8,16", "-o", dir, NULL},
+        {"crosscheck", broken, "--segments", "8,16", "-o", dir, NULL},
+        {"crosscheck", nosor, "--segments", "8,16", "-o", dir, NULL},
+        {"crosscheck", scene, "--segments", "16", "-o", dir, NULL},
+        {"crosscheck", scene, "--segments", "16,8", "-o", dir, NULL},
+        {"crosscheck", scene, "--segments", "2,x", "-o", dir, NULL},
+        {"crosscheck", scene, "--segments", "8,16", NULL},
+        {"crosscheck", scene, "--segments", "8,16", "-o", dir, "--res", "4x", NULL},
+        {"crosscheck", scene, "--segments", "8,16", "-o", dir, "--frobnicate", "1", NULL},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        cr_assert_eq(run_celadon(&f, cases[i], err, sizeof err), 2, "case %zu: stderr: %s", i, err);
+        cr_assert_eq(count_newlines(err), 1, "case %zu: not one line: %s", i, err);
+        cr_assert(!exists(dir), "case %zu left %s behind", i, dir);
+    }
+    /* A folder holding something else is refused and left as it was. */
+    cr_assert_eq(mkdir(dir, 0755), 0);
+    char keep[320];
+    render_write_file(&f, "out/keep.txt", "mine\n", keep, sizeof keep);
+    const char *foreign[] = {"crosscheck", scene, "--segments", "8,16", "-o", dir, "--res", "8x8", NULL};
+    cr_assert_eq(run_celadon(&f, foreign, err, sizeof err), 2, "stderr: %s", err);
+    cr_assert(exists(keep));
+    char report[320];
+    snprintf(report, sizeof report, "%s/report.json", dir);
+    cr_assert(!exists(report));
+    /* No staging folder is left next to it either. */
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "test -z \"$(ls -A '%s' | grep crosscheck)\"", f.dir);
+    cr_assert_eq(system(cmd), 0, "a staging folder was left in %s", f.dir);
+    render_fixture_close(&f);
+}
