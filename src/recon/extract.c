@@ -336,6 +336,11 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
             res->axis_from_symmetry = 1;
         }
     }
+    char why[160];
+    if (!recon_check_vessel(res->corners, dir, res->contour, nc, ext, h, why, sizeof why)) {
+        st = fail(RECON_ERR_CORNERS, err, errlen, "not a vessel's outline: %s", why);
+        goto out;
+    }
     /* Origin: the base pair's midpoint projected onto the axis (h = 0). */
     origin = v2_add(origin, v2_scale(dir, v2_dot(v2_sub(m_base, origin), dir)));
     double H = v2_dot(v2_sub(m_rim, origin), dir);

@@ -93,6 +93,18 @@ float recon_shi_tomasi_at(const float *img, int w, int h, int x, int y);
 int recon_find_corners(const vec2 *contour, int n, const int *approx_idx, int n_approx, vec2 mean, vec2 axis_up,
                        int corner_idx[CORNER_COUNT]);
 
+/* ---- vessel shape (vessel_check.c) */
+
+/* Checks that the corners (CORNER_ order) and the final axis (unit direction
+ * toward the rim) describe a vessel: axis within 30° of the image vertical;
+ * rim and base corner pairs distinct, level within 10° and at the top
+ * (bottom) fifth of the outline; the outline not widening right below both
+ * rim corners (a disc, an ellipse, a rounded box). ext: the mask's outermost
+ * object pixel per row, left (ext[0..h)) and right (ext[h..2h)), -1 where
+ * none. Returns 1, or 0 with the reason in why. */
+int recon_check_vessel(const vec2 *corners, vec2 dir, const vec2 *contour, int n, const int *ext,
+                       int h, char *why, size_t len);
+
 /* ---- axis (axis.c) */
 
 /* PCA of points: mean, unit eigenvectors (major first) and eigenvalues. */
