@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "celadon/atomic_file.h"
+#include "celadon/json_file.h"
 
 enum { PROFILE_VERSION = 1 };
 
@@ -82,17 +82,7 @@ int profile_write_json(const char *path, const profile_t *p, char *err, size_t e
         snprintf(err, errlen, "cannot write %s: a value is not finite or a string is not UTF-8", path);
         return -1;
     }
-    atomic_file af;
-    errno = 0;
-    int rc = -1;
-    if (atomic_file_open(&af, path) == 0) {
-        if (json_dumpf(root, af.fp, JSON_INDENT(1) | JSON_REAL_PRECISION(17)) == 0 && fputc('\n', af.fp) != EOF)
-            rc = atomic_file_commit(&af);
-        else
-            atomic_file_abort(&af);
-    }
-    if (rc != 0)
-        snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno ? errno : EIO));
+    int rc = json_write_file_atomic(path, root, JSON_INDENT(1) | JSON_REAL_PRECISION(17), err, errlen);
     json_decref(root);
     return rc;
 }

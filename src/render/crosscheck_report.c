@@ -1,13 +1,12 @@
 /* The cross-check's outputs: report.json (jansson) and the convergence plot
  * (plot_loglog). Field meanings: include/celadon/crosscheck.h and
  * docs/crosscheck.md. */
-#include <errno.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "celadon/atomic_file.h"
+#include "celadon/json_file.h"
 #include "celadon/crosscheck.h"
 #include "celadon/plot_loglog.h"
 
@@ -49,17 +48,7 @@ int crosscheck_write_report(const crosscheck_result *res, const crosscheck_param
         snprintf(err, errlen, "cannot write %s: the scene path is not UTF-8", path);
         return -1;
     }
-    atomic_file af;
-    errno = 0;
-    int rc = -1;
-    if (atomic_file_open(&af, path) == 0) {
-        if (json_dumpf(root, af.fp, JSON_INDENT(2) | JSON_REAL_PRECISION(10)) == 0 && fputc('\n', af.fp) != EOF)
-            rc = atomic_file_commit(&af);
-        else
-            atomic_file_abort(&af);
-    }
-    if (rc != 0)
-        snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno ? errno : EIO));
+    int rc = json_write_file_atomic(path, root, JSON_INDENT(2) | JSON_REAL_PRECISION(10), err, errlen);
     json_decref(root);
     return rc;
 }
