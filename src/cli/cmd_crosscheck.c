@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "celadon/crosscheck.h"
+#include "cli/cli_args.h"
 #include "cli/commands.h"
 
 enum { MAX_DEFINES = 64, MAX_SEGMENTS = 32, PLOT_W = 900, PLOT_H = 600 };
@@ -36,25 +37,6 @@ static void usage(FILE *f)
                "  -D name=value   sets a scene <default> parameter\n");
 }
 
-static int usage_error(const char *fmt, const char *arg)
-{
-    fprintf(stderr, "celadon crosscheck: ");
-    fprintf(stderr, fmt, arg);
-    fprintf(stderr, " (try celadon crosscheck --help)\n");
-    return 2;
-}
-
-static int parse_int(const char *s, long long lo, long long hi, long long *out)
-{
-    char *end;
-    errno = 0;
-    long long v = strtoll(s, &end, 10);
-    if (end == s || *end || errno || v < lo || v > hi)
-        return -1;
-    *out = v;
-    return 0;
-}
-
 /* "16,64,256": strictly increasing counts from 3 to 1000000. */
 static int parse_segments(const char *s, int *out, int *n)
 {
@@ -65,7 +47,7 @@ static int parse_segments(const char *s, int *out, int *n)
     char *save, *tok = strtok_r(buf, ",", &save);
     for (; tok; tok = strtok_r(NULL, ",", &save)) {
         long long v;
-        if (*n == MAX_SEGMENTS || parse_int(tok, 3, 1000000, &v) != 0 || (*n > 0 && v <= out[*n - 1]))
+        if (*n == MAX_SEGMENTS || cli_parse_int(tok, 3, 1000000, &v) != 0 || (*n > 0 && v <= out[*n - 1]))
             return -1;
         out[(*n)++] = (int)v;
     }
@@ -189,56 +171,56 @@ int cmd_crosscheck(int argc, char **argv)
             rc = 0;
         } else if (a[0] != '-' || !a[1]) {
             if (p.scene_path)
-                rc = usage_error("unexpected argument '%s'", a);
+                rc = cli_usage_error("crosscheck", "unexpected argument '%s'", a);
             p.scene_path = a;
         } else if (!val) {
-            rc = usage_error("option %s needs a value", a);
+            rc = cli_usage_error("crosscheck", "option %s needs a value", a);
         } else if (i++, !strcmp(a, "-o")) {
             dir = val;
         } else if (!strcmp(a, "--segments")) {
             if (parse_segments(val, segments, &nseg) != 0)
-                rc = usage_error("--segments wants at least two increasing counts from 3 to 1000000, not '%s'",
+                rc = cli_usage_error("crosscheck", "--segments wants at least two increasing counts from 3 to 1000000, not '%s'",
                                  val);
         } else if (!strcmp(a, "--spp")) {
-            if (parse_int(val, 1, 1 << 24, &v) != 0)
-                rc = usage_error("--spp wants an integer from 1 to 16777216, not '%s'", val);
+            if (cli_parse_int(val, 1, 1 << 24, &v) != 0)
+                rc = cli_usage_error("crosscheck", "--spp wants an integer from 1 to 16777216, not '%s'", val);
             p.build.spp = (int)v;
         } else if (!strcmp(a, "--res")) {
             int w, h, n = 0;
             if (sscanf(val, "%dx%d%n", &w, &h, &n) != 2 || val[n] || w < 1 || h < 1 || w > 65536 || h > 65536)
-                rc = usage_error("--res wants WxH with sizes from 1 to 65536, not '%s'", val);
+                rc = cli_usage_error("crosscheck", "--res wants WxH with sizes from 1 to 65536, not '%s'", val);
             p.build.width = w, p.build.height = h;
         } else if (!strcmp(a, "--threads")) {
-            if (parse_int(val, 1, 1024, &v) != 0)
-                rc = usage_error("--threads wants an integer from 1 to 1024, not '%s'", val);
+            if (cli_parse_int(val, 1, 1024, &v) != 0)
+                rc = cli_usage_error("crosscheck", "--threads wants an integer from 1 to 1024, not '%s'", val);
             p.threads = (int)v;
         } else if (!strcmp(a, "--seed")) {
-            if (parse_int(val, 0, (long long)(~0ull >> 1), &v) != 0)
-                rc = usage_error("--seed wants a non-negative integer, not '%s'", val);
+            if (cli_parse_int(val, 0, (long long)(~0ull >> 1), &v) != 0)
+                rc = cli_usage_error("crosscheck", "--seed wants a non-negative integer, not '%s'", val);
             p.build.seed = v;
         } else if (!strcmp(a, "--grid")) {
-            if (parse_int(val, 1, 64, &v) != 0)
-                rc = usage_error("--grid wants an integer from 1 to 64, not '%s'", val);
+            if (cli_parse_int(val, 1, 64, &v) != 0)
+                rc = cli_usage_error("crosscheck", "--grid wants an integer from 1 to 64, not '%s'", val);
             p.geo_grid = (int)v;
         } else if (!strcmp(a, "-D")) {
             const char *eq = strchr(val, '=');
             if (!eq || eq == val || p.ndefs == MAX_DEFINES)
-                rc = usage_error("-D wants name=value, not '%s'", val);
+                rc = cli_usage_error("crosscheck", "-D wants name=value, not '%s'", val);
             else if (!(defs[p.ndefs].name = strndup(val, (size_t)(eq - val))))
                 rc = 1;
             else
                 defs[p.ndefs++].value = eq + 1;
         } else {
-            rc = usage_error("unknown option '%s'", a);
+            rc = cli_usage_error("crosscheck", "unknown option '%s'", a);
         }
     }
     if (rc < 0) {
         if (!p.scene_path)
-            rc = usage_error("%s", "missing SCENE.xml");
+            rc = cli_usage_error("crosscheck", "%s", "missing SCENE.xml");
         else if (!nseg)
-            rc = usage_error("%s", "missing --segments N1,N2,...");
+            rc = cli_usage_error("crosscheck", "%s", "missing --segments N1,N2,...");
         else if (!dir || !*dir)
-            rc = usage_error("%s", "missing -o DIR");
+            rc = cli_usage_error("crosscheck", "%s", "missing -o DIR");
     }
     if (rc < 0) {
         p.nsegments = nseg;

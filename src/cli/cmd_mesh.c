@@ -8,6 +8,7 @@
 
 #include "celadon/mesh.h"
 #include "celadon/profile.h"
+#include "cli/cli_args.h"
 #include "cli/commands.h"
 
 static void usage(FILE *f)
@@ -22,14 +23,6 @@ static void usage(FILE *f)
                "  --segments N    angular segments, 3 to 1000000 (default 360)\n"
                "  --height H      rim height in scene units (default 1)\n"
                "  --mouth-cap     add a disc closing the mouth\n");
-}
-
-static int usage_error(const char *fmt, const char *arg)
-{
-    fprintf(stderr, "celadon mesh: ");
-    fprintf(stderr, fmt, arg);
-    fprintf(stderr, " (try celadon mesh --help)\n");
-    return 2;
 }
 
 /* The folder part of path with a trailing slash ("" for a bare name). */
@@ -92,7 +85,7 @@ int cmd_mesh(int argc, char **argv)
             return 0;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--segments") || !strcmp(a, "--height")) {
             if (i + 1 >= argc)
-                return usage_error("%s needs a value", a);
+                return cli_usage_error("mesh", "%s needs a value", a);
             const char *v = argv[++i];
             if (!strcmp(a, "-o"))
                 out = v;
@@ -100,26 +93,26 @@ int cmd_mesh(int argc, char **argv)
                 errno = 0;
                 segments = strtol(v, &end, 10);
                 if (errno || end == v || *end || segments < 3 || segments > 1000000)
-                    return usage_error("--segments must be an integer from 3 to 1000000, not '%s'", v);
+                    return cli_usage_error("mesh", "--segments must be an integer from 3 to 1000000, not '%s'", v);
             } else {
                 errno = 0;
                 height = strtod(v, &end);
                 if (errno || end == v || *end || !(height > 0.0) || height > 1e30)
-                    return usage_error("--height must be a positive number, not '%s'", v);
+                    return cli_usage_error("mesh", "--height must be a positive number, not '%s'", v);
             }
         } else if (!strcmp(a, "--mouth-cap"))
             mouth_cap = 1;
         else if (a[0] == '-' && a[1])
-            return usage_error("unknown option '%s'", a);
+            return cli_usage_error("mesh", "unknown option '%s'", a);
         else if (profile_path)
-            return usage_error("one profile at a time ('%s' is extra)", a);
+            return cli_usage_error("mesh", "one profile at a time ('%s' is extra)", a);
         else
             profile_path = a;
     }
     if (!profile_path)
-        return usage_error("%s", "missing PROFILE.json");
+        return cli_usage_error("mesh", "%s", "missing PROFILE.json");
     if (!out)
-        return usage_error("%s", "missing -o OUT.obj or -o OUT.ply");
+        return cli_usage_error("mesh", "%s", "missing -o OUT.obj or -o OUT.ply");
     int ply = !strcasecmp(extension(out), ".ply");
     if (!ply && strcasecmp(extension(out), ".obj")) {
         fprintf(stderr, "celadon: %s: unknown mesh format (use .obj or .ply)\n", out);

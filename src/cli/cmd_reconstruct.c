@@ -24,6 +24,7 @@
 #include "celadon/progress.h"
 #include "celadon/recon.h"
 #include "celadon/recon_texture.h"
+#include "cli/cli_args.h"
 #include "cli/commands.h"
 
 enum { MIN_SIDE_PX = 32, MAX_LODS = 8 };
@@ -90,10 +91,8 @@ static void usage(FILE *f)
 
 static int parse_int(const char *s, long lo, long hi, int *out)
 {
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (errno || end == s || *end || v < lo || v > hi)
+    long long v;
+    if (cli_parse_int(s, lo, hi, &v) != 0)
         return -1;
     *out = (int)v;
     return 0;
@@ -112,14 +111,6 @@ static int parse_lods(const char *s, options *o)
         o->n_lods++;
     }
     return o->n_lods > 0 ? 0 : -1;
-}
-
-static int usage_error(const char *fmt, const char *arg)
-{
-    fprintf(stderr, "celadon reconstruct: ");
-    fprintf(stderr, fmt, arg);
-    fprintf(stderr, " (try celadon reconstruct --help)\n");
-    return 2;
 }
 
 /* Returns -1 to continue, otherwise the exit code. */
@@ -144,7 +135,7 @@ static int parse_options(int argc, char **argv, options *o)
             break;
         case OPT_THRESHOLD:
             if (parse_int(optarg, 0, 255, &o->recon.threshold) != 0)
-                return usage_error("--threshold wants an integer 0..255, not '%s'", optarg);
+                return cli_usage_error("reconstruct", "--threshold wants an integer 0..255, not '%s'", optarg);
             break;
         case OPT_SIDE:
             if (!strcmp(optarg, "left"))
@@ -154,15 +145,15 @@ static int parse_options(int argc, char **argv, options *o)
             else if (!strcmp(optarg, "auto"))
                 o->recon.side = RECON_SIDE_AUTO;
             else
-                return usage_error("--side wants left, right or auto, not '%s'", optarg);
+                return cli_usage_error("reconstruct", "--side wants left, right or auto, not '%s'", optarg);
             break;
         case OPT_SEGMENTS:
             if (parse_int(optarg, 3, 100000, &o->segments) != 0)
-                return usage_error("--segments wants an integer 3..100000, not '%s'", optarg);
+                return cli_usage_error("reconstruct", "--segments wants an integer 3..100000, not '%s'", optarg);
             break;
         case OPT_LOD:
             if (parse_lods(optarg, o) != 0)
-                return usage_error("--lod wants up to 8 comma-separated integers 3..100000, not '%s'", optarg);
+                return cli_usage_error("reconstruct", "--lod wants up to 8 comma-separated integers 3..100000, not '%s'", optarg);
             break;
         case OPT_MOUTH_CAP:
             o->mouth_cap = 1;
@@ -174,22 +165,22 @@ static int parse_options(int argc, char **argv, options *o)
             char *end;
             o->smoothing_px = strtod(optarg, &end);
             if (end == optarg || *end || !(o->smoothing_px >= 0.01 && o->smoothing_px <= 100.0))
-                return usage_error("--smoothing wants pixels between 0.01 and 100, not '%s'", optarg);
+                return cli_usage_error("reconstruct", "--smoothing wants pixels between 0.01 and 100, not '%s'", optarg);
             break;
         }
         case 'h':
             usage(stdout);
             return 0;
         case ':':
-            return usage_error("%s needs a value", argv[optind - 1]);
+            return cli_usage_error("reconstruct", "%s needs a value", argv[optind - 1]);
         default:
-            return usage_error("unknown option '%s'", argv[optind - 1]);
+            return cli_usage_error("reconstruct", "unknown option '%s'", argv[optind - 1]);
         }
     }
     if (!o->out_dir || !*o->out_dir)
-        return usage_error("%s", "no output folder (-o DIR)");
+        return cli_usage_error("reconstruct", "%s", "no output folder (-o DIR)");
     if (optind >= argc)
-        return usage_error("%s", "no photo given");
+        return cli_usage_error("reconstruct", "%s", "no photo given");
     return -1;
 }
 

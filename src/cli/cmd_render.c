@@ -9,6 +9,7 @@
 
 #include "celadon/render.h"
 #include "celadon/scene.h"
+#include "cli/cli_args.h"
 #include "cli/commands.h"
 
 enum { MAX_DEFINES = 64 };
@@ -30,26 +31,6 @@ static void usage(FILE *f)
                "  -D name=value   sets a scene <default> parameter\n"
                "  --aov LIST      extra EXR channels: depth, normal, albedo\n"
                "Ctrl-C stops the render and writes the image it has so far.\n");
-}
-
-static int usage_error(const char *fmt, const char *arg)
-{
-    fprintf(stderr, "celadon render: ");
-    fprintf(stderr, fmt, arg);
-    fprintf(stderr, " (try celadon render --help)\n");
-    return 2;
-}
-
-/* A whole decimal integer in [lo, hi]. */
-static int parse_int(const char *s, long long lo, long long hi, long long *out)
-{
-    char *end;
-    errno = 0;
-    long long v = strtoll(s, &end, 10);
-    if (end == s || *end || errno || v < lo || v > hi)
-        return -1;
-    *out = v;
-    return 0;
 }
 
 static int output_kind_ok(const char *path, int *is_exr)
@@ -84,63 +65,63 @@ int cmd_render(int argc, char **argv)
         }
         if (a[0] != '-' || !a[1]) {
             if (scene_path)
-                return usage_error("unexpected argument '%s'", a);
+                return cli_usage_error("render", "unexpected argument '%s'", a);
             scene_path = a;
             continue;
         }
         if (!val)
-            return usage_error("option %s needs a value", a);
+            return cli_usage_error("render", "option %s needs a value", a);
         i++;
         if (!strcmp(a, "-o")) {
             out = val;
         } else if (!strcmp(a, "--spp")) {
-            if (parse_int(val, 1, 1 << 24, &v) != 0)
-                return usage_error("--spp wants an integer from 1 to 16777216, not '%s'", val);
+            if (cli_parse_int(val, 1, 1 << 24, &v) != 0)
+                return cli_usage_error("render", "--spp wants an integer from 1 to 16777216, not '%s'", val);
             bo.spp = (int)v;
         } else if (!strcmp(a, "--res")) {
             int w, h, n = 0;
             if (sscanf(val, "%dx%d%n", &w, &h, &n) != 2 || val[n] || w < 1 || h < 1 || w > 65536 || h > 65536)
-                return usage_error("--res wants WxH with sizes from 1 to 65536, not '%s'", val);
+                return cli_usage_error("render", "--res wants WxH with sizes from 1 to 65536, not '%s'", val);
             bo.width = w, bo.height = h;
         } else if (!strcmp(a, "--geometry")) {
             if (!strcmp(val, "analytic"))
                 bo.mesh_segments = 0;
-            else if (!strncmp(val, "mesh:", 5) && parse_int(val + 5, 3, 1000000, &v) == 0)
+            else if (!strncmp(val, "mesh:", 5) && cli_parse_int(val + 5, 3, 1000000, &v) == 0)
                 bo.mesh_segments = (int)v;
             else
-                return usage_error("--geometry wants analytic or mesh:N with N from 3 to 1000000, not '%s'", val);
+                return cli_usage_error("render", "--geometry wants analytic or mesh:N with N from 3 to 1000000, not '%s'", val);
         } else if (!strcmp(a, "--threads")) {
-            if (parse_int(val, 1, 1024, &v) != 0)
-                return usage_error("--threads wants an integer from 1 to 1024, not '%s'", val);
+            if (cli_parse_int(val, 1, 1024, &v) != 0)
+                return cli_usage_error("render", "--threads wants an integer from 1 to 1024, not '%s'", val);
             ro.threads = (int)v;
         } else if (!strcmp(a, "--seed")) {
-            if (parse_int(val, 0, (long long)(~0ull >> 1), &v) != 0)
-                return usage_error("--seed wants a non-negative integer, not '%s'", val);
+            if (cli_parse_int(val, 0, (long long)(~0ull >> 1), &v) != 0)
+                return cli_usage_error("render", "--seed wants a non-negative integer, not '%s'", val);
             bo.seed = v;
         } else if (!strcmp(a, "-D")) {
             const char *eq = strchr(val, '=');
             if (!eq || eq == val || ndefs == MAX_DEFINES)
-                return usage_error("-D wants name=value, not '%s'", val);
+                return cli_usage_error("render", "-D wants name=value, not '%s'", val);
             char *name = strndup(val, (size_t)(eq - val));
             if (!name)
                 return 1;
             defs[ndefs++] = (scene_define){name, eq + 1};
         } else if (!strcmp(a, "--aov")) {
             if (render_aov_parse(val, &ro.aovs) != 0)
-                return usage_error("--aov wants a list of depth, normal, albedo, not '%s'", val);
+                return cli_usage_error("render", "--aov wants a list of depth, normal, albedo, not '%s'", val);
         } else {
-            return usage_error("unknown option '%s'", a);
+            return cli_usage_error("render", "unknown option '%s'", a);
         }
     }
     int rc = 2, is_exr = 0;
     if (!scene_path)
-        rc = usage_error("%s", "missing SCENE.xml");
+        rc = cli_usage_error("render", "%s", "missing SCENE.xml");
     else if (!out)
-        rc = usage_error("%s", "missing -o OUT");
+        rc = cli_usage_error("render", "%s", "missing -o OUT");
     else if (!output_kind_ok(out, &is_exr))
-        rc = usage_error("output '%s' must end in .exr, .png, .jpg or .jpeg", out);
+        rc = cli_usage_error("render", "output '%s' must end in .exr, .png, .jpg or .jpeg", out);
     else if (ro.aovs && !is_exr)
-        rc = usage_error("--aov needs an .exr output, not '%s'", out);
+        rc = cli_usage_error("render", "--aov needs an .exr output, not '%s'", out);
     else
         rc = -1;
     if (rc >= 0) {

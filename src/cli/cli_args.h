@@ -1,0 +1,12 @@
+/* Argument handling shared by the subcommands. */
+#ifndef CELADON_CLI_ARGS_H
+#define CELADON_CLI_ARGS_H
+
+/* Prints "celadon CMD: <fmt with arg> (try celadon CMD --help)" as one line on
+ * stderr and returns 2, the exit code for bad usage. */
+int cli_usage_error(const char *cmd, const char *fmt, const char *arg);
+
+/* A whole decimal integer in [lo, hi]: 0, or -1 when s is anything else. */
+int cli_parse_int(const char *s, long long lo, long long hi, long long *out);
+
+#endif
