@@ -6,19 +6,12 @@
 #include <stdio.h>
 
 #include "celadon/sor.h"
+#include "support/counted_check.h"
 #include "support/sor_profiles.h"
 #include "support/sor_reference.h"
 
 #define RAYS 20000
 
-static int failures;
-#define CHECK(cond, ...)                                                                                              \
-    do {                                                                                                              \
-        if (!(cond) && failures++ < 10) {                                                                              \
-            fprintf(stderr, __VA_ARGS__);                                                                             \
-            fputc('\n', stderr);                                                                                      \
-        }                                                                                                             \
-    } while (0)
 
 /* Two results of the same ray agree, or the reference finds the ray ambiguous. */
 static int same(const sor_ref *ref, const ray3 *ray, int ha, const sor_hit *a, int hb, const sor_hit *b)

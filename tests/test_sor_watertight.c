@@ -5,21 +5,11 @@
 #include <stdio.h>
 
 #include "celadon/sor.h"
+#include "support/counted_check.h"
 #include "support/sor_profiles.h"
 #include "support/sor_reference.h"
 
 #define INSIDE_RAYS_TOTAL 1000000
-
-/* Criterion reports every assertion to its runner, which is slow in loops of
- * a million rays: failures are counted and the first few printed instead. */
-static int failures;
-#define CHECK(cond, ...)                                                                                              \
-    do {                                                                                                              \
-        if (!(cond) && failures++ < 10) {                                                                              \
-            fprintf(stderr, __VA_ARGS__);                                                                             \
-            fputc('\n', stderr);                                                                                      \
-        }                                                                                                             \
-    } while (0)
 #define DIRS_PER_POINT 8
 
 static vec3 random_dir(sor_rng *g)
