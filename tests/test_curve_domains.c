@@ -20,6 +20,27 @@ static double sagitta_ref(const bspline_t *c, double a, double b)
     return worst;
 }
 
+/* Brute-force departure (radians) of the tangent angle on [a, b] from its
+ * linear interpolation in arc length (exact arc length by 2000 chords). */
+static double normal_departure_ref(const bspline_t *c, double a, double b)
+{
+    enum { N = 2000 };
+    static double ang[N + 1], s[N + 1];
+    vec2 d0[2], d[2];
+    bspline_eval_derivs(c, a, 1, d0);
+    vec2 prev = d0[0];
+    for (int i = 0; i <= N; i++) {
+        bspline_eval_derivs(c, a + (b - a) * i / N, 1, d);
+        ang[i] = atan2(d0[1].x * d[1].y - d0[1].y * d[1].x, v2_dot(d0[1], d[1]));
+        s[i] = i ? s[i - 1] + v2_len(v2_sub(d[0], prev)) : 0;
+        prev = d[0];
+    }
+    double worst = 0;
+    for (int i = 0; i <= N; i++)
+        worst = fmax(worst, fabs(ang[i] - ang[N] * s[i] / s[N]));
+    return worst;
+}
+
 /* A single cubic span: the parabola y = x^2 / 200 on [0, 200] (a degree-
  * elevated quadratic Bezier), curvature 1/100 at x = 0 down to ~1/1118. */
 static bspline_t parabola(void)
@@ -111,6 +132,71 @@ Test(curve_domains, denser_where_the_curve_bends_harder)
     bspline_free(&c);
 }
 
+Test(curve_domains, curvature_variation_within_tolerance)
+{
+    bspline_t c = test_vase_curve();
+    const double tol_deg = 0.25;
+    double *u, *u_chord;
+    int n, n_chord;
+    cr_assert_eq(curve_domains_by_curvature_variation(&c, 0.25, tol_deg, &u, &n), 0);
+    cr_assert_eq(curve_domains_by_curvature(&c, 0.25, &u_chord, &n_chord), 0);
+    cr_assert_gt(n, n_chord, "the normal criterion adds domains (%d vs %d)", n, n_chord);
+    for (int i = 0; i + 1 < n; i++) {
+        cr_assert_leq(sagitta_ref(&c, u[i], u[i + 1]), 1.05 * 0.25);
+        double dep = normal_departure_ref(&c, u[i], u[i + 1]) * 180 / M_PI;
+        cr_assert_leq(dep, 1.1 * tol_deg, "domain [%g, %g]: normal departs %g deg", u[i], u[i + 1], dep);
+    }
+    /* Every chord-only boundary stays a boundary (bisection only refines). */
+    for (int k = 0, i = 0; k < n_chord; k++) {
+        while (i < n && u[i] < u_chord[k])
+            i++;
+        cr_assert(i < n && u[i] == u_chord[k], "boundary %g kept", u_chord[k]);
+    }
+    free(u);
+    free(u_chord);
+    bspline_free(&c);
+}
+
+Test(curve_domains, denser_where_the_curvature_changes_faster)
+{
+    /* With the chord criterion out of play, the parabola's domains follow
+     * |dk/ds|: about 7.7e-5 /px^2 near x = 50, 5e-6 near x = 200, so domain
+     * lengths there differ by about sqrt(15). */
+    bspline_t c = parabola();
+    double *u;
+    int n;
+    cr_assert_eq(curve_domains_by_curvature_variation(&c, 1e9, INFINITY, &u, &n), 0);
+    cr_assert_eq(n, 2, "no split without a finite tolerance");
+    free(u);
+    cr_assert_eq(curve_domains_by_curvature_variation(&c, 1e9, 0.05, &u, &n), 0);
+    double len_mid = 0, len_far = 0;
+    int n_mid = 0, n_far = 0;
+    for (int i = 0; i + 1 < n; i++) {
+        vec2 a = bspline_eval(&c, u[i]), b = bspline_eval(&c, u[i + 1]);
+        double mid = 0.5 * (a.x + b.x), len = v2_len(v2_sub(b, a));
+        if (mid > 30 && mid < 70)
+            len_mid += len, n_mid++;
+        else if (mid > 150)
+            len_far += len, n_far++;
+    }
+    cr_assert_gt(n_mid, 0);
+    cr_assert_gt(n_far, 0);
+    double ratio = (len_far / n_far) / (len_mid / n_mid);
+    cr_assert_gt(ratio, 2.0, "mean domain length ratio %g", ratio);
+    free(u);
+    /* A circular arc has constant curvature: its cubic approximation (radius
+     * 100, a quarter turn) needs no split at a tolerance its 0.03 %
+     * curvature ripple cannot reach. */
+    const double k = 4.0 / 3.0 * tan(M_PI / 8) * 100;
+    const vec2 P[] = {{100, 0}, {100, k}, {k, 100}, {0, 100}};
+    for (int i = 0; i < 4; i++)
+        c.ctrl[i] = P[i];
+    cr_assert_eq(curve_domains_by_curvature_variation(&c, 1e9, 1.0, &u, &n), 0);
+    cr_assert_eq(n, 2, "a circular arc is one domain, got %d", n - 1);
+    free(u);
+    bspline_free(&c);
+}
+
 Test(curve_domains, finer_tolerance_more_domains)
 {
     bspline_t c = test_vase_curve();
@@ -136,6 +222,8 @@ Test(curve_domains, bad_input)
     cr_assert_eq(n, 0);
     cr_assert_eq(curve_domains_by_curvature(&c, NAN, &u, &n), -1);
     cr_assert_eq(curve_domains_by_curvature(&c, -1, &u, &n), -1);
+    cr_assert_eq(curve_domains_by_curvature_variation(&c, 0.1, 0.0, &u, &n), -1);
+    cr_assert_eq(curve_domains_by_curvature_variation(&c, 0.1, NAN, &u, &n), -1);
     c.knots[0] = 0.5; /* not clamped */
     cr_assert_eq(curve_domains_by_curvature(&c, 0.1, &u, &n), -1);
     bspline_free(&c);

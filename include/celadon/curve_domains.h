@@ -18,4 +18,17 @@
  * allocation failure. */
 int curve_domains_by_curvature(const bspline_t *c, double tol_px, double **u, int *n);
 
+/* The same split with a second criterion on the curvature variation: a domain
+ * is also bisected while the curve's tangent angle departs by more than
+ * tol_normal_deg from its linear interpolation in arc length between the
+ * domain's ends (sampled at 16 interior points). The angle is linear in arc
+ * length exactly where the curvature is constant, so this puts more domains
+ * where the curvature changes fast (the departure is about |dk/ds| L^2 / 8);
+ * and since a mesh interpolates its normals between rings, it bounds the
+ * shading-normal error of the revolved mesh. tol_normal_deg = INFINITY gives
+ * curve_domains_by_curvature. Returns as that does; also -1 for
+ * tol_normal_deg <= 0 or NaN. */
+int curve_domains_by_curvature_variation(const bspline_t *c, double tol_px, double tol_normal_deg, double **u,
+                                         int *n);
+
 #endif
