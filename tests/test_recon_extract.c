@@ -183,6 +183,42 @@ Test(recon_extract, sensor_noise)
     image_free(&img);
 }
 
+/* A highlight washing out the left edge, as on a glossy glaze against a white
+ * backdrop: on the upper 70% of the height the left outline fades into the
+ * backdrop over a band that drifts between 4 and 16 px, then ramps to the
+ * glaze over 8 px; the lower 30% stays clean. The axis must come from the
+ * clean rows, and the washed-out side's corners from the clean side's. */
+Test(recon_extract, washed_out_side)
+{
+    synth_params p = synth_defaults(SYNTH_VASE, 300, 400);
+    p.tilt_deg = 1.5;
+    image_t img;
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    synth_truth t = synth_truth_of(&p);
+    double y_clean = t.axis_origin.y - 0.3 * t.height_px, y_top = t.axis_origin.y - t.height_px - 3;
+    for (int j = 0; j < img.height; j++) {
+        double y = j + 0.5, xl, xr;
+        if (y > y_clean || y < y_top || !synth_silhouette_x(&p, y, &xl, &xr))
+            continue;
+        double band = 10 + 6 * sin(j / 23.0);
+        for (int i = (int)floor(xl); i < img.width && i + 0.5 < xl + band + 8; i++) {
+            double f = fmin(1, fmax(0, (i + 0.5 - xl - band) / 8));
+            for (int c = 0; c < 3; c++) {
+                float *v = &img.data[((size_t)j * img.width + i) * 3 + c];
+                *v = (float)(p.bg[c] + f * (*v - p.bg[c]));
+            }
+        }
+    }
+    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_result r;
+    char err[256];
+    cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
+    cr_expect_eq(r.side_used, RECON_SIDE_RIGHT);
+    expect_accurate("vase, left edge washed out", measure(&p, &r, 4));
+    recon_result_free(&r);
+    image_free(&img);
+}
+
 Test(recon_extract, side_option_is_honoured)
 {
     synth_params p = synth_defaults(SYNTH_VASE, 300, 400);

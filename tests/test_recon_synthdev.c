@@ -14,8 +14,9 @@
 #include "celadon/recon.h"
 
 /* Targets: outline mean <= 0.25 px and max <= 1.5 px on the chosen side, 5 px
- * or more from the corners; axis direction within 0.1°. One case cannot meet
- * them; its bounds are what we achieve, with the reason. */
+ * or more from the corners; axis direction within 0.1°; all four corners
+ * within 12 px (perspective rounds them into ellipse arcs). One case cannot
+ * meet them; its bounds are what we achieve, with the reason. */
 typedef struct {
     const char *name;
     double mean, max, axis_deg;
@@ -26,10 +27,11 @@ static const expectation CASES[] = {
     {"squat_jar_crane", 0.25, 1.5, 0.1, NULL},
     {"baluster_vase_e1.5_r1", 0.25, 1.5, 0.1, NULL},
     {"conical_tea_bowl_e5", 0.25, 1.5, 0.1, NULL},
-    {"melon_vase_specular", 0.4, 1.5, 0.5,
-     "the left edge is washed out by the highlight (the mask loses up to 18 px there) and the clean right edge "
-     "glows toward the backdrop under the rim light (0.3 px inward on average even after the fg "
-     "extrapolation); the axis rests on the left/right symmetry of a half-missing outline"},
+    {"melon_vase_specular", 0.4, 1.5, 0.25,
+     "a highlight washes out most of the left edge (the mask loses up to 40 px there; only the waist above the "
+     "foot stays clean), so the axis rests on those ~70 rows; and the clean right edge glows toward the "
+     "backdrop under the rim light (a pixel's value fits a 92 % coverage of a glaze brightened at grazing "
+     "angles as well as 60 % of the glaze further in: 0.3 px inward on average)"},
     {"stem_cup_r2", 0.25, 1.5, 0.1, NULL},
     {"pear_bottle_e3", 0.25, 1.5, 0.1, NULL},
     {"brush_pot_lowcontrast_r1.5", 0.25, 1.5, 0.1, NULL},
@@ -174,6 +176,7 @@ static void run_all(const char *file)
                       x->why ? "; known: " : "", x->why ? x->why : "");
         cr_expect_leq(o.max_err, x->max, "%s/%s: outline max %.3f px", x->name, file, o.max_err);
         cr_expect_leq(o.axis_deg, x->axis_deg, "%s/%s: axis %.3f deg", x->name, file, o.axis_deg);
+        cr_expect_leq(o.corner_err, 12.0, "%s/%s: a corner %.1f px off", x->name, file, o.corner_err);
     }
 }
 

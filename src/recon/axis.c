@@ -73,9 +73,48 @@ static double left_at(const hr_t *L, int nl, double h, double *slope)
     return L[lo].r + (h - L[lo].h) / dh * (L[hi].r - L[lo].r);
 }
 
-int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec2 *origin, vec2 *dir, double h_lo,
-                        double h_hi)
+/* The line e = a + b x of the symmetric rows when one outline may be washed
+ * out. A washed-out outline can only lie inside the true one, so every row's
+ * residual e = r_right - r_left lies on one side of the true line (above it
+ * when the left is washed out, washed = +1; below for the right, -1) and the
+ * clean rows lie on it, within the edge noise. Candidates: lines through two
+ * rows of an even subsample; score (over every other row): rows within tau of the line, minus four
+ * for each row more than tau on the wrong side. A median, or a consensus
+ * without the one-sided penalty, fails here: a highlight along most of an
+ * edge leaves few clean rows, outvoted by washed-out rows whose error drifts
+ * slowly (a line through those passes above the clean rows, which the
+ * penalty counts). Returns the best score. */
+static double washed_consensus_line(const double *e, const double *x, int m, int washed, double tau, double *a,
+                                    double *b)
 {
+    enum { SAMPLES = 32, STRIDE = 2 };
+    double xlo = x[0], xhi = x[0], best = -INFINITY;
+    for (int i = 1; i < m; i++)
+        xlo = fmin(xlo, x[i]), xhi = fmax(xhi, x[i]);
+    for (int p = 0; p < SAMPLES; p++)
+        for (int q = p + 1; q < SAMPLES; q++) {
+            int i = (int)((long)p * (m - 1) / (SAMPLES - 1)), k = (int)((long)q * (m - 1) / (SAMPLES - 1));
+            if (fabs(x[k] - x[i]) < 0.05 * (xhi - xlo))
+                continue;
+            double bb = (e[k] - e[i]) / (x[k] - x[i]), aa = e[i] - bb * x[i], score = 0;
+            for (int j = 0; j < m; j += STRIDE) {
+                double r = e[j] - aa - bb * x[j];
+                score += fabs(r) <= tau ? 1.0 : (washed * r < -tau ? -4.0 : 0.0);
+            }
+            if (score > best) {
+                best = score;
+                *a = aa;
+                *b = bb;
+            }
+        }
+    return best;
+}
+
+int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec2 *origin, vec2 *dir, double h_lo,
+                        double h_hi, int suspect, double noise_px, int *washed_side)
+{
+    int washed = 0;
+    *washed_side = 0;
     hr_t *L = malloc((size_t)(nl > 0 ? nl : 1) * sizeof *L);
     double *e = malloc((size_t)(nr > 0 ? nr : 1) * 3 * sizeof *e);
     if (!L || !e) {
@@ -110,37 +149,52 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
         }
         if (m < 20)
             break;
-        /* Trim: residuals far from the median (highlights, notches). */
-        for (int i = 0; i < m; i++)
-            tmp[i] = e[i];
-        qsort(tmp, (size_t)m, sizeof *tmp, cmp_double);
-        double med = tmp[m / 2];
-        for (int i = 0; i < m; i++)
-            tmp[i] = fabs(e[i] - med);
-        qsort(tmp, (size_t)m, sizeof *tmp, cmp_double);
-        double tol = fmax(3 * 1.4826 * tmp[m / 2], 0.5);
-        /* Once roughly aligned, a row more than 1.5 px from the median is not
-         * symmetric, whatever the spread of the rest (a washed-out side). */
-        if (iter >= 2)
-            tol = fmin(tol, 1.5);
+        /* Inliers: rows whose residual is near the line e = a + b x. First,
+         * is the suspect side washed out? Yes when under 70% of the rows
+         * agree with its one-sided consensus line. Then the inliers are near
+         * that line at first (the start may be off by a few degrees), later
+         * within 0.75 px of zero. Otherwise: near the median, within three
+         * robust sigmas (at least 0.5 px; at most 1.5 px once aligned: a row
+         * further off is not symmetric, whatever the spread of the rest). */
+        double a = 0, b = 0, tol = 0.75;
+        if (iter == 0 && suspect) {
+            tol = fmax(0.25, fmin(0.75, 3 * noise_px));
+            washed_consensus_line(e, hs, m, suspect, tol, &a, &b);
+            int agree = 0;
+            for (int i = 0; i < m; i++)
+                agree += fabs(e[i] - a - b * hs[i]) <= tol;
+            washed = agree < 0.7 * m ? suspect : 0;
+        }
+        if (!washed) {
+            for (int i = 0; i < m; i++)
+                tmp[i] = e[i];
+            qsort(tmp, (size_t)m, sizeof *tmp, cmp_double);
+            a = tmp[m / 2];
+            b = 0;
+            for (int i = 0; i < m; i++)
+                tmp[i] = fabs(e[i] - a);
+            qsort(tmp, (size_t)m, sizeof *tmp, cmp_double);
+            tol = fmax(3 * 1.4826 * tmp[m / 2], 0.5);
+            if (iter >= 2)
+                tol = fmin(tol, 1.5);
+        }
         /* Least squares e = 2 dc + 2 dth (x - xm) on the inliers, x = h + slope r. */
         double hm = 0, cnt = 0;
         for (int i = 0; i < m; i++)
-            if (fabs(e[i] - med) <= tol) {
+            if (fabs(e[i] - a - b * hs[i]) <= tol) {
                 hm += hs[i];
                 cnt++;
             }
-        if (cnt < 20 || cnt < 0.3 * m)
+        if (cnt < 20 || (washed == 0 && cnt < 0.3 * m))
             break;
         hm /= cnt;
-        double se = 0, sh = 0, shh = 0, seh = 0;
+        double se = 0, shh = 0, seh = 0;
         for (int i = 0; i < m; i++)
-            if (fabs(e[i] - med) <= tol) {
+            if (fabs(e[i] - a - b * hs[i]) <= tol) {
                 double x = hs[i] - hm;
                 se += e[i];
                 seh += e[i] * x;
                 shh += x * x;
-                sh += x;
             }
         if (shh <= 0)
             break;
@@ -161,5 +215,6 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
         return 0;
     *origin = o;
     *dir = d;
+    *washed_side = washed;
     return 1;
 }

@@ -325,16 +325,33 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     }
 
     /* 6. Refine the axis by left/right symmetry on the middle 90% of the
-     * height, from the preferred start, else from the other one. */
+     * height, from the preferred start, else from the other one. A side
+     * whose typical edge contrast is under half the other's may be washed
+     * out in part (a highlight along it). */
+    int washed = 0, suspect = median[0] < 0.5 * median[1] ? 1 : (median[1] < 0.5 * median[0] ? -1 : 0);
     for (int k = 0; k < 2 && !res->axis_from_symmetry; k++) {
         vec2 o = starts_o[first ^ k], d = starts_d[first ^ k];
         double hb = v2_dot(v2_sub(m_base, o), d), ht = v2_dot(v2_sub(m_rim, o), d);
         if (recon_axis_symmetry(res->silhouette[0], res->n_silhouette[0], res->silhouette[1],
-                                res->n_silhouette[1], &o, &d, hb + 0.05 * (ht - hb) + 2, ht - 0.05 * (ht - hb) - 2)) {
+                                res->n_silhouette[1], &o, &d, hb + 0.05 * (ht - hb) + 2, ht - 0.05 * (ht - hb) - 2, suspect,
+                                res->edge_noise_px[suspect > 0] / 1.65, &washed)) {
             origin = o;
             dir = d;
             res->axis_from_symmetry = 1;
         }
+    }
+    /* The washed-out side's corners are wrong with its outline: mirror the
+     * clean side's across the refined axis (the outline is symmetric). */
+    if (washed && res->axis_from_symmetry) {
+        int from = washed > 0 ? 1 : 0;
+        for (int q = 0; q < 2; q++) {
+            int src = q ? (from ? CORNER_BASE_RIGHT : CORNER_BASE_LEFT) : (from ? CORNER_RIM_RIGHT : CORNER_RIM_LEFT);
+            int dst = q ? (from ? CORNER_BASE_LEFT : CORNER_BASE_RIGHT) : (from ? CORNER_RIM_LEFT : CORNER_RIM_RIGHT);
+            vec2 c = res->corners[src], foot = v2_add(origin, v2_scale(dir, v2_dot(v2_sub(c, origin), dir)));
+            res->corners[dst] = v2_sub(v2_scale(foot, 2), c);
+        }
+        m_rim = v2_scale(v2_add(res->corners[CORNER_RIM_LEFT], res->corners[CORNER_RIM_RIGHT]), 0.5);
+        m_base = v2_scale(v2_add(res->corners[CORNER_BASE_LEFT], res->corners[CORNER_BASE_RIGHT]), 0.5);
     }
     char why[160];
     if (!recon_check_vessel(res->corners, dir, res->contour, nc, ext, h, why, sizeof why)) {

@@ -112,10 +112,16 @@ void recon_pca(const vec2 *pts, int n, vec2 *mean, vec2 axes[2], double eig[2]);
 
 /* Refines the axis (origin on it, unit direction toward the rim) so that the
  * left and right outlines are mirror images: Gauss–Newton on offset and angle
- * with trimmed residuals, between the heights h_lo and h_hi. Returns 1 when
- * refined, 0 when the outlines disagree too much to trust (axis unchanged). */
+ * with trimmed residuals, between the heights h_lo and h_hi. suspect: +1 when
+ * the left outline may be washed out (a highlight along it lowers its edge
+ * contrast; its outline then lies inside the true one), -1 for the right, 0
+ * for neither. When most rows are not symmetric, the suspect side is taken
+ * as washed out and the fit rests on the rows that a one-sided consensus
+ * finds symmetric; *washed_side is then the suspect side, else 0. Returns 1
+ * when refined, 0 when the outlines disagree too much to trust (axis
+ * unchanged). */
 int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec2 *origin, vec2 *dir, double h_lo,
-                        double h_hi);
+                        double h_hi, int suspect, double noise_px, int *washed_side);
 
 /* ---- sub-pixel silhouette (subpixel_edge.c) */
 
