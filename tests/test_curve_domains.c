@@ -41,6 +41,22 @@ static double normal_departure_ref(const bspline_t *c, double a, double b)
     return worst;
 }
 
+/* Mean chord length of the domains whose chord midpoint has x in (x0, x1);
+ * asserts there is one. */
+static double mean_domain_length(const bspline_t *c, const double *u, int n, double x0, double x1)
+{
+    double sum = 0;
+    int cnt = 0;
+    for (int i = 0; i + 1 < n; i++) {
+        vec2 a = bspline_eval(c, u[i]), b = bspline_eval(c, u[i + 1]);
+        double mid = 0.5 * (a.x + b.x);
+        if (mid > x0 && mid < x1)
+            sum += v2_len(v2_sub(b, a)), cnt++;
+    }
+    cr_assert_gt(cnt, 0, "a domain in x (%g, %g)", x0, x1);
+    return sum / cnt;
+}
+
 /* A single cubic span: the parabola y = x^2 / 200 on [0, 200] (a degree-
  * elevated quadratic Bezier), curvature 1/100 at x = 0 down to ~1/1118. */
 static bspline_t parabola(void)
@@ -101,19 +117,7 @@ Test(curve_domains, denser_where_the_curve_bends_harder)
     cr_assert_gt(n, 10);
     /* Domain chord lengths grow as the curvature falls along the parabola,
      * roughly as 1/sqrt(kappa): compare the first and last quarter of x. */
-    double len_lo = 0, len_hi = 0;
-    int n_lo = 0, n_hi = 0;
-    for (int i = 0; i + 1 < n; i++) {
-        vec2 a = bspline_eval(&c, u[i]), b = bspline_eval(&c, u[i + 1]);
-        double mid = 0.5 * (a.x + b.x), len = v2_len(v2_sub(b, a));
-        if (mid < 50)
-            len_lo += len, n_lo++;
-        else if (mid > 150)
-            len_hi += len, n_hi++;
-    }
-    cr_assert_gt(n_lo, 0);
-    cr_assert_gt(n_hi, 0);
-    double ratio = (len_hi / n_hi) / (len_lo / n_lo);
+    double ratio = mean_domain_length(&c, u, n, 150, INFINITY) / mean_domain_length(&c, u, n, -INFINITY, 50);
     cr_assert_gt(ratio, 2.0, "mean domain length ratio %g", ratio);
     free(u);
     bspline_free(&c);
@@ -169,19 +173,7 @@ Test(curve_domains, denser_where_the_curvature_changes_faster)
     cr_assert_eq(n, 2, "no split without a finite tolerance");
     free(u);
     cr_assert_eq(curve_domains_by_curvature_variation(&c, 1e9, 0.05, &u, &n), 0);
-    double len_mid = 0, len_far = 0;
-    int n_mid = 0, n_far = 0;
-    for (int i = 0; i + 1 < n; i++) {
-        vec2 a = bspline_eval(&c, u[i]), b = bspline_eval(&c, u[i + 1]);
-        double mid = 0.5 * (a.x + b.x), len = v2_len(v2_sub(b, a));
-        if (mid > 30 && mid < 70)
-            len_mid += len, n_mid++;
-        else if (mid > 150)
-            len_far += len, n_far++;
-    }
-    cr_assert_gt(n_mid, 0);
-    cr_assert_gt(n_far, 0);
-    double ratio = (len_far / n_far) / (len_mid / n_mid);
+    double ratio = mean_domain_length(&c, u, n, 150, INFINITY) / mean_domain_length(&c, u, n, 30, 70);
     cr_assert_gt(ratio, 2.0, "mean domain length ratio %g", ratio);
     free(u);
     /* A circular arc has constant curvature: its cubic approximation (radius
