@@ -42,13 +42,10 @@ typedef struct {
     double nr, nh, d0, d1;
 } sor_strip;
 
-/* The annuli and strips of an internal node's two children (node + 1 and
- * skip) side by side, so that the usual ray tests both at once (two lanes of
- * a vector). */
+/* The annuli of an internal node's two children (node + 1 and skip) side by
+ * side, so that the usual ray tests both at once (two lanes of a vector). */
 typedef struct {
     double q0[2], q1[2], h0[2], h1[2];
-    double nr[2], nh[2], d0[2], d1[2];
-    int strips; /* test the strips too: set where both children are leaves */
 } sor_pair;
 
 struct sor {
@@ -65,7 +62,7 @@ struct sor {
     int n_nodes;
     sor_node *nodes;
     sor_pair *pairs;        /* per node; set for internal nodes */
-    sor_strip *strips;      /* per node */
+    sor_strip *strips;      /* per node; the walk does not test them (docs/intersector.md) */
     int n_intervals;        /* monotone intervals: one subtree each */
     int *interval_root;
     int n_bez;              /* raw Bézier pieces for sor_intersect_naive */
@@ -82,7 +79,6 @@ typedef struct {
     vec3 pc; /* the centre point o + t_c d */
     double a, dy, inv_dy, hc, beta, rho2c;
     double s_star, d2; /* vertex and minimum of rho^2(s) when a > 0 */
-    double strip_margin; /* the strip test's allowance for rounding (infinite: no strip test) */
     int steep;
 } sor_ray;
 
@@ -104,15 +100,16 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
 /* Both caps (as masked), same contract. */
 int sor_caps_intersect(const sor_t *sor, const sor_ray *ry, unsigned which, double smin, sor_best *best);
 
-/* Range of nr rho^2(s) + nh h(s) over s in [sa, sb] (finite), for the strip
- * (nr, nh): conservative, [*lo, *hi] holds every value the exact ray takes
- * there. Requires a usual ray (dy != 0, a > 0). */
-void sor_strip_range(const sor_strip *st, const sor_ray *ry, double sa, double sb, double *lo, double *hi);
+/* The strip test: the range of nr rho^2(s) + nh h(s) over s in [sa, sb]
+ * (finite) for the strip st. Conservative: [*lo, *hi] holds every value the
+ * ray takes there; the ray misses the strip when it is disjoint from
+ * [d0, d1]. Requires a usual ray (dy != 0, a > 0). */
+void sor_strip_range(const sor_t *sor, const sor_strip *st, const sor_ray *ry, double sa, double sb, double *lo,
+                     double *hi);
 
-/* Which children of internal node `node` the ray can meet for s in [smin,
- * smax], as the walk decides it (bit 0: node + 1, bit 1: skip); strips: also
- * test their strips. For tests. */
-int sor_children_test(const sor_t *sor, int node, const sor_ray *ry, double smin, double smax, int strips);
+/* Which children of internal node `node` the walk's annulus test keeps for s
+ * in [smin, smax] (bit 0: node + 1, bit 1: skip). */
+int sor_children_test(const sor_t *sor, int node, const sor_ray *ry, double smin, double smax);
 
 /* Walks the subtree at root nearest first. any: stop at the first hit. */
 int sor_tree_intersect(const sor_t *sor, int root, const sor_ray *ry, double smin, sor_best *best, int any);

@@ -10,23 +10,6 @@
 
 #define TREE_STACK 64
 
-/* The strip test's allowance for rounding, for every node: 1e-12 of the
- * magnitude of the terms of g(s) (see strip_range), a s^2 + (2|beta| +
- * size|dy|)|s| + rho2c + size|hc| as |nr| <= 1, |nh| <= size, at the largest
- * |s| in the bounding slab, which holds every node's slab. It bounds the
- * rounding of strip_range thousands of times over. Only usual rays (dy != 0,
- * a > 0) test strips. */
-#define STRIP_ROUNDING 1e-12
-
-static double strip_margin(const sor_t *sor, const sor_ray *ry)
-{
-    if (!(ry->dy != 0.0 && ry->a > 0.0))
-        return INFINITY;
-    double x = sor_max(fabs((sor->bound.h0 - ry->hc) * ry->inv_dy), fabs((sor->bound.h1 - ry->hc) * ry->inv_dy));
-    double terms = (ry->a * x + 2.0 * fabs(ry->beta) + sor->size * fabs(ry->dy)) * x + ry->rho2c + sor->size * fabs(ry->hc);
-    return STRIP_ROUNDING * terms;
-}
-
 int sor_ray_setup(const sor_t *sor, const ray3 *ray, sor_ray *ry)
 {
     vec3 o = ray->o, d = ray->d;
@@ -51,7 +34,6 @@ int sor_ray_setup(const sor_t *sor, const ray3 *ray, sor_ray *ry)
     double cr = pc.x * d.z - pc.z * d.x; /* invariant along the ray: no cancellation */
     ry->s_star = -ry->beta * inv_a;
     ry->d2 = a > 0.0 ? cr * cr * inv_a : ry->rho2c;
-    ry->strip_margin = strip_margin(sor, ry);
     return 1;
 }
 
@@ -84,47 +66,40 @@ static inline __attribute__((always_inline)) int node_hit(const sor_node *nd, co
     return (sa <= sb) & (ry->rho2c >= nd->q0) & (ry->rho2c <= nd->q1);
 }
 
-/* The strip test. Along the ray, g(s) = nr rho^2(s) + nh h(s) = A s^2 + B s + C
- * with A = nr a >= 0 (strips are oriented so that nr >= 0), B = 2 nr beta +
- * nh dy, C = nr rho2c + nh hc. Around the middle m of [sa, sb] (half-width
- * hw), g = g(m) + g'(m) x + A x^2 for |x| <= hw, so its range lies in
+/* The strip test (a node's strip against the ray's parabola in the (R, h)
+ * plane). Along the ray, g(s) = nr rho^2(s) + nh h(s) = A s^2 + B s + C with
+ * A = nr a >= 0 (strips are oriented so that nr >= 0), B = 2 nr beta + nh dy,
+ * C = nr rho2c + nh hc. Around the middle m of [sa, sb] (half-width hw),
+ * g = g(m) + g'(m) x + A x^2 for |x| <= hw, so its range lies in
  * [g(m) - |g'(m)| hw, g(m) + |g'(m)| hw + A hw^2]: exact when the vertex is at
  * m, wider by at most A hw^2 otherwise, true for any m in the interval, and
- * with no division. Widened by the ray's margin for rounding. */
-static inline __attribute__((always_inline)) void strip_range(double nr, double nh, const sor_ray *ry, double sa,
-                                                              double sb, double *lo, double *hi)
+ * with no division. It is widened for rounding by 1e-12 of the magnitude of
+ * the terms, a X^2 + (2|beta| + size|dy|) X + rho2c + size|hc| at X = |m| + hw
+ * (as |nr| <= 1, |nh| <= size), which bounds the rounding thousands of times
+ * over. */
+#define STRIP_ROUNDING 1e-12
+
+void sor_strip_range(const sor_t *sor, const sor_strip *st, const sor_ray *ry, double sa, double sb, double *lo,
+                     double *hi)
 {
-    double A = nr * ry->a, B = nr * (2.0 * ry->beta) + nh * ry->dy, C = nr * ry->rho2c + nh * ry->hc;
+    double A = st->nr * ry->a, B = st->nr * (2.0 * ry->beta) + st->nh * ry->dy, C = st->nr * ry->rho2c + st->nh * ry->hc;
     double m = 0.5 * (sa + sb), hw = 0.5 * (sb - sa);
     double Am = A * m, gm = (Am + B) * m + C, spread = fabs(Am + Am + B) * hw, curv = A * hw * hw;
-    *lo = gm - spread - ry->strip_margin;
-    *hi = gm + spread + curv + ry->strip_margin;
-}
-
-void sor_strip_range(const sor_strip *st, const sor_ray *ry, double sa, double sb, double *lo, double *hi)
-{
-    strip_range(st->nr, st->nh, ry, sa, sb, lo, hi);
-}
-
-/* A NaN keeps the node: the cull is written as two negated tests. */
-static inline __attribute__((always_inline)) int strip_hit(double nr, double nh, double d0, double d1,
-                                                           const sor_ray *ry, double sa, double sb)
-{
-    double lo, hi;
-    strip_range(nr, nh, ry, sa, sb, &lo, &hi);
-    return !(hi < d0) & !(lo > d1);
+    double X = fabs(m) + hw, bx = 2.0 * fabs(ry->beta) + sor->size * fabs(ry->dy);
+    double margin = STRIP_ROUNDING * ((ry->a * X + bx) * X + ry->rho2c + sor->size * fabs(ry->hc));
+    *lo = gm - spread - margin;
+    *hi = gm + spread + curv + margin;
 }
 
 /* Which children of internal node `node` the ray can meet (bit 0: node + 1,
  * bit 1: skip), with their lower bounds of s in slo[]. For the usual ray both
  * are tested at once, the same arithmetic as node_hit in two vector lanes. */
 static inline __attribute__((always_inline)) int children_hit(const sor_t *sor, int node, const sor_ray *ry,
-                                                              double smin, double smax, double slo[2], int usual,
-                                                              int strips)
+                                                              double smin, double smax, double slo[2], int usual)
 {
-    const sor_pair *pr = &sor->pairs[node];
 #ifdef __SSE2__
     if (usual) {
+        const sor_pair *pr = &sor->pairs[node];
         __m128d hc = _mm_set1_pd(ry->hc), inv_dy = _mm_set1_pd(ry->inv_dy), s_star = _mm_set1_pd(ry->s_star);
         __m128d a = _mm_set1_pd(ry->a), d2 = _mm_set1_pd(ry->d2);
         __m128d s0 = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(pr->h0), hc), inv_dy);
@@ -139,45 +114,19 @@ static inline __attribute__((always_inline)) int children_hit(const sor_t *sor, 
                                 _mm_and_pd(_mm_cmpge_pd(_mm_add_pd(_mm_max_pd(fa, fb), d2), _mm_loadu_pd(pr->q0)),
                                            _mm_cmple_pd(_mm_add_pd(fm, d2), _mm_loadu_pd(pr->q1))));
         _mm_storeu_pd(slo, sa);
-        if (strips && pr->strips) { /* strip_range in two lanes, the same operations in the same order */
-            __m128d nr = _mm_loadu_pd(pr->nr), nh = _mm_loadu_pd(pr->nh), half = _mm_set1_pd(0.5);
-            __m128d sign = _mm_set1_pd(-0.0), margin = _mm_set1_pd(ry->strip_margin);
-            __m128d A = _mm_mul_pd(nr, a);
-            __m128d B = _mm_add_pd(_mm_mul_pd(nr, _mm_set1_pd(2.0 * ry->beta)), _mm_mul_pd(nh, _mm_set1_pd(ry->dy)));
-            __m128d C = _mm_add_pd(_mm_mul_pd(nr, _mm_set1_pd(ry->rho2c)), _mm_mul_pd(nh, hc));
-            __m128d m = _mm_mul_pd(half, _mm_add_pd(sa, sb)), hw = _mm_mul_pd(half, _mm_sub_pd(sb, sa));
-            __m128d Am = _mm_mul_pd(A, m);
-            __m128d gm = _mm_add_pd(_mm_mul_pd(_mm_add_pd(Am, B), m), C);
-            __m128d spread = _mm_mul_pd(_mm_andnot_pd(sign, _mm_add_pd(_mm_add_pd(Am, Am), B)), hw);
-            __m128d curv = _mm_mul_pd(_mm_mul_pd(A, hw), hw);
-            __m128d lo = _mm_sub_pd(_mm_sub_pd(gm, spread), margin);
-            __m128d hi = _mm_add_pd(_mm_add_pd(_mm_add_pd(gm, spread), curv), margin);
-            ok = _mm_and_pd(ok, _mm_and_pd(_mm_cmpnlt_pd(hi, _mm_loadu_pd(pr->d0)),
-                                           _mm_cmpngt_pd(lo, _mm_loadu_pd(pr->d1))));
-        }
         return _mm_movemask_pd(ok);
     }
 #endif
     const sor_node *nodes = sor->nodes;
-    int hit = node_hit(&nodes[node + 1], ry, smin, smax, &slo[0], usual) |
-              node_hit(&nodes[nodes[node].skip], ry, smin, smax, &slo[1], usual) << 1;
-    if (strips && usual && pr->strips) {
-        for (int j = 0; j < 2; j++) {
-            double sb = sor_min(sor_max((pr->h0[j] - ry->hc) * ry->inv_dy, (pr->h1[j] - ry->hc) * ry->inv_dy), smax);
-            if (((hit >> j) & 1) && !strip_hit(pr->nr[j], pr->nh[j], pr->d0[j], pr->d1[j], ry, slo[j], sb))
-                hit &= ~(1 << j);
-        }
-    }
-    return hit;
+    return node_hit(&nodes[node + 1], ry, smin, smax, &slo[0], usual) |
+           node_hit(&nodes[nodes[node].skip], ry, smin, smax, &slo[1], usual) << 1;
 }
 
-int sor_children_test(const sor_t *sor, int node, const sor_ray *ry, double smin, double smax, int strips)
+int sor_children_test(const sor_t *sor, int node, const sor_ray *ry, double smin, double smax)
 {
     double slo[2];
-    int usual = ry->dy != 0.0 && ry->a > 0.0;
-    if (strips)
-        return usual ? children_hit(sor, node, ry, smin, smax, slo, 1, 1) : children_hit(sor, node, ry, smin, smax, slo, 0, 1);
-    return usual ? children_hit(sor, node, ry, smin, smax, slo, 1, 0) : children_hit(sor, node, ry, smin, smax, slo, 0, 0);
+    return ry->dy != 0.0 && ry->a > 0.0 ? children_hit(sor, node, ry, smin, smax, slo, 1)
+                                        : children_hit(sor, node, ry, smin, smax, slo, 0);
 }
 
 /* The walk, nearest child first; `usual` as in node_hit, so the usual rays get
@@ -202,7 +151,7 @@ static inline __attribute__((always_inline)) int tree_walk(const sor_t *sor, int
             }
         } else {
             double s[2] = {0.0, 0.0};
-            int hit = children_hit(sor, node, ry, smin, best->s, s, usual, 1);
+            int hit = children_hit(sor, node, ry, smin, best->s, s, usual);
             if (hit == 3) {
                 int first = s[0] <= s[1];
                 stack_n[sp] = first ? nd->skip : node + 1, stack_s[sp] = first ? s[1] : s[0], sp++;
