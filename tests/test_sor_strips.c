@@ -148,19 +148,17 @@ Test(sor_strips, strips_keep_every_leaf_hit)
     cr_assert_eq(failures, 0, "%d failures", failures);
 }
 
-/* A leaf whose arc rises in both r and h and is nearly straight: the
- * thinnest strip against its box. */
+/* A leaf below a leaf pair (where the walk tests strips) whose arc rises in
+ * both r and h and is nearly straight: the thinnest strip against its box. */
 static int diagonal_leaf(const sor_t *s, int *parent, int *lane)
 {
     double best = INFINITY;
     int found = -1;
     for (int k = 0; k < s->n_nodes; k++) {
-        if (s->nodes[k].piece >= 0)
+        if (s->nodes[k].piece >= 0 || !s->pairs[k].strips)
             continue;
         for (int j = 0; j < 2; j++) {
             int c = j == 0 ? k + 1 : s->nodes[k].skip;
-            if (s->nodes[c].piece < 0)
-                continue;
             const sor_piece *pc = &s->pieces[s->nodes[c].piece];
             const sor_node *nd = &s->nodes[c];
             const sor_strip *st = &s->strips[c];
@@ -190,7 +188,7 @@ Test(sor_strips, strip_culls_a_ray_the_annulus_keeps)
         leaf = diagonal_leaf(s, &parent, &lane);
         profile = i;
     }
-    cr_assert_geq(leaf, 0, "no profile has a rising leaf");
+    cr_assert_geq(leaf, 0, "no profile has a rising leaf below a leaf pair");
     const sor_piece *pc = &s->pieces[s->nodes[leaf].piece];
     double R0 = pc->r[0] * pc->r[0], R1 = pc->r[3] * pc->r[3], h0 = pc->h[0], h1 = pc->h[3], dh = h1 - h0;
     double eps = 0.01 * (R1 - R0), Rx = R0 + 0.5 * (R1 - R0), hstar = h0 - dh;
@@ -209,9 +207,13 @@ Test(sor_strips, strip_culls_a_ray_the_annulus_keeps)
     sor_ray ry;
     cr_assert(sor_ray_setup(s, &ray, &ry));
     double smin = -ry.tc, smax = INFINITY;
-    cr_assert(sor_children_test(s, parent, &ry, smin, smax) & (1 << lane),
-              "%s: the annulus of leaf %d should keep the ray", sor_test_profile_name(profile), leaf);
-    /* The strip test over the leaf's slab, as the walk would bound it. */
+    int without = sor_children_test(s, parent, &ry, smin, smax, 0), with = sor_children_test(s, parent, &ry, smin, smax, 1);
+    cr_assert(without & (1 << lane), "%s: the annulus of leaf %d should keep the ray", sor_test_profile_name(profile),
+              leaf);
+    cr_assert_not(with & (1 << lane), "%s: the walk should cull leaf %d by its strip", sor_test_profile_name(profile),
+                  leaf);
+    cr_assert_eq(with & ~without, 0, "strips only ever remove children");
+    /* The same decision from the strip test itself, over the leaf's slab. */
     const sor_node *nd = &s->nodes[leaf];
     const sor_strip *st = &s->strips[leaf];
     double s0 = (nd->h0 - ry.hc) * ry.inv_dy, s1 = (nd->h1 - ry.hc) * ry.inv_dy, lo, hi;

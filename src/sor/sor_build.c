@@ -368,11 +368,17 @@ static int build_tree(sor_t *s, const int *iv_of_leaf)
         for (int k = 0; k < s->n_nodes; k++) {
             if (s->nodes[k].piece >= 0)
                 continue;
-            const sor_node *child[2] = {&s->nodes[k + 1], &s->nodes[s->nodes[k].skip]};
+            int child[2] = {k + 1, s->nodes[k].skip};
+            sor_pair *pr = &s->pairs[k];
             for (int j = 0; j < 2; j++) {
-                s->pairs[k].q0[j] = child[j]->q0, s->pairs[k].q1[j] = child[j]->q1;
-                s->pairs[k].h0[j] = child[j]->h0, s->pairs[k].h1[j] = child[j]->h1;
+                const sor_node *nd = &s->nodes[child[j]];
+                const sor_strip *st = &s->strips[child[j]];
+                pr->q0[j] = nd->q0, pr->q1[j] = nd->q1, pr->h0[j] = nd->h0, pr->h1[j] = nd->h1;
+                pr->nr[j] = st->nr, pr->nh[j] = st->nh, pr->d0[j] = st->d0, pr->d1[j] = st->d1;
             }
+            /* Strips are tested only where they decide whether the leaf solver
+             * runs: higher up they cost more than they prune (docs/intersector.md). */
+            pr->strips = s->nodes[child[0]].piece >= 0 && s->nodes[child[1]].piece >= 0;
         }
         /* Each interval's leaves form one node's range: find the topmost such node. */
         for (int iv = 0; iv < s->n_intervals; iv++)

@@ -42,10 +42,13 @@ typedef struct {
     double nr, nh, d0, d1;
 } sor_strip;
 
-/* The annuli of an internal node's two children (node + 1 and skip) side by
- * side, so that the usual ray tests both at once (two lanes of a vector). */
+/* The annuli and strips of an internal node's two children (node + 1 and
+ * skip) side by side, so that the usual ray tests both at once (two lanes of
+ * a vector). */
 typedef struct {
     double q0[2], q1[2], h0[2], h1[2];
+    double nr[2], nh[2], d0[2], d1[2];
+    int strips; /* the walk tests the strips too: set where both children are leaves */
 } sor_pair;
 
 struct sor {
@@ -62,7 +65,7 @@ struct sor {
     int n_nodes;
     sor_node *nodes;
     sor_pair *pairs;        /* per node; set for internal nodes */
-    sor_strip *strips;      /* per node; the walk does not test them (docs/intersector.md) */
+    sor_strip *strips;      /* per node */
     int n_intervals;        /* monotone intervals: one subtree each */
     int *interval_root;
     int n_bez;              /* raw Bézier pieces for sor_intersect_naive */
@@ -107,9 +110,10 @@ int sor_caps_intersect(const sor_t *sor, const sor_ray *ry, unsigned which, doub
 void sor_strip_range(const sor_t *sor, const sor_strip *st, const sor_ray *ry, double sa, double sb, double *lo,
                      double *hi);
 
-/* Which children of internal node `node` the walk's annulus test keeps for s
- * in [smin, smax] (bit 0: node + 1, bit 1: skip). */
-int sor_children_test(const sor_t *sor, int node, const sor_ray *ry, double smin, double smax);
+/* Which children of internal node `node` the walk keeps for s in [smin, smax]
+ * (bit 0: node + 1, bit 1: skip): by their annuli, and with strips set also
+ * by their strips where the walk tests them. For tests. */
+int sor_children_test(const sor_t *sor, int node, const sor_ray *ry, double smin, double smax, int strips);
 
 /* Walks the subtree at root nearest first. any: stop at the first hit. */
 int sor_tree_intersect(const sor_t *sor, int root, const sor_ray *ry, double smin, sor_best *best, int any);
