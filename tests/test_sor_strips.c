@@ -44,7 +44,8 @@ Test(sor_strips, every_strip_and_annulus_holds_its_arc)
                     double w = (double)q / ARC_SAMPLES, r = bezier3(pc->r, w), h = bezier3(pc->h, w);
                     double g = st->nr * r * r + st->nh * h;
                     gmin = fmin(gmin, g), gmax = fmax(gmax, g);
-                    CHECK(g >= st->d0 && g <= st->d1, "%s node %d: arc point (%g, %g) outside its strip", name, k, r, h);
+                    CHECK(g >= st->d0 && g <= st->d1, "%s node %d: arc point (%g, %g) outside its strip", name, k, r,
+                          h);
                     CHECK(r * r >= nd->q0 && r * r <= nd->q1 && h >= nd->h0 && h <= nd->h1,
                           "%s node %d: arc point (%g, %g) outside its annulus", name, k, r, h);
                 }
@@ -69,6 +70,13 @@ static double uniform(uint64_t *state)
     return (double)((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
 }
 
+/* A uniform point of the SOR's bounding box. */
+static vec3 point_in_bounds(const sor_t *s, uint64_t *g)
+{
+    double x = (2 * uniform(g) - 1) * s->r_max, y = uniform(g) * s->height;
+    return v3(x, y, (2 * uniform(g) - 1) * s->r_max);
+}
+
 /* The range sor_strip_range gives over [sa, sb] holds every value of
  * nr rho^2 + nh h the ray takes there, evaluated in long double from the ray
  * itself, for rays from far away, steep and shallow, of any length. */
@@ -81,7 +89,7 @@ Test(sor_strips, strip_range_holds_the_ray)
         for (int n = 0; n < 3000; n++) {
             double far = n % 3 == 0 ? 1e3 : 2.0, len = n % 5 == 0 ? 1e-3 : n % 5 == 1 ? 1e3 : 1.0;
             vec3 o = v3((2 * uniform(&g) - 1) * far, (2 * uniform(&g) - 1) * far, (2 * uniform(&g) - 1) * far);
-            vec3 target = v3((2 * uniform(&g) - 1) * s->r_max, uniform(&g) * s->height, (2 * uniform(&g) - 1) * s->r_max);
+            vec3 target = point_in_bounds(s, &g);
             vec3 d = v3_scale(v3_norm(v3_sub(target, o)), len);
             if (n % 7 == 0)
                 d.y *= 1e-6; /* nearly horizontal */
@@ -123,7 +131,7 @@ Test(sor_strips, strips_keep_every_leaf_hit)
         for (int n = 0; n < 4000; n++) {
             double z = 2 * uniform(&g) - 1, phi = 2 * M_PI * uniform(&g), q = sqrt(1 - z * z);
             vec3 o = v3_add(c, v3_scale(v3(q * cos(phi), z, q * sin(phi)), 2.0 * s->size));
-            vec3 target = v3((2 * uniform(&g) - 1) * s->r_max, uniform(&g) * s->height, (2 * uniform(&g) - 1) * s->r_max);
+            vec3 target = point_in_bounds(s, &g);
             ray3 ray = {o, v3_sub(target, o)};
             sor_ray ry;
             if (!sor_ray_setup(s, &ray, &ry) || ry.dy == 0.0 || ry.a == 0.0)
@@ -138,8 +146,8 @@ Test(sor_strips, strips_keep_every_leaf_hit)
                 hits++;
                 double s0 = (nd->h0 - ry.hc) * ry.inv_dy, s1 = (nd->h1 - ry.hc) * ry.inv_dy, lo, hi;
                 sor_strip_range(s, &s->strips[k], &ry, fmax(fmin(s0, s1), -ry.tc), fmax(s0, s1), &lo, &hi);
-                CHECK(hi >= s->strips[k].d0 && lo <= s->strips[k].d1, "%s: ray %d hits leaf %d at s = %.17g outside its strip",
-                      sor_test_profile_name(i), n, k, best.s);
+                CHECK(hi >= s->strips[k].d0 && lo <= s->strips[k].d1,
+                      "%s: ray %d hits leaf %d at s = %.17g outside its strip", sor_test_profile_name(i), n, k, best.s);
             }
         }
         sor_destroy(s);
@@ -207,7 +215,8 @@ Test(sor_strips, strip_culls_a_ray_the_annulus_keeps)
     sor_ray ry;
     cr_assert(sor_ray_setup(s, &ray, &ry));
     double smin = -ry.tc, smax = INFINITY;
-    int without = sor_children_test(s, parent, &ry, smin, smax, 0), with = sor_children_test(s, parent, &ry, smin, smax, 1);
+    int without = sor_children_test(s, parent, &ry, smin, smax, 0),
+        with = sor_children_test(s, parent, &ry, smin, smax, 1);
     cr_assert(without & (1 << lane), "%s: the annulus of leaf %d should keep the ray", sor_test_profile_name(profile),
               leaf);
     cr_assert_not(with & (1 << lane), "%s: the walk should cull leaf %d by its strip", sor_test_profile_name(profile),

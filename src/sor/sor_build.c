@@ -3,7 +3,8 @@
  * are monotone on every piece, subdivided into short leaves, and grouped
  * into monotone intervals, each the subtree of one strip tree of annuli
  * (Ballard 1981; Kajiya 1983). On a monotone piece the endpoints bound it
- * exactly, so every node's annulus is tight. */
+ * exactly, so every node's annulus is tight. Every node also gets a strip,
+ * a thin box along its chord in the (r^2, h) plane. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -35,9 +35,9 @@ typedef struct {
  * plane, where the ray is a parabola. Every point (R, h) of the arc satisfies
  * d0 <= nr R + nh h <= d1. (nr, nh / size) is the unit normal of the arc's
  * chord in the plane (R, size h), whose axes are both areas, so the strip is
- * oriented the same way at every scale; its sign makes nr >= 0. d0, d1 come from the arc's control
- * points (the arc lies in their convex hull), widened by a margin that covers
- * the solver's acceptance tolerances. */
+ * oriented the same way at every scale; its sign makes nr >= 0. d0 and d1
+ * come from the arc's control points (the arc lies in their convex hull),
+ * widened by a margin that covers the solver's acceptance tolerances. */
 typedef struct {
     double nr, nh, d0, d1;
 } sor_strip;

@@ -1,6 +1,7 @@
 /* Ray queries: the ray in the (r, h) half-plane, the strip-tree walk (nearest
- * node first, culling annuli the ray's hyperbola cannot reach), the analytic
- * caps, and the hit record. */
+ * node first, culling annuli the ray's hyperbola cannot reach and, at leaf
+ * pairs, strips its parabola in (r^2, h) cannot reach), the analytic caps,
+ * and the hit record. */
 #include <math.h>
 #ifdef __SSE2__
 #include <emmintrin.h>
@@ -75,8 +76,8 @@ static inline __attribute__((always_inline)) int node_hit(const sor_node *nd, co
  * m, wider by at most A hw^2 otherwise, true for any m in the interval, and
  * with no division. It is widened for rounding by 1e-12 of the magnitude of
  * the terms, a X^2 + (2|beta| + size|dy|) X + rho2c + size|hc| at X = |m| + hw
- * (as |nr| <= 1, |nh| <= size), which bounds the rounding thousands of times
- * over. */
+ * (as |nr| <= 1, |nh| <= size): evaluating g rounds by at most about 20
+ * epsilon of that, so the margin covers it some 200 times over. */
 #define STRIP_ROUNDING 1e-12
 
 static inline __attribute__((always_inline)) void strip_range(double nr, double nh, double size, const sor_ray *ry,
@@ -168,8 +169,10 @@ int sor_children_test(const sor_t *sor, int node, const sor_ray *ry, double smin
     double slo[2];
     int usual = ry->dy != 0.0 && ry->a > 0.0;
     if (strips)
-        return usual ? children_hit(sor, node, ry, smin, smax, slo, 1, 1) : children_hit(sor, node, ry, smin, smax, slo, 0, 1);
-    return usual ? children_hit(sor, node, ry, smin, smax, slo, 1, 0) : children_hit(sor, node, ry, smin, smax, slo, 0, 0);
+        return usual ? children_hit(sor, node, ry, smin, smax, slo, 1, 1)
+                     : children_hit(sor, node, ry, smin, smax, slo, 0, 1);
+    return usual ? children_hit(sor, node, ry, smin, smax, slo, 1, 0)
+                 : children_hit(sor, node, ry, smin, smax, slo, 0, 0);
 }
 
 /* The walk, nearest child first; `usual` as in node_hit, so the usual rays get
