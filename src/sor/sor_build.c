@@ -3,7 +3,8 @@
  * are monotone on every piece, subdivided into short leaves, and grouped
  * into monotone intervals, each the subtree of one strip tree of annuli
  * (Ballard 1981; Kajiya 1983). On a monotone piece the endpoints bound it
- * exactly, so every node's annulus is tight. */
+ * exactly, so every node's annulus is tight. Every node also gets a strip,
+ * a thin box along its chord in the (r^2, h) plane. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,6 +21,14 @@
 #define BOX_SLACK 1e-9
 /* Accepted distance of a hit from the surface, as a fraction of the size. */
 #define HIT_TOLERANCE 1e-11
+/* Strips are widened by this times size^2: far more than the hit tolerance
+ * (2e-11 size^2 in r^2) and the solver's 1e-9 slack in w (a few 1e-9 size^2)
+ * need, and still far thinner than any curved arc. */
+#define STRIP_SLACK 1e-8
+/* Each leaf's control polygons are split into this many parts before their
+ * points bound a strip: the hull of the parts hugs the arc (quadratically in
+ * their length) much closer than one polygon does. */
+#define STRIP_PARTS 4
 
 void sor_bernstein_square3(const double p[4], double out[7])
 {
@@ -288,24 +297,89 @@ oom:
     return -1;
 }
 
+/* The Bernstein coefficients of a cubic raised to degree 6. */
+static void elevate_cubic_to_6(const double p[4], double out[7])
+{
+    static const double b3[4] = {1, 3, 3, 1}, b6[7] = {1, 6, 15, 20, 15, 6, 1};
+    for (int k = 0; k < 7; k++) {
+        double sum = 0.0;
+        for (int i = 0; i < 4; i++)
+            if (k - i >= 0 && k - i <= 3)
+                sum += b3[i] * b3[k - i] * p[i];
+        out[k] = sum / b6[k];
+    }
+}
+
+/* Widens [*lo, *hi] to hold nr R + nh h over the STRIP_PARTS parts of leaf
+ * pc: R = r^2 and h, both as degree-6 Bernstein polynomials, lie in the
+ * convex hull of their control points. */
+static void strip_extend(const sor_piece *pc, double nr, double nh, double *lo, double *hi)
+{
+    for (int k = 0; k < STRIP_PARTS; k++) {
+        /* Part k is [k, k+1] / STRIP_PARTS: cut off the left, then the right. */
+        double w0 = (double)k / STRIP_PARTS, w1 = (double)(k + 1) / STRIP_PARTS;
+        double r[4], h[4], rest_r[4], rest_h[4], skip[4];
+        sor_cubic_split(pc->r, w0, skip, rest_r);
+        sor_cubic_split(pc->h, w0, skip, rest_h);
+        double w = (w1 - w0) / (1.0 - w0);
+        sor_cubic_split(rest_r, w, r, skip);
+        sor_cubic_split(rest_h, w, h, skip);
+        double R6[7], h6[7];
+        sor_bernstein_square3(r, R6);
+        elevate_cubic_to_6(h, h6);
+        for (int i = 0; i < 7; i++) {
+            double g = nr * R6[i] + nh * h6[i];
+            *lo = fmin(*lo, g), *hi = fmax(*hi, g);
+        }
+    }
+}
+
+/* The strip of the arc made of leaves [lo, hi): the normal of its chord in
+ * the plane (R, size h), the range of the parts' control points along it, and
+ * the slack. */
+static sor_strip build_strip(const sor_t *s, int lo, int hi)
+{
+    const sor_piece *first = &s->pieces[lo], *last = &s->pieces[hi - 1];
+    double S = s->size;
+    double eR = last->r[3] * last->r[3] - first->r[0] * first->r[0], eh = S * (last->h[3] - first->h[0]);
+    double len = sqrt(eR * eR + eh * eh);
+    sor_strip st = {1.0, 0.0, INFINITY, -INFINITY};
+    if (len > 0.0) /* oriented with nr >= 0: the ray's g(s) is then convex */
+        st.nr = fabs(eh) / len, st.nh = eh > 0.0 ? -S * eR / len : S * eR / len;
+    for (int k = lo; k < hi; k++)
+        strip_extend(&s->pieces[k], st.nr, st.nh, &st.d0, &st.d1);
+    double slack = STRIP_SLACK * S * S;
+    st.d0 -= slack, st.d1 += slack;
+    return st;
+}
+
 static int build_tree(sor_t *s, const int *iv_of_leaf)
 {
     int cap = 2 * s->n_pieces;
     s->nodes = calloc((size_t)cap, sizeof *s->nodes);
     s->pairs = calloc((size_t)cap, sizeof *s->pairs);
+    s->strips = calloc((size_t)cap, sizeof *s->strips);
     s->interval_root = malloc((size_t)s->n_intervals * sizeof *s->interval_root);
     tree_build tb = {s, iv_of_leaf, malloc((size_t)cap * sizeof(int)), malloc((size_t)cap * sizeof(int))};
-    int ok = s->nodes && s->pairs && s->interval_root && tb.range_lo && tb.range_hi;
+    int ok = s->nodes && s->pairs && s->strips && s->interval_root && tb.range_lo && tb.range_hi;
     if (ok) {
         build_node(&tb, 0, s->n_pieces);
+        for (int k = 0; k < s->n_nodes; k++)
+            s->strips[k] = build_strip(s, tb.range_lo[k], tb.range_hi[k]);
         for (int k = 0; k < s->n_nodes; k++) {
             if (s->nodes[k].piece >= 0)
                 continue;
-            const sor_node *child[2] = {&s->nodes[k + 1], &s->nodes[s->nodes[k].skip]};
+            int child[2] = {k + 1, s->nodes[k].skip};
+            sor_pair *pr = &s->pairs[k];
             for (int j = 0; j < 2; j++) {
-                s->pairs[k].q0[j] = child[j]->q0, s->pairs[k].q1[j] = child[j]->q1;
-                s->pairs[k].h0[j] = child[j]->h0, s->pairs[k].h1[j] = child[j]->h1;
+                const sor_node *nd = &s->nodes[child[j]];
+                const sor_strip *st = &s->strips[child[j]];
+                pr->q0[j] = nd->q0, pr->q1[j] = nd->q1, pr->h0[j] = nd->h0, pr->h1[j] = nd->h1;
+                pr->nr[j] = st->nr, pr->nh[j] = st->nh, pr->d0[j] = st->d0, pr->d1[j] = st->d1;
             }
+            /* Strips are tested only where they decide whether the leaf solver
+             * runs: higher up they cost more than they prune (docs/intersector.md). */
+            pr->strips = s->nodes[child[0]].piece >= 0 && s->nodes[child[1]].piece >= 0;
         }
         /* Each interval's leaves form one node's range: find the topmost such node. */
         for (int iv = 0; iv < s->n_intervals; iv++)
@@ -372,6 +446,7 @@ void sor_destroy(sor_t *s)
     free(s->pieces);
     free(s->nodes);
     free(s->pairs);
+    free(s->strips);
     free(s->interval_root);
     free(s->bez);
     free(s);

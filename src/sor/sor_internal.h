@@ -31,10 +31,24 @@ typedef struct {
     int32_t piece;
 } sor_node;
 
-/* The annuli of an internal node's two children (node + 1 and skip) side by
- * side, so that the usual ray tests both at once (two lanes of a vector). */
+/* A node's strip: a thin oriented box around its arc in the (R = r^2, h)
+ * plane, where the ray is a parabola. Every point (R, h) of the arc satisfies
+ * d0 <= nr R + nh h <= d1. (nr, nh / size) is the unit normal of the arc's
+ * chord in the plane (R, size h), whose axes are both areas, so the strip is
+ * oriented the same way at every scale; its sign makes nr >= 0. d0 and d1
+ * come from the arc's control points (the arc lies in their convex hull),
+ * widened by a margin that covers the solver's acceptance tolerances. */
+typedef struct {
+    double nr, nh, d0, d1;
+} sor_strip;
+
+/* The annuli and strips of an internal node's two children (node + 1 and
+ * skip) side by side, so that the usual ray tests both at once (two lanes of
+ * a vector). */
 typedef struct {
     double q0[2], q1[2], h0[2], h1[2];
+    double nr[2], nh[2], d0[2], d1[2];
+    int strips; /* the walk tests the strips too: set where both children are leaves */
 } sor_pair;
 
 struct sor {
@@ -51,6 +65,7 @@ struct sor {
     int n_nodes;
     sor_node *nodes;
     sor_pair *pairs;        /* per node; set for internal nodes */
+    sor_strip *strips;      /* per node */
     int n_intervals;        /* monotone intervals: one subtree each */
     int *interval_root;
     int n_bez;              /* raw Bézier pieces for sor_intersect_naive */
@@ -87,6 +102,18 @@ int sor_piece_intersect(const sor_t *sor, const sor_piece *pc, int idx, const so
 
 /* Both caps (as masked), same contract. */
 int sor_caps_intersect(const sor_t *sor, const sor_ray *ry, unsigned which, double smin, sor_best *best);
+
+/* The strip test: the range of nr rho^2(s) + nh h(s) over s in [sa, sb]
+ * (finite) for the strip st. Conservative: [*lo, *hi] holds every value the
+ * ray takes there; the ray misses the strip when it is disjoint from
+ * [d0, d1]. Requires a usual ray (dy != 0, a > 0). */
+void sor_strip_range(const sor_t *sor, const sor_strip *st, const sor_ray *ry, double sa, double sb, double *lo,
+                     double *hi);
+
+/* Which children of internal node `node` the walk keeps for s in [smin, smax]
+ * (bit 0: node + 1, bit 1: skip): by their annuli, and with strips set also
+ * by their strips where the walk tests them. For tests. */
+int sor_children_test(const sor_t *sor, int node, const sor_ray *ry, double smin, double smax, int strips);
 
 /* Walks the subtree at root nearest first. any: stop at the first hit. */
 int sor_tree_intersect(const sor_t *sor, int root, const sor_ray *ry, double smin, sor_best *best, int any);

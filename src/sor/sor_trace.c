@@ -1,6 +1,7 @@
 /* Ray queries: the ray in the (r, h) half-plane, the strip-tree walk (nearest
- * node first, culling annuli the ray's hyperbola cannot reach), the analytic
- * caps, and the hit record. */
+ * node first, culling annuli the ray's hyperbola cannot reach and, at leaf
+ * pairs, strips its parabola in (r^2, h) cannot reach), the analytic caps,
+ * and the hit record. */
 #include <math.h>
 #ifdef __SSE2__
 #include <emmintrin.h>
@@ -66,15 +67,50 @@ static inline __attribute__((always_inline)) int node_hit(const sor_node *nd, co
     return (sa <= sb) & (ry->rho2c >= nd->q0) & (ry->rho2c <= nd->q1);
 }
 
+/* The strip test (a node's strip against the ray's parabola in the (R, h)
+ * plane). Along the ray, g(s) = nr rho^2(s) + nh h(s) = A s^2 + B s + C with
+ * A = nr a >= 0 (strips are oriented so that nr >= 0), B = 2 nr beta + nh dy,
+ * C = nr rho2c + nh hc. Around the middle m of [sa, sb] (half-width hw),
+ * g = g(m) + g'(m) x + A x^2 for |x| <= hw, so its range lies in
+ * [g(m) - |g'(m)| hw, g(m) + |g'(m)| hw + A hw^2]: exact when the vertex is at
+ * m, wider by at most A hw^2 otherwise, true for any m in the interval, and
+ * with no division. It is widened for rounding by 1e-12 of the magnitude of
+ * the terms, a X^2 + (2|beta| + size|dy|) X + rho2c + size|hc| at X = |m| + hw
+ * (as |nr| <= 1, |nh| <= size): evaluating g rounds by at most about 20
+ * epsilon of that, so the margin covers it some 200 times over. */
+#define STRIP_ROUNDING 1e-12
+
+static inline __attribute__((always_inline)) void strip_range(double nr, double nh, double size, const sor_ray *ry,
+                                                              double sa, double sb, double *lo, double *hi)
+{
+    double A = nr * ry->a, B = nr * (2.0 * ry->beta) + nh * ry->dy, C = nr * ry->rho2c + nh * ry->hc;
+    double m = 0.5 * (sa + sb), hw = 0.5 * (sb - sa);
+    double Am = A * m, gm = (Am + B) * m + C, spread = fabs(Am + Am + B) * hw, curv = A * hw * hw;
+    double X = fabs(m) + hw, bx = 2.0 * fabs(ry->beta) + size * fabs(ry->dy), cx = ry->rho2c + size * fabs(ry->hc);
+    double margin = STRIP_ROUNDING * ((ry->a * X + bx) * X + cx);
+    *lo = gm - spread - margin;
+    *hi = gm + spread + curv + margin;
+}
+
+void sor_strip_range(const sor_t *sor, const sor_strip *st, const sor_ray *ry, double sa, double sb, double *lo,
+                     double *hi)
+{
+    strip_range(st->nr, st->nh, sor->size, ry, sa, sb, lo, hi);
+}
+
 /* Which children of internal node `node` the ray can meet (bit 0: node + 1,
  * bit 1: skip), with their lower bounds of s in slo[]. For the usual ray both
- * are tested at once, the same arithmetic as node_hit in two vector lanes. */
+ * are tested at once, the same arithmetic as node_hit in two vector lanes,
+ * and where the pair asks for it (both children leaves) and `strips` is set,
+ * their strips too, the same arithmetic as strip_range. A NaN keeps a child:
+ * the strip cull is written as two negated comparisons. */
 static inline __attribute__((always_inline)) int children_hit(const sor_t *sor, int node, const sor_ray *ry,
-                                                              double smin, double smax, double slo[2], int usual)
+                                                              double smin, double smax, double slo[2], int usual,
+                                                              int strips)
 {
+    const sor_pair *pr = &sor->pairs[node];
 #ifdef __SSE2__
     if (usual) {
-        const sor_pair *pr = &sor->pairs[node];
         __m128d hc = _mm_set1_pd(ry->hc), inv_dy = _mm_set1_pd(ry->inv_dy), s_star = _mm_set1_pd(ry->s_star);
         __m128d a = _mm_set1_pd(ry->a), d2 = _mm_set1_pd(ry->d2);
         __m128d s0 = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(pr->h0), hc), inv_dy);
@@ -89,12 +125,54 @@ static inline __attribute__((always_inline)) int children_hit(const sor_t *sor, 
                                 _mm_and_pd(_mm_cmpge_pd(_mm_add_pd(_mm_max_pd(fa, fb), d2), _mm_loadu_pd(pr->q0)),
                                            _mm_cmple_pd(_mm_add_pd(fm, d2), _mm_loadu_pd(pr->q1))));
         _mm_storeu_pd(slo, sa);
+        if (strips && pr->strips) {
+            __m128d nr = _mm_loadu_pd(pr->nr), nh = _mm_loadu_pd(pr->nh), half = _mm_set1_pd(0.5);
+            __m128d sign = _mm_set1_pd(-0.0);
+            __m128d A = _mm_mul_pd(nr, a);
+            __m128d B = _mm_add_pd(_mm_mul_pd(nr, _mm_set1_pd(2.0 * ry->beta)), _mm_mul_pd(nh, _mm_set1_pd(ry->dy)));
+            __m128d C = _mm_add_pd(_mm_mul_pd(nr, _mm_set1_pd(ry->rho2c)), _mm_mul_pd(nh, hc));
+            __m128d m = _mm_mul_pd(half, _mm_add_pd(sa, sb)), hw = _mm_mul_pd(half, _mm_sub_pd(sb, sa));
+            __m128d Am = _mm_mul_pd(A, m);
+            __m128d gm = _mm_add_pd(_mm_mul_pd(_mm_add_pd(Am, B), m), C);
+            __m128d spread = _mm_mul_pd(_mm_andnot_pd(sign, _mm_add_pd(_mm_add_pd(Am, Am), B)), hw);
+            __m128d curv = _mm_mul_pd(_mm_mul_pd(A, hw), hw);
+            __m128d X = _mm_add_pd(_mm_andnot_pd(sign, m), hw);
+            __m128d bx = _mm_set1_pd(2.0 * fabs(ry->beta) + sor->size * fabs(ry->dy));
+            __m128d cx = _mm_set1_pd(ry->rho2c + sor->size * fabs(ry->hc));
+            __m128d margin = _mm_mul_pd(_mm_set1_pd(STRIP_ROUNDING),
+                                        _mm_add_pd(_mm_mul_pd(_mm_add_pd(_mm_mul_pd(a, X), bx), X), cx));
+            __m128d lo = _mm_sub_pd(_mm_sub_pd(gm, spread), margin);
+            __m128d hi = _mm_add_pd(_mm_add_pd(_mm_add_pd(gm, spread), curv), margin);
+            ok = _mm_and_pd(ok, _mm_and_pd(_mm_cmpnlt_pd(hi, _mm_loadu_pd(pr->d0)),
+                                           _mm_cmpngt_pd(lo, _mm_loadu_pd(pr->d1))));
+        }
         return _mm_movemask_pd(ok);
     }
 #endif
     const sor_node *nodes = sor->nodes;
-    return node_hit(&nodes[node + 1], ry, smin, smax, &slo[0], usual) |
-           node_hit(&nodes[nodes[node].skip], ry, smin, smax, &slo[1], usual) << 1;
+    int hit = node_hit(&nodes[node + 1], ry, smin, smax, &slo[0], usual) |
+              node_hit(&nodes[nodes[node].skip], ry, smin, smax, &slo[1], usual) << 1;
+    if (strips && usual && pr->strips) {
+        for (int j = 0; j < 2; j++) {
+            double sb = sor_min(sor_max((pr->h0[j] - ry->hc) * ry->inv_dy, (pr->h1[j] - ry->hc) * ry->inv_dy), smax);
+            double lo, hi;
+            strip_range(pr->nr[j], pr->nh[j], sor->size, ry, slo[j], sb, &lo, &hi);
+            if ((hi < pr->d0[j]) | (lo > pr->d1[j]))
+                hit &= ~(1 << j);
+        }
+    }
+    return hit;
+}
+
+int sor_children_test(const sor_t *sor, int node, const sor_ray *ry, double smin, double smax, int strips)
+{
+    double slo[2];
+    int usual = ry->dy != 0.0 && ry->a > 0.0;
+    if (strips)
+        return usual ? children_hit(sor, node, ry, smin, smax, slo, 1, 1)
+                     : children_hit(sor, node, ry, smin, smax, slo, 0, 1);
+    return usual ? children_hit(sor, node, ry, smin, smax, slo, 1, 0)
+                 : children_hit(sor, node, ry, smin, smax, slo, 0, 0);
 }
 
 /* The walk, nearest child first; `usual` as in node_hit, so the usual rays get
@@ -119,7 +197,7 @@ static inline __attribute__((always_inline)) int tree_walk(const sor_t *sor, int
             }
         } else {
             double s[2] = {0.0, 0.0};
-            int hit = children_hit(sor, node, ry, smin, best->s, s, usual);
+            int hit = children_hit(sor, node, ry, smin, best->s, s, usual, 1);
             if (hit == 3) {
                 int first = s[0] <= s[1];
                 stack_n[sp] = first ? nd->skip : node + 1, stack_s[sp] = first ? s[1] : s[0], sp++;
