@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "celadon/mesh.h"
+#include "celadon/mesh_rings.h"
 #include "celadon/profile.h"
 #include "celadon/sampling.h"
 #include "celadon/sor.h"
@@ -181,9 +182,20 @@ int shape_sor_mesh(const char *profile_path, double height, bool caps, int segme
         snprintf(err, errlen, "%s", why);
         return -1;
     }
+    /* Rings at the profile's curvature domains, refined with the segments so
+     * the profile chord error shrinks like the angular one (mesh_rings.h). */
+    double *rings = NULL;
+    int n_rings = 0;
+    if (mesh_rings(&prof.curve, prof.domains, prof.n_domains, mesh_ring_tolerance(&prof.curve, segments), &rings,
+                   &n_rings) != 0) {
+        snprintf(err, errlen, "cannot place mesh rings for %d segments", segments);
+        profile_free(&prof);
+        return -1;
+    }
     mesh_t mesh;
     unsigned mask = MESH_CAP_BASE | (caps ? MESH_CAP_MOUTH : 0u);
-    int rc = mesh_revolve(&prof.curve, prof.domains, prof.n_domains, height, segments, mask, &mesh);
+    int rc = mesh_revolve(&prof.curve, rings, n_rings, height, segments, mask, &mesh);
+    free(rings);
     profile_free(&prof);
     if (rc != 0) {
         snprintf(err, errlen, "cannot revolve the profile into %d segments", segments);
