@@ -58,7 +58,7 @@ static rgb roughconductor_albedo(const bsdf_t *b, vec2 uv)
 }
 
 static const bsdf_ops roughconductor_ops = {roughconductor_sample, roughconductor_eval, roughconductor_pdf,
-                                            roughconductor_albedo};
+                                            roughconductor_albedo, NULL};
 
 bsdf_roughconductor_params bsdf_roughconductor_defaults(void)
 {

@@ -126,7 +126,7 @@ static rgb roughplastic_albedo(const bsdf_t *b, vec2 uv)
 }
 
 static const bsdf_ops roughplastic_ops = {roughplastic_sample, roughplastic_eval, roughplastic_pdf,
-                                          roughplastic_albedo};
+                                          roughplastic_albedo, NULL};
 
 bsdf_roughplastic_params bsdf_roughplastic_defaults(void)
 {
