@@ -100,10 +100,8 @@ static double number(json_t *obj, const char *key)
 Test(crosscheck, geometry_converges_as_n_minus_2, .timeout = 120)
 {
     render_fixture f;
-    render_fixture_open(&f);
-    render_write_profile(&f, "profile.json", "cylinder");
     char scene[256], dir[256], path[320], err[4096];
-    render_write_file(&f, "scene.xml", scene_xml, scene, sizeof scene);
+    render_fixture_with_scene(&f, "cylinder", scene_xml, scene, sizeof scene);
     snprintf(dir, sizeof dir, "%s/xc", f.dir);
     const char *args[] = {"crosscheck", scene, "--segments", "8,16,32,64", "-o", dir, "--threads", "2", NULL};
     cr_assert_eq(run_celadon(&f, args, err, sizeof err), 0, "stderr: %s", err);
@@ -195,10 +193,8 @@ Test(crosscheck, coarse_profile_domains_refined_with_n, .timeout = 120)
 Test(crosscheck, bad_input_exits_2_and_writes_nothing, .timeout = 60)
 {
     render_fixture f;
-    render_fixture_open(&f);
-    render_write_profile(&f, "profile.json", "cylinder");
     char scene[256], nosor[256], broken[256], missing[256], dir[256], err[4096];
-    render_write_file(&f, "scene.xml", scene_xml, scene, sizeof scene);
+    render_fixture_with_scene(&f, "cylinder", scene_xml, scene, sizeof scene);
     render_write_file(&f, "nosor.xml", no_sor_xml, nosor, sizeof nosor);
     render_write_file(&f, "broken.xml", "<scene version=\"3.0.0\"><shape type=\"sor\">", broken, sizeof broken);
     snprintf(missing, sizeof missing, "%s/missing.xml", f.dir);

@@ -78,6 +78,16 @@ static inline void render_write_file(const render_fixture *f, const char *name, 
     fclose(fp);
 }
 
+/* The usual fixture: a new folder with profile.json of test profile `which`
+ * (render_write_profile) and scene.xml holding xml; its path in scene. */
+static inline void render_fixture_with_scene(render_fixture *f, const char *which, const char *xml, char *scene,
+                                             size_t scenelen)
+{
+    render_fixture_open(f);
+    render_write_profile(f, "profile.json", which);
+    render_write_file(f, "scene.xml", xml, scene, scenelen);
+}
+
 /* Loads and renders a scene file to averaged float pixels (nchannels per
  * pixel, malloc'd). */
 static inline float *render_to_pixels(const char *scene_path, int mesh_segments, long long seed, int threads,
