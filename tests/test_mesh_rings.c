@@ -25,6 +25,9 @@ Test(mesh_rings, tolerance_is_the_angular_sagitta)
     /* ~ 4.93 r / N^2 at large N: four times smaller per doubling. */
     cr_assert_float_eq(mesh_ring_tolerance(&c, 512) / mesh_ring_tolerance(&c, 1024), 4.0, 1e-4);
     cr_assert_eq(mesh_ring_tolerance(&c, 2), 0.0);
+    /* Floored where float vertices stop resolving the chords. */
+    cr_assert_float_eq(mesh_ring_tolerance(&c, 100000), MESH_RING_TOL_FLOOR * rmax, 1e-9 * rmax);
+    cr_assert_gt(mesh_ring_tolerance(&c, 4096), MESH_RING_TOL_FLOOR * rmax);
     bspline_free(&c);
 }
 

@@ -100,6 +100,8 @@ Test(render_cli, bad_input_exits_2_with_one_line_and_no_file)
     expect_refused(&f, "<scene version=\"3.0.0\">\n<shape type=\"sphere\"/></scene>", NULL, "bad.xml:1:");
     expect_refused(&f, "<scene version=\"3.0.0\"><bsdf type=\"blend\"/></scene>", NULL, "bad.xml:1:");
     expect_refused(&f, tiny_xml, (const char *[]){"--geometry", "mesh:2", NULL}, "--geometry");
+    /* The rings follow N: a million segments would need billions of triangles. */
+    expect_refused(&f, tiny_xml, (const char *[]){"--geometry", "mesh:1000000", NULL}, "use fewer segments");
     expect_refused(&f, tiny_xml, (const char *[]){"--res", "10by10", NULL}, "--res");
     render_fixture_close(&f);
 }

@@ -7,11 +7,16 @@
 
 #include "celadon/bspline.h"
 
+/* Relative floor of mesh_ring_tolerance: 2^-22, four float ulps. */
+#define MESH_RING_TOL_FLOOR (1.0 / 4194304.0)
+
 /* The profile chord tolerance (profile units) that matches N angular
  * segments: the sagitta r_max (1 - cos(pi/N)) ~ 4.93 r_max / N^2 of the
- * widest ring's chords, r_max bounded by the control polygon. Rings placed at
- * this tolerance keep the profile's chord error no larger than the angular
- * one, so the mesh's distance to the surface falls as N^-2 with both.
+ * widest ring's chords, r_max bounded by the control polygon, but not below
+ * MESH_RING_TOL_FLOOR r_max (float vertices resolve nothing finer; the
+ * floor takes over near N = 4500). Rings placed at this tolerance keep the
+ * profile's chord error no larger than the angular one, so the mesh's
+ * distance to the surface falls as N^-2 with both.
  * Returns 0 for an invalid curve or segments < 3. */
 double mesh_ring_tolerance(const bspline_t *profile, int segments);
 

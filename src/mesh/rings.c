@@ -14,9 +14,11 @@ double mesh_ring_tolerance(const bspline_t *profile, int segments)
     double rmax = 0.0;
     for (int i = 0; i < profile->n_ctrl; i++)
         rmax = fmax(rmax, fabs(profile->ctrl[i].x)); /* the convex hull bounds r */
-    /* 1 - cos x = 2 sin^2(x/2), without the cancellation at large N. */
+    /* 1 - cos x = 2 sin^2(x/2), without the cancellation at large N. The
+     * floor: finer profile chords than a few float ulps of r_max are lost
+     * in the float vertices anyway (reached near N = 4500). */
     double s = sin(M_PI / (2.0 * segments));
-    return rmax * 2.0 * s * s;
+    return rmax * fmax(2.0 * s * s, MESH_RING_TOL_FLOOR);
 }
 
 int mesh_rings(const bspline_t *profile, const double *keep, int n_keep, double tol_px, double **u, int *n)

@@ -18,6 +18,10 @@
 #include "render/scene_impl.h"
 
 enum { SOR_TABLE = 1024 };
+/* The most triangles one meshed SOR may have: 2^25, about 4 GB with
+ * Embree's BVH (measured: 7 GB for 55 M). With the rings refined with N
+ * (mesh_rings.h) a vessel of ~2000 rings reaches it near N = 8000. */
+enum { SOR_MESH_MAX_TRIANGLES = 1 << 25 };
 
 typedef struct {
     bspline_t curve;       /* profile, pixels */
@@ -189,6 +193,14 @@ int shape_sor_mesh(const char *profile_path, double height, bool caps, int segme
     if (mesh_rings(&prof.curve, prof.domains, prof.n_domains, mesh_ring_tolerance(&prof.curve, segments), &rings,
                    &n_rings) != 0) {
         snprintf(err, errlen, "cannot place mesh rings for %d segments", segments);
+        profile_free(&prof);
+        return -1;
+    }
+    double tris = 2.0 * segments * (n_rings + 1);
+    if (tris > SOR_MESH_MAX_TRIANGLES) {
+        snprintf(err, errlen, "%d segments x %d rings would make %.3g triangles (at most %d); use fewer segments",
+                 segments, n_rings, tris, SOR_MESH_MAX_TRIANGLES);
+        free(rings);
         profile_free(&prof);
         return -1;
     }
