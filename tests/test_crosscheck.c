@@ -100,10 +100,8 @@ static double number(json_t *obj, const char *key)
 Test(crosscheck, geometry_converges_as_n_minus_2, .timeout = 120)
 {
     render_fixture f;
-    render_fixture_open(&f);
-    render_write_profile(&f, "profile.json", "cylinder");
     char scene[256], dir[256], path[320], err[4096];
-    render_write_file(&f, "scene.xml", scene_xml, scene, sizeof scene);
+    render_fixture_with_scene(&f, "cylinder", scene_xml, scene, sizeof scene);
     snprintf(dir, sizeof dir, "%s/xc", f.dir);
     const char *args[] = {"crosscheck", scene, "--segments", "8,16,32,64", "-o", dir, "--threads", "2", NULL};
     cr_assert_eq(run_celadon(&f, args, err, sizeof err), 0, "stderr: %s", err);
@@ -165,14 +163,38 @@ Test(crosscheck, geometry_converges_as_n_minus_2, .timeout = 120)
     render_fixture_close(&f);
 }
 
+/* A curved vessel whose profile.json has only three domain boundaries: the
+ * rings render --geometry mesh:N adds with N (mesh_rings) bring the profile
+ * chords down with the angular ones, so the depth error still falls as N^-2.
+ * With the three rings alone it would stall at the chords' error. */
+Test(crosscheck, coarse_profile_domains_refined_with_n, .timeout = 120)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    render_write_profile_domains(&f, "profile.json", "plum", 3);
+    char scene[256], dir[256], path[320], err[4096];
+    render_write_file(&f, "scene.xml", scene_xml, scene, sizeof scene);
+    snprintf(dir, sizeof dir, "%s/xc", f.dir);
+    const char *args[] = {"crosscheck", scene,  "--segments", "16,32,64,128", "-o", dir, "--threads",
+                          "2",          "--spp", "1",         NULL};
+    cr_assert_eq(run_celadon(&f, args, err, sizeof err), 0, "stderr: %s", err);
+    snprintf(path, sizeof path, "%s/report.json", dir);
+    json_error_t jerr;
+    json_t *rep = json_load_file(path, 0, &jerr);
+    cr_assert_not_null(rep, "report.json: %s", jerr.text);
+    json_t *fits = json_object_get(rep, "fits");
+    double depth_slope = number(json_object_get(fits, "depth_rel_err"), "slope");
+    cr_assert(depth_slope > -2.3 && depth_slope < -1.7, "depth error slope %g, expected about -2", depth_slope);
+    json_decref(rep);
+    render_fixture_close(&f);
+}
+
 /* Every bad input exits 2 with one line and creates nothing at DIR. */
 Test(crosscheck, bad_input_exits_2_and_writes_nothing, .timeout = 60)
 {
     render_fixture f;
-    render_fixture_open(&f);
-    render_write_profile(&f, "profile.json", "cylinder");
     char scene[256], nosor[256], broken[256], missing[256], dir[256], err[4096];
-    render_write_file(&f, "scene.xml", scene_xml, scene, sizeof scene);
+    render_fixture_with_scene(&f, "cylinder", scene_xml, scene, sizeof scene);
     render_write_file(&f, "nosor.xml", no_sor_xml, nosor, sizeof nosor);
     render_write_file(&f, "broken.xml", "<scene version=\"3.0.0\"><shape type=\"sor\">", broken, sizeof broken);
     snprintf(missing, sizeof missing, "%s/missing.xml", f.dir);

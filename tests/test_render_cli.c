@@ -46,10 +46,8 @@ static int count_lines(const char *s)
 Test(render_cli, exr_with_aovs_and_png)
 {
     render_fixture f;
-    render_fixture_open(&f);
-    render_write_profile(&f, "profile.json", "plum");
     char scene[256], exr[256], png[256], err[4096];
-    render_write_file(&f, "scene.xml", tiny_xml, scene, sizeof scene);
+    render_fixture_with_scene(&f, "plum", tiny_xml, scene, sizeof scene);
     snprintf(exr, sizeof exr, "%s/out.exr", f.dir);
     snprintf(png, sizeof png, "%s/out.png", f.dir);
     const char *a1[] = {"render", scene, "-o", exr, "--threads", "2", "--aov", "depth,normal,albedo", "-D", "spp=2",
@@ -102,6 +100,8 @@ Test(render_cli, bad_input_exits_2_with_one_line_and_no_file)
     expect_refused(&f, "<scene version=\"3.0.0\">\n<shape type=\"sphere\"/></scene>", NULL, "bad.xml:1:");
     expect_refused(&f, "<scene version=\"3.0.0\"><bsdf type=\"blend\"/></scene>", NULL, "bad.xml:1:");
     expect_refused(&f, tiny_xml, (const char *[]){"--geometry", "mesh:2", NULL}, "--geometry");
+    /* The rings follow N: a million segments would need billions of triangles. */
+    expect_refused(&f, tiny_xml, (const char *[]){"--geometry", "mesh:1000000", NULL}, "use fewer segments");
     expect_refused(&f, tiny_xml, (const char *[]){"--res", "10by10", NULL}, "--res");
     render_fixture_close(&f);
 }
@@ -109,10 +109,8 @@ Test(render_cli, bad_input_exits_2_with_one_line_and_no_file)
 Test(render_determinism, same_seed_same_image_any_thread_count)
 {
     render_fixture f;
-    render_fixture_open(&f);
-    render_write_profile(&f, "profile.json", "plum");
     char scene[256];
-    render_write_file(&f, "scene.xml", tiny_xml, scene, sizeof scene);
+    render_fixture_with_scene(&f, "plum", tiny_xml, scene, sizeof scene);
     int w, h, nch;
     float *a = render_to_pixels(scene, 0, 5, 1, 0, &w, &h, &nch);
     float *b = render_to_pixels(scene, 0, 5, 2, 0, &w, &h, &nch);
@@ -128,10 +126,8 @@ Test(render_determinism, same_seed_same_image_any_thread_count)
 Test(render_cli, sigint_writes_the_partial_image)
 {
     render_fixture f;
-    render_fixture_open(&f);
-    render_write_profile(&f, "profile.json", "plum");
     char scene[256], out[256], errpath[256];
-    render_write_file(&f, "scene.xml", tiny_xml, scene, sizeof scene);
+    render_fixture_with_scene(&f, "plum", tiny_xml, scene, sizeof scene);
     snprintf(out, sizeof out, "%s/partial.exr", f.dir);
     snprintf(errpath, sizeof errpath, "%s/stderr.txt", f.dir);
     char *argv[] = {(char *)cli_bin(), "render", scene, "-o", out, "--spp", "10000000", "--threads", "2", NULL};

@@ -31,8 +31,8 @@ static inline void render_fixture_close(render_fixture *f)
 }
 
 /* Writes dir/name as profile.json of test profile `which` ("plum", ...),
- * with 200 uniform curvature domains (the rings of a revolved mesh). */
-static inline void render_write_profile(const render_fixture *f, const char *name, const char *which)
+ * with nd uniform domain boundaries (the rings a revolved mesh keeps). */
+static inline void render_write_profile_domains(const render_fixture *f, const char *name, const char *which, int nd)
 {
     int idx = -1;
     for (int i = 0; i < sor_test_profile_count(); i++)
@@ -48,16 +48,23 @@ static inline void render_write_profile(const render_fixture *f, const char *nam
     vec2 poly[2] = {bspline_eval(&p.curve, 0.0), bspline_eval(&p.curve, 1.0)};
     p.polyline = poly;
     p.n_polyline = 2;
-    enum { ND = 201 };
-    double dom[ND];
-    for (int i = 0; i < ND; i++)
-        dom[i] = (double)i / (ND - 1);
+    double *dom = malloc(sizeof *dom * (size_t)nd);
+    cr_assert_not_null(dom);
+    for (int i = 0; i < nd; i++)
+        dom[i] = (double)i / (nd - 1);
     p.domains = dom;
-    p.n_domains = ND;
+    p.n_domains = nd;
     char path[256], err[256];
     snprintf(path, sizeof path, "%s/%s", f->dir, name);
     cr_assert_eq(profile_write_json(path, &p, err, sizeof err), 0, "%s", err);
     bspline_free(&p.curve);
+    free(dom);
+}
+
+/* The same with 201 domain boundaries: a straight wall's rings are exact. */
+static inline void render_write_profile(const render_fixture *f, const char *name, const char *which)
+{
+    render_write_profile_domains(f, name, which, 201);
 }
 
 /* Writes text to dir/name; returns the path in out. */
@@ -69,6 +76,16 @@ static inline void render_write_file(const render_fixture *f, const char *name, 
     cr_assert_not_null(fp);
     fputs(text, fp);
     fclose(fp);
+}
+
+/* The usual fixture: a new folder with profile.json of test profile `which`
+ * (render_write_profile) and scene.xml holding xml; its path in scene. */
+static inline void render_fixture_with_scene(render_fixture *f, const char *which, const char *xml, char *scene,
+                                             size_t scenelen)
+{
+    render_fixture_open(f);
+    render_write_profile(f, "profile.json", which);
+    render_write_file(f, "scene.xml", xml, scene, scenelen);
 }
 
 /* Loads and renders a scene file to averaged float pixels (nchannels per

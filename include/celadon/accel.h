@@ -53,7 +53,9 @@ typedef enum {
 
 /* How an SOR enters the scene. segments = 0: analytic. segments >= 3: meshed
  * with that many angular segments and rings at u_rings[0..n_rings-1] when given
- * (e.g. profile.json's domains), otherwise at curve_domains_by_curvature(tol_px). */
+ * (e.g. profile.json's domains), otherwise at mesh_rings(tol_px) (mesh_rings.h;
+ * tol_px = mesh_ring_tolerance(segments) is the rule render --geometry mesh:N
+ * uses, where the mesh converges as N^-2). */
 typedef struct {
     int segments;
     const double *u_rings;

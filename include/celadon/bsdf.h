@@ -38,6 +38,10 @@ enum {
     BSDF_DELTA_TRANSMISSION = 1u << 4,
     BSDF_FRONT_SIDE = 1u << 5, /* scatters light arriving on the front */
     BSDF_BACK_SIDE = 1u << 6,  /* ... and on the back */
+    /* Its delta transmission continues the ray undeviated (wo = -wi: a thin
+     * sheet), so a shadow ray may cross it, weighted by
+     * bsdf_straight_transmittance, instead of being blocked. */
+    BSDF_STRAIGHT_TRANSMISSION = 1u << 7,
 };
 #define BSDF_DELTA (BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION)
 /* Lobes that bsdf_eval can see: next-event estimation is useful for them. */
@@ -70,6 +74,10 @@ unsigned bsdf_flags(const bsdf_t *b);
  * materials, F(normal) * specular_reflectance of conductors, the specular
  * transmittance of dielectrics; the front BSDF of twosided. */
 rgb bsdf_albedo(const bsdf_t *b, vec2 uv);
+/* The fraction of light arriving along -q->wi that leaves straight through
+ * along q->wi's opposite side undeviated: f / pdf * selection probability of
+ * the straight delta transmission lobe. Black unless BSDF_STRAIGHT_TRANSMISSION. */
+rgb bsdf_straight_transmittance(const bsdf_t *b, const bsdf_query *q);
 const char *bsdf_plugin_name(const bsdf_t *b);
 void bsdf_free(bsdf_t *b);
 

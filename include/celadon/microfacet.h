@@ -33,4 +33,12 @@ double microfacet_G(const microfacet *d, vec3 wi, vec3 wo, vec3 m);
 vec3 microfacet_sample(const microfacet *d, vec3 wi, vec2 u, double *pdf);
 double microfacet_pdf(const microfacet *d, vec3 wi, vec3 m);
 
+/* Reflection off the microfacets, both directions above the surface
+ * (wi.z, wo.z > 0; callers check): D(m) G(wi, wo, m) at the half vector
+ * m = (wi + wo) / |wi + wo| (stored in *m), and the density of wo when m is
+ * drawn by microfacet_sample and wi reflected about it,
+ * microfacet_pdf(wi, m) / (4 wo.m) (0 when wo.m <= 0). */
+double microfacet_reflection_dg(const microfacet *d, vec3 wi, vec3 wo, vec3 *m);
+double microfacet_reflection_pdf(const microfacet *d, vec3 wi, vec3 wo);
+
 #endif

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "accel/accel_internal.h"
-#include "celadon/curve_domains.h"
+#include "celadon/mesh_rings.h"
 
 static void embree_error(void *user, enum RTCError code, const char *msg)
 {
@@ -236,7 +236,7 @@ static unsigned add_sor_mesh(accel_t *acc, const bspline_t *profile, double heig
     const double *u = mode->u_rings;
     int n = mode->n_rings;
     if (!u) {
-        if (!(mode->tol_px > 0) || curve_domains_by_curvature(profile, mode->tol_px, &rings, &n) != 0) {
+        if (!(mode->tol_px > 0) || mesh_rings(profile, NULL, 0, mode->tol_px, &rings, &n) != 0) {
             snprintf(err, errlen, "cannot place mesh rings at curvature tolerance %g px", mode->tol_px);
             return ACCEL_INVALID_ID;
         }

@@ -48,6 +48,11 @@ rgb bsdf_albedo(const bsdf_t *b, vec2 uv)
     return b->ops->albedo(b, uv);
 }
 
+rgb bsdf_straight_transmittance(const bsdf_t *b, const bsdf_query *q)
+{
+    return b->flags & BSDF_STRAIGHT_TRANSMISSION ? b->ops->straight(b, q) : rgb_gray(0.0);
+}
+
 const char *bsdf_plugin_name(const bsdf_t *b)
 {
     return b->plugin;

@@ -29,7 +29,7 @@ static rgb conductor_albedo(const bsdf_t *b, vec2 uv)
     return rgb_mul(spectrum_eval(&d->specular_reflectance, uv), fresnel_conductor_rgb(1.0, d->eta, d->k));
 }
 
-static const bsdf_ops conductor_ops = {conductor_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only, conductor_albedo};
+static const bsdf_ops conductor_ops = {conductor_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only, conductor_albedo, NULL};
 
 bsdf_conductor_params bsdf_conductor_defaults(void)
 {

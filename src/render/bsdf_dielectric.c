@@ -39,7 +39,7 @@ static rgb dielectric_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->specular_transmittance, uv);
 }
 
-static const bsdf_ops dielectric_ops = {dielectric_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only, dielectric_albedo};
+static const bsdf_ops dielectric_ops = {dielectric_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only, dielectric_albedo, NULL};
 
 bsdf_dielectric_params bsdf_dielectric_defaults(void)
 {

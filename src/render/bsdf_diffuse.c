@@ -42,7 +42,7 @@ static rgb diffuse_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->reflectance, uv);
 }
 
-static const bsdf_ops diffuse_ops = {diffuse_sample, diffuse_eval, diffuse_pdf, diffuse_albedo};
+static const bsdf_ops diffuse_ops = {diffuse_sample, diffuse_eval, diffuse_pdf, diffuse_albedo, NULL};
 
 bsdf_diffuse_params bsdf_diffuse_defaults(void)
 {

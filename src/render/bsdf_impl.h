@@ -13,6 +13,7 @@ typedef struct {
     rgb (*eval)(const bsdf_t *b, const bsdf_query *q, vec3 wo);
     double (*pdf)(const bsdf_t *b, const bsdf_query *q, vec3 wo);
     rgb (*albedo)(const bsdf_t *b, vec2 uv);
+    rgb (*straight)(const bsdf_t *b, const bsdf_query *q); /* NULL unless BSDF_STRAIGHT_TRANSMISSION */
 } bsdf_ops;
 
 struct bsdf {

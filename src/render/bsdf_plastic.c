@@ -83,7 +83,7 @@ static rgb plastic_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->diffuse_reflectance, uv);
 }
 
-static const bsdf_ops plastic_ops = {plastic_sample, plastic_eval, plastic_pdf, plastic_albedo};
+static const bsdf_ops plastic_ops = {plastic_sample, plastic_eval, plastic_pdf, plastic_albedo, NULL};
 
 bsdf_plastic_params bsdf_plastic_defaults(void)
 {

@@ -15,8 +15,8 @@ static rgb roughconductor_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     vec3 wi = q->wi;
     if (wi.z <= 0.0 || wo.z <= 0.0)
         return rgb_gray(0.0);
-    vec3 m = v3_norm(v3_add(wi, wo));
-    double dg = microfacet_D(&d->distr, m) * microfacet_G(&d->distr, wi, wo, m);
+    vec3 m;
+    double dg = microfacet_reflection_dg(&d->distr, wi, wo, &m);
     if (dg == 0.0)
         return rgb_gray(0.0);
     rgb f = fresnel_conductor_rgb(v3_dot(wi, m), d->eta, d->k);
@@ -29,11 +29,7 @@ static double roughconductor_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     vec3 wi = q->wi;
     if (wi.z <= 0.0 || wo.z <= 0.0)
         return 0.0;
-    vec3 m = v3_norm(v3_add(wi, wo));
-    double wo_m = v3_dot(wo, m);
-    if (wo_m <= 0.0)
-        return 0.0;
-    return microfacet_pdf(&d->distr, wi, m) / (4.0 * wo_m);
+    return microfacet_reflection_pdf(&d->distr, wi, wo);
 }
 
 static int roughconductor_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out)
@@ -58,7 +54,7 @@ static rgb roughconductor_albedo(const bsdf_t *b, vec2 uv)
 }
 
 static const bsdf_ops roughconductor_ops = {roughconductor_sample, roughconductor_eval, roughconductor_pdf,
-                                            roughconductor_albedo};
+                                            roughconductor_albedo, NULL};
 
 bsdf_roughconductor_params bsdf_roughconductor_defaults(void)
 {

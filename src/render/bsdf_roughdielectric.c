@@ -107,7 +107,7 @@ static rgb roughdielectric_albedo(const bsdf_t *b, vec2 uv)
 }
 
 static const bsdf_ops roughdielectric_ops = {roughdielectric_sample, roughdielectric_eval, roughdielectric_pdf,
-                                             roughdielectric_albedo};
+                                             roughdielectric_albedo, NULL};
 
 bsdf_roughdielectric_params bsdf_roughdielectric_defaults(void)
 {

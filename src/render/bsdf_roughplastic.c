@@ -77,8 +77,8 @@ static rgb roughplastic_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     vec3 wi = q->wi;
     if (wi.z <= 0.0 || wo.z <= 0.0)
         return rgb_gray(0.0);
-    vec3 m = v3_norm(v3_add(wi, wo));
-    double dg = microfacet_D(&d->distr, m) * microfacet_G(&d->distr, wi, wo, m);
+    vec3 m;
+    double dg = microfacet_reflection_dg(&d->distr, wi, wo, &m);
     double f = fresnel_dielectric(v3_dot(wi, m), d->eta, NULL, NULL, NULL);
     rgb spec = rgb_scale(spectrum_eval(&d->specular_reflectance, q->uv), f * dg / (4.0 * wi.z));
     double t = table_lookup(d->transmittance, wi.z) * table_lookup(d->transmittance, wo.z);
@@ -93,9 +93,7 @@ static double roughplastic_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     if (wi.z <= 0.0 || wo.z <= 0.0)
         return 0.0;
     double p_spec = roughplastic_prob_specular(d, table_lookup(d->transmittance, wi.z));
-    vec3 m = v3_norm(v3_add(wi, wo));
-    double wo_m = v3_dot(wo, m);
-    double spec = wo_m > 0.0 ? microfacet_pdf(&d->distr, wi, m) / (4.0 * wo_m) : 0.0;
+    double spec = microfacet_reflection_pdf(&d->distr, wi, wo);
     return p_spec * spec + (1.0 - p_spec) * warp_cosine_hemisphere_pdf(wo);
 }
 
@@ -126,7 +124,7 @@ static rgb roughplastic_albedo(const bsdf_t *b, vec2 uv)
 }
 
 static const bsdf_ops roughplastic_ops = {roughplastic_sample, roughplastic_eval, roughplastic_pdf,
-                                          roughplastic_albedo};
+                                          roughplastic_albedo, NULL};
 
 bsdf_roughplastic_params bsdf_roughplastic_defaults(void)
 {

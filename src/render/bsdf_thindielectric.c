@@ -41,6 +41,15 @@ static int thindielectric_sample(const bsdf_t *b, const bsdf_query *q, double u1
     return out->pdf > 0.0;
 }
 
+/* The transmission lobe's weight times its selection probability. */
+static rgb thindielectric_straight(const bsdf_t *b, const bsdf_query *q)
+{
+    const thindielectric_data *d = b->data;
+    if (q->wi.z == 0.0)
+        return rgb_gray(0.0);
+    return rgb_scale(spectrum_eval(&d->specular_transmittance, q->uv), 1.0 - sheet_reflectance(q->wi.z, d->eta));
+}
+
 static rgb thindielectric_albedo(const bsdf_t *b, vec2 uv)
 {
     const thindielectric_data *d = b->data;
@@ -48,7 +57,8 @@ static rgb thindielectric_albedo(const bsdf_t *b, vec2 uv)
 }
 
 static const bsdf_ops thindielectric_ops = {thindielectric_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only,
-                                            thindielectric_albedo};
+                                            thindielectric_albedo,
+                                            thindielectric_straight};
 
 bsdf_t *bsdf_create_thindielectric(const bsdf_dielectric_params *p, char *err, size_t errlen)
 {
@@ -56,7 +66,8 @@ bsdf_t *bsdf_create_thindielectric(const bsdf_dielectric_params *p, char *err, s
         bsdf_check_spectrum("specular_reflectance", &p->specular_reflectance, err, errlen) ||
         bsdf_check_spectrum("specular_transmittance", &p->specular_transmittance, err, errlen))
         return NULL;
-    unsigned flags = BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE;
+    unsigned flags = BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE |
+                     BSDF_STRAIGHT_TRANSMISSION;
     bsdf_t *b = bsdf_alloc("thindielectric", &thindielectric_ops, flags, sizeof(thindielectric_data), err, errlen);
     if (b)
         *(thindielectric_data *)b->data =

@@ -58,7 +58,7 @@ static rgb twosided_albedo(const bsdf_t *b, vec2 uv)
     return bsdf_albedo(d->front, uv);
 }
 
-static const bsdf_ops twosided_ops = {twosided_sample, twosided_eval, twosided_pdf, twosided_albedo};
+static const bsdf_ops twosided_ops = {twosided_sample, twosided_eval, twosided_pdf, twosided_albedo, NULL};
 
 bsdf_t *bsdf_create_twosided(const bsdf_t *front, const bsdf_t *back, char *err, size_t errlen)
 {

@@ -91,16 +91,17 @@ static void image_metrics(const float *a, const float *m, size_t n, crosscheck_r
     row->mean_abs_diff = ae / (double)n;
 }
 
-/* The first hit along r that is not a thin dielectric pane: those let the
- * transmitted ray through unbent, so a vessel in a glass case is still the
- * first thing a primary ray meets. Returns the shape index or -1. */
+/* The first hit along r that is not a thin sheet (BSDF_STRAIGHT_TRANSMISSION:
+ * thindielectric): those let the transmitted ray through unbent, so a vessel
+ * in a glass case is still the first thing a primary ray meets. Returns the
+ * shape index or -1. */
 static int first_opaque_hit(const scene_t *s, const camera_ray_t *cr, surface_hit *hit)
 {
     double tmin = cr->tmin;
     for (int pane = 0; pane < 64; pane++) {
         if (!scene_intersect(s, &cr->ray, tmin, cr->tmax, hit))
             return -1;
-        if (strcmp(bsdf_plugin_name(s->shapes[hit->shape].bsdf), "thindielectric") != 0)
+        if (!(bsdf_flags(s->shapes[hit->shape].bsdf) & BSDF_STRAIGHT_TRANSMISSION))
             return hit->shape;
         tmin = hit->t + hit->eps;
     }

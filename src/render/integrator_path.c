@@ -1,6 +1,9 @@
 /* The `path` integrator (Mitsuba 3's): unidirectional path tracing with
  * next-event estimation at every non-delta vertex and multiple importance
- * sampling (power heuristic) between emitter and BSDF sampling. Emitters
+ * sampling (power heuristic) between emitter and BSDF sampling. Shadow rays
+ * cross thin sheets (thindielectric: light passes undeviated) weighted by
+ * their transmittance, where Mitsuba stops them; paths sampled straight
+ * through a sheet are weighted against that estimator (docs/rendering.md). Emitters
  * are chosen uniformly. max_depth counts path segments (1: emitters seen
  * directly, 2: direct lighting, -1: unbounded); Russian roulette starts once
  * depth >= rr_depth with survival probability min(max(beta) eta^2, 0.95). */
@@ -16,19 +19,46 @@ static ray3 spawn(const surface_hit *h, vec3 w)
     return (ray3){v3_add(h->p, v3_scale(h->ng, side)), w};
 }
 
-static bool visible(const struct scene *s, const surface_hit *h, const emitter_sample_rec *es)
+/* The fraction of the emitter sample's light that reaches h: 0 behind an
+ * opaque surface; crossing thin sheets (BSDF_STRAIGHT_TRANSMISSION), their
+ * straight transmittance each, at most max_sheets of them (-1: any number),
+ * so that the emitter stays within the path's max_depth, as a BSDF-sampled
+ * path through the same sheets would. */
+static rgb transmittance(const struct scene *s, const surface_hit *h, const emitter_sample_rec *es, int max_sheets)
 {
     ray3 r = spawn(h, es->wi);
-    if (isinf(es->dist))
-        return !scene_occluded(s, &r, 0.0, INFINITY);
+    bool infinite = isinf(es->dist);
     vec3 target = es->p;
-    if (es->eps > 0.0) /* lift the light point toward the receiver */
+    if (!infinite && es->eps > 0.0) /* lift the light point toward the receiver */
         target = v3_add(target, v3_scale(es->n, v3_dot(es->n, es->wi) < 0.0 ? es->eps : -es->eps));
-    r.d = v3_sub(target, r.o);
-    return !scene_occluded(s, &r, 0.0, 1.0 - 1e-7);
+    double tmax = infinite ? INFINITY : 1.0 - 1e-7;
+    if (!infinite)
+        r.d = v3_sub(target, r.o);
+    if (!scene_occluded(s, &r, 0.0, tmax))
+        return rgb_gray(1.0);
+    if (!s->straight_shadows)
+        return rgb_gray(0.0);
+    rgb tr = rgb_gray(1.0);
+    for (int crossed = 0; max_sheets < 0 || crossed <= max_sheets; crossed++) {
+        surface_hit x;
+        if (!scene_intersect(s, &r, 0.0, tmax, &x))
+            return tr;
+        const bsdf_t *b = s->shapes[x.shape].bsdf;
+        if (crossed == max_sheets || !(bsdf_flags(b) & BSDF_STRAIGHT_TRANSMISSION))
+            return rgb_gray(0.0);
+        bsdf_query q = {frame3_to_local(x.sh, v3_neg(es->wi)), x.uv, TRANSPORT_RADIANCE};
+        tr = rgb_mul(tr, bsdf_straight_transmittance(b, &q));
+        if (rgb_is_black(tr))
+            return tr;
+        r = spawn(&x, es->wi);
+        if (!infinite)
+            r.d = v3_sub(target, r.o);
+    }
+    return rgb_gray(0.0);
 }
 
-static rgb next_event(const struct scene *s, const surface_hit *h, const bsdf_t *b, const bsdf_query *q, rng_t *rng)
+static rgb next_event(const struct scene *s, const surface_hit *h, const bsdf_t *b, const bsdf_query *q, rng_t *rng,
+                      int max_sheets)
 {
     int n = s->nemitters;
     int k = (int)(rng_next_double(rng) * n);
@@ -39,11 +69,14 @@ static rgb next_event(const struct scene *s, const surface_hit *h, const bsdf_t 
         return rgb_gray(0.0);
     vec3 wo = frame3_to_local(h->sh, es.wi);
     rgb f = bsdf_eval(b, q, wo);
-    if (rgb_is_black(f) || !visible(s, h, &es))
+    if (rgb_is_black(f))
+        return rgb_gray(0.0);
+    rgb tr = transmittance(s, h, &es, max_sheets);
+    if (rgb_is_black(tr))
         return rgb_gray(0.0);
     double pdf_l = es.pdf / n;
     double w = es.delta ? 1.0 : mis_power_heuristic(pdf_l, bsdf_pdf(b, q, wo));
-    return rgb_scale(rgb_mul(f, es.value), w / pdf_l);
+    return rgb_scale(rgb_mul(rgb_mul(f, tr), es.value), w / pdf_l);
 }
 
 rgb integrator_path_li(const scene_t *s, const ray3 *ray0, double tmin, double tmax, rng_t *rng, double *aov)
@@ -89,8 +122,11 @@ rgb integrator_path_li(const scene_t *s, const ray3 *ray0, double tmin, double t
             break;
 
         bsdf_query q = {frame3_to_local(hit.sh, v3_neg(ray.d)), hit.uv, TRANSPORT_RADIANCE};
-        if ((bsdf_flags(sh->bsdf) & BSDF_SMOOTH) && s->nemitters > 0)
-            L = rgb_add(L, rgb_mul(beta, next_event(s, &hit, sh->bsdf, &q, rng)));
+        if ((bsdf_flags(sh->bsdf) & BSDF_SMOOTH) && s->nemitters > 0) {
+            /* The emitter at depth + 1 + sheets must not pass max_depth - 1. */
+            int max_sheets = s->max_depth < 0 ? -1 : s->max_depth - 2 - depth;
+            L = rgb_add(L, rgb_mul(beta, next_event(s, &hit, sh->bsdf, &q, rng, max_sheets)));
+        }
 
         bsdf_sample_rec bs;
         double u1 = rng_next_double(rng);
@@ -99,9 +135,14 @@ rgb integrator_path_li(const scene_t *s, const ray3 *ray0, double tmin, double t
             break;
         beta = rgb_mul(beta, bs.weight);
         eta *= bs.eta;
-        prev_delta = (bs.sampled_type & BSDF_DELTA) != 0;
-        prev_pdf = bs.pdf;
-        prev_p = hit.p;
+        /* Straight through a thin sheet, the path keeps the last scattering
+         * vertex's density for MIS: next-event estimation from that vertex
+         * saw the emitter through the sheet too (transmittance above). */
+        if (!((bs.sampled_type & BSDF_DELTA_TRANSMISSION) && (bsdf_flags(sh->bsdf) & BSDF_STRAIGHT_TRANSMISSION))) {
+            prev_delta = (bs.sampled_type & BSDF_DELTA) != 0;
+            prev_pdf = bs.pdf;
+            prev_p = hit.p;
+        }
         ray = spawn(&hit, v3_norm(frame3_to_world(hit.sh, bs.wo)));
         t0 = 0.0, t1 = INFINITY;
 

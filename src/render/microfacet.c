@@ -158,3 +158,16 @@ double microfacet_pdf(const microfacet *d, vec3 wi, vec3 m)
         return 0.0;
     return microfacet_G1(d, wi, m) * fmax(0.0, v3_dot(wi, m)) * microfacet_D(d, m) / wi.z;
 }
+
+double microfacet_reflection_dg(const microfacet *d, vec3 wi, vec3 wo, vec3 *m)
+{
+    *m = v3_norm(v3_add(wi, wo));
+    return microfacet_D(d, *m) * microfacet_G(d, wi, wo, *m);
+}
+
+double microfacet_reflection_pdf(const microfacet *d, vec3 wi, vec3 wo)
+{
+    vec3 m = v3_norm(v3_add(wi, wo));
+    double wo_m = v3_dot(wo, m);
+    return wo_m > 0.0 ? microfacet_pdf(d, wi, m) / (4.0 * wo_m) : 0.0;
+}

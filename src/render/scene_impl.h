@@ -39,6 +39,16 @@ typedef struct {
     shape_local_hit local; /* analytic shapes: the object-space hit */
 } surface_hit;
 
+/* The offset that lifts rays spawned at a world point p off its surface:
+ * Embree's float triangle hits are good to a few ulps of the coordinates,
+ * and analytic shapes use the same offset so that a shape's secondary rays do
+ * not depend on its form (the crosscheck compares an SOR analytic and meshed;
+ * a form-dependent offset would leave a difference no segment count removes). */
+static inline double surface_hit_eps(vec3 p)
+{
+    return 2e-5 * (1.0 + fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
+}
+
 /* ------------------------------------------------------------- shapes */
 
 /* An analytic shape in its object space (shape_sphere.c, ...), traced by
@@ -194,6 +204,7 @@ struct scene {
     int env;              /* index of the constant/envmap emitter, or -1 */
 
     accel_t *accel;       /* every shape, geometry id = shape index */
+    bool straight_shadows; /* some shape's BSDF has BSDF_STRAIGHT_TRANSMISSION */
 };
 
 /* Nearest hit along r with t in (tmin, tmax). */

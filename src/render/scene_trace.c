@@ -18,6 +18,7 @@ int scene_trace_build(struct scene *s, char *err, size_t errlen)
     }
     for (int i = 0; i < s->nshapes; i++) {
         const shape_t *sh = &s->shapes[i];
+        s->straight_shadows |= (bsdf_flags(sh->bsdf) & BSDF_STRAIGHT_TRANSMISSION) != 0;
         unsigned id = sh->is_mesh ? shape_mesh_add(sh, s->accel, why, sizeof why)
                                   : sh->ops->add(sh->data, s->accel, &sh->to_world, why, sizeof why);
         /* accel numbers geometries in the order added: id = shape index. */

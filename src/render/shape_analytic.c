@@ -4,8 +4,6 @@
 
 #include "render/scene_impl.h"
 
-static double max_abs3(vec3 p) { return fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))); }
-
 void shape_analytic_finish(const shape_t *sh, const shape_local_hit *lh, surface_hit *hit)
 {
     hit->t = lh->t;
@@ -16,9 +14,7 @@ void shape_analytic_finish(const shape_t *sh, const shape_local_hit *lh, surface
     hit->ng = n;
     hit->sh = frame3_from_normal(n);
     hit->uv = lh->uv;
-    /* Double-precision hits are accurate to ~1e-12 relative; the offset only
-     * has to clear the root polishing tolerance of the SOR solver. */
-    hit->eps = 1e-7 * (1.0 + max_abs3(hit->p));
+    hit->eps = surface_hit_eps(hit->p);
     hit->prim = lh->part;
     hit->local = *lh;
 }

@@ -12,8 +12,6 @@ static vec3 mesh_pos(const shape_mesh_data *m, unsigned v)
     return v3(m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2]);
 }
 
-static double max_abs3(vec3 p) { return fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))); }
-
 void shape_mesh_finish(const shape_t *sh, int tri, double b1, double b2, double t, surface_hit *hit)
 {
     const shape_mesh_data *m = &sh->mesh;
@@ -43,8 +41,7 @@ void shape_mesh_finish(const shape_t *sh, int tri, double b1, double b2, double 
     }
     hit->ng = ng;
     hit->sh = frame3_from_normal(ns);
-    /* Embree's float hits are good to a few ulps of the coordinates. */
-    hit->eps = 2e-5 * (1.0 + max_abs3(hit->p));
+    hit->eps = surface_hit_eps(hit->p);
     hit->prim = tri;
 }
 
