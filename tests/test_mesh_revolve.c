@@ -29,7 +29,7 @@ Test(mesh_revolve, counts_follow_the_layout)
         int ncaps = (caps & 1) + ((caps >> 1) & 1);
         mesh_t m;
         cr_assert_eq(mesh_revolve(&c, NULL, R, 1.0, S, (unsigned)caps, &m), 0);
-        cr_assert_eq(m.n_verts, R * S + ncaps * (S + 1), "S=%d R=%d caps=%d", S, R, caps);
+        cr_assert_eq(m.n_verts, R * S + ncaps * 2 * S, "S=%d R=%d caps=%d", S, R, caps);
         cr_assert_eq(m.n_tris, 2 * S * (R - 1) + ncaps * S);
         for (int i = 0; i < 3 * m.n_tris; i++)
             cr_assert_lt(m.tri[i], (uint32_t)m.n_verts);
@@ -180,13 +180,46 @@ Test(mesh_revolve, texture_coordinates_follow_the_convention)
     bspline_free(&c);
 }
 
+/* On a cap, u follows the angle as on the analytic cap (DESIGN.md's u of phi):
+ * at any point of a cap triangle the interpolated u is within half a
+ * segment's u span (1/S) of the u of the point's own angle. A single centre
+ * vertex would pull the middle of the cap toward one u. */
+Test(mesh_revolve, cap_texture_follows_the_angle)
+{
+    bspline_t c = test_vase_curve();
+    mesh_t m;
+    const int S = 16, R = 6;
+    cr_assert_eq(mesh_revolve(&c, NULL, R, 1.0, S, MESH_CAP_BASE | MESH_CAP_MOUTH, &m), 0);
+    for (int t = 2 * S * (R - 1); t < m.n_tris; t++) {
+        const uint32_t *v = m.tri + 3 * t;
+        for (int k = 0; k < 16; k++) { /* barycentric grid, interior points */
+            double l[3] = {(k % 4 + 0.25) / 4.5, (k / 4 + 0.25) / 4.5, 0};
+            l[2] = 1 - l[0] - l[1];
+            if (l[2] <= 0)
+                continue;
+            double x = 0, z = 0, u = 0;
+            for (int i = 0; i < 3; i++) {
+                x += l[i] * m.pos[3 * v[i]];
+                z += l[i] * m.pos[3 * v[i] + 2];
+                u += l[i] * m.uv[2 * v[i]];
+            }
+            double phi = atan2(z, x);
+            phi = phi < 0 ? phi + 2 * M_PI : phi;
+            double want = phi <= M_PI ? 1 - phi / M_PI : phi / M_PI - 1;
+            cr_assert_leq(fabs(u - want), 1.0 / S + 1e-6, "triangle %d: u %g at phi %g, want %g", t, u, phi, want);
+        }
+    }
+    mesh_free(&m);
+    bspline_free(&c);
+}
+
 Test(mesh_revolve, profile_on_the_axis)
 {
     bspline_t c = test_bowl_curve();
     mesh_t m;
     cr_assert_eq(mesh_revolve(&c, NULL, 20, 1.0, 16, MESH_CAP_BASE | MESH_CAP_MOUTH, &m), 0);
     /* No base cap (zero area), the mouth cap is there. */
-    cr_assert_eq(m.n_verts, 20 * 16 + 17);
+    cr_assert_eq(m.n_verts, 20 * 16 + 2 * 16);
     for (int v = 0; v < m.n_verts; v++) {
         const float *n = m.nrm + 3 * v;
         cr_assert(isfinite(n[0]) && isfinite(n[1]) && isfinite(n[2]));

@@ -31,10 +31,12 @@ enum { MESH_CAP_BASE = 1u, MESH_CAP_MOUTH = 2u };
  *   wall: vertex ring*segments + j at phi_j = 2 pi j / segments; no seam column
  *         (the texture u of DESIGN.md is mirror-symmetric, u(0) = u(2 pi) = 1);
  *         2 * segments * (n_rings - 1) triangles.
- *   each cap asked for in caps (MESH_CAP_*): its own centre vertex and its own
- *         copy of the end ring (normal -Y for the base, +Y for the mouth, so
- *         the crease stays sharp), segments triangles. A cap whose end ring
- *         lies on the axis (r = 0) would have no area and is left out.
+ *   each cap asked for in caps (MESH_CAP_*): its own copy of the end ring
+ *         (normal -Y for the base, +Y for the mouth, so the crease stays
+ *         sharp), then one centre vertex per segment (u = the middle of that
+ *         segment's u, so a cap's texture follows the angle as the analytic
+ *         cap's does), segments triangles. A cap whose end ring lies on the
+ *         axis (r = 0) would have no area and is left out.
  * Returns 0, or -1 on bad arguments (including a profile whose rim is not
  * above h = 0, or that would not fit in float range once scaled) or
  * allocation failure (out zeroed). */

@@ -67,26 +67,31 @@ static void emit_ring(mesh_t *m, int first, int segments, double r, double y, do
     }
 }
 
-/* A cap: centre vertex, a copy of the ring at (r, y) with normal (0, ny, 0),
- * and a fan wound counter-clockwise as seen from the side ny points to. */
+/* A cap: a copy of the ring at (r, y) with normal (0, ny, 0), and a fan wound
+ * counter-clockwise as seen from the side ny points to, around one centre
+ * vertex per segment: the centre of a polar texture map has every u, so each
+ * triangle's centre takes its own segment's middle u (one shared centre at
+ * u = 0.5 would drag the cap's texture toward the u = 0.5 meridian). */
 static void emit_cap(mesh_t *m, int *nv, int *nt, int segments, double r, double y, double ny, double v,
                      const double *cs, const double *sn, const float *tu)
 {
-    int centre = *nv, ring = centre + 1;
-    float *p = m->pos + 3 * (size_t)centre, *n = m->nrm + 3 * (size_t)centre, *t = m->uv + 2 * (size_t)centre;
-    p[0] = 0.0f, p[1] = (float)y, p[2] = 0.0f;
-    n[0] = 0.0f, n[1] = (float)ny, n[2] = 0.0f;
-    t[0] = 0.5f, t[1] = (float)v;
+    int ring = *nv, centre = ring + segments;
     emit_ring(m, ring, segments, r, y, 0.0, ny, v, cs, sn, tu);
     uint32_t *f = m->tri + 3 * (size_t)*nt;
     for (int j = 0; j < segments; j++) {
-        uint32_t a = (uint32_t)(ring + j), b = (uint32_t)(ring + (j + 1 == segments ? 0 : j + 1));
-        f[3 * j] = (uint32_t)centre;
+        int jn = j + 1 == segments ? 0 : j + 1;
+        float *p = m->pos + 3 * (size_t)(centre + j), *n = m->nrm + 3 * (size_t)(centre + j);
+        float *t = m->uv + 2 * (size_t)(centre + j);
+        p[0] = 0.0f, p[1] = (float)y, p[2] = 0.0f;
+        n[0] = 0.0f, n[1] = (float)ny, n[2] = 0.0f;
+        t[0] = 0.5f * (tu[j] + tu[jn]), t[1] = (float)v;
+        uint32_t a = (uint32_t)(ring + j), b = (uint32_t)(ring + jn);
+        f[3 * j] = (uint32_t)(centre + j);
         /* (centre, j, j+1) faces -Y: see the winding note in mesh_revolve. */
         f[3 * j + 1] = ny < 0 ? a : b;
         f[3 * j + 2] = ny < 0 ? b : a;
     }
-    *nv += 1 + segments;
+    *nv += 2 * segments;
     *nt += segments;
 }
 
@@ -113,7 +118,7 @@ int mesh_revolve(const bspline_t *profile, const double *u_rings, int n_rings, d
     bspline_eval_derivs(profile, u_rings ? u_rings[n_rings - 1] : uhi, 1, d_last);
     int cap_base = (caps & MESH_CAP_BASE) && d_first[0].x != 0.0;
     int cap_mouth = (caps & MESH_CAP_MOUTH) && d_last[0].x != 0.0;
-    long long nv = (long long)n_rings * segments + (cap_base + cap_mouth) * (1LL + segments);
+    long long nv = (long long)n_rings * segments + (cap_base + cap_mouth) * 2LL * segments;
     long long nt = 2LL * segments * (n_rings - 1) + (long long)(cap_base + cap_mouth) * segments;
     if (nv > INT32_MAX || 3 * nt > INT32_MAX)
         return -1;
