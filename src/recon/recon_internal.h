@@ -71,12 +71,13 @@ int recon_douglas_peucker_closed(const vec2 *pts, int n, double eps, int *keep);
 /* ---- 7x7 Gaussian and Shi–Tomasi (shi_tomasi.c) */
 
 /* 7x7 Gaussian blur (sigma 1.4, OpenCV's default for that size), separable,
- * replicated border. tmp: w*h scratch. In place on img. */
+ * replicated border. tmp: 8 w + 6 floats of scratch. In place on img. */
 void recon_gaussian7(float *img, float *tmp, int w, int h);
 
 /* Shi–Tomasi response: the smaller eigenvalue of the structure tensor of 3x3
- * Sobel gradients summed over a 3x3 window, at every pixel. */
-void recon_shi_tomasi(const float *img, int w, int h, float *response);
+ * Sobel gradients summed over a 3x3 window, at every pixel (in float).
+ * Returns 0, or -1 when out of memory. */
+int recon_shi_tomasi(const float *img, int w, int h, float *response);
 /* The same response at one pixel (replicated border). */
 float recon_shi_tomasi_at(const float *img, int w, int h, int x, int y);
 
