@@ -94,10 +94,14 @@ static int drop_outliers(vec2 *pts, double *contrast, int n)
         return n;
     for (int k = 0; k < n; k++) {
         int a = k < 3 ? 0 : (k + 3 >= n ? n - 7 : k - 3);
-        double v[7];
-        for (int i = 0; i < 7; i++)
-            v[i] = pts[a + i].x;
-        qsort(v, 7, sizeof v[0], cmp_double);
+        double v[7]; /* insertion-sorted: qsort's call overhead dominates for 7 */
+        for (int i = 0; i < 7; i++) {
+            double x = pts[a + i].x;
+            int q = i;
+            for (; q > 0 && v[q - 1] > x; q--)
+                v[q] = v[q - 1];
+            v[q] = x;
+        }
         dev[k] = fabs(pts[k].x - v[3]);
     }
     int m = 0;
@@ -280,11 +284,8 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     }
     for (int j = 0; j < h; j++) {
         const uint8_t *m = res->mask + (size_t)j * w, *p = memchr(m, 1, (size_t)w);
-        int b = w - 1;
-        while (p && !m[b])
-            b--;
         ext[j] = p ? (int)(p - m) : -1;
-        ext[h + j] = p ? b : -1;
+        ext[h + j] = p ? (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m) : -1;
     }
     int cap = h;
     con = malloc((size_t)cap * 4 * sizeof *con);

@@ -235,11 +235,8 @@ static void row_extents(const uint8_t *mask, int w, int h, int *lo, int *hi)
 {
     for (int j = 0; j < h; j++) {
         const uint8_t *m = mask + (size_t)j * w, *p = memchr(m, 1, (size_t)w);
-        int b = w - 1;
-        while (p && !m[b])
-            b--;
         lo[j] = p ? (int)(p - m) : -1;
-        hi[j] = p ? b : -1;
+        hi[j] = p ? (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m) : -1;
     }
 }
 
@@ -457,13 +454,10 @@ int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float s
     for (int j = bottom - (bottom - top) / 8; j <= bottom; j++) {
         uint8_t *m = mask + (size_t)j * w;
         const float *g = gray + (size_t)j * w;
-        int a = 0, b = w - 1;
-        while (a < w && !m[a])
-            a++;
-        while (b > a && !m[b])
-            b--;
-        if (a >= w)
+        const uint8_t *pa = memchr(m, 1, (size_t)w);
+        if (!pa)
             continue;
+        int a = (int)(pa - m), b = (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m);
         /* An end that juts out more than 3 px past the row above moves
          * inward to the first sharp step (none: it stays). */
         int l = a, r = b;
