@@ -231,7 +231,8 @@ Test(recon_reference, border_follow_equals_per_pixel_algorithm)
                     cr_assert_eq(bs.borders[b].is_hole, ref.b[b].is_hole);
                     cr_assert_eq(bs.borders[b].parent, ref.b[b].parent, "%dx%d kind %d border %d", w, h, kind, b);
                 }
-                cr_assert_arr_eq(bs.points, ref.pts, 2 * (size_t)ref.n * sizeof(int));
+                if (ref.n > 0) /* an empty mask has no point array */
+                    cr_assert_arr_eq(bs.points, ref.pts, 2 * (size_t)ref.n * sizeof(int));
                 recon_border_set_free(&bs);
                 free(m);
             }

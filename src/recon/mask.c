@@ -88,7 +88,7 @@ static int otsu_bin(const long *hist, int nb)
 /* Gray (Rec.601 luminance of the encoded values, or the first channel) of
  * the n pixels px (c channels each) into g. Constant strides for the common
  * layouts, so that the loops vectorise. */
-static void gray_row(const float *restrict px, int c, int n, float *restrict g)
+RECON_VECTOR_CLONES static void gray_row(const float *restrict px, int c, int n, float *restrict g)
 {
     if (c == 3) {
 #pragma omp simd
@@ -106,7 +106,7 @@ static void gray_row(const float *restrict px, int c, int n, float *restrict g)
     }
 }
 
-recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *gray, uint8_t *mask,
+RECON_VECTOR_CLONES recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *gray, uint8_t *mask,
                                      int *threshold_used)
 {
     const int w = img->width, h = img->height, c = img->channels;

@@ -8,6 +8,15 @@
 
 #include "celadon/recon.h"
 
+/* On x86-64 the build targets the baseline (SSE2); the whole-row filter
+ * loops also get an AVX2 clone, picked at load time when the CPU has it
+ * (GCC/Clang function multiversioning). No FMA: both clones round alike. */
+#if defined(__x86_64__) && defined(__GNUC__)
+#define RECON_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define RECON_VECTOR_CLONES
+#endif
+
 /* ---- mask (mask.c) */
 
 /* Fills gray (w*h floats, the signal the silhouette is measured on: alpha when

@@ -39,7 +39,7 @@ static void gaussian7_kernel(float k[7])
         k[i] = (float)(e[i] / sum);
 }
 
-void recon_gaussian7(float *img, float *tmp, int w, int h)
+RECON_VECTOR_CLONES void recon_gaussian7(float *img, float *tmp, int w, int h)
 {
     float k[7];
     gaussian7_kernel(k);
@@ -97,7 +97,7 @@ float recon_shi_tomasi_at(const float *img, int w, int h, int x, int y)
  * extended by replication, at u = -1 .. w: gx = s(u+1) - s(u-1) and
  * gy = d(u-1) + 2 d(u) + d(u+1), with s and d the vertical [1 2 1] sum and
  * [-1 0 1] difference of the columns. scratch: 5 (w + 4) floats. */
-static void structure_row(const float *img, int w, int h, int v, float *scratch, float *restrict sxx,
+RECON_VECTOR_CLONES static void structure_row(const float *img, int w, int h, int v, float *scratch, float *restrict sxx,
                           float *restrict sxy, float *restrict syy)
 {
     const int W = w + 4; /* columns -2 .. w+1 */
@@ -133,7 +133,7 @@ static void structure_row(const float *img, int w, int h, int v, float *scratch,
 
 /* v[i] = sqrt(v[i]) for v >= 0. The packed square root where there is one:
  * sqrtf may set errno, which keeps compilers from vectorising it. */
-static void sqrt_row(float *v, int n)
+RECON_VECTOR_CLONES static void sqrt_row(float *v, int n)
 {
     int i = 0;
 #ifdef __SSE__
@@ -144,7 +144,7 @@ static void sqrt_row(float *v, int n)
         v[i] = sqrtf(v[i]);
 }
 
-int recon_shi_tomasi(const float *img, int w, int h, float *response)
+RECON_VECTOR_CLONES int recon_shi_tomasi(const float *img, int w, int h, float *response)
 {
     /* Ring of three rows of horizontal sums (gradient rows v-1, v, v+1 for
      * output row v), each row xx | xy | yy, then structure_row's scratch,
