@@ -110,21 +110,29 @@ static int follow(labels *f, int ox, int oy, int x, int y, int x2, int y2, int n
     return 0;
 }
 
-/* The first index in [x, end) whose byte is not v, or end: eight bytes at a
- * time (the labels of a row are long runs of 0 and of 1). */
+/* Index of the first (last) nonzero byte of a nonzero word of 8 bytes in
+ * memory order. */
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define FIRST_BYTE(q) (__builtin_ctzll(q) / 8)
+#define LAST_BYTE(q) (7 - __builtin_clzll(q) / 8)
+#else
+#define FIRST_BYTE(q) (__builtin_clzll(q) / 8)
+#define LAST_BYTE(q) (7 - __builtin_ctzll(q) / 8)
+#endif
+
+/* The first index in [x, end) whose byte is not v, or end: sixteen bytes at
+ * a time (the labels of a row are long runs of 0 and of 1). */
 static int skip_value(const uint8_t *row, int x, int end, uint8_t v)
 {
     const uint64_t pattern = 0x0101010101010101ull * v;
-    for (; x + 8 <= end; x += 8) {
-        uint64_t q;
-        memcpy(&q, row + x, sizeof q);
-        q ^= pattern;
-        if (q)
-#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-            return x + __builtin_ctzll(q) / 8;
-#else
-            return x + __builtin_clzll(q) / 8;
-#endif
+    for (; x + 16 <= end; x += 16) {
+        uint64_t a, b;
+        memcpy(&a, row + x, sizeof a);
+        memcpy(&b, row + x + 8, sizeof b);
+        a ^= pattern;
+        b ^= pattern;
+        if (a | b)
+            return x + (a ? FIRST_BYTE(a) : 8 + FIRST_BYTE(b));
     }
     while (x < end && row[x] == v)
         x++;
@@ -134,15 +142,12 @@ static int skip_value(const uint8_t *row, int x, int end, uint8_t v)
 /* The last index in [0, end) whose byte is not 0, or -1; likewise. */
 static int last_nonzero(const uint8_t *row, int end)
 {
-    for (; end >= 8; end -= 8) {
-        uint64_t q;
-        memcpy(&q, row + end - 8, sizeof q);
-        if (q)
-#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-            return end - 1 - __builtin_clzll(q) / 8;
-#else
-            return end - 1 - __builtin_ctzll(q) / 8;
-#endif
+    for (; end >= 16; end -= 16) {
+        uint64_t a, b;
+        memcpy(&a, row + end - 16, sizeof a);
+        memcpy(&b, row + end - 8, sizeof b);
+        if (a | b)
+            return end - 16 + (b ? 8 + LAST_BYTE(b) : LAST_BYTE(a));
     }
     while (end > 0 && row[end - 1] == 0)
         end--;
