@@ -41,6 +41,8 @@ static void gaussian7_kernel(float k[7])
 
 RECON_VECTOR_CLONES void recon_gaussian7(float *img, float *tmp, int w, int h)
 {
+    if (w <= 0 || h <= 0)
+        return;
     float k[7];
     gaussian7_kernel(k);
     const float k0 = k[0], k1 = k[1], k2 = k[2], k3 = k[3];
@@ -149,6 +151,8 @@ RECON_VECTOR_CLONES int recon_shi_tomasi(const float *img, int w, int h, float *
     /* Ring of three rows of horizontal sums (gradient rows v-1, v, v+1 for
      * output row v), each row xx | xy | yy, then structure_row's scratch,
      * which also holds the half traces of an output row. */
+    if (w <= 0 || h <= 0)
+        return 0;
     float *buf = malloc(((size_t)9 * w + 5 * ((size_t)w + 4)) * sizeof *buf);
     if (!buf)
         return -1;
