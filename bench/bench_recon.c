@@ -69,8 +69,10 @@ static void die(const char *what)
     exit(1);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
+    /* --stages: the per-stage table only (no meshes, no batch). */
+    const int stages_only = argc > 1 && strcmp(argv[1], "--stages") == 0;
     const char *cli = getenv("CELADON_BIN") ? getenv("CELADON_BIN") : "build/celadon";
     char err[512];
     mkdir("out", 0777);
@@ -98,6 +100,14 @@ int main(void)
     if (!gray || !tmp || !blur || !resp || !mask)
         die("out of memory");
     int thr, dropped, holes;
+    uint8_t *mask0 = malloc(npx);
+    if (!mask0)
+        die("out of memory");
+    TIME_STAGE("  threshold (gray, background, Otsu)", REPS, , recon_mask_threshold(&img, -1, gray, mask0, &thr));
+    TIME_STAGE("  largest object, holes, rows", REPS, memcpy(mask, mask0, npx),
+               recon_mask_clean(mask, w, h, &dropped, &holes));
+    TIME_STAGE("  closing 9x9", REPS, , recon_mask_close(mask, w, h, 4));
+    free(mask0);
     TIME_STAGE("mask (threshold, clean, close, clean)", REPS, , {
         recon_mask_threshold(&img, -1, gray, mask, &thr);
         recon_mask_clean(mask, w, h, &dropped, &holes);
@@ -129,7 +139,7 @@ int main(void)
      * goodFeaturesToTrack would run); recon itself only filters windows. */
     TIME_STAGE("Gaussian 7x7, full image", REPS, for (size_t i = 0; i < npx; i++) blur[i] = mask[i],
                recon_gaussian7(blur, tmp, w, h));
-    TIME_STAGE("Shi-Tomasi response, full image", REPS, , recon_shi_tomasi(blur, w, h, resp));
+    TIME_STAGE("Shi-Tomasi response, full image", REPS, , if (recon_shi_tomasi(blur, w, h, resp)) die("out of memory"));
     vec2 mean, axes[2];
     double eig[2];
     TIME_STAGE("PCA of the contour", REPS, , recon_pca(contour, nc, &mean, axes, eig));
@@ -184,6 +194,8 @@ int main(void)
            "   Hausdorff %.3f / %.3f px, texture %dx%d)\n",
            nc, res.n_polyline, curve.n_ctrl, nu, e1, e2, tex.width, tex.height);
 
+    if (stages_only)
+        goto done;
     printf("meshes (mesh_revolve, base cap, %d rings)                 wall ms    CPU ms\n", nu);
     static const int targets[] = {90000, 200000, 400000};
     for (int k = 0; k < 3; k++) {
@@ -236,6 +248,7 @@ int main(void)
     /* The batch's outputs are a quarter of a gigabyte: not worth keeping. */
     if (system("rm -rf out/bench/batch out/bench/batch_in") != 0)
         die("cannot remove out/bench/batch");
+done:
 
     free(ov);
     recon_texture_free(&tex);

@@ -42,6 +42,10 @@ def main():
     timed("mask (gray + Otsu threshold only)",
           lambda: cv2.threshold(cv2.cvtColor(img, cv2.COLOR_BGR2GRAY), 0, 1,
                                 cv2.THRESH_BINARY_INV | cv2.THRESH_OTSU)[1])
+    # celadon's decoder hands the recon float pixels (image_t); the gray
+    # conversion alone from such an image, for comparison.
+    imgf = img.astype(np.float32) / 255
+    timed("  gray from float32 RGB only (cvtColor)", lambda: cv2.cvtColor(imgf, cv2.COLOR_BGR2GRAY))
     # The later stages run on celadon's cleaned mask, so both trace the same outline.
     mask = (cv2.imread(mask_path, cv2.IMREAD_GRAYSCALE) > 127).astype(np.uint8)
     contours = timed("contour (findContours, external, no approx)",

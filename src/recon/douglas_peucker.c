@@ -4,14 +4,34 @@
 
 #include "recon/recon_internal.h"
 
-/* Distance from p to the segment [a, b]. */
-static double seg_dist(vec2 p, vec2 a, vec2 b)
+/* The point of pts(i, j) farthest from the segment [a, b] and its squared
+ * distance times scale = |b - a|^2 (1 when a = b): no square root and no
+ * division per point, and exact for pixel coordinates. */
+static int farthest(const vec2 *pts, int i, int j, vec2 a, vec2 b, double *best_scaled)
 {
-    vec2 ab = v2_sub(b, a), ap = v2_sub(p, a);
-    double l2 = v2_dot(ab, ab);
-    double t = l2 > 0 ? v2_dot(ap, ab) / l2 : 0;
-    t = t < 0 ? 0 : (t > 1 ? 1 : t);
-    return v2_len(v2_sub(ap, v2_scale(ab, t)));
+    const vec2 ab = v2_sub(b, a);
+    const double l2 = v2_dot(ab, ab), scale = l2 > 0 ? l2 : 1;
+    double best = -1;
+    int at = -1;
+    for (int k = i + 1; k < j; k++) {
+        vec2 ap = v2_sub(pts[k], a);
+        double t = v2_dot(ap, ab), d;
+        if (t <= 0) /* nearest to a (also when a = b) */
+            d = v2_dot(ap, ap) * scale;
+        else if (t >= l2) { /* nearest to b */
+            vec2 bp = v2_sub(pts[k], b);
+            d = v2_dot(bp, bp) * scale;
+        } else { /* nearest inside: the distance to the line */
+            double c = v2_cross(ab, ap);
+            d = c * c;
+        }
+        if (d > best) {
+            best = d;
+            at = k;
+        }
+    }
+    *best_scaled = best / scale;
+    return at;
 }
 
 /* Marks the vertices DP keeps strictly between indices a and b (b may be n,
@@ -23,17 +43,9 @@ static void simplify(const vec2 *pts, int n, int a, int b, double eps, uint8_t *
     stack[top++] = b;
     while (top > 0) {
         int j = stack[--top], i = stack[--top];
-        vec2 pa = pts[i], pb = pts[j % n];
-        double best = -1;
-        int at = -1;
-        for (int k = i + 1; k < j; k++) {
-            double d = seg_dist(pts[k], pa, pb);
-            if (d > best) {
-                best = d;
-                at = k;
-            }
-        }
-        if (at >= 0 && best > eps) {
+        double best;
+        int at = farthest(pts, i, j, pts[i], pts[j % n], &best);
+        if (at >= 0 && best > eps * eps) {
             flag[at] = 1;
             stack[top++] = i;
             stack[top++] = at;
@@ -55,7 +67,8 @@ int recon_douglas_peucker_closed(const vec2 *pts, int n, double eps, int *keep)
     int far = 1;
     double best = -1;
     for (int k = 1; k < n; k++) {
-        double d = v2_len(v2_sub(pts[k], pts[0]));
+        vec2 d0 = v2_sub(pts[k], pts[0]);
+        double d = v2_dot(d0, d0);
         if (d > best) {
             best = d;
             far = k;

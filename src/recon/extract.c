@@ -65,21 +65,42 @@ static const char *border_touched(const uint8_t *m, int w, int h)
     return NULL;
 }
 
-static int cmp_double(const void *a, const void *b)
+/* The k-th smallest of a[0..n), in place (Hoare's selection: linear on
+ * average, where sorting for one quantile costs n log n). */
+static double select_kth(double *a, int n, int k)
 {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
+    int lo = 0, hi = n - 1;
+    while (lo < hi) {
+        double pivot = a[lo + (hi - lo) / 2];
+        int i = lo, j = hi;
+        while (i <= j) { /* [lo, j] <= pivot <= [i, hi], between: = pivot */
+            while (a[i] < pivot)
+                i++;
+            while (a[j] > pivot)
+                j--;
+            if (i <= j) {
+                double t = a[i];
+                a[i++] = a[j];
+                a[j--] = t;
+            }
+        }
+        if (k <= j)
+            hi = j;
+        else if (k >= i)
+            lo = i;
+        else
+            break;
+    }
+    return a[k];
 }
 
-/* Quantile of v[0..n) (sorts a copy in tmp). */
+/* Quantile of v[0..n) (selects in a copy in tmp). */
 static double quantile(const double *v, int n, double q, double *tmp)
 {
     if (n <= 0)
         return 0;
     memcpy(tmp, v, (size_t)n * sizeof *tmp);
-    qsort(tmp, (size_t)n, sizeof *tmp, cmp_double);
-    int k = (int)(q * (n - 1) + 0.5);
-    return tmp[k];
+    return select_kth(tmp, n, (int)(q * (n - 1) + 0.5));
 }
 
 /* Drops points more than 1 px from the median x of their 7-row neighbourhood
@@ -94,10 +115,14 @@ static int drop_outliers(vec2 *pts, double *contrast, int n)
         return n;
     for (int k = 0; k < n; k++) {
         int a = k < 3 ? 0 : (k + 3 >= n ? n - 7 : k - 3);
-        double v[7];
-        for (int i = 0; i < 7; i++)
-            v[i] = pts[a + i].x;
-        qsort(v, 7, sizeof v[0], cmp_double);
+        double v[7]; /* insertion-sorted: qsort's call overhead dominates for 7 */
+        for (int i = 0; i < 7; i++) {
+            double x = pts[a + i].x;
+            int q = i;
+            for (; q > 0 && v[q - 1] > x; q--)
+                v[q] = v[q - 1];
+            v[q] = x;
+        }
         dev[k] = fabs(pts[k].x - v[3]);
     }
     int m = 0;
@@ -280,11 +305,8 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     }
     for (int j = 0; j < h; j++) {
         const uint8_t *m = res->mask + (size_t)j * w, *p = memchr(m, 1, (size_t)w);
-        int b = w - 1;
-        while (p && !m[b])
-            b--;
         ext[j] = p ? (int)(p - m) : -1;
-        ext[h + j] = p ? b : -1;
+        ext[h + j] = p ? (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m) : -1;
     }
     int cap = h;
     con = malloc((size_t)cap * 4 * sizeof *con);

@@ -85,11 +85,32 @@ static int otsu_bin(const long *hist, int nb)
     return bt;
 }
 
-recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *gray, uint8_t *mask,
+/* Gray (Rec.601 luminance of the encoded values, or the first channel) of
+ * the n pixels px (c channels each) into g. Constant strides for the common
+ * layouts, so that the loops vectorise. */
+RECON_VECTOR_CLONES static void gray_row(const float *restrict px, int c, int n, float *restrict g)
+{
+    if (c == 3) {
+#pragma omp simd
+        for (int i = 0; i < n; i++)
+            g[i] = finite01(0.299f * px[3 * i] + 0.587f * px[3 * i + 1] + 0.114f * px[3 * i + 2]);
+    } else if (c == 4) {
+#pragma omp simd
+        for (int i = 0; i < n; i++)
+            g[i] = finite01(0.299f * px[4 * i] + 0.587f * px[4 * i + 1] + 0.114f * px[4 * i + 2]);
+    } else {
+        for (int i = 0; i < n; i++) {
+            const float *p = px + (size_t)i * c;
+            g[i] = finite01(c >= 3 ? 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2] : p[0]);
+        }
+    }
+}
+
+RECON_VECTOR_CLONES recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *gray, uint8_t *mask,
                                      int *threshold_used)
 {
     const int w = img->width, h = img->height, c = img->channels;
-    const size_t n = (size_t)w * h;
+    const size_t n = (size_t)w * h, row = (size_t)w * c;
     const float *px = img->data;
 
     /* Alpha is the mask when most of the border is transparent. */
@@ -108,32 +129,28 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
             return RECON_MASK_ALPHA;
         }
     }
-    /* Constant strides for the common layouts, so the loops vectorise. */
-    if (c == 3)
-        for (size_t i = 0; i < n; i++)
-            gray[i] = finite01(0.299f * px[3 * i] + 0.587f * px[3 * i + 1] + 0.114f * px[3 * i + 2]);
-    else if (c == 4)
-        for (size_t i = 0; i < n; i++)
-            gray[i] = finite01(0.299f * px[4 * i] + 0.587f * px[4 * i + 1] + 0.114f * px[4 * i + 2]);
-    else
-        for (size_t i = 0; i < n; i++) {
-            const float *p = px + i * c;
-            gray[i] = finite01(c >= 3 ? 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2] : p[0]);
-        }
 
     /* Background model: the Coons patch of the four (denoised) border curves,
-     * exact for backdrops that vary linearly or along one direction only. */
-    float *top = malloc(((size_t)2 * w + 2 * h) * sizeof *top);
+     * exact for backdrops that vary linearly or along one direction only.
+     * The border's gray comes first; the rest of the image is converted row
+     * by row below, in the same pass that measures it. */
+    float *top = malloc(((size_t)2 * w + 4 * h) * sizeof *top);
     if (!top) {
         memset(mask, 0, n);
         *threshold_used = 0;
         return RECON_MASK_BACKGROUND;
     }
-    float *bot = top + w, *left = bot + w, *right = left + h;
+    float *bot = top + w, *left = bot + w, *right = left + h, *col_l = right + h, *col_r = col_l + h;
+    gray_row(px, c, w, gray);
+    gray_row(px + (size_t)(h - 1) * row, c, w, gray + (size_t)(h - 1) * w);
+    for (int j = 0; j < h; j++) {
+        gray_row(px + (size_t)j * row, c, 1, col_l + j);
+        gray_row(px + (size_t)j * row + (size_t)(w - 1) * c, c, 1, col_r + j);
+    }
     border_curve(gray, w, 1, top);
     border_curve(gray + (size_t)(h - 1) * w, w, 1, bot);
-    border_curve(gray, h, (size_t)w, left);
-    border_curve(gray + w - 1, h, (size_t)w, right);
+    border_curve(col_l, h, 1, left);
+    border_curve(col_r, h, 1, right);
 
     if (threshold >= 0) {
         /* Forced: polarity from the border's median against the threshold. */
@@ -148,8 +165,14 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
         free(top);
         float t = threshold / 255.0f;
         int below = med > t;
-        for (size_t i = 0; i < n; i++)
-            mask[i] = below ? gray[i] < t : gray[i] > t;
+        for (int j = 0; j < h; j++) {
+            float *restrict g = gray + (size_t)j * w;
+            uint8_t *restrict m = mask + (size_t)j * w;
+            gray_row(px + (size_t)j * row, c, w, g);
+#pragma omp simd
+            for (int i = 0; i < w; i++)
+                m[i] = below ? g[i] < t : g[i] > t;
+        }
         *threshold_used = threshold;
         return below ? RECON_MASK_GRAY_BELOW : RECON_MASK_GRAY_ABOVE;
     }
@@ -157,32 +180,48 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
     /* Distance to the background model, its histogram, Otsu. The distance is
      * written into mask as 0..255 first, then thresholded in place. */
     enum { NB = 256 };
-    long hist[NB] = {0}, hist2[NB] = {0};
+    uint32_t sub[4][NB] = {{0}}; /* interleaved: shorter increment chains */
     const float c00 = top[0], c10 = top[w - 1], c01 = bot[0], c11 = bot[w - 1];
     const float iu = w > 1 ? 1.0f / (w - 1) : 0, iv = h > 1 ? 1.0f / (h - 1) : 0;
     for (int j = 0; j < h; j++) {
+        float *restrict g = gray + (size_t)j * w;
+        uint8_t *restrict m = mask + (size_t)j * w;
+        gray_row(px + (size_t)j * row, c, w, g);
         /* The patch on row j is P[i] + alpha + beta u, u = i/(w-1). */
         float v = j * iv, l = left[j], r = right[j];
         float k0 = (1 - v) * c00 + v * c01, k1 = (1 - v) * (c10 - c00) + v * (c11 - c01);
         float alpha = l - k0, beta = (r - l - k1) * iu;
-        const float *g = gray + (size_t)j * w;
-        uint8_t *m = mask + (size_t)j * w;
+        const float *restrict tp = top, *restrict bt = bot;
+#pragma omp simd
         for (int i = 0; i < w; i++) {
-            float bgm = (1 - v) * top[i] + v * bot[i] + alpha + beta * i;
+            float bgm = (1 - v) * tp[i] + v * bt[i] + alpha + beta * i;
             float d = fabsf(g[i] - bgm) * 255.0f + 0.5f;
             m[i] = (uint8_t)(int)(d < 255.0f ? d : 255.0f);
         }
-        /* Two interleaved histograms halve the increment dependency chain. */
         int i = 0;
-        for (; i + 1 < w; i += 2) {
-            hist[m[i]]++;
-            hist2[m[i + 1]]++;
+        for (; i + 15 < w; i += 16) {
+            /* Sixteen equal distances (a flat stretch of backdrop) count at
+             * once; otherwise one by one into four interleaved tables. */
+            uint64_t a, b, same = 0x0101010101010101ull * m[i];
+            memcpy(&a, m + i, sizeof a);
+            memcpy(&b, m + i + 8, sizeof b);
+            if (a == same && b == same) {
+                sub[0][m[i]] += 16;
+                continue;
+            }
+            for (int k = 0; k < 16; k += 4) {
+                sub[0][m[i + k]]++;
+                sub[1][m[i + k + 1]]++;
+                sub[2][m[i + k + 2]]++;
+                sub[3][m[i + k + 3]]++;
+            }
         }
-        if (i < w)
-            hist[m[i]]++;
+        for (; i < w; i++)
+            sub[0][m[i]]++;
     }
+    long hist[NB];
     for (int k = 0; k < NB; k++)
-        hist[k] += hist2[k];
+        hist[k] = (long)sub[0][k] + sub[1][k] + sub[2][k] + sub[3][k];
     free(top);
     /* Otsu separates background from object; half of it keeps the object's
      * outline pixels that are close to the background (anti-aliasing, light
@@ -192,8 +231,10 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
     int tu = (int)fmax(ceil(0.5 * t), floor_t);
     if (tu > 254)
         tu = 254;
+    const uint8_t tb = (uint8_t)tu;
+#pragma omp simd
     for (size_t i = 0; i < n; i++)
-        mask[i] = mask[i] > tu;
+        mask[i] = mask[i] > tb;
     *threshold_used = tu;
     return RECON_MASK_BACKGROUND;
 }
@@ -205,11 +246,8 @@ static void row_extents(const uint8_t *mask, int w, int h, int *lo, int *hi)
 {
     for (int j = 0; j < h; j++) {
         const uint8_t *m = mask + (size_t)j * w, *p = memchr(m, 1, (size_t)w);
-        int b = w - 1;
-        while (p && !m[b])
-            b--;
         lo[j] = p ? (int)(p - m) : -1;
-        hi[j] = p ? b : -1;
+        hi[j] = p ? (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m) : -1;
     }
 }
 
@@ -288,34 +326,40 @@ static int uf_find(int *parent, int a)
     return a;
 }
 
+/* End of the run of value v (0 or 1) that starts at p, in a row of 0/1
+ * bytes ending at end: the next byte of the other value (memchr scans a word
+ * or more at a time), or end. */
+static const uint8_t *run_end(const uint8_t *p, const uint8_t *end, uint8_t v)
+{
+    const uint8_t *q = memchr(p, !v, (size_t)(end - p));
+    return q ? q : end;
+}
+
 /* Labels the runs of pixels equal to value; conn8 selects 8- or 4-connectivity.
- * Returns the number of runs (runs and parent sized for the worst case), or -1. */
+ * Returns the number of runs (runs and parent sized for the worst case). */
 static int label_runs(const uint8_t *mask, int w, int h, uint8_t value, int conn8, run_t *runs, int *parent)
 {
     int nr = 0, prev0 = 0, prev1 = 0;
+    const int e = conn8; /* the previous row's runs widened by one for 8-conn */
     for (int j = 0; j < h; j++) {
-        const uint8_t *m = mask + (size_t)j * w;
-        int cur0 = nr;
-        for (int i = 0; i < w;) {
-            if (m[i] != value) {
-                i++;
-                continue;
-            }
-            int s = i;
-            while (i < w && m[i] == value)
-                i++;
+        const uint8_t *m = mask + (size_t)j * w, *end = m + w, *p = memchr(m, value, (size_t)w);
+        int cur0 = nr, k0 = prev0;
+        while (p) {
+            const uint8_t *q = run_end(p, end, value);
+            int s = (int)(p - m), i = (int)(q - m);
             runs[nr] = (run_t){j, s, i, nr};
             parent[nr] = nr;
-            /* Overlap with the previous row's runs (widened by one for 8-conn). */
-            int e = conn8;
-            for (int k = prev0; k < prev1; k++) {
-                if (runs[k].x1 + e <= s || runs[k].x0 >= i + e)
-                    continue;
-                int a = uf_find(parent, k), b = uf_find(parent, nr);
-                if (a != b)
-                    parent[a > b ? a : b] = a < b ? a : b;
+            /* Both rows' runs are sorted: those left of this run are left of
+             * the next one too. */
+            while (k0 < prev1 && runs[k0].x1 + e <= s)
+                k0++;
+            for (int k = k0; k < prev1 && runs[k].x0 < i + e; k++) {
+                int ra = uf_find(parent, k), rb = uf_find(parent, nr);
+                if (ra != rb)
+                    parent[ra > rb ? ra : rb] = ra < rb ? ra : rb;
             }
             nr++;
+            p = q < end ? memchr(q, value, (size_t)(end - q)) : NULL;
         }
         prev0 = cur0;
         prev1 = nr;
@@ -333,10 +377,11 @@ long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *ho
      * value than of the other, so this bounds both labellings. */
     size_t ones = 0;
     for (int j = 0; j < h; j++) {
-        const uint8_t *m = mask + (size_t)j * w;
-        ones += m[0];
-        for (int i = 1; i < w; i++)
-            ones += m[i] > m[i - 1]; /* 0/1 bytes: a run starts */
+        const uint8_t *m = mask + (size_t)j * w, *end = m + w;
+        for (const uint8_t *p = memchr(m, 1, (size_t)w); p; ones++) {
+            const uint8_t *q = run_end(p, end, 1);
+            p = q < end ? memchr(q, 1, (size_t)(end - q)) : NULL;
+        }
     }
     size_t cap = ones + (size_t)h;
     run_t *runs = malloc(cap * sizeof *runs);
@@ -382,17 +427,16 @@ long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *ho
      * row's outermost object pixels (closes notches that an object colour as
      * light as the backdrop leaves inside the outline). */
     for (int j = 0; j < h; j++) {
-        uint8_t *m = mask + (size_t)j * w;
-        int a = 0, b = w - 1;
-        while (a < w && !m[a])
-            a++;
-        while (b > a && !m[b])
-            b--;
-        for (int i = a; i < b; i++)
-            if (!m[i]) {
-                m[i] = 1;
-                kept++;
-            }
+        uint8_t *m = mask + (size_t)j * w, *a = memchr(m, 1, (size_t)w);
+        if (!a)
+            continue;
+        uint8_t *b = memrchr(m, 1, (size_t)w);
+        int len = (int)(b - a) + 1, zeros = 0;
+#pragma omp simd reduction(+ : zeros)
+        for (int i = 0; i < len; i++)
+            zeros += a[i] == 0;
+        memset(a, 1, (size_t)len);
+        kept += zeros;
     }
     free(runs);
     free(parent);
@@ -421,13 +465,10 @@ int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float s
     for (int j = bottom - (bottom - top) / 8; j <= bottom; j++) {
         uint8_t *m = mask + (size_t)j * w;
         const float *g = gray + (size_t)j * w;
-        int a = 0, b = w - 1;
-        while (a < w && !m[a])
-            a++;
-        while (b > a && !m[b])
-            b--;
-        if (a >= w)
+        const uint8_t *pa = memchr(m, 1, (size_t)w);
+        if (!pa)
             continue;
+        int a = (int)(pa - m), b = (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m);
         /* An end that juts out more than 3 px past the row above moves
          * inward to the first sharp step (none: it stays). */
         int l = a, r = b;

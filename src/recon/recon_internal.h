@@ -8,6 +8,15 @@
 
 #include "celadon/recon.h"
 
+/* On x86-64 the build targets the baseline (SSE2); the whole-row filter
+ * loops also get an AVX2 clone, picked at load time when the CPU has it
+ * (GCC/Clang function multiversioning). No FMA: both clones round alike. */
+#if defined(__x86_64__) && defined(__GNUC__)
+#define RECON_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define RECON_VECTOR_CLONES
+#endif
+
 /* ---- mask (mask.c) */
 
 /* Fills gray (w*h floats, the signal the silhouette is measured on: alpha when
@@ -71,12 +80,13 @@ int recon_douglas_peucker_closed(const vec2 *pts, int n, double eps, int *keep);
 /* ---- 7x7 Gaussian and Shi–Tomasi (shi_tomasi.c) */
 
 /* 7x7 Gaussian blur (sigma 1.4, OpenCV's default for that size), separable,
- * replicated border. tmp: w*h scratch. In place on img. */
+ * replicated border. tmp: 8 w + 6 floats of scratch. In place on img. */
 void recon_gaussian7(float *img, float *tmp, int w, int h);
 
 /* Shi–Tomasi response: the smaller eigenvalue of the structure tensor of 3x3
- * Sobel gradients summed over a 3x3 window, at every pixel. */
-void recon_shi_tomasi(const float *img, int w, int h, float *response);
+ * Sobel gradients summed over a 3x3 window, at every pixel (in float).
+ * Returns 0, or -1 when out of memory. */
+int recon_shi_tomasi(const float *img, int w, int h, float *response);
 /* The same response at one pixel (replicated border). */
 float recon_shi_tomasi_at(const float *img, int w, int h, int x, int y);
 
