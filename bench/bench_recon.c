@@ -181,8 +181,8 @@ int main(int argc, char **argv)
                if (bspline_fit_profile(res.polyline, res.n_polyline, 1.0, &curve, &info)) die("fit failed"));
     double *u = NULL;
     int nu = 0;
-    TIME_STAGE("curvature domains (0.25 px)", REPS, free(u),
-               if (curve_domains_by_curvature(&curve, 0.25, &u, &nu)) die("domains failed"));
+    TIME_STAGE("curvature domains (0.25 px, 0.25 deg)", REPS, free(u),
+               if (curve_domains_by_curvature_variation(&curve, 0.25, 0.25, &u, &nu)) die("domains failed"));
     double e1, e2;
     TIME_STAGE("Hausdorff errors", REPS, , curve_polyline_hausdorff(&curve, res.polyline, res.n_polyline, &e1, &e2));
     recon_texture_t tex = {0};
