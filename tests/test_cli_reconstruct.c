@@ -119,11 +119,11 @@ static int count_obj(const char *text, const char *tag)
 }
 
 /* The vertex and face counts of the profile's mesh at s segments with a base
- * cap (mesh.h): one ring per domain parameter, the base ring again with its
- * centre. */
+ * cap (mesh.h): one ring per domain parameter, the base ring again with one
+ * centre vertex per segment. */
 static void expected_mesh(const profile_t *p, int s, int *verts, int *faces)
 {
-    *verts = p->n_domains * s + s + 1;
+    *verts = p->n_domains * s + 2 * s;
     *faces = 2 * s * (p->n_domains - 1) + s;
 }
 

@@ -93,8 +93,8 @@ Test(mesh_cli, obj_with_material_and_ply, .init = setup, .fini = teardown)
     cr_assert_eq(run((const char *[]){"mesh", prof, "-o", obj, "--segments", "24", NULL}, err, sizeof err), 0, "%s",
                  err);
     cr_assert_str_empty(err);
-    /* 6 rings of 24, plus the base cap's centre and ring. */
-    cr_assert_eq(count_prefix(obj, "v "), 6 * 24 + 25);
+    /* 6 rings of 24, plus the base cap's ring and its 24 centre vertices. */
+    cr_assert_eq(count_prefix(obj, "v "), 6 * 24 + 2 * 24);
     cr_assert_eq(count_prefix(obj, "f "), 2 * 24 * 5 + 24);
     cr_assert_eq(count_prefix(obj, "mtllib vase.mtl"), 1);
     cr_assert_eq(count_prefix(mtl, "map_Kd texture.png"), 1);
@@ -103,7 +103,7 @@ Test(mesh_cli, obj_with_material_and_ply, .init = setup, .fini = teardown)
                                       NULL},
                      err, sizeof err),
                  0, "%s", err);
-    cr_assert_eq(count_prefix(ply, "element vertex 82"), 1); /* 6*10 + 2*11 */
+    cr_assert_eq(count_prefix(ply, "element vertex 100"), 1); /* 6*10 + 2*2*10 */
     cr_assert_eq(count_prefix(ply, "element face 120"), 1);  /* 2*10*5 + 2*10 */
 }
 
