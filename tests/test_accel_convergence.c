@@ -7,6 +7,7 @@
 #include <stdlib.h>
 
 #include "celadon/accel.h"
+#include "celadon/curve_domains.h"
 #include "celadon/mesh_rings.h"
 #include "support/sor_profiles.h"
 #include "test_accel_support.h"
@@ -126,6 +127,67 @@ Test(accel_convergence, bowl_mesh_error_falls_as_n_minus_2, .timeout = 60)
 Test(accel_convergence, recon_mesh_error_falls_as_n_minus_2, .timeout = 60)
 {
     check_convergence(6);
+}
+
+/* Mean angle (degrees) between the meshed SOR's interpolated shading normal
+ * and the exact normal at the analytic hit of the same ray, over rays that
+ * hit the wall in both. */
+static double mean_normal_error(const bspline_t *c, const accel_sor_mode *mode)
+{
+    enum { RAYS = 3000 };
+    char msg[256] = "";
+    accel_t *mesh = accel_create(ACCEL_BUILD_FAST, msg, sizeof msg), *exact = accel_create(ACCEL_BUILD_FAST, msg, 256);
+    cr_assert(mesh && exact, "%s", msg);
+    cr_assert_eq(accel_add_sor(mesh, c, HEIGHT, SOR_CAPS_ALL, NULL, mode, msg, sizeof msg), 0u, "%s", msg);
+    cr_assert_eq(accel_add_sor(exact, c, HEIGHT, SOR_CAPS_ALL, NULL, NULL, msg, sizeof msg), 0u, "%s", msg);
+    cr_assert_eq(accel_commit(mesh, msg, sizeof msg), 0, "%s", msg);
+    cr_assert_eq(accel_commit(exact, msg, sizeof msg), 0, "%s", msg);
+    vec3 lo, hi;
+    accel_bounds(exact, &lo, &hi);
+    test_rng rng = {91};
+    double sum = 0;
+    int n = 0;
+    for (int i = 0; i < RAYS; i++) {
+        ray3 r = test_ray_toward_box(&rng, lo, hi);
+        accel_hit hm, he;
+        if (!accel_intersect(mesh, &r, 0, INFINITY, &hm) || !accel_intersect(exact, &r, 0, INFINITY, &he) ||
+            he.part != SOR_PART_WALL || fabs(hm.ns.y) > 0.999999)
+            continue; /* a cap in either (flat, exact in both) */
+        sum += acos(fmin(1.0, v3_dot(hm.ns, he.ns))) * 180 / M_PI;
+        n++;
+    }
+    cr_assert_gt(n, RAYS / 4);
+    accel_destroy(mesh);
+    accel_destroy(exact);
+    return sum / n;
+}
+
+/* The shading normals converge as N^-2 too, because the rings also bound how
+ * far the linearly interpolated normal departs from the true one where the
+ * profile's curvature changes (mesh_rings: normal tolerance (pi/N)^2). With
+ * the chord criterion alone the rings are too sparse for that and the mean
+ * normal error falls visibly slower. */
+Test(accel_convergence, shading_normals_converge_as_n_minus_2, .timeout = 120)
+{
+    bspline_t c;
+    sor_test_profile(6, &c);
+    double err[LEVELS], err_chord[LEVELS];
+    for (int l = 0; l < LEVELS; l++) {
+        double tol = mesh_ring_tolerance(&c, N[l]), *rings = NULL;
+        int n_rings = 0;
+        accel_sor_mode mode = {.segments = N[l], .tol_px = tol};
+        err[l] = mean_normal_error(&c, &mode);
+        cr_assert_eq(curve_domains_by_curvature(&c, tol, &rings, &n_rings), 0);
+        accel_sor_mode chord = {.segments = N[l], .u_rings = rings, .n_rings = n_rings};
+        err_chord[l] = mean_normal_error(&c, &chord);
+        free(rings);
+    }
+    double slope = loglog_slope(N, err, LEVELS), slope_chord = loglog_slope(N, err_chord, LEVELS);
+    cr_log_info("recon normals: N^%.3f with mesh_rings, N^%.3f with chord rings only", slope, slope_chord);
+    cr_assert(slope > -2.3 && slope < -1.8, "normal error ~ N^%.3f (%g at N=16, %g at N=1024)", slope, err[0],
+              err[LEVELS - 1]);
+    cr_assert_gt(slope_chord, slope + 0.1, "chord-only rings: N^%.3f", slope_chord);
+    bspline_free(&c);
 }
 
 /* The slope check can fail: rings held at the coarse N = 16 placement while

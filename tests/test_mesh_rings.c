@@ -31,17 +31,21 @@ Test(mesh_rings, tolerance_is_the_angular_sagitta)
     bspline_free(&c);
 }
 
-/* Every kept boundary and every curvature domain is a ring, nothing else is. */
+/* Every kept boundary and every curvature domain (chord tolerance tol,
+ * normal tolerance 2 tol / r_max radians) is a ring, nothing else is. */
 Test(mesh_rings, union_of_kept_boundaries_and_curvature_domains)
 {
     bspline_t c;
     sor_test_profile(6, &c);
+    double rmax = 0;
+    for (int i = 0; i < c.n_ctrl; i++)
+        rmax = fmax(rmax, c.ctrl[i].x);
     const double keep[] = {0.0, 0.123456, 0.5, 0.77, 1.0};
     for (int n = 16; n <= 1024; n *= 4) {
         double tol = mesh_ring_tolerance(&c, n), *u = NULL, *dom = NULL;
         int nu = 0, nd = 0;
         cr_assert_eq(mesh_rings(&c, keep, 5, tol, &u, &nu), 0);
-        cr_assert_eq(curve_domains_by_curvature(&c, tol, &dom, &nd), 0);
+        cr_assert_eq(curve_domains_by_curvature_variation(&c, tol, 2 * tol / rmax * 180 / M_PI, &dom, &nd), 0);
         for (int i = 1; i < nu; i++)
             cr_assert_gt(u[i], u[i - 1]);
         int found = 0;
