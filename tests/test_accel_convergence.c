@@ -61,17 +61,24 @@ static double loglog_slope(const int *N, const double *err, int n)
     return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+/* A committed scene holding the SOR alone, meshed by mode (NULL: analytic). */
+static accel_t *sor_scene(const bspline_t *c, const accel_sor_mode *mode)
+{
+    char msg[256] = "";
+    accel_t *acc = accel_create(ACCEL_BUILD_FAST, msg, sizeof msg);
+    cr_assert_not_null(acc, "%s", msg);
+    cr_assert_eq(accel_add_sor(acc, c, HEIGHT, SOR_CAPS_ALL, NULL, mode, msg, sizeof msg), 0u, "%s", msg);
+    cr_assert_eq(accel_commit(acc, msg, sizeof msg), 0, "%s", msg);
+    return acc;
+}
+
 /* The largest distance from the analytic surface of the hits of random rays
  * on the SOR meshed with the given mode. */
 static double worst_hit_distance(const bspline_t *c, const accel_sor_mode *mode, const char *name)
 {
     enum { RAYS = 1500 };
-    char msg[256] = "";
-    accel_t *acc = accel_create(ACCEL_BUILD_FAST, msg, sizeof msg);
-    cr_assert_not_null(acc, "%s", msg);
-    cr_assert_eq(accel_add_sor(acc, c, HEIGHT, SOR_CAPS_ALL, NULL, mode, msg, sizeof msg), 0u, "%s: %s", name, msg);
-    cr_assert_eq(accel_commit(acc, msg, sizeof msg), 0, "%s", msg);
-    cr_assert_eq(accel_geometry_kind(acc, 0), ACCEL_KIND_SOR_MESH);
+    accel_t *acc = sor_scene(c, mode);
+    cr_assert_eq(accel_geometry_kind(acc, 0), ACCEL_KIND_SOR_MESH, "%s", name);
     vec3 lo, hi;
     accel_bounds(acc, &lo, &hi);
     test_rng rng = {77};
@@ -135,13 +142,7 @@ Test(accel_convergence, recon_mesh_error_falls_as_n_minus_2, .timeout = 60)
 static double mean_normal_error(const bspline_t *c, const accel_sor_mode *mode)
 {
     enum { RAYS = 3000 };
-    char msg[256] = "";
-    accel_t *mesh = accel_create(ACCEL_BUILD_FAST, msg, sizeof msg), *exact = accel_create(ACCEL_BUILD_FAST, msg, 256);
-    cr_assert(mesh && exact, "%s", msg);
-    cr_assert_eq(accel_add_sor(mesh, c, HEIGHT, SOR_CAPS_ALL, NULL, mode, msg, sizeof msg), 0u, "%s", msg);
-    cr_assert_eq(accel_add_sor(exact, c, HEIGHT, SOR_CAPS_ALL, NULL, NULL, msg, sizeof msg), 0u, "%s", msg);
-    cr_assert_eq(accel_commit(mesh, msg, sizeof msg), 0, "%s", msg);
-    cr_assert_eq(accel_commit(exact, msg, sizeof msg), 0, "%s", msg);
+    accel_t *mesh = sor_scene(c, mode), *exact = sor_scene(c, NULL);
     vec3 lo, hi;
     accel_bounds(exact, &lo, &hi);
     test_rng rng = {91};

@@ -9,15 +9,22 @@
 #include "celadon/mesh_rings.h"
 #include "support/sor_profiles.h"
 
+/* The largest radius of the control polygon (it bounds r). */
+static double control_rmax(const bspline_t *c)
+{
+    double rmax = 0;
+    for (int i = 0; i < c->n_ctrl; i++)
+        rmax = fmax(rmax, c->ctrl[i].x);
+    return rmax;
+}
+
 /* A chord subtending 2 pi / N on a circle of radius R misses the circle by
  * R (1 - cos(pi / N)) at its middle; measured here on the chord itself. */
 Test(mesh_rings, tolerance_is_the_angular_sagitta)
 {
     bspline_t c;
     sor_test_profile(6, &c);
-    double rmax = 0;
-    for (int i = 0; i < c.n_ctrl; i++)
-        rmax = fmax(rmax, c.ctrl[i].x);
+    double rmax = control_rmax(&c);
     for (int n = 3; n <= 4096; n *= 2) {
         double mid = rmax * hypot(1 + cos(2 * M_PI / n), sin(2 * M_PI / n)) / 2; /* |midpoint of the chord| */
         cr_assert_float_eq(mesh_ring_tolerance(&c, n), rmax - mid, 1e-9 * (rmax - mid), "N=%d", n);
@@ -37,9 +44,7 @@ Test(mesh_rings, union_of_kept_boundaries_and_curvature_domains)
 {
     bspline_t c;
     sor_test_profile(6, &c);
-    double rmax = 0;
-    for (int i = 0; i < c.n_ctrl; i++)
-        rmax = fmax(rmax, c.ctrl[i].x);
+    double rmax = control_rmax(&c);
     const double keep[] = {0.0, 0.123456, 0.5, 0.77, 1.0};
     for (int n = 16; n <= 1024; n *= 4) {
         double tol = mesh_ring_tolerance(&c, n), *u = NULL, *dom = NULL;

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_statistics_double.h>
+
 #include "celadon/progress.h"
 #include "recon/recon_internal.h"
 
@@ -65,42 +67,14 @@ static const char *border_touched(const uint8_t *m, int w, int h)
     return NULL;
 }
 
-/* The k-th smallest of a[0..n), in place (Hoare's selection: linear on
- * average, where sorting for one quantile costs n log n). */
-static double select_kth(double *a, int n, int k)
-{
-    int lo = 0, hi = n - 1;
-    while (lo < hi) {
-        double pivot = a[lo + (hi - lo) / 2];
-        int i = lo, j = hi;
-        while (i <= j) { /* [lo, j] <= pivot <= [i, hi], between: = pivot */
-            while (a[i] < pivot)
-                i++;
-            while (a[j] > pivot)
-                j--;
-            if (i <= j) {
-                double t = a[i];
-                a[i++] = a[j];
-                a[j--] = t;
-            }
-        }
-        if (k <= j)
-            hi = j;
-        else if (k >= i)
-            lo = i;
-        else
-            break;
-    }
-    return a[k];
-}
-
-/* Quantile of v[0..n) (selects in a copy in tmp). */
+/* Quantile of v[0..n) (GSL's linear-time selection, in a copy in tmp:
+ * sorting for one quantile would cost n log n). */
 static double quantile(const double *v, int n, double q, double *tmp)
 {
     if (n <= 0)
         return 0;
     memcpy(tmp, v, (size_t)n * sizeof *tmp);
-    return select_kth(tmp, n, (int)(q * (n - 1) + 0.5));
+    return gsl_stats_select(tmp, 1, (size_t)n, (size_t)(q * (n - 1) + 0.5));
 }
 
 /* Drops points more than 1 px from the median x of their 7-row neighbourhood
