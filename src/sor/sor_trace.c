@@ -353,30 +353,29 @@ static int finish(const sor_t *sor, const sor_piece *pieces, const sor_ray *ry, 
     return found;
 }
 
-int sor_intersect(const sor_t *sor, const ray3 *ray, double tmin, double tmax, sor_hit *hit)
+/* The whole SOR: caps and the tree from its root, behind the bounding
+ * cylinder. any_hit stops at the first confirmed hit (shadow rays). */
+static int trace(const sor_t *sor, const ray3 *ray, double tmin, double tmax, int any_hit, sor_hit *hit)
 {
     sor_ray ry;
     sor_best best;
     double smin;
-    if (!ray_begin(sor, ray, tmin, tmax, &ry, &best, &smin))
-        return 0;
-    if (!bound_hit(sor, &ry, smin, best.s))
+    if (!ray_begin(sor, ray, tmin, tmax, &ry, &best, &smin) || !bound_hit(sor, &ry, smin, best.s))
         return 0;
     int found = sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best);
-    found |= sor_tree_intersect(sor, 0, &ry, smin, &best, 0);
+    if (!(found && any_hit))
+        found |= sor_tree_intersect(sor, 0, &ry, smin, &best, any_hit);
     return finish(sor, sor->pieces, &ry, &best, found, hit);
+}
+
+int sor_intersect(const sor_t *sor, const ray3 *ray, double tmin, double tmax, sor_hit *hit)
+{
+    return trace(sor, ray, tmin, tmax, 0, hit);
 }
 
 int sor_occluded(const sor_t *sor, const ray3 *ray, double tmin, double tmax)
 {
-    sor_ray ry;
-    sor_best best;
-    double smin;
-    if (!ray_begin(sor, ray, tmin, tmax, &ry, &best, &smin))
-        return 0;
-    if (!bound_hit(sor, &ry, smin, best.s))
-        return 0;
-    return sor_caps_intersect(sor, &ry, SOR_CAPS_ALL, smin, &best) || sor_tree_intersect(sor, 0, &ry, smin, &best, 1);
+    return trace(sor, ray, tmin, tmax, 1, NULL);
 }
 
 int sor_prim_intersect(const sor_t *sor, int prim, const ray3 *ray, double tmin, double tmax, sor_hit *hit)
