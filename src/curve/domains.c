@@ -6,53 +6,55 @@
 #include <math.h>
 #include <stdlib.h>
 
-enum { SAGITTA_SAMPLES = 16, MAX_DEPTH = 16 };
-
-/* Largest distance from the curve on [a, b] to the chord C(a) C(b). */
-static double sagitta(const bspline_t *c, double a, double b)
-{
-    vec2 p = bspline_eval(c, a), q = bspline_eval(c, b), d = v2_sub(q, p);
-    double l2 = v2_dot(d, d), worst = 0.0;
-    for (int i = 1; i <= SAGITTA_SAMPLES; i++) {
-        vec2 x = v2_sub(bspline_eval(c, a + (b - a) * i / (SAGITTA_SAMPLES + 1.0)), p);
-        double t = l2 > 0.0 ? v2_dot(x, d) / l2 : 0.0;
-        t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-        worst = fmax(worst, v2_len(v2_sub(x, v2_scale(d, t))));
-    }
-    return worst;
-}
-
-/* Largest difference, in radians, between the tangent angle of the curve on
- * [a, b] and its linear interpolation in arc length between the ends. The
- * angle is linear in arc length exactly where the curvature is constant, so
- * this measures the curvature variation on the domain: about |dk/ds| L^2 / 8.
- * Arc length is accumulated along the samples' chords. */
-static double normal_departure(const bspline_t *c, double a, double b)
-{
-    enum { N = SAGITTA_SAMPLES + 2 };
-    double ang[N], s[N];
-    vec2 d[2], t0 = v2(0, 0), prev = v2(0, 0);
-    for (int i = 0; i < N; i++) {
-        bspline_eval_derivs(c, a + (b - a) * i / (N - 1.0), 1, d);
-        if (i == 0)
-            t0 = d[1];
-        /* Angle relative to the start tangent: no wrap-around on a domain
-         * that turns less than half a circle. */
-        ang[i] = atan2(t0.x * d[1].y - t0.y * d[1].x, v2_dot(t0, d[1]));
-        s[i] = i ? s[i - 1] + v2_len(v2_sub(d[0], prev)) : 0.0;
-        prev = d[0];
-    }
-    if (!(s[N - 1] > 0.0))
-        return 0.0;
-    double worst = 0.0;
-    for (int i = 1; i < N - 1; i++)
-        worst = fmax(worst, fabs(ang[i] - ang[N - 1] * s[i] / s[N - 1]));
-    return worst;
-}
+enum { SAMPLES = 16, MAX_DEPTH = 16 };
 
 typedef struct {
-    double tol_px, tol_normal;
+    double tol_px, tol_normal; /* tol_normal in radians; INFINITY: not checked */
 } criteria;
+
+/* Whether the curve on [a, b] meets both criteria, from one set of samples:
+ * the ends and SAMPLES interior points, evenly spaced in u.
+ * - Chord sagitta: the largest distance from the samples to the chord.
+ * - Normal departure: the largest difference between the tangent angle and
+ *   its linear interpolation in arc length between the ends (arc length
+ *   accumulated along the samples' chords). The angle is linear in arc
+ *   length exactly where the curvature is constant, so this measures the
+ *   curvature variation on the domain: about |dk/ds| L^2 / 8. Angles are
+ *   taken relative to the start tangent: no wrap-around on a domain that
+ *   turns less than half a circle. */
+static int within_tolerance(const bspline_t *c, double a, double b, const criteria *cr)
+{
+    enum { N = SAMPLES + 2 };
+    vec2 pos[N], tan[N];
+    for (int i = 0; i < N; i++) {
+        vec2 d[2];
+        bspline_eval_derivs(c, i == N - 1 ? b : a + (b - a) * i / (N - 1.0), 1, d);
+        pos[i] = d[0];
+        tan[i] = d[1];
+    }
+    vec2 chord = v2_sub(pos[N - 1], pos[0]);
+    double l2 = v2_dot(chord, chord);
+    for (int i = 1; i < N - 1; i++) {
+        vec2 x = v2_sub(pos[i], pos[0]);
+        double t = l2 > 0.0 ? v2_dot(x, chord) / l2 : 0.0;
+        t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+        if (v2_len(v2_sub(x, v2_scale(chord, t))) > cr->tol_px)
+            return 0;
+    }
+    if (isinf(cr->tol_normal))
+        return 1;
+    double ang[N], s[N];
+    for (int i = 0; i < N; i++) {
+        ang[i] = atan2(tan[0].x * tan[i].y - tan[0].y * tan[i].x, v2_dot(tan[0], tan[i]));
+        s[i] = i ? s[i - 1] + v2_len(v2_sub(pos[i], pos[i - 1])) : 0.0;
+    }
+    if (!(s[N - 1] > 0.0))
+        return 1;
+    for (int i = 1; i < N - 1; i++)
+        if (fabs(ang[i] - ang[N - 1] * s[i] / s[N - 1]) > cr->tol_normal)
+            return 0;
+    return 1;
+}
 
 typedef struct {
     double *u;
@@ -76,7 +78,7 @@ static int push(boundaries *b, double u)
 /* Appends the interior boundaries of [a, b] in increasing order, then b. */
 static int split(const bspline_t *c, double a, double b, const criteria *cr, int depth, boundaries *out)
 {
-    if (depth < MAX_DEPTH && (sagitta(c, a, b) > cr->tol_px || normal_departure(c, a, b) > cr->tol_normal)) {
+    if (depth < MAX_DEPTH && !within_tolerance(c, a, b, cr)) {
         double m = 0.5 * (a + b);
         return split(c, a, m, cr, depth + 1, out) || split(c, m, b, cr, depth + 1, out) ? -1 : 0;
     }
