@@ -3,6 +3,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include <gsl/gsl_statistics_double.h>
+
 #include "recon/recon_internal.h"
 
 void recon_pca(const vec2 *pts, int n, vec2 *mean, vec2 axes[2], double eig[2])
@@ -46,12 +48,6 @@ static int cmp_h(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* r of the left outline at height h, by linear interpolation, and its slope
  * dr/dh; NAN where the outline is missing, gappy or too flat to compare. */
 static double left_at(const hr_t *L, int nl, double h, double *slope)
@@ -78,14 +74,14 @@ static double left_at(const hr_t *L, int nl, double h, double *slope)
  * residual e = r_right - r_left lies on one side of the true line (above it
  * when the left is washed out, washed = +1; below for the right, -1) and the
  * clean rows lie on it, within the edge noise. Candidates: lines through two
- * rows of an even subsample; score (over every other row): rows within tau of the line, minus four
- * for each row more than tau on the wrong side. A median, or a consensus
- * without the one-sided penalty, fails here: a highlight along most of an
- * edge leaves few clean rows, outvoted by washed-out rows whose error drifts
- * slowly (a line through those passes above the clean rows, which the
- * penalty counts). Returns the best score. */
-static double washed_consensus_line(const double *e, const double *x, int m, int washed, double tau, double *a,
-                                    double *b)
+ * rows of an even subsample; score (over every other row): rows within tau
+ * of the line, minus four for each row more than tau on the wrong side. A
+ * median, or a consensus without the one-sided penalty, fails here: a
+ * highlight along most of an edge leaves few clean rows, outvoted by
+ * washed-out rows whose error drifts slowly (a line through those passes
+ * above the clean rows, which the penalty counts). */
+static void washed_consensus_line(const double *e, const double *x, int m, int washed, double tau, double *a,
+                                  double *b)
 {
     enum { SAMPLES = 32, STRIDE = 2 };
     double xlo = x[0], xhi = x[0], best = -INFINITY;
@@ -107,7 +103,6 @@ static double washed_consensus_line(const double *e, const double *x, int m, int
                 *b = bb;
             }
         }
-    return best;
 }
 
 int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec2 *origin, vec2 *dir, double h_lo,
@@ -168,13 +163,11 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
         if (!washed) {
             for (int i = 0; i < m; i++)
                 tmp[i] = e[i];
-            qsort(tmp, (size_t)m, sizeof *tmp, cmp_double);
-            a = tmp[m / 2];
+            a = gsl_stats_select(tmp, 1, (size_t)m, (size_t)(m / 2));
             b = 0;
             for (int i = 0; i < m; i++)
                 tmp[i] = fabs(e[i] - a);
-            qsort(tmp, (size_t)m, sizeof *tmp, cmp_double);
-            tol = fmax(3 * 1.4826 * tmp[m / 2], 0.5);
+            tol = fmax(3 * 1.4826 * gsl_stats_select(tmp, 1, (size_t)m, (size_t)(m / 2)), 0.5);
             if (iter >= 2)
                 tol = fmin(tol, 1.5);
         }
