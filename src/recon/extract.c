@@ -67,6 +67,12 @@ static const char *border_touched(const uint8_t *m, int w, int h)
     return NULL;
 }
 
+/* Midpoint of two corners (a rim or a base pair). */
+static vec2 pair_midpoint(const vec2 *corners, int a, int b)
+{
+    return v2_scale(v2_add(corners[a], corners[b]), 0.5);
+}
+
 /* Quantile of v[0..n) (GSL's linear-time selection, in a copy in tmp:
  * sorting for one quantile would cost n log n). */
 static double quantile(const double *v, int n, double q, double *tmp)
@@ -258,8 +264,8 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     /* 4. Axis: the line through the corner pairs' midpoints when both pairs
      * are perpendicular to it (within 4°); otherwise the PCA axis through the
      * contour's mean. Either is only the start of the symmetry fit (step 6). */
-    vec2 m_rim = v2_scale(v2_add(res->corners[CORNER_RIM_LEFT], res->corners[CORNER_RIM_RIGHT]), 0.5);
-    vec2 m_base = v2_scale(v2_add(res->corners[CORNER_BASE_LEFT], res->corners[CORNER_BASE_RIGHT]), 0.5);
+    vec2 m_rim = pair_midpoint(res->corners, CORNER_RIM_LEFT, CORNER_RIM_RIGHT);
+    vec2 m_base = pair_midpoint(res->corners, CORNER_BASE_LEFT, CORNER_BASE_RIGHT);
     vec2 dir_c = v2_norm(v2_sub(m_rim, m_base));
     vec2 rim_pair = v2_norm(v2_sub(res->corners[CORNER_RIM_RIGHT], res->corners[CORNER_RIM_LEFT]));
     vec2 base_pair = v2_norm(v2_sub(res->corners[CORNER_BASE_RIGHT], res->corners[CORNER_BASE_LEFT]));
@@ -338,16 +344,16 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     }
     /* The washed-out side's corners are wrong with its outline: mirror the
      * clean side's across the refined axis (the outline is symmetric). */
-    if (washed && res->axis_from_symmetry) {
-        int from = washed > 0 ? 1 : 0;
+    if (washed) { /* set only when the symmetry fit succeeded */
+        static const int pairs[2][2] = {{CORNER_RIM_LEFT, CORNER_RIM_RIGHT}, {CORNER_BASE_LEFT, CORNER_BASE_RIGHT}};
+        int clean = washed > 0 ? 1 : 0; /* index of the clean side in a pair */
         for (int q = 0; q < 2; q++) {
-            int src = q ? (from ? CORNER_BASE_RIGHT : CORNER_BASE_LEFT) : (from ? CORNER_RIM_RIGHT : CORNER_RIM_LEFT);
-            int dst = q ? (from ? CORNER_BASE_LEFT : CORNER_BASE_RIGHT) : (from ? CORNER_RIM_LEFT : CORNER_RIM_RIGHT);
-            vec2 c = res->corners[src], foot = v2_add(origin, v2_scale(dir, v2_dot(v2_sub(c, origin), dir)));
-            res->corners[dst] = v2_sub(v2_scale(foot, 2), c);
+            vec2 c = res->corners[pairs[q][clean]];
+            vec2 foot = v2_add(origin, v2_scale(dir, v2_dot(v2_sub(c, origin), dir)));
+            res->corners[pairs[q][1 - clean]] = v2_sub(v2_scale(foot, 2), c);
         }
-        m_rim = v2_scale(v2_add(res->corners[CORNER_RIM_LEFT], res->corners[CORNER_RIM_RIGHT]), 0.5);
-        m_base = v2_scale(v2_add(res->corners[CORNER_BASE_LEFT], res->corners[CORNER_BASE_RIGHT]), 0.5);
+        m_rim = pair_midpoint(res->corners, CORNER_RIM_LEFT, CORNER_RIM_RIGHT);
+        m_base = pair_midpoint(res->corners, CORNER_BASE_LEFT, CORNER_BASE_RIGHT);
     }
     char why[160];
     if (!recon_check_vessel(res->corners, dir, res->contour, nc, ext, h, why, sizeof why)) {
