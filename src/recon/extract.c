@@ -334,8 +334,8 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     for (int k = 0; k < 2 && !res->axis_from_symmetry; k++) {
         vec2 o = starts_o[first ^ k], d = starts_d[first ^ k];
         double hb = v2_dot(v2_sub(m_base, o), d), ht = v2_dot(v2_sub(m_rim, o), d);
-        if (recon_axis_symmetry(res->silhouette[0], res->n_silhouette[0], res->silhouette[1],
-                                res->n_silhouette[1], &o, &d, hb + 0.05 * (ht - hb) + 2, ht - 0.05 * (ht - hb) - 2, suspect,
+        if (recon_axis_symmetry(res->silhouette[0], res->n_silhouette[0], res->silhouette[1], res->n_silhouette[1],
+                                &o, &d, hb + 0.05 * (ht - hb) + 2, ht - 0.05 * (ht - hb) - 2, suspect,
                                 res->edge_noise_px[suspect > 0] / 1.65, &washed)) {
             origin = o;
             dir = d;
