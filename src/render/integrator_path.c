@@ -19,25 +19,33 @@ static ray3 spawn(const surface_hit *h, vec3 w)
     return (ray3){v3_add(h->p, v3_scale(h->ng, side)), w};
 }
 
+/* The shadow ray from h toward the emitter sample: to the (lifted) light
+ * point with t in [0, 1), or along its direction for a light at infinity. */
+static ray3 shadow_ray(const surface_hit *h, const emitter_sample_rec *es, vec3 target, bool infinite)
+{
+    ray3 r = spawn(h, es->wi);
+    if (!infinite)
+        r.d = v3_sub(target, r.o);
+    return r;
+}
+
 /* The fraction of the emitter sample's light that reaches h: 0 behind an
  * opaque surface; crossing thin sheets (BSDF_STRAIGHT_TRANSMISSION), their
  * straight transmittance each, at most max_sheets of them (-1: any number),
  * so that the emitter stays within the path's max_depth, as a BSDF-sampled
- * path through the same sheets would. */
+ * path through the same sheets would. A scene without sheets asks the
+ * cheaper any-hit question; with sheets, each segment is traced once to its
+ * nearest hit. */
 static rgb transmittance(const struct scene *s, const surface_hit *h, const emitter_sample_rec *es, int max_sheets)
 {
-    ray3 r = spawn(h, es->wi);
     bool infinite = isinf(es->dist);
     vec3 target = es->p;
     if (!infinite && es->eps > 0.0) /* lift the light point toward the receiver */
         target = v3_add(target, v3_scale(es->n, v3_dot(es->n, es->wi) < 0.0 ? es->eps : -es->eps));
     double tmax = infinite ? INFINITY : 1.0 - 1e-7;
-    if (!infinite)
-        r.d = v3_sub(target, r.o);
-    if (!scene_occluded(s, &r, 0.0, tmax))
-        return rgb_gray(1.0);
+    ray3 r = shadow_ray(h, es, target, infinite);
     if (!s->straight_shadows)
-        return rgb_gray(0.0);
+        return rgb_gray(scene_occluded(s, &r, 0.0, tmax) ? 0.0 : 1.0);
     rgb tr = rgb_gray(1.0);
     for (int crossed = 0; max_sheets < 0 || crossed <= max_sheets; crossed++) {
         surface_hit x;
@@ -50,9 +58,7 @@ static rgb transmittance(const struct scene *s, const surface_hit *h, const emit
         tr = rgb_mul(tr, bsdf_straight_transmittance(b, &q));
         if (rgb_is_black(tr))
             return tr;
-        r = spawn(&x, es->wi);
-        if (!infinite)
-            r.d = v3_sub(target, r.o);
+        r = shadow_ray(&x, es, target, infinite);
     }
     return rgb_gray(0.0);
 }
