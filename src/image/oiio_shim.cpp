@@ -76,6 +76,17 @@ static int decode_floats(ImageInput *in, const ImageSpec &spec, float *dst, char
     return 0;
 }
 
+// The returned image's float pixels.
+static int alloc_pixels(image_t *img, size_t n, char *err, size_t errlen)
+{
+    img->data = (float *)std::malloc(n * sizeof(float));
+    if (!img->data) {
+        set_err(err, errlen, "out of memory");
+        return -1;
+    }
+    return 0;
+}
+
 // Size and format fields of an image read from a file of the given spec.
 static int finish_read(image_t *img, const ImageSpec &spec, int width, int height, int channels)
 {
@@ -112,12 +123,8 @@ extern "C" int image_read(const char *path, image_t *img, char *err, size_t errl
     // no ImageBuf, no second copy of the pixels.
     int orientation = spec.get_int_attribute("Orientation", 1);
     if (orientation == 1) {
-        size_t n = (size_t)spec.width * spec.height * spec.nchannels;
-        img->data = (float *)std::malloc(n * sizeof(float));
-        if (!img->data) {
-            set_err(err, errlen, "out of memory");
+        if (alloc_pixels(img, (size_t)spec.width * spec.height * spec.nchannels, err, errlen))
             return -1;
-        }
         if (decode_floats(in.get(), spec, img->data, err, errlen)) {
             image_free(img);
             return -1;
@@ -133,23 +140,16 @@ extern "C" int image_read(const char *path, image_t *img, char *err, size_t errl
 
     // EXIF orientation (2..8): ImageBufAlgo::reorient rotates/flips the pixels
     // so that "up" in the returned image is up in the scene.
-    {
-        buf.specmod().attribute("Orientation", orientation);
-        ImageBuf fixed;
-        if (!ImageBufAlgo::reorient(fixed, buf)) {
-            set_err(err, errlen, "cannot apply EXIF orientation: " + fixed.geterror());
-            return -1;
-        }
-        buf = std::move(fixed);
-    }
-    const ImageSpec &out = buf.spec();
-    size_t n = (size_t)out.width * out.height * out.nchannels;
-    img->data = (float *)std::malloc(n * sizeof(float));
-    if (!img->data) {
-        set_err(err, errlen, "out of memory");
+    buf.specmod().attribute("Orientation", orientation);
+    ImageBuf fixed;
+    if (!ImageBufAlgo::reorient(fixed, buf)) {
+        set_err(err, errlen, "cannot apply EXIF orientation: " + fixed.geterror());
         return -1;
     }
-    buf.get_pixels(ROI(0, out.width, 0, out.height, 0, 1, 0, out.nchannels), TypeDesc::FLOAT, img->data);
+    const ImageSpec &out = fixed.spec();
+    if (alloc_pixels(img, (size_t)out.width * out.height * out.nchannels, err, errlen))
+        return -1;
+    fixed.get_pixels(ROI(0, out.width, 0, out.height, 0, 1, 0, out.nchannels), TypeDesc::FLOAT, img->data);
     return finish_read(img, spec, out.width, out.height, out.nchannels);
 }
 
