@@ -80,7 +80,8 @@ int main(int argc, char **argv)
            t[1][0] / t[1][1]);
 
     static const int segments[] = {16, 64, 256, 1024};
-    crosscheck_params p = {scene, NULL, 0, build_options(0), 2, segments, 4, 4, 0};
+    crosscheck_params p = {.scene_path = scene, .build = build_options(0), .threads = 2, .segments = segments,
+                           .nsegments = 4, .geo_grid = 4};
     crosscheck_result res;
     char err[2048];
     mkdir("out", 0755);
@@ -106,6 +107,10 @@ int main(int argc, char **argv)
     printf("\nfitted slopes:");
     for (int m = 0; m < CROSSCHECK_METRIC_COUNT; m++)
         printf(" %s %.2f%s", crosscheck_metric_name(m), res.fits[m].slope, m + 1 < CROSSCHECK_METRIC_COUNT ? "," : "\n");
+    printf("%s between successive N:", crosscheck_metric_name(CROSSCHECK_PRIMARY_METRIC));
+    for (int i = 1; i < res.nrows; i++)
+        printf(" %.2f", crosscheck_local_slope(res.rows, i, CROSSCHECK_PRIMARY_METRIC));
+    printf("\n");
     printf("report and images: out/bench/crosscheck/\n");
     crosscheck_result_free(&res);
     return 0;

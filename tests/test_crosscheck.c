@@ -97,6 +97,34 @@ static double number(json_t *obj, const char *key)
     return json_number_value(v);
 }
 
+static const char *const metrics[] = {"rel_mse", "mean_abs_diff", "coverage_area", "depth_rel_err",
+                                       "normal_err_deg"};
+/* The report's field name of a metric in a row. */
+static const char *row_key(const char *metric)
+{
+    return strcmp(metric, "coverage_area") ? metric : "coverage_area_px";
+}
+
+/* Each fit's local_slopes are the slopes between successive rows. */
+static void check_local_slopes(json_t *fits, json_t *rows)
+{
+    for (size_t m = 0; m < sizeof metrics / sizeof *metrics; m++) {
+        json_t *local = json_object_get(json_object_get(fits, metrics[m]), "local_slopes");
+        cr_assert_eq(json_array_size(local), json_array_size(rows) - 1, "%s", metrics[m]);
+        for (size_t i = 1; i < json_array_size(rows); i++) {
+            json_t *r0 = json_array_get(rows, i - 1), *r1 = json_array_get(rows, i);
+            double e0 = number(r0, row_key(metrics[m])), e1 = number(r1, row_key(metrics[m]));
+            json_t *v = json_array_get(local, i - 1);
+            if (!(e0 > 0.0 && e1 > 0.0)) {
+                cr_assert(json_is_null(v), "%s: a slope where an error is 0", metrics[m]);
+                continue;
+            }
+            double want = log(e1 / e0) / log(number(r1, "n") / number(r0, "n"));
+            cr_assert_float_eq(json_number_value(v), want, 1e-6 * (1.0 + fabs(want)), "%s", metrics[m]);
+        }
+    }
+}
+
 Test(crosscheck, geometry_converges_as_n_minus_2, .timeout = 120)
 {
     render_fixture f;
@@ -124,6 +152,8 @@ Test(crosscheck, geometry_converges_as_n_minus_2, .timeout = 120)
 
     json_t *rows = json_object_get(rep, "segments");
     cr_assert_eq(json_array_size(rows), 4);
+    cr_assert_eq(number(rep, "fit_from"), 8, "every N is fitted by default");
+    check_local_slopes(fits, rows);
     static const char *keys[] = {"seconds", "rel_mse", "mean_abs_diff", "coverage_pixels", "coverage_rays",
                                  "coverage_area_px", "depth_rel_err", "normal_err_deg"};
     double prev_mad = INFINITY, prev_depth = INFINITY, prev_cov = INFINITY;
@@ -189,6 +219,47 @@ Test(crosscheck, coarse_profile_domains_refined_with_n, .timeout = 120)
     render_fixture_close(&f);
 }
 
+/* --fit-from N fits the slopes over the N >= fit_from only: the report's
+ * slope is the least-squares line through those points and no others. */
+Test(crosscheck, fit_from_restricts_the_fit, .timeout = 60)
+{
+    render_fixture f;
+    char scene[256], dir[256], path[320], err[4096];
+    render_fixture_with_scene(&f, "cylinder", scene_xml, scene, sizeof scene);
+    snprintf(dir, sizeof dir, "%s/xc", f.dir);
+    const char *args[] = {"crosscheck", scene, "--segments", "8,16,32,64", "--fit-from", "16", "-o",
+                          dir,          "--res", "24x20",    "--spp",      "1",          NULL};
+    cr_assert_eq(run_celadon(&f, args, err, sizeof err), 0, "stderr: %s", err);
+    snprintf(path, sizeof path, "%s/report.json", dir);
+    json_error_t jerr;
+    json_t *rep = json_load_file(path, 0, &jerr);
+    cr_assert_not_null(rep, "report.json: %s", jerr.text);
+    cr_assert_eq(number(rep, "fit_from"), 16);
+    json_t *rows = json_object_get(rep, "segments"), *fits = json_object_get(rep, "fits");
+    for (size_t m = 0; m < sizeof metrics / sizeof *metrics; m++) {
+        /* The least-squares slope of the rows with N >= 16 and error > 0. */
+        double sx = 0, sy = 0, sxx = 0, sxy = 0;
+        int k = 0;
+        for (size_t i = 1; i < json_array_size(rows); i++) {
+            double e = number(json_array_get(rows, i), row_key(metrics[m]));
+            if (e > 0.0) {
+                double lx = log10(number(json_array_get(rows, i), "n")), ly = log10(e);
+                sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly, k++;
+            }
+        }
+        json_t *fit = json_object_get(fits, metrics[m]);
+        cr_assert_eq(number(fit, "points"), k, "%s", metrics[m]);
+        if (k >= 2) {
+            double want = (k * sxy - sx * sy) / (k * sxx - sx * sx);
+            cr_assert_float_eq(number(fit, "slope"), want, 1e-9 * (1.0 + fabs(want)), "%s", metrics[m]);
+        }
+    }
+    cr_assert_eq(number(rep, "fitted_slope"), number(json_object_get(fits, "mean_abs_diff"), "slope"));
+    check_local_slopes(fits, rows);
+    json_decref(rep);
+    render_fixture_close(&f);
+}
+
 /* Every bad input exits 2 with one line and creates nothing at DIR. */
 Test(crosscheck, bad_input_exits_2_and_writes_nothing, .timeout = 60)
 {
@@ -209,6 +280,8 @@ Test(crosscheck, bad_input_exits_2_and_writes_nothing, .timeout = 60)
         {"crosscheck", scene, "--segments", "8,16", NULL},
         {"crosscheck", scene, "--segments", "8,16", "-o", dir, "--res", "4x", NULL},
         {"crosscheck", scene, "--segments", "8,16", "-o", dir, "--frobnicate", "1", NULL},
+        {"crosscheck", scene, "--segments", "8,16", "-o", dir, "--fit-from", "9", NULL},
+        {"crosscheck", scene, "--segments", "8,16", "-o", dir, "--fit-from", "x", NULL},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         cr_assert_eq(run_celadon(&f, cases[i], err, sizeof err), 2, "case %zu: stderr: %s", i, err);

@@ -38,6 +38,7 @@ typedef struct {
     const int *segments;       /* N values, >= 3, strictly increasing, at least 2 */
     int nsegments;
     int geo_grid;              /* k: primary rays per pixel side of the geometry metrics */
+    int fit_from;              /* the fits use the N >= fit_from (0: every N); at least two must be */
     int progress;              /* 1: one line per render on stderr */
 } crosscheck_params;
 
@@ -50,7 +51,8 @@ typedef struct {
 } crosscheck_row;
 
 /* Least-squares fit log10(error) = slope log10(N) + intercept over the rows
- * where the error is positive; n_used < 2 means no fit (slope NaN). */
+ * with N >= fit_from where the error is positive; n_used < 2 means no fit
+ * (slope NaN). */
 typedef struct {
     double slope, intercept;
     int n_used;
@@ -70,6 +72,7 @@ enum {
 
 typedef struct {
     int width, height, spp, geo_grid;
+    int fit_from;         /* the smallest N the fits use */
     unsigned long long seed;
     int sor_shapes;
     long long sor_rays;   /* geometry rays whose analytic first hit is an SOR */
@@ -82,6 +85,13 @@ typedef struct {
 /* Name of a metric as in report.json ("rel_mse", ...), and its value in a row. */
 const char *crosscheck_metric_name(int metric);
 double crosscheck_metric_value(const crosscheck_row *row, int metric);
+
+/* The observed order of convergence between rows i - 1 and i (i >= 1):
+ * log(e_i / e_(i-1)) / log(N_i / N_(i-1)), the slope of the log-log plot's
+ * segment; NaN unless both errors are positive. Where it settles near -2 the
+ * meshes are in the asymptotic range, where every error is proportional to
+ * the sagitta; coarser meshes can be outside it (docs/crosscheck.md). */
+double crosscheck_local_slope(const crosscheck_row *rows, int i, int metric);
 
 /* Renders and compares. Writes into outdir (which must exist) analytic.exr,
  * analytic.png, mesh-N.exr and mesh-N.png per N. Returns 0; -2 for bad input

@@ -22,7 +22,8 @@ enum { MAX_DEFINES = 64, MAX_SEGMENTS = 32, PLOT_W = 900, PLOT_H = 600 };
 static void usage(FILE *f)
 {
     fprintf(f, "usage: celadon crosscheck SCENE.xml --segments N1,N2,... -o DIR [--spp N] [--res WxH]\n"
-               "                          [--threads N] [--seed S] [--grid K] [-D name=value]...\n\n"
+               "                          [--threads N] [--seed S] [--grid K] [--fit-from N]\n"
+               "                          [-D name=value]...\n\n"
                "Renders the scene with its SORs intersected exactly and revolved into each N\n"
                "angular segments (same sampler seeds), and measures how the meshed images and\n"
                "first hits converge to the analytic ones (docs/crosscheck.md). DIR receives\n"
@@ -34,6 +35,8 @@ static void usage(FILE *f)
                "  --threads N     OpenMP threads (default: all cores)\n"
                "  --seed S        sampler seed shared by every render (default: the scene's)\n"
                "  --grid K        K x K primary rays per pixel for the geometry metrics (default 4)\n"
+               "  --fit-from N    fit the slopes over the segment counts >= N only (default: all),\n"
+               "                  e.g. to leave out coarse meshes outside the asymptotic range\n"
                "  -D name=value   sets a scene <default> parameter\n");
 }
 
@@ -147,9 +150,15 @@ static int run(crosscheck_params *p, const char *dir)
         remove_tree(staging);
         fprintf(stderr, "celadon: %s\n", err);
     } else {
-        printf("crosscheck: %dx%d, %d spp, analytic %.2f s", res.width, res.height, res.spp, res.analytic_seconds);
+        printf("crosscheck: %dx%d, %d spp, analytic %.2f s; slopes", res.width, res.height, res.spp,
+               res.analytic_seconds);
+        if (res.fit_from > p->segments[0])
+            printf(" over N >= %d", res.fit_from);
         for (int m = 0; m < CROSSCHECK_METRIC_COUNT; m++)
-            printf("%s %s slope %.2f", m ? "," : ";", crosscheck_metric_name(m), res.fits[m].slope);
+            printf("%s %s %.2f", m ? "," : ":", crosscheck_metric_name(m), res.fits[m].slope);
+        printf("\ncrosscheck: %s between successive N:", crosscheck_metric_name(CROSSCHECK_PRIMARY_METRIC));
+        for (int i = 1; i < res.nrows; i++)
+            printf(" %.2f", crosscheck_local_slope(res.rows, i, CROSSCHECK_PRIMARY_METRIC));
         printf("\ncrosscheck: wrote %s/report.json and %s/convergence.png\n", dir, dir);
     }
     crosscheck_result_free(&res);
@@ -161,7 +170,8 @@ int cmd_crosscheck(int argc, char **argv)
     const char *dir = NULL;
     int segments[MAX_SEGMENTS], nseg = 0;
     scene_define defs[MAX_DEFINES];
-    crosscheck_params p = {NULL, defs, 0, scene_build_defaults(), 0, segments, 0, 4, 1};
+    crosscheck_params p = {.defs = defs, .build = scene_build_defaults(), .segments = segments, .geo_grid = 4,
+                           .progress = 1};
     int rc = -1;
     for (int i = 1; i < argc && rc < 0; i++) {
         const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -202,6 +212,10 @@ int cmd_crosscheck(int argc, char **argv)
             if (cli_parse_int(val, 1, 64, &v) != 0)
                 rc = cli_usage_error("crosscheck", "--grid wants an integer from 1 to 64, not '%s'", val);
             p.geo_grid = (int)v;
+        } else if (!strcmp(a, "--fit-from")) {
+            if (cli_parse_int(val, 3, 1000000, &v) != 0)
+                rc = cli_usage_error("crosscheck", "--fit-from wants a segment count from 3 to 1000000, not '%s'", val);
+            p.fit_from = (int)v;
         } else if (!strcmp(a, "-D")) {
             const char *eq = strchr(val, '=');
             if (!eq || eq == val || p.ndefs == MAX_DEFINES)

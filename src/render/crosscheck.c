@@ -148,13 +148,21 @@ static void geometry_metrics(const scene_t *an, const scene_t *me, const crossch
     *sor_rays = on_sor;
 }
 
-static crosscheck_fit fit_metric(const crosscheck_row *rows, int n, int metric)
+double crosscheck_local_slope(const crosscheck_row *rows, int i, int metric)
+{
+    double e0 = crosscheck_metric_value(&rows[i - 1], metric), e1 = crosscheck_metric_value(&rows[i], metric);
+    if (!(e0 > 0.0 && e1 > 0.0 && isfinite(e0) && isfinite(e1)))
+        return NAN;
+    return log(e1 / e0) / log((double)rows[i].segments / rows[i - 1].segments);
+}
+
+static crosscheck_fit fit_metric(const crosscheck_row *rows, int n, int metric, int fit_from)
 {
     double lx[n > 0 ? n : 1], ly[n > 0 ? n : 1];
     int m = 0;
     for (int i = 0; i < n; i++) {
         double v = crosscheck_metric_value(&rows[i], metric);
-        if (v > 0.0 && isfinite(v)) {
+        if (rows[i].segments >= fit_from && v > 0.0 && isfinite(v)) {
             lx[m] = log10((double)rows[i].segments);
             ly[m] = log10(v);
             m++;
@@ -183,6 +191,13 @@ static int check_params(const crosscheck_params *p, char *err, size_t errlen)
         snprintf(err, errlen, "the geometry grid must be from 1 to 64 rays per pixel side");
         return -1;
     }
+    int fitted = 0;
+    for (int i = 0; i < p->nsegments; i++)
+        fitted += p->segments[i] >= p->fit_from;
+    if (fitted < 2) {
+        snprintf(err, errlen, "fitting from N = %d leaves fewer than two segment counts to fit", p->fit_from);
+        return -1;
+    }
     return 0;
 }
 
@@ -205,6 +220,8 @@ int crosscheck_run(const crosscheck_params *p, const char *outdir, crosscheck_re
     const camera_t *cam = scene_camera(an);
     res->width = cam->width, res->height = cam->height;
     res->spp = scene_spp(an), res->seed = scene_seed(an), res->geo_grid = p->geo_grid;
+    for (int i = p->nsegments - 1; i >= 0 && p->segments[i] >= p->fit_from; i--)
+        res->fit_from = p->segments[i];
     int rc = -1;
     float *img_a = NULL;
     res->rows = calloc((size_t)p->nsegments, sizeof *res->rows);
@@ -238,7 +255,7 @@ int crosscheck_run(const crosscheck_params *p, const char *outdir, crosscheck_re
         res->nrows = i + 1;
     }
     for (int m = 0; m < CROSSCHECK_METRIC_COUNT; m++)
-        res->fits[m] = fit_metric(res->rows, res->nrows, m);
+        res->fits[m] = fit_metric(res->rows, res->nrows, m, res->fit_from);
     rc = 0;
 done:
     free(img_a);

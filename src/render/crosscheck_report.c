@@ -32,18 +32,23 @@ int crosscheck_write_report(const crosscheck_result *res, const crosscheck_param
     json_t *rows = json_array(), *fits = json_object();
     for (int i = 0; i < res->nrows; i++)
         json_array_append_new(rows, row_json(&res->rows[i]));
-    for (int m = 0; m < CROSSCHECK_METRIC_COUNT; m++)
+    for (int m = 0; m < CROSSCHECK_METRIC_COUNT; m++) {
+        json_t *local = json_array();
+        for (int i = 1; i < res->nrows; i++)
+            json_array_append_new(local, real_or_null(crosscheck_local_slope(res->rows, i, m)));
         json_object_set_new(fits, crosscheck_metric_name(m),
-                            json_pack("{s:o, s:o, s:i}", "slope", real_or_null(res->fits[m].slope), "intercept",
-                                      real_or_null(res->fits[m].intercept), "points", res->fits[m].n_used));
+                            json_pack("{s:o, s:o, s:i, s:o}", "slope", real_or_null(res->fits[m].slope), "intercept",
+                                      real_or_null(res->fits[m].intercept), "points", res->fits[m].n_used,
+                                      "local_slopes", local));
+    }
     json_t *root = json_pack(
-        "{s:i, s:s, s:i, s:i, s:i, s:I, s:i, s:i, s:I, s:{s:s, s:s, s:f}, s:s, s:o, s:o, s:o, s:s}", "version", 1,
-        "scene", p->scene_path, "width", res->width, "height", res->height, "spp", res->spp, "seed",
+        "{s:i, s:s, s:i, s:i, s:i, s:I, s:i, s:i, s:I, s:{s:s, s:s, s:f}, s:s, s:o, s:i, s:o, s:o, s:s}", "version",
+        1, "scene", p->scene_path, "width", res->width, "height", res->height, "spp", res->spp, "seed",
         (json_int_t)res->seed, "geo_grid", res->geo_grid, "sor_shapes", res->sor_shapes, "sor_rays",
         (json_int_t)res->sor_rays, "analytic", "image", "analytic.exr", "png", "analytic.png", "seconds",
         res->analytic_seconds, "fitted_slope_metric", crosscheck_metric_name(CROSSCHECK_PRIMARY_METRIC),
-        "fitted_slope", real_or_null(res->fits[CROSSCHECK_PRIMARY_METRIC].slope), "fits", fits, "segments", rows,
-        "plot", "convergence.png");
+        "fitted_slope", real_or_null(res->fits[CROSSCHECK_PRIMARY_METRIC].slope), "fit_from", res->fit_from, "fits",
+        fits, "segments", rows, "plot", "convergence.png");
     if (!root) {
         snprintf(err, errlen, "cannot write %s: the scene path is not UTF-8", path);
         return -1;
@@ -70,19 +75,25 @@ int crosscheck_write_plot(const crosscheck_result *res, const char *path, int pl
         const crosscheck_fit *f = &res->fits[m];
         for (int i = 0; i < n; i++)
             y[m][i] = crosscheck_metric_value(&res->rows[i], m);
-        /* The fitted line spans the points it was fitted to (error > 0). */
-        int first = -1, last = -1;
-        for (int i = 0; i < n; i++)
-            if (y[m][i] > 0.0 && isfinite(y[m][i]))
+        /* The fitted line spans the points it was fitted to (N >= fit_from,
+         * error > 0). */
+        int first = -1, last = -1, in_range = 0;
+        for (int i = 0; i < n; i++) {
+            in_range += x[i] >= res->fit_from;
+            if (x[i] >= res->fit_from && y[m][i] > 0.0 && isfinite(y[m][i]))
                 last = i, first = first < 0 ? i : first;
-        int k0 = snprintf(labels[m], sizeof labels[m], "%s: ", crosscheck_metric_name(m));
+        }
+        char *lab = labels[m];
+        size_t room = sizeof labels[m];
+        int k = snprintf(lab, room, "%s: ", crosscheck_metric_name(m));
         if (f->n_used < 2)
-            snprintf(labels[m] + k0, sizeof labels[m] - (size_t)k0, "no fit");
-        else if (f->n_used < n)
-            snprintf(labels[m] + k0, sizeof labels[m] - (size_t)k0, "slope %.2f (%d of %d points > 0)", f->slope,
-                     f->n_used, n);
+            k += snprintf(lab + k, room - (size_t)k, "no fit");
         else
-            snprintf(labels[m] + k0, sizeof labels[m] - (size_t)k0, "slope %.2f", f->slope);
+            k += snprintf(lab + k, room - (size_t)k, "slope %.2f", f->slope);
+        if (f->n_used >= 2 && in_range < n)
+            k += snprintf(lab + k, room - (size_t)k, " (N >= %d)", res->fit_from);
+        if (f->n_used >= 2 && f->n_used < in_range)
+            snprintf(lab + k, room - (size_t)k, " (%d of %d points > 0)", f->n_used, in_range);
         s[ns++] = (plot_series){labels[m], x, y[m], n, PLOT_POINTS, {colors[m][0], colors[m][1], colors[m][2]}};
         if (f->n_used >= 2) {
             for (int k = 0; k < 2; k++) {
@@ -92,12 +103,13 @@ int crosscheck_write_plot(const crosscheck_result *res, const char *path, int pl
             s[ns++] = (plot_series){NULL, fx[m], fy[m], 2, PLOT_LINE, {colors[m][0], colors[m][1], colors[m][2]}};
         }
     }
-    /* N^-2 through the primary metric's first point. */
+    /* N^-2 over every N, through the primary metric's fitted line at the
+     * first N fitted. */
     const crosscheck_fit *pf = &res->fits[CROSSCHECK_PRIMARY_METRIC];
     if (n > 0 && pf->n_used >= 2) {
+        double n0 = res->fit_from, y0 = pow(10.0, pf->intercept + pf->slope * log10(n0));
         rx[0] = x[0], rx[1] = x[n - 1];
-        double y0 = pow(10.0, pf->intercept + pf->slope * log10(rx[0]));
-        ry[0] = y0, ry[1] = y0 * pow(rx[1] / rx[0], -2.0);
+        ry[0] = y0 * pow(rx[0] / n0, -2.0), ry[1] = y0 * pow(rx[1] / n0, -2.0);
         s[ns++] = (plot_series){"reference N^-2", rx, ry, 2, PLOT_LINE | PLOT_DASHED, {0.35, 0.35, 0.35}};
     }
     char title[160];
