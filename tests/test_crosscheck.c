@@ -97,6 +97,18 @@ static double number(json_t *obj, const char *key)
     return json_number_value(v);
 }
 
+/* Runs a crosscheck that must succeed and returns its report.json. */
+static json_t *crosscheck_report(const render_fixture *f, const char *const *args, const char *dir)
+{
+    char path[320], err[4096];
+    cr_assert_eq(run_celadon(f, args, err, sizeof err), 0, "stderr: %s", err);
+    snprintf(path, sizeof path, "%s/report.json", dir);
+    json_error_t jerr;
+    json_t *rep = json_load_file(path, 0, &jerr);
+    cr_assert_not_null(rep, "report.json: %s", jerr.text);
+    return rep;
+}
+
 static const char *const metrics[] = {"rel_mse", "mean_abs_diff", "coverage_area", "depth_rel_err",
                                        "normal_err_deg"};
 /* The report's field name of a metric in a row. */
@@ -132,12 +144,7 @@ Test(crosscheck, geometry_converges_as_n_minus_2, .timeout = 120)
     render_fixture_with_scene(&f, "cylinder", scene_xml, scene, sizeof scene);
     snprintf(dir, sizeof dir, "%s/xc", f.dir);
     const char *args[] = {"crosscheck", scene, "--segments", "8,16,32,64", "-o", dir, "--threads", "2", NULL};
-    cr_assert_eq(run_celadon(&f, args, err, sizeof err), 0, "stderr: %s", err);
-
-    snprintf(path, sizeof path, "%s/report.json", dir);
-    json_error_t jerr;
-    json_t *rep = json_load_file(path, 0, &jerr);
-    cr_assert_not_null(rep, "report.json: %s", jerr.text);
+    json_t *rep = crosscheck_report(&f, args, dir);
     cr_assert_eq(number(rep, "width"), 48);
     cr_assert_eq(number(rep, "height"), 40);
     cr_assert_eq(number(rep, "sor_shapes"), 1);
@@ -202,16 +209,12 @@ Test(crosscheck, coarse_profile_domains_refined_with_n, .timeout = 120)
     render_fixture f;
     render_fixture_open(&f);
     render_write_profile_domains(&f, "profile.json", "plum", 3);
-    char scene[256], dir[256], path[320], err[4096];
+    char scene[256], dir[256];
     render_write_file(&f, "scene.xml", scene_xml, scene, sizeof scene);
     snprintf(dir, sizeof dir, "%s/xc", f.dir);
     const char *args[] = {"crosscheck", scene,  "--segments", "16,32,64,128", "-o", dir, "--threads",
                           "2",          "--spp", "1",         NULL};
-    cr_assert_eq(run_celadon(&f, args, err, sizeof err), 0, "stderr: %s", err);
-    snprintf(path, sizeof path, "%s/report.json", dir);
-    json_error_t jerr;
-    json_t *rep = json_load_file(path, 0, &jerr);
-    cr_assert_not_null(rep, "report.json: %s", jerr.text);
+    json_t *rep = crosscheck_report(&f, args, dir);
     json_t *fits = json_object_get(rep, "fits");
     double depth_slope = number(json_object_get(fits, "depth_rel_err"), "slope");
     cr_assert(depth_slope > -2.3 && depth_slope < -1.7, "depth error slope %g, expected about -2", depth_slope);
@@ -224,16 +227,12 @@ Test(crosscheck, coarse_profile_domains_refined_with_n, .timeout = 120)
 Test(crosscheck, fit_from_restricts_the_fit, .timeout = 60)
 {
     render_fixture f;
-    char scene[256], dir[256], path[320], err[4096];
+    char scene[256], dir[256];
     render_fixture_with_scene(&f, "cylinder", scene_xml, scene, sizeof scene);
     snprintf(dir, sizeof dir, "%s/xc", f.dir);
     const char *args[] = {"crosscheck", scene, "--segments", "8,16,32,64", "--fit-from", "16", "-o",
                           dir,          "--res", "24x20",    "--spp",      "1",          NULL};
-    cr_assert_eq(run_celadon(&f, args, err, sizeof err), 0, "stderr: %s", err);
-    snprintf(path, sizeof path, "%s/report.json", dir);
-    json_error_t jerr;
-    json_t *rep = json_load_file(path, 0, &jerr);
-    cr_assert_not_null(rep, "report.json: %s", jerr.text);
+    json_t *rep = crosscheck_report(&f, args, dir);
     cr_assert_eq(number(rep, "fit_from"), 16);
     json_t *rows = json_object_get(rep, "segments"), *fits = json_object_get(rep, "fits");
     for (size_t m = 0; m < sizeof metrics / sizeof *metrics; m++) {
