@@ -93,6 +93,21 @@ double crosscheck_metric_value(const crosscheck_row *row, int metric);
  * the sagitta; coarser meshes can be outside it (docs/crosscheck.md). */
 double crosscheck_local_slope(const crosscheck_row *rows, int i, int metric);
 
+/* A stall: over the finest factor of four in N (from the largest N at most
+ * a quarter of the last, or the first N, to the last) the image error
+ * (mean_abs_diff) fell more slowly than N^-1 while the depth error fell
+ * faster than N^-1.5. Something no segment count changes is then left in
+ * the images: coincident surfaces (a vessel standing exactly in another
+ * surface z-fights with it; docs/crosscheck.md), or the Monte Carlo noise
+ * of the few samples that changed course (more spp or pixels). */
+typedef struct {
+    int found;              /* 1: the image error stalls */
+    int n_from, n_to;       /* the span of N it was measured over */
+    double image_slope, depth_slope;
+} crosscheck_stall;
+
+crosscheck_stall crosscheck_find_stall(const crosscheck_row *rows, int nrows);
+
 /* Renders and compares. Writes into outdir (which must exist) analytic.exr,
  * analytic.png, mesh-N.exr and mesh-N.png per N. Returns 0; -2 for bad input
  * (unreadable scene, a scene without an SOR, bad parameters) with one line

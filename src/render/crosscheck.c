@@ -148,12 +148,34 @@ static void geometry_metrics(const scene_t *an, const scene_t *me, const crossch
     *sor_rays = on_sor;
 }
 
-double crosscheck_local_slope(const crosscheck_row *rows, int i, int metric)
+/* The slope of a metric's log-log chord between rows i and j. */
+static double chord_slope(const crosscheck_row *rows, int i, int j, int metric)
 {
-    double e0 = crosscheck_metric_value(&rows[i - 1], metric), e1 = crosscheck_metric_value(&rows[i], metric);
+    double e0 = crosscheck_metric_value(&rows[i], metric), e1 = crosscheck_metric_value(&rows[j], metric);
     if (!(e0 > 0.0 && e1 > 0.0 && isfinite(e0) && isfinite(e1)))
         return NAN;
-    return log(e1 / e0) / log((double)rows[i].segments / rows[i - 1].segments);
+    return log(e1 / e0) / log((double)rows[j].segments / rows[i].segments);
+}
+
+double crosscheck_local_slope(const crosscheck_row *rows, int i, int metric)
+{
+    return chord_slope(rows, i - 1, i, metric);
+}
+
+crosscheck_stall crosscheck_find_stall(const crosscheck_row *rows, int nrows)
+{
+    crosscheck_stall st = {0, 0, 0, NAN, NAN};
+    if (nrows < 2)
+        return st;
+    int last = nrows - 1, from = 0;
+    for (int i = 0; i < last; i++)
+        if (4 * rows[i].segments <= rows[last].segments)
+            from = i;
+    st.n_from = rows[from].segments, st.n_to = rows[last].segments;
+    st.image_slope = chord_slope(rows, from, last, CROSSCHECK_MEAN_ABS_DIFF);
+    st.depth_slope = chord_slope(rows, from, last, CROSSCHECK_DEPTH_REL_ERR);
+    st.found = st.image_slope > -1.0 && st.depth_slope < -1.5;
+    return st;
 }
 
 static crosscheck_fit fit_metric(const crosscheck_row *rows, int n, int metric, int fit_from)
