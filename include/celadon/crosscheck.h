@@ -70,29 +70,6 @@ enum {
 /* The metric of report.json's fitted_slope: the image error itself. */
 #define CROSSCHECK_PRIMARY_METRIC CROSSCHECK_MEAN_ABS_DIFF
 
-typedef struct {
-    int width, height, spp, geo_grid;
-    int fit_from;         /* the smallest N the fits use */
-    unsigned long long seed;
-    int sor_shapes;
-    long long sor_rays;   /* geometry rays whose analytic first hit is an SOR */
-    double analytic_seconds;
-    int nrows;
-    crosscheck_row *rows;
-    crosscheck_fit fits[CROSSCHECK_METRIC_COUNT];
-} crosscheck_result;
-
-/* Name of a metric as in report.json ("rel_mse", ...), and its value in a row. */
-const char *crosscheck_metric_name(int metric);
-double crosscheck_metric_value(const crosscheck_row *row, int metric);
-
-/* The observed order of convergence between rows i - 1 and i (i >= 1):
- * log(e_i / e_(i-1)) / log(N_i / N_(i-1)), the slope of the log-log plot's
- * segment; NaN unless both errors are positive. Where it settles near -2 the
- * meshes are in the asymptotic range, where every error is proportional to
- * the sagitta; coarser meshes can be outside it (docs/crosscheck.md). */
-double crosscheck_local_slope(const crosscheck_row *rows, int i, int metric);
-
 /* A stall: over the finest factor of four in N (from the largest N at most
  * a quarter of the last, or the first N, to the last) the image error
  * (mean_abs_diff) fell more slowly than N^-1 while the depth error fell
@@ -106,7 +83,29 @@ typedef struct {
     double image_slope, depth_slope;
 } crosscheck_stall;
 
-crosscheck_stall crosscheck_find_stall(const crosscheck_row *rows, int nrows);
+typedef struct {
+    int width, height, spp, geo_grid;
+    int fit_from;         /* the smallest N the fits use */
+    unsigned long long seed;
+    int sor_shapes;
+    long long sor_rays;   /* geometry rays whose analytic first hit is an SOR */
+    double analytic_seconds;
+    int nrows;
+    crosscheck_row *rows;
+    crosscheck_fit fits[CROSSCHECK_METRIC_COUNT];
+    crosscheck_stall stall;
+} crosscheck_result;
+
+/* Name of a metric as in report.json ("rel_mse", ...), and its value in a row. */
+const char *crosscheck_metric_name(int metric);
+double crosscheck_metric_value(const crosscheck_row *row, int metric);
+
+/* The observed order of convergence between rows i - 1 and i (i >= 1):
+ * log(e_i / e_(i-1)) / log(N_i / N_(i-1)), the slope of the log-log plot's
+ * segment; NaN unless both errors are positive. Where it settles near -2 the
+ * meshes are in the asymptotic range, where every error is proportional to
+ * the sagitta; coarser meshes can be outside it (docs/crosscheck.md). */
+double crosscheck_local_slope(const crosscheck_row *rows, int i, int metric);
 
 /* Renders and compares. Writes into outdir (which must exist) analytic.exr,
  * analytic.png, mesh-N.exr and mesh-N.png per N. Returns 0; -2 for bad input

@@ -160,14 +160,14 @@ static int run(crosscheck_params *p, const char *dir)
         for (int i = 1; i < res.nrows; i++)
             printf(" %.2f", crosscheck_local_slope(res.rows, i, CROSSCHECK_PRIMARY_METRIC));
         printf("\ncrosscheck: wrote %s/report.json and %s/convergence.png\n", dir, dir);
-        crosscheck_stall st = crosscheck_find_stall(res.rows, res.nrows);
-        if (st.found)
+        const crosscheck_stall *st = &res.stall;
+        if (st->found)
             fprintf(stderr,
                     "crosscheck: note: from N = %d to %d the image error fell as N^%.2f while the depth error fell "
                     "as N^%.2f: something no segment count changes is left in the images: coincident surfaces "
                     "(z-fighting, e.g. a vessel standing exactly in another surface) or the noise of the few "
                     "samples that changed course (more --spp); docs/crosscheck.md\n",
-                    st.n_from, st.n_to, st.image_slope, st.depth_slope);
+                    st->n_from, st->n_to, st->image_slope, st->depth_slope);
     }
     crosscheck_result_free(&res);
     return rc == 0 ? 0 : rc == -2 ? 2 : 1;

@@ -41,14 +41,13 @@ int crosscheck_write_report(const crosscheck_result *res, const crosscheck_param
                                       real_or_null(res->fits[m].intercept), "points", res->fits[m].n_used,
                                       "local_slopes", local));
     }
-    crosscheck_stall st = crosscheck_find_stall(res->rows, res->nrows);
-    json_t *stall = st.found ? json_pack("{s:i, s:i, s:o, s:o}", "from", st.n_from, "to", st.n_to, "image_slope",
-                                         real_or_null(st.image_slope), "depth_slope", real_or_null(st.depth_slope))
-                             : json_null();
+    const crosscheck_stall *st = &res->stall;
+    json_t *stall = st->found ? json_pack("{s:i, s:i, s:o, s:o}", "from", st->n_from, "to", st->n_to, "image_slope",
+                                          real_or_null(st->image_slope), "depth_slope", real_or_null(st->depth_slope))
+                              : json_null();
     json_t *root = json_pack(
         "{s:i, s:s, s:i, s:i, s:i, s:I, s:i, s:i, s:I, s:{s:s, s:s, s:f}, s:s, s:o, s:i, s:o, s:o, s:o, s:s}",
-        "version",
-        1, "scene", p->scene_path, "width", res->width, "height", res->height, "spp", res->spp, "seed",
+        "version", 1, "scene", p->scene_path, "width", res->width, "height", res->height, "spp", res->spp, "seed",
         (json_int_t)res->seed, "geo_grid", res->geo_grid, "sor_shapes", res->sor_shapes, "sor_rays",
         (json_int_t)res->sor_rays, "analytic", "image", "analytic.exr", "png", "analytic.png", "seconds",
         res->analytic_seconds, "fitted_slope_metric", crosscheck_metric_name(CROSSCHECK_PRIMARY_METRIC),
