@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "celadon/json_file.h"
+#include "core/core.h"
 
 enum { PROFILE_VERSION = 1 };
 

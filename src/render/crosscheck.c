@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "celadon/crosscheck.h"
-#include "celadon/progress.h"
+#include "core/core.h"
 #include "celadon/render.h"
 #include "render/scene_impl.h"
 

@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "celadon/json_file.h"
+#include "core/core.h"
 #include "celadon/crosscheck.h"
 #include "celadon/plot_loglog.h"
 

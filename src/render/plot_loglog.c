@@ -6,7 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "celadon/atomic_file.h"
+#include "core/core.h"
 #include "celadon/plot_loglog.h"
 
 typedef struct {

@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "celadon/progress.h"
+#include "core/core.h"
 #include "celadon/render.h"
 
 enum { TILE = 16, AOV_MAX = 7 };

@@ -1,0 +1,13 @@
+/* The plumbing the tools share, not part of the product's API: output files
+ * and folders that appear whole or not at all, JSON documents written that
+ * way, and the progress bar. This is src/core's interface: other folders
+ * include this header, not the ones it gathers (one per concept). */
+#ifndef CELADON_CORE_H
+#define CELADON_CORE_H
+
+#include "core/atomic_file.h"
+#include "core/folder.h"
+#include "core/json_file.h"
+#include "core/progress.h"
+
+#endif
