@@ -28,11 +28,17 @@ typedef struct {
 
 scene_build_options scene_build_defaults(void);
 
+/* The declaration of every plugin the renderer builds (scene_xml.h), the
+ * lookup scene_desc_create_from_file checks scene files with; and the i-th
+ * of them, NULL past the end. */
+const scene_plugin_decl *scene_plugin_find(scene_class cls, const char *type);
+const scene_plugin_decl *scene_plugin_at(int i);
+
 /* Builds a scene from a loaded description. Returns NULL with one line
  * "file:line: problem" in err on any defect (unsupported combination, bad
  * value, unreadable mesh, profile or image). */
 scene_t *scene_build(scene_desc *desc, const scene_build_options *opt, char *err, size_t errlen);
-/* scene_xml_load + scene_build. */
+/* scene_desc_create_from_file (with scene_plugin_find) + scene_build. */
 scene_t *scene_load(const char *path, const scene_define *defs, int ndefs, const scene_build_options *opt,
                     char *err, size_t errlen);
 void scene_free(scene_t *s);

@@ -380,11 +380,11 @@ scene_t *scene_build(scene_desc *desc, const scene_build_options *opt, char *err
 scene_t *scene_load(const char *path, const scene_define *defs, int ndefs, const scene_build_options *opt,
                     char *err, size_t errlen)
 {
-    scene_desc *d = scene_xml_load(path, defs, ndefs, err, errlen);
+    scene_desc *d = scene_desc_create_from_file(path, defs, ndefs, scene_plugin_find, err, errlen);
     if (!d)
         return NULL;
     scene_t *s = scene_build(d, opt, err, errlen);
-    scene_desc_free(d);
+    scene_desc_destroy(d);
     return s;
 }
 

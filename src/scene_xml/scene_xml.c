@@ -1,5 +1,5 @@
-/* The scene parser: documents, includes, defaults, objects, references and
- * validation against the plugin table (scene_xml_schema.c). */
+/* The scene reader: documents, includes, defaults, objects, references and
+ * validation against the plugin declarations the caller's lookup gives. */
 #include <errno.h>
 #include <libgen.h>
 #include <libxml/parser.h>
@@ -9,8 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "render/scene_xml_internal.h"
-#include "render/scene_xml_schema.h"
+#include "scene_xml/scene_xml_internal.h"
 
 static const char *class_tags[SCENE_CLASS_COUNT] = {
     "scene", "sensor", "film", "sampler", "rfilter", "integrator", "shape", "bsdf", "texture", "emitter"};
@@ -81,7 +80,7 @@ static void free_obj(scene_obj *o)
     free(o);
 }
 
-void scene_desc_free(scene_desc *d)
+void scene_desc_destroy(scene_desc *d)
 {
     if (!d)
         return;
@@ -146,13 +145,13 @@ static int add_prop(scene_ctx *c, scene_obj *o, scene_prop *p)
 {
     char what[160], allowed[160];
     describe(o, what, sizeof what);
-    const schema_plugin *sp = schema_find(o->cls, o->type);
-    const schema_param *par = schema_param_find(sp, p->name);
+    const scene_plugin_decl *sp = c->plugins(o->cls, o->type);
+    const scene_param_decl *par = schema_param_find(sp, p->name);
     int rc = 0;
     const scene_prop *dup = find_prop(o, p->name);
     if (!par) {
         rc = scene_fail(c, p->line, "unknown parameter '%s' for %s", p->name, what);
-    } else if (!(par->types & PT(p->type))) {
+    } else if (!(par->types & (1u << p->type))) {
         schema_types_text(par->types, allowed, sizeof allowed);
         rc = scene_fail(c, p->line, "parameter '%s' of %s must be %s, not <%s>", p->name, what, allowed,
                         schema_type_tag(p->type));
@@ -162,7 +161,7 @@ static int add_prop(scene_ctx *c, scene_obj *o, scene_prop *p)
     } else if (p->type == SCENE_STRING && par->choices && !schema_choice_ok(par->choices, p->value.s)) {
         rc = scene_fail(c, p->line, "bad value '%s' for '%s' of %s (one of: %s)", p->value.s, p->name, what,
                         par->choices);
-    } else if (p->type == SCENE_STRING && (par->flags & PF_FILE)) {
+    } else if (p->type == SCENE_STRING && (par->flags & PARAM_FILE)) {
         char *path = resolve_path(p->file, p->value.s);
         rc = check_file(c, p->line, p->value.s, path);
         free(p->value.s);
@@ -195,13 +194,15 @@ static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char 
         p.value.obj = child;
         return add_prop(c, parent, &p);
     }
-    const schema_child *rule = schema_child_find(schema_find(parent->cls, parent->type), child->cls);
+    const scene_child_decl *rule = schema_child_find(c->plugins(parent->cls, parent->type), child->cls);
     if (!rule)
         return scene_fail(c, line, "%s cannot contain a <%s>", pw, scene_class_name(child->cls));
-    if (child->cls == SCENE_EMITTER && (parent->cls == SCENE_SHAPE) != (strcmp(child->type, "area") == 0))
-        return scene_fail(c, line, parent->cls == SCENE_SHAPE ? "%s: only an 'area' emitter can be attached to a shape"
-                                                              : "%s must be nested in a <shape>",
-                          parent->cls == SCENE_SHAPE ? pw : cw);
+    if (rule->only_type && strcmp(child->type, rule->only_type) != 0)
+        return scene_fail(c, line, "%s: only an '%s' %s can be attached to a %s", pw, rule->only_type,
+                          scene_class_name(child->cls), scene_class_name(parent->cls));
+    scene_class host = c->plugins(child->cls, child->type)->host;
+    if (host != SCENE_SCENE && parent->cls != host)
+        return scene_fail(c, line, "%s must be nested in a <%s>", cw, scene_class_name(host));
     if (scene_obj_children(parent, child->cls, NULL, 0) >= rule->max)
         return scene_fail(c, line, "%s takes at most %d <%s>", pw, rule->max, scene_class_name(child->cls));
     parent->children = xrealloc(parent->children, sizeof(scene_obj *) * (size_t)(parent->nchildren + 1));
@@ -222,14 +223,14 @@ static int validate_obj(scene_ctx *c, const scene_obj *o)
 {
     char what[160];
     describe(o, what, sizeof what);
-    const schema_plugin *sp = schema_find(o->cls, o->type);
+    const scene_plugin_decl *sp = c->plugins(o->cls, o->type);
     const char *saved = c->file;
     c->file = o->file;
     int rc = 0;
-    for (const schema_param *q = sp->params; q->name && rc == 0; q++)
-        if ((q->flags & PF_REQUIRED) && !find_prop(o, q->name))
+    for (const scene_param_decl *q = sp->params; q && q->name && rc == 0; q++)
+        if ((q->flags & PARAM_REQUIRED) && !find_prop(o, q->name))
             rc = scene_fail(c, o->line, "%s needs the parameter '%s'", what, q->name);
-    for (const schema_child *r = sp->children; r->max > 0 && rc == 0; r++)
+    for (const scene_child_decl *r = sp->children; r && r->max > 0 && rc == 0; r++)
         if (scene_obj_children(o, r->cls, NULL, 0) < r->min)
             rc = scene_fail(c, o->line, "%s needs at least %d nested <%s>", what, r->min, scene_class_name(r->cls));
     if (rc == 0 && sp->exclusive[0] && find_prop(o, sp->exclusive[0]) && find_prop(o, sp->exclusive[1]))
@@ -391,7 +392,7 @@ static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_o
     if (scene_check_attrs(c, n, "type|id|name") != 0 || scene_attr_req(c, n, "type", &type) != 0 ||
         scene_attr(c, n, "id", &id) != 0 || scene_attr(c, n, "name", &name) != 0)
         goto done;
-    if (!schema_find(cls, type)) {
+    if (!c->plugins(cls, type)) {
         scene_fail(c, line, "unknown plugin '%s' for <%s>", type, scene_class_name(cls));
         goto done;
     }
@@ -546,10 +547,11 @@ static int finish(scene_ctx *c)
 }
 
 static scene_desc *load(const char *xml, size_t len, const char *path, const scene_define *defs, int ndefs,
-                        char *err, size_t errlen)
+                        scene_plugin_lookup plugins, char *err, size_t errlen)
 {
     xmlInitParser();
     scene_ctx c = {0};
+    c.plugins = plugins;
     c.d = calloc(1, sizeof *c.d);
     if (!c.d)
         abort();
@@ -589,19 +591,20 @@ static scene_desc *load(const char *xml, size_t len, const char *path, const sce
     free(c.params);
     free(c.refs);
     if (rc != 0) {
-        scene_desc_free(c.d);
+        scene_desc_destroy(c.d);
         return NULL;
     }
     return c.d;
 }
 
-scene_desc *scene_xml_parse(const char *xml, size_t len, const char *path, const scene_define *defs, int ndefs,
-                            char *err, size_t errlen)
+scene_desc *scene_desc_create_from_text(const char *xml, size_t len, const char *path, const scene_define *defs,
+                                        int ndefs, scene_plugin_lookup plugins, char *err, size_t errlen)
 {
-    return load(xml, len, path, defs, ndefs, err, errlen);
+    return load(xml, len, path, defs, ndefs, plugins, err, errlen);
 }
 
-scene_desc *scene_xml_load(const char *path, const scene_define *defs, int ndefs, char *err, size_t errlen)
+scene_desc *scene_desc_create_from_file(const char *path, const scene_define *defs, int ndefs,
+                                        scene_plugin_lookup plugins, char *err, size_t errlen)
 {
     char *buf;
     size_t len;
@@ -609,7 +612,7 @@ scene_desc *scene_xml_load(const char *path, const scene_define *defs, int ndefs
         snprintf(err, errlen, "%s: cannot read scene: %s", path, strerror(errno));
         return NULL;
     }
-    scene_desc *d = load(buf, len, path, defs, ndefs, err, errlen);
+    scene_desc *d = load(buf, len, path, defs, ndefs, plugins, err, errlen);
     free(buf);
     return d;
 }

@@ -10,8 +10,7 @@
 #include <string.h>
 #include <strings.h>
 
-#include "render/scene_xml_internal.h"
-#include "render/scene_xml_schema.h"
+#include "scene_xml/scene_xml_internal.h"
 
 int scene_fail(scene_ctx *c, int line, const char *fmt, ...)
 {

@@ -1,4 +1,4 @@
-/* Parser state shared by the scene_xml*.c files. */
+/* Parser state and declaration helpers shared by the scene_xml*.c files. */
 #ifndef CELADON_SCENE_XML_INTERNAL_H
 #define CELADON_SCENE_XML_INTERNAL_H
 
@@ -32,6 +32,7 @@ typedef struct {
 
 typedef struct {
     scene_desc *d;
+    scene_plugin_lookup plugins;
     scene_param *params;
     int nparams;
     scene_pending_ref *refs;
@@ -69,5 +70,15 @@ int scene_parse_property(scene_ctx *c, const xmlNode *n, scene_prop *p);
 /* Whether tag names a property element. */
 int scene_is_property_tag(const char *tag);
 void scene_prop_clear(scene_prop *p);
+
+/* ------------------------------------------------ reading the declarations */
+const scene_param_decl *schema_param_find(const scene_plugin_decl *p, const char *name);
+const scene_child_decl *schema_child_find(const scene_plugin_decl *p, scene_class cls);
+/* Whether word is one of the '|'-separated choices. */
+int schema_choice_ok(const char *choices, const char *word);
+/* "float, rgb or texture": the allowed types as words. */
+void schema_types_text(unsigned types, char *buf, size_t len);
+/* The XML tag of a property type: "float", "rgb", ...; "texture" for OBJECT. */
+const char *schema_type_tag(scene_prop_type t);
 
 #endif

@@ -1,4 +1,6 @@
-/* Typed access to a loaded scene description, with consumption tracking. */
+/* Typed access to a loaded scene description, with consumption tracking,
+ * and messages about its objects. */
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -136,4 +138,15 @@ int scene_obj_unconsumed(const scene_obj *o, char *msg, size_t msglen)
         if (scene_obj_unconsumed(o->children[i], msg, msglen))
             return 1;
     return 0;
+}
+
+int scene_obj_error(const scene_obj *o, char *err, size_t errlen, const char *fmt, ...)
+{
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    snprintf(err, errlen, "%s:%d: %s", o->file, o->line, msg);
+    return -1;
 }
