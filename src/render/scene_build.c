@@ -183,8 +183,7 @@ static int add_emitter(struct scene *s, emitter_t e)
     return 0;
 }
 
-static int build_shape(struct scene *s, scene_obj *o, const scene_build_options *opt, const bsdf_t **default_bsdf,
-                       char *err, size_t errlen)
+static int build_shape(struct scene *s, scene_obj *o, const scene_build_options *opt, char *err, size_t errlen)
 {
     shape_t *sh = &s->shapes[s->nshapes];
     memset(sh, 0, sizeof *sh);
@@ -198,28 +197,7 @@ static int build_shape(struct scene *s, scene_obj *o, const scene_build_options 
     }
     s->nshapes++;
     scene_obj *bo = scene_obj_child(o, SCENE_BSDF);
-    if (bo) {
-        sh->bsdf = scene_build_bsdf(s, bo, err, errlen);
-    } else {
-        if (!*default_bsdf) {
-            bsdf_diffuse_params p = bsdf_diffuse_defaults();
-            char why[256];
-            bsdf_t *b = bsdf_create_diffuse(&p, why, sizeof why);
-            bsdf_t **a = b ? realloc(s->bsdfs, sizeof *a * (size_t)(s->nbsdfs + 1)) : NULL;
-            const scene_obj **k = a ? realloc(s->bsdf_keys, sizeof *k * (size_t)(s->nbsdfs + 1)) : NULL;
-            if (a)
-                s->bsdfs = a;
-            if (!k) {
-                bsdf_free(b);
-                FAIL(o, "out of memory");
-            }
-            s->bsdf_keys = k;
-            k[s->nbsdfs] = NULL;
-            a[s->nbsdfs++] = b;
-            *default_bsdf = b;
-        }
-        sh->bsdf = *default_bsdf;
-    }
+    sh->bsdf = bo ? bsdf_set_get(&s->bsdfs, bo, err, errlen) : bsdf_set_default(&s->bsdfs, o, err, errlen);
     if (!sh->bsdf)
         return -1;
     scene_obj *eo = scene_obj_child(o, SCENE_EMITTER);
@@ -228,7 +206,7 @@ static int build_shape(struct scene *s, scene_obj *o, const scene_build_options 
             FAIL(eo, "only an area emitter can be attached to a shape");
         emitter_t e = {.kind = EMITTER_AREA, .shape = s->nshapes - 1};
         scene_obj *tex = scene_obj_texture(eo, "radiance");
-        if (tex && !(e.texture = scene_build_texture(s, tex, err, errlen)))
+        if (tex && !(e.texture = texture_set_get(&s->textures, tex, err, errlen)))
             return -1;
         e.value = to_rgb(scene_obj_rgb(eo, "radiance", (scene_rgb){1, 1, 1}));
         if (shape_prepare_sampling(sh) != 0)
@@ -301,7 +279,7 @@ static int build_all(struct scene *s, scene_desc *desc, const scene_build_option
         FAIL(root, "out of memory");
     scene_obj_children(root, SCENE_TEXTURE, objs, n);
     for (int i = 0; i < n; i++)
-        if (!scene_build_texture(s, objs[i], err, errlen)) {
+        if (!texture_set_get(&s->textures, objs[i], err, errlen)) {
             free(objs);
             return -1;
         }
@@ -312,7 +290,7 @@ static int build_all(struct scene *s, scene_desc *desc, const scene_build_option
         FAIL(root, "out of memory");
     scene_obj_children(root, SCENE_BSDF, objs, n);
     for (int i = 0; i < n; i++)
-        if (!scene_build_bsdf(s, objs[i], err, errlen)) {
+        if (!bsdf_set_get(&s->bsdfs, objs[i], err, errlen)) {
             free(objs);
             return -1;
         }
@@ -326,9 +304,8 @@ static int build_all(struct scene *s, scene_desc *desc, const scene_build_option
         FAIL(root, "out of memory");
     }
     scene_obj_children(root, SCENE_SHAPE, objs, n);
-    const bsdf_t *default_bsdf = NULL;
     for (int i = 0; i < n; i++)
-        if (build_shape(s, objs[i], opt, &default_bsdf, err, errlen) != 0) {
+        if (build_shape(s, objs[i], opt, err, errlen) != 0) {
             free(objs);
             return -1;
         }
@@ -365,6 +342,7 @@ scene_t *scene_build(scene_desc *desc, const scene_build_options *opt, char *err
         return NULL;
     }
     s->env = -1;
+    s->bsdfs.textures = &s->textures;
     if (opt->mesh_segments != 0 && opt->mesh_segments < 3) {
         snprintf(err, errlen, "mesh segments must be >= 3");
         free(s);
@@ -399,16 +377,9 @@ void scene_free(scene_t *s)
     for (int i = 0; i < s->nemitters; i++)
         emitter_free(&s->emitters[i]);
     free(s->emitters);
-    /* BSDFs borrow textures and nested BSDFs: free BSDFs (outer ones were
-     * built after their nested ones, so go backwards) before textures. */
-    for (int i = s->nbsdfs - 1; i >= 0; i--)
-        bsdf_free(s->bsdfs[i]);
-    free(s->bsdfs);
-    free(s->bsdf_keys);
-    for (int i = 0; i < s->ntextures; i++)
-        texture_free(s->textures[i]);
-    free(s->textures);
-    free(s->texture_keys);
+    /* BSDFs borrow textures: free them first. */
+    bsdf_set_free(&s->bsdfs);
+    texture_set_free(&s->textures);
     free(s);
 }
 

@@ -8,12 +8,12 @@
 #include <stdio.h>
 
 #include "celadon/accel.h"
-#include "celadon/bsdf.h"
+#include "bsdfs/bsdfs.h"
 #include "celadon/camera.h"
 #include "celadon/color.h"
 #include "celadon/sampling.h"
 #include "celadon/scene.h"
-#include "celadon/texture.h"
+#include "textures/textures.h"
 #include "celadon/transform.h"
 #include "celadon/vecmath.h"
 
@@ -193,12 +193,8 @@ struct scene {
 
     shape_t *shapes;
     int nshapes;
-    bsdf_t **bsdfs;              /* every BSDF built, with its description object */
-    const scene_obj **bsdf_keys;
-    int nbsdfs;
-    texture_t **textures;
-    const scene_obj **texture_keys;
-    int ntextures;
+    bsdf_set bsdfs;
+    texture_set textures;
     emitter_t *emitters;
     int nemitters;
     int env;              /* index of the constant/envmap emitter, or -1 */
@@ -213,11 +209,5 @@ bool scene_occluded(const struct scene *s, const ray3 *r, double tmin, double tm
 /* Builds the acceleration structure once all shapes are in. Returns 0 or -1. */
 int scene_trace_build(struct scene *s, char *err, size_t errlen);
 void scene_trace_free(struct scene *s);
-
-/* scene_build_bsdf.c: the BSDF of a <bsdf> object (its textures registered
- * in s for freeing). Returns NULL with "file:line: problem" in err. */
-bsdf_t *scene_build_bsdf(struct scene *s, scene_obj *o, char *err, size_t errlen);
-/* A texture for a "color or texture" property, registered in s. */
-const texture_t *scene_build_texture(struct scene *s, scene_obj *t, char *err, size_t errlen);
 
 #endif

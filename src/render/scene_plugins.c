@@ -1,16 +1,13 @@
 /* Every plugin the renderer builds, declared for the scene reader. */
 #include "celadon/scene.h"
+#include "bsdfs/bsdfs.h"
+#include "textures/textures.h"
 
 #include <string.h>
 
 #define END {NULL, 0, 0, NULL}
 #define COLOR_TEX (PARAM_COLOR | PARAM_TEXTURE)
 
-/* Mitsuba's named indices of refraction (its IOR table). */
-#define IOR_NAMES "vacuum|helium|hydrogen|air|carbon dioxide|water|acetone|ethanol|" \
-                  "carbon tetrachloride|glycerol|benzene|silicone oil|bromine|water ice|" \
-                  "fused quartz|pyrex|acrylic glass|polypropylene|bk7|sodium chloride|amber|pet|diamond"
-#define DISTRIBUTIONS "beckmann|ggx"
 
 static const scene_child_decl no_children[] = {{SCENE_SCENE, 0, 0, NULL}};
 
@@ -89,68 +86,6 @@ static const scene_param_decl sor_params[] = {
     {"caps", PARAM_BOOL, 0, NULL},
     END};
 
-/* ------------------------------------------------------------------- BSDFs */
-#define IOR_PAIR {"int_ior", PARAM_FLOAT | PARAM_STRING, 0, IOR_NAMES}, {"ext_ior", PARAM_FLOAT | PARAM_STRING, 0, IOR_NAMES}
-#define ROUGHNESS(alpha_types)                                                          \
-    {"distribution", PARAM_STRING, 0, DISTRIBUTIONS}, {"alpha", alpha_types, 0, NULL},     \
-        {"alpha_u", alpha_types, 0, NULL}, {"alpha_v", alpha_types, 0, NULL},           \
-        {"sample_visible", PARAM_BOOL, 0, NULL}
-static const scene_param_decl diffuse_params[] = {{"reflectance", COLOR_TEX, 0, NULL}, END};
-static const scene_param_decl dielectric_params[] = {
-    IOR_PAIR,
-    {"specular_reflectance", COLOR_TEX, 0, NULL},
-    {"specular_transmittance", COLOR_TEX, 0, NULL},
-    END};
-static const scene_param_decl roughdielectric_params[] = {
-    IOR_PAIR,
-    {"specular_reflectance", COLOR_TEX, 0, NULL},
-    {"specular_transmittance", COLOR_TEX, 0, NULL},
-    ROUGHNESS(PARAM_FLOAT | PARAM_TEXTURE),
-    END};
-static const scene_param_decl conductor_params[] = {
-    {"material", PARAM_STRING, 0, NULL},
-    {"eta", COLOR_TEX, 0, NULL},
-    {"k", COLOR_TEX, 0, NULL},
-    {"specular_reflectance", COLOR_TEX, 0, NULL},
-    END};
-static const scene_param_decl roughconductor_params[] = {
-    {"material", PARAM_STRING, 0, NULL},
-    {"eta", COLOR_TEX, 0, NULL},
-    {"k", COLOR_TEX, 0, NULL},
-    {"specular_reflectance", COLOR_TEX, 0, NULL},
-    ROUGHNESS(PARAM_FLOAT | PARAM_TEXTURE),
-    END};
-static const scene_param_decl plastic_params[] = {
-    IOR_PAIR,
-    {"diffuse_reflectance", COLOR_TEX, 0, NULL},
-    {"specular_reflectance", COLOR_TEX, 0, NULL},
-    {"nonlinear", PARAM_BOOL, 0, NULL},
-    END};
-static const scene_param_decl roughplastic_params[] = {
-    IOR_PAIR,
-    {"diffuse_reflectance", COLOR_TEX, 0, NULL},
-    {"specular_reflectance", COLOR_TEX, 0, NULL},
-    {"nonlinear", PARAM_BOOL, 0, NULL},
-    {"distribution", PARAM_STRING, 0, DISTRIBUTIONS},
-    {"alpha", PARAM_FLOAT, 0, NULL},
-    {"sample_visible", PARAM_BOOL, 0, NULL},
-    END};
-static const scene_child_decl twosided_children[] = {{SCENE_BSDF, 1, 2, NULL}, {SCENE_SCENE, 0, 0, NULL}};
-
-/* ---------------------------------------------------------------- textures */
-static const scene_param_decl bitmap_params[] = {
-    {"filename", PARAM_STRING, PARAM_REQUIRED | PARAM_FILE, NULL},
-    {"raw", PARAM_BOOL, 0, NULL},
-    {"filter_type", PARAM_STRING, 0, "nearest|bilinear"},
-    {"wrap_mode", PARAM_STRING, 0, "repeat|mirror|clamp"},
-    {"to_uv", PARAM_TRANSFORM, 0, NULL},
-    END};
-static const scene_param_decl checkerboard_params[] = {
-    {"color0", COLOR_TEX, 0, NULL},
-    {"color1", COLOR_TEX, 0, NULL},
-    {"to_uv", PARAM_TRANSFORM, 0, NULL},
-    END};
-
 /* ---------------------------------------------------------------- emitters */
 static const scene_param_decl radiance_params[] = {{"radiance", COLOR_TEX, 0, NULL}, END};
 static const scene_param_decl envmap_params[] = {
@@ -186,17 +121,6 @@ static const scene_plugin_decl plugins[] = {
     {SCENE_SHAPE, "sphere", sphere_params, shape_children, {NULL, NULL}, SCENE_SCENE},
     {SCENE_SHAPE, "cylinder", cylinder_params, shape_children, {NULL, NULL}, SCENE_SCENE},
     {SCENE_SHAPE, "sor", sor_params, shape_children, {NULL, NULL}, SCENE_SCENE},
-    {SCENE_BSDF, "diffuse", diffuse_params, no_children, {NULL, NULL}, SCENE_SCENE},
-    {SCENE_BSDF, "dielectric", dielectric_params, no_children, {NULL, NULL}, SCENE_SCENE},
-    {SCENE_BSDF, "thindielectric", dielectric_params, no_children, {NULL, NULL}, SCENE_SCENE},
-    {SCENE_BSDF, "roughdielectric", roughdielectric_params, no_children, {"alpha", "alpha_u"}, SCENE_SCENE},
-    {SCENE_BSDF, "conductor", conductor_params, no_children, {"material", "eta"}, SCENE_SCENE},
-    {SCENE_BSDF, "roughconductor", roughconductor_params, no_children, {"alpha", "alpha_u"}, SCENE_SCENE},
-    {SCENE_BSDF, "plastic", plastic_params, no_children, {NULL, NULL}, SCENE_SCENE},
-    {SCENE_BSDF, "roughplastic", roughplastic_params, no_children, {NULL, NULL}, SCENE_SCENE},
-    {SCENE_BSDF, "twosided", no_params, twosided_children, {NULL, NULL}, SCENE_SCENE},
-    {SCENE_TEXTURE, "bitmap", bitmap_params, no_children, {NULL, NULL}, SCENE_SCENE},
-    {SCENE_TEXTURE, "checkerboard", checkerboard_params, no_children, {NULL, NULL}, SCENE_SCENE},
     {SCENE_EMITTER, "area", radiance_params, no_children, {NULL, NULL}, SCENE_SHAPE},
     {SCENE_EMITTER, "constant", radiance_params, no_children, {NULL, NULL}, SCENE_SCENE},
     {SCENE_EMITTER, "envmap", envmap_params, no_children, {NULL, NULL}, SCENE_SCENE},
@@ -207,6 +131,10 @@ static const scene_plugin_decl plugins[] = {
 
 const scene_plugin_decl *scene_plugin_find(scene_class cls, const char *type)
 {
+    if (cls == SCENE_BSDF)
+        return scene_plugin_table_find(bsdf_plugins, type);
+    if (cls == SCENE_TEXTURE)
+        return scene_plugin_table_find(texture_plugins, type);
     for (size_t i = 0; i < sizeof plugins / sizeof plugins[0]; i++)
         if (plugins[i].cls == cls && strcmp(plugins[i].type, type) == 0)
             return &plugins[i];
@@ -215,5 +143,15 @@ const scene_plugin_decl *scene_plugin_find(scene_class cls, const char *type)
 
 const scene_plugin_decl *scene_plugin_at(int i)
 {
-    return i >= 0 && i < (int)(sizeof plugins / sizeof plugins[0]) ? &plugins[i] : NULL;
+    int n = (int)(sizeof plugins / sizeof plugins[0]);
+    if (i < n)
+        return i >= 0 ? &plugins[i] : NULL;
+    i -= n;
+    for (const scene_plugin_decl *const *t = bsdf_plugins; *t; t++, i--)
+        if (i == 0)
+            return *t;
+    for (const scene_plugin_decl *const *t = texture_plugins; *t; t++, i--)
+        if (i == 0)
+            return *t;
+    return NULL;
 }

@@ -1,7 +1,7 @@
 /* Rough conductor (Mitsuba `roughconductor`): Torrance-Sparrow microfacet
  * reflection f = F(wi.m) D(m) G(wi, wo) / (4 cos_i cos_o), front side only. */
-#include "celadon/fresnel.h"
-#include "render/bsdf_impl.h"
+#include "bsdfs/bsdf_impl.h"
+#include "bsdfs/fresnel.h"
 
 typedef struct {
     rgb eta, k;
@@ -53,32 +53,31 @@ static rgb roughconductor_albedo(const bsdf_t *b, vec2 uv)
     return rgb_mul(spectrum_eval(&d->specular_reflectance, uv), fresnel_conductor_rgb(1.0, d->eta, d->k));
 }
 
-static const bsdf_ops roughconductor_ops = {roughconductor_sample, roughconductor_eval, roughconductor_pdf,
+static const bsdf_ops roughconductor_ops = {"roughconductor", roughconductor_sample, roughconductor_eval, roughconductor_pdf,
                                             roughconductor_albedo, NULL};
 
-bsdf_roughconductor_params bsdf_roughconductor_defaults(void)
+static bsdf_t *roughconductor_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {
-    bsdf_roughconductor_params p;
-    bsdf_conductor_preset("none", &p.eta, &p.k);
-    p.distribution = MICROFACET_BECKMANN;
-    p.alpha_u = p.alpha_v = 0.1;
-    p.sample_visible = 1;
-    p.specular_reflectance = bsdf_spectrum_const(rgb_gray(1.0));
-    return p;
+    roughconductor_data d;
+    microfacet_type distribution = MICROFACET_BECKMANN;
+    double alpha_u = 0.1, alpha_v = 0.1;
+    int visible = 1;
+    if (bsdf_conductor_param(o, &d.eta, &d.k, err, errlen) != 0 ||
+        bsdf_spectrum_param(set, o, "specular_reflectance", 1.0, &d.specular_reflectance, err, errlen) != 0 ||
+        bsdf_roughness_param(o, &distribution, &alpha_u, &alpha_v, &visible, err, errlen) != 0)
+        return NULL;
+    bsdf_spectrum eta = {d.eta, NULL}, k = {d.k, NULL};
+    if (bsdf_check_spectrum(o, "eta", &eta, err, errlen) || bsdf_check_spectrum(o, "k", &k, err, errlen) ||
+        bsdf_check_spectrum(o, "specular_reflectance", &d.specular_reflectance, err, errlen) ||
+        bsdf_check_alpha(o, "alpha_u", alpha_u, err, errlen) || bsdf_check_alpha(o, "alpha_v", alpha_v, err, errlen))
+        return NULL;
+    d.distr = microfacet_make(distribution, alpha_u, alpha_v, visible);
+    return bsdf_alloc(o, &roughconductor_ops, BSDF_GLOSSY_REFLECTION | BSDF_FRONT_SIDE, &d, sizeof d, err, errlen);
 }
 
-bsdf_t *bsdf_create_roughconductor(const bsdf_roughconductor_params *p, char *err, size_t errlen)
-{
-    bsdf_spectrum eta = bsdf_spectrum_const(p->eta), k = bsdf_spectrum_const(p->k);
-    if (bsdf_check_spectrum("eta", &eta, err, errlen) || bsdf_check_spectrum("k", &k, err, errlen) ||
-        bsdf_check_spectrum("specular_reflectance", &p->specular_reflectance, err, errlen) ||
-        bsdf_check_alpha("alpha_u", p->alpha_u, err, errlen) || bsdf_check_alpha("alpha_v", p->alpha_v, err, errlen))
-        return NULL;
-    bsdf_t *b = bsdf_alloc("roughconductor", &roughconductor_ops, BSDF_GLOSSY_REFLECTION | BSDF_FRONT_SIDE,
-                           sizeof(roughconductor_data), err, errlen);
-    if (b)
-        *(roughconductor_data *)b->data = (roughconductor_data){
-            p->eta, p->k, microfacet_make(p->distribution, p->alpha_u, p->alpha_v, p->sample_visible),
-            p->specular_reflectance};
-    return b;
-}
+static const scene_param_decl roughconductor_params[] = {BSDF_PARAMS_CONDUCTOR, BSDF_PARAMS_ROUGHNESS, BSDF_PARAMS_END};
+
+const bsdf_plugin bsdf_roughconductor = {
+    .decl = {.cls = SCENE_BSDF, .type = "roughconductor", .params = roughconductor_params, .exclusive = {"alpha", "alpha_u"}},
+    .create = roughconductor_create,
+};

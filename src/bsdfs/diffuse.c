@@ -1,6 +1,6 @@
 /* Lambertian reflector (Mitsuba `diffuse`): f = reflectance / pi, front side only. */
 #include "celadon/sampling.h"
-#include "render/bsdf_impl.h"
+#include "bsdfs/bsdf_impl.h"
 
 typedef struct {
     bsdf_spectrum reflectance;
@@ -42,21 +42,23 @@ static rgb diffuse_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->reflectance, uv);
 }
 
-static const bsdf_ops diffuse_ops = {diffuse_sample, diffuse_eval, diffuse_pdf, diffuse_albedo, NULL};
+static const bsdf_ops diffuse_ops = {"diffuse", diffuse_sample, diffuse_eval, diffuse_pdf, diffuse_albedo, NULL};
 
-bsdf_diffuse_params bsdf_diffuse_defaults(void)
+static bsdf_t *diffuse_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {
-    bsdf_diffuse_params p = {bsdf_spectrum_const(rgb_gray(0.5))};
-    return p;
-}
-
-bsdf_t *bsdf_create_diffuse(const bsdf_diffuse_params *p, char *err, size_t errlen)
-{
-    if (bsdf_check_spectrum("reflectance", &p->reflectance, err, errlen))
+    diffuse_data d;
+    if (bsdf_spectrum_param(set, o, "reflectance", 0.5, &d.reflectance, err, errlen) != 0 ||
+        bsdf_check_spectrum(o, "reflectance", &d.reflectance, err, errlen) != 0)
         return NULL;
-    bsdf_t *b = bsdf_alloc("diffuse", &diffuse_ops, BSDF_DIFFUSE_REFLECTION | BSDF_FRONT_SIDE, sizeof(diffuse_data),
-                           err, errlen);
-    if (b)
-        ((diffuse_data *)b->data)->reflectance = p->reflectance;
-    return b;
+    return bsdf_alloc(o, &diffuse_ops, BSDF_DIFFUSE_REFLECTION | BSDF_FRONT_SIDE, &d, sizeof d, err, errlen);
 }
+
+static const scene_param_decl diffuse_params[] = {
+    {"reflectance", PARAM_COLOR | PARAM_TEXTURE, 0, NULL},
+    BSDF_PARAMS_END,
+};
+
+const bsdf_plugin bsdf_diffuse = {
+    .decl = {.cls = SCENE_BSDF, .type = "diffuse", .params = diffuse_params},
+    .create = diffuse_create,
+};

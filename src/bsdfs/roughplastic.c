@@ -8,9 +8,9 @@
  * offline for a grid of (alpha, eta); here T is integrated at construction
  * with stratified visible-normal samples of the same distribution and R_int
  * follows from T by reciprocity. */
-#include "celadon/fresnel.h"
+#include "bsdfs/bsdf_impl.h"
+#include "bsdfs/fresnel.h"
 #include "celadon/sampling.h"
-#include "render/bsdf_impl.h"
 
 #define TABLE_SIZE 64   /* T(mu) at mu = i / (TABLE_SIZE - 1) */
 #define STRATA 24       /* STRATA^2 samples per integral */
@@ -123,43 +123,12 @@ static rgb roughplastic_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->diffuse_reflectance, uv);
 }
 
-static const bsdf_ops roughplastic_ops = {roughplastic_sample, roughplastic_eval, roughplastic_pdf,
+static const bsdf_ops roughplastic_ops = {"roughplastic", roughplastic_sample, roughplastic_eval, roughplastic_pdf,
                                           roughplastic_albedo, NULL};
 
-bsdf_roughplastic_params bsdf_roughplastic_defaults(void)
+/* The coating's energy tables: T(mu) and the internal reflectance. */
+static void roughplastic_tables(roughplastic_data *d)
 {
-    bsdf_roughplastic_params p;
-    p.diffuse_reflectance = bsdf_spectrum_const(rgb_gray(0.5));
-    p.specular_reflectance = bsdf_spectrum_const(rgb_gray(1.0));
-    bsdf_ior_lookup("polypropylene", &p.int_ior);
-    bsdf_ior_lookup("air", &p.ext_ior);
-    p.nonlinear = 0;
-    p.distribution = MICROFACET_BECKMANN;
-    p.alpha = 0.1;
-    p.sample_visible = 1;
-    return p;
-}
-
-bsdf_t *bsdf_create_roughplastic(const bsdf_roughplastic_params *p, char *err, size_t errlen)
-{
-    if (bsdf_check_ior(p->int_ior, p->ext_ior, err, errlen) || bsdf_check_alpha("alpha", p->alpha, err, errlen) ||
-        bsdf_check_spectrum("diffuse_reflectance", &p->diffuse_reflectance, err, errlen) ||
-        bsdf_check_spectrum("specular_reflectance", &p->specular_reflectance, err, errlen))
-        return NULL;
-    unsigned flags = BSDF_GLOSSY_REFLECTION | BSDF_DIFFUSE_REFLECTION | BSDF_FRONT_SIDE;
-    bsdf_t *b = bsdf_alloc("roughplastic", &roughplastic_ops, flags, sizeof(roughplastic_data), err, errlen);
-    if (!b)
-        return NULL;
-    roughplastic_data *d = b->data;
-    d->diffuse_reflectance = p->diffuse_reflectance;
-    d->specular_reflectance = p->specular_reflectance;
-    d->distr = microfacet_make(p->distribution, p->alpha, p->alpha, p->sample_visible);
-    d->eta = p->int_ior / p->ext_ior;
-    d->inv_eta2 = 1.0 / (d->eta * d->eta);
-    d->nonlinear = p->nonlinear;
-    double dm = spectrum_mean(&p->diffuse_reflectance), sm = spectrum_mean(&p->specular_reflectance);
-    d->specular_sampling_weight = dm + sm > 0.0 ? sm / (dm + sm) : 0.5;
-
     microfacet visible = d->distr;
     visible.sample_visible = 1;
     for (int i = 0; i < TABLE_SIZE; i++)
@@ -175,5 +144,44 @@ bsdf_t *bsdf_create_roughplastic(const bsdf_roughplastic_params *p, char *err, s
         t_in += h / 6.0 * (2.0 * ma * ta + 4.0 * 2.0 * mm * tm + 2.0 * mb * tb);
     }
     d->internal_reflectance = 1.0 - d->inv_eta2 * t_in;
-    return b;
 }
+
+static bsdf_t *roughplastic_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
+{
+    roughplastic_data d;
+    double int_ior, ext_ior;
+    microfacet_type distribution;
+    if (bsdf_plastic_param(set, o, &int_ior, &ext_ior, &d.diffuse_reflectance, &d.specular_reflectance, &d.nonlinear,
+                           err, errlen) != 0)
+        return NULL;
+    if (microfacet_type_parse(scene_obj_string(o, "distribution", "beckmann"), &distribution) != 0) {
+        scene_obj_error(o, err, errlen, "unknown distribution");
+        return NULL;
+    }
+    double alpha = scene_obj_float(o, "alpha", 0.1);
+    int visible = scene_obj_bool(o, "sample_visible", true);
+    if (bsdf_check_ior(o, int_ior, ext_ior, err, errlen) || bsdf_check_alpha(o, "alpha", alpha, err, errlen) ||
+        bsdf_check_spectrum(o, "diffuse_reflectance", &d.diffuse_reflectance, err, errlen) ||
+        bsdf_check_spectrum(o, "specular_reflectance", &d.specular_reflectance, err, errlen))
+        return NULL;
+    d.distr = microfacet_make(distribution, alpha, alpha, visible);
+    d.eta = int_ior / ext_ior;
+    d.inv_eta2 = 1.0 / (d.eta * d.eta);
+    d.specular_sampling_weight = bsdf_specular_sampling_weight(&d.diffuse_reflectance, &d.specular_reflectance);
+    roughplastic_tables(&d);
+    return bsdf_alloc(o, &roughplastic_ops, BSDF_GLOSSY_REFLECTION | BSDF_DIFFUSE_REFLECTION | BSDF_FRONT_SIDE, &d,
+                      sizeof d, err, errlen);
+}
+
+static const scene_param_decl roughplastic_params[] = {
+    BSDF_PARAMS_PLASTIC,
+    {"distribution", PARAM_STRING, 0, "beckmann|ggx"},
+    {"alpha", PARAM_FLOAT, 0, NULL},
+    {"sample_visible", PARAM_BOOL, 0, NULL},
+    BSDF_PARAMS_END,
+};
+
+const bsdf_plugin bsdf_roughplastic = {
+    .decl = {.cls = SCENE_BSDF, .type = "roughplastic", .params = roughplastic_params},
+    .create = roughplastic_create,
+};

@@ -10,7 +10,7 @@
  * "none" is Mitsuba's idealised mirror: eta = 0, k = 1 gives F = 1 at every angle. */
 #include <string.h>
 
-#include "celadon/bsdf.h"
+#include "bsdfs/bsdf_impl.h"
 
 static const char *const names[] = {"none", "Ag", "Al", "Au", "Cu", NULL};
 static const rgb etas[] = {
@@ -37,9 +37,4 @@ int bsdf_conductor_preset(const char *name, rgb *eta, rgb *k)
             return 0;
         }
     return -1;
-}
-
-const char *const *bsdf_conductor_names(void)
-{
-    return names;
 }

@@ -5,9 +5,9 @@
  *   diffuse:     (1 - F(cos_i)) (1 - F(cos_o)) / eta^2 * rho / (1 - k) * cos_o / pi,
  * with k = fdr_int (linear) or rho * fdr_int (nonlinear), fdr_int the diffuse
  * Fresnel reflectance of the coating seen from inside. Front side only. */
-#include "celadon/fresnel.h"
+#include "bsdfs/bsdf_impl.h"
+#include "bsdfs/fresnel.h"
 #include "celadon/sampling.h"
-#include "render/bsdf_impl.h"
 
 typedef struct {
     bsdf_spectrum diffuse_reflectance, specular_reflectance;
@@ -83,37 +83,29 @@ static rgb plastic_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->diffuse_reflectance, uv);
 }
 
-static const bsdf_ops plastic_ops = {plastic_sample, plastic_eval, plastic_pdf, plastic_albedo, NULL};
+static const bsdf_ops plastic_ops = {"plastic", plastic_sample, plastic_eval, plastic_pdf, plastic_albedo, NULL};
 
-bsdf_plastic_params bsdf_plastic_defaults(void)
+static bsdf_t *plastic_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {
-    bsdf_plastic_params p;
-    p.diffuse_reflectance = bsdf_spectrum_const(rgb_gray(0.5));
-    p.specular_reflectance = bsdf_spectrum_const(rgb_gray(1.0));
-    bsdf_ior_lookup("polypropylene", &p.int_ior);
-    bsdf_ior_lookup("air", &p.ext_ior);
-    p.nonlinear = 0;
-    return p;
+    plastic_data d;
+    double int_ior, ext_ior;
+    if (bsdf_plastic_param(set, o, &int_ior, &ext_ior, &d.diffuse_reflectance, &d.specular_reflectance, &d.nonlinear,
+                           err, errlen) != 0 ||
+        bsdf_check_ior(o, int_ior, ext_ior, err, errlen) ||
+        bsdf_check_spectrum(o, "diffuse_reflectance", &d.diffuse_reflectance, err, errlen) ||
+        bsdf_check_spectrum(o, "specular_reflectance", &d.specular_reflectance, err, errlen))
+        return NULL;
+    d.eta = int_ior / ext_ior;
+    d.inv_eta2 = 1.0 / (d.eta * d.eta);
+    d.fdr_int = fresnel_diffuse_reflectance(1.0 / d.eta);
+    d.specular_sampling_weight = bsdf_specular_sampling_weight(&d.diffuse_reflectance, &d.specular_reflectance);
+    return bsdf_alloc(o, &plastic_ops, BSDF_DELTA_REFLECTION | BSDF_DIFFUSE_REFLECTION | BSDF_FRONT_SIDE, &d,
+                      sizeof d, err, errlen);
 }
 
-bsdf_t *bsdf_create_plastic(const bsdf_plastic_params *p, char *err, size_t errlen)
-{
-    if (bsdf_check_ior(p->int_ior, p->ext_ior, err, errlen) ||
-        bsdf_check_spectrum("diffuse_reflectance", &p->diffuse_reflectance, err, errlen) ||
-        bsdf_check_spectrum("specular_reflectance", &p->specular_reflectance, err, errlen))
-        return NULL;
-    bsdf_t *b = bsdf_alloc("plastic", &plastic_ops, BSDF_DELTA_REFLECTION | BSDF_DIFFUSE_REFLECTION | BSDF_FRONT_SIDE,
-                           sizeof(plastic_data), err, errlen);
-    if (!b)
-        return NULL;
-    plastic_data *d = b->data;
-    d->diffuse_reflectance = p->diffuse_reflectance;
-    d->specular_reflectance = p->specular_reflectance;
-    d->eta = p->int_ior / p->ext_ior;
-    d->inv_eta2 = 1.0 / (d->eta * d->eta);
-    d->fdr_int = fresnel_diffuse_reflectance(1.0 / d->eta);
-    d->nonlinear = p->nonlinear;
-    double dm = spectrum_mean(&p->diffuse_reflectance), sm = spectrum_mean(&p->specular_reflectance);
-    d->specular_sampling_weight = dm + sm > 0.0 ? sm / (dm + sm) : 0.5;
-    return b;
-}
+static const scene_param_decl plastic_params[] = {BSDF_PARAMS_PLASTIC, BSDF_PARAMS_END};
+
+const bsdf_plugin bsdf_plastic = {
+    .decl = {.cls = SCENE_BSDF, .type = "plastic", .params = plastic_params},
+    .create = plastic_create,
+};

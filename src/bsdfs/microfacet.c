@@ -2,7 +2,7 @@
  * models for refraction through rough surfaces"), Heitz 2014 ("Understanding the
  * masking-shadowing function"), Heitz & d'Eon 2014 (visible normals) and Heitz
  * 2018 (GGX visible normals by hemisphere projection). */
-#include "celadon/microfacet.h"
+#include "bsdfs/microfacet.h"
 
 #include <gsl/gsl_cdf.h>
 #include <string.h>

@@ -1,7 +1,7 @@
 /* Smooth dielectric interface (Mitsuba `dielectric`): Fresnel-weighted choice
  * between the mirror and the refracted direction; both sides scatter. */
-#include "celadon/fresnel.h"
-#include "render/bsdf_impl.h"
+#include "bsdfs/bsdf_impl.h"
+#include "bsdfs/fresnel.h"
 
 typedef struct {
     double eta; /* int_ior / ext_ior */
@@ -39,28 +39,24 @@ static rgb dielectric_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->specular_transmittance, uv);
 }
 
-static const bsdf_ops dielectric_ops = {dielectric_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only, dielectric_albedo, NULL};
+static const bsdf_ops dielectric_ops = {"dielectric", dielectric_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only, dielectric_albedo, NULL};
 
-bsdf_dielectric_params bsdf_dielectric_defaults(void)
+static bsdf_t *dielectric_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {
-    bsdf_dielectric_params p;
-    bsdf_ior_lookup("bk7", &p.int_ior);
-    bsdf_ior_lookup("air", &p.ext_ior);
-    p.specular_reflectance = bsdf_spectrum_const(rgb_gray(1.0));
-    p.specular_transmittance = bsdf_spectrum_const(rgb_gray(1.0));
-    return p;
-}
-
-bsdf_t *bsdf_create_dielectric(const bsdf_dielectric_params *p, char *err, size_t errlen)
-{
-    if (bsdf_check_ior(p->int_ior, p->ext_ior, err, errlen) ||
-        bsdf_check_spectrum("specular_reflectance", &p->specular_reflectance, err, errlen) ||
-        bsdf_check_spectrum("specular_transmittance", &p->specular_transmittance, err, errlen))
+    dielectric_data d;
+    double int_ior, ext_ior;
+    if (bsdf_dielectric_param(set, o, &int_ior, &ext_ior, &d.specular_reflectance, &d.specular_transmittance, err,
+                              errlen) != 0 ||
+        bsdf_check_dielectric(o, int_ior, ext_ior, &d.specular_reflectance, &d.specular_transmittance, err, errlen))
         return NULL;
+    d.eta = int_ior / ext_ior;
     unsigned flags = BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE;
-    bsdf_t *b = bsdf_alloc("dielectric", &dielectric_ops, flags, sizeof(dielectric_data), err, errlen);
-    if (b)
-        *(dielectric_data *)b->data =
-            (dielectric_data){p->int_ior / p->ext_ior, p->specular_reflectance, p->specular_transmittance};
-    return b;
+    return bsdf_alloc(o, &dielectric_ops, flags, &d, sizeof d, err, errlen);
 }
+
+static const scene_param_decl dielectric_params[] = {BSDF_PARAMS_DIELECTRIC, BSDF_PARAMS_END};
+
+const bsdf_plugin bsdf_dielectric = {
+    .decl = {.cls = SCENE_BSDF, .type = "dielectric", .params = dielectric_params},
+    .create = dielectric_create,
+};

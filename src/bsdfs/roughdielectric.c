@@ -3,8 +3,8 @@
  *   (1 - F) D G |wi.m| |wo.m| eta^2 / (|cos_i| (wi.m + eta wo.m)^2),
  * eta = n_o / n_i, scaled by 1 / eta^2 in radiance mode. Both sides scatter;
  * from the back the microfacet distribution is mirrored. */
-#include "celadon/fresnel.h"
-#include "render/bsdf_impl.h"
+#include "bsdfs/bsdf_impl.h"
+#include "bsdfs/fresnel.h"
 
 typedef struct {
     double eta; /* int_ior / ext_ior */
@@ -106,34 +106,35 @@ static rgb roughdielectric_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->specular_transmittance, uv);
 }
 
-static const bsdf_ops roughdielectric_ops = {roughdielectric_sample, roughdielectric_eval, roughdielectric_pdf,
+static const bsdf_ops roughdielectric_ops = {"roughdielectric", roughdielectric_sample, roughdielectric_eval, roughdielectric_pdf,
                                              roughdielectric_albedo, NULL};
 
-bsdf_roughdielectric_params bsdf_roughdielectric_defaults(void)
+static bsdf_t *roughdielectric_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {
-    bsdf_roughdielectric_params p;
-    bsdf_ior_lookup("bk7", &p.int_ior);
-    bsdf_ior_lookup("air", &p.ext_ior);
-    p.distribution = MICROFACET_BECKMANN;
-    p.alpha_u = p.alpha_v = 0.1;
-    p.sample_visible = 1;
-    p.specular_reflectance = bsdf_spectrum_const(rgb_gray(1.0));
-    p.specular_transmittance = bsdf_spectrum_const(rgb_gray(1.0));
-    return p;
+    roughdielectric_data d;
+    double int_ior, ext_ior, alpha_u = 0.1, alpha_v = 0.1;
+    microfacet_type distribution = MICROFACET_BECKMANN;
+    int visible = 1;
+    if (bsdf_dielectric_param(set, o, &int_ior, &ext_ior, &d.specular_reflectance, &d.specular_transmittance, err,
+                              errlen) != 0 ||
+        bsdf_roughness_param(o, &distribution, &alpha_u, &alpha_v, &visible, err, errlen) != 0)
+        return NULL;
+    if (bsdf_check_ior(o, int_ior, ext_ior, err, errlen) || bsdf_check_alpha(o, "alpha_u", alpha_u, err, errlen) ||
+        bsdf_check_alpha(o, "alpha_v", alpha_v, err, errlen) ||
+        bsdf_check_spectrum(o, "specular_reflectance", &d.specular_reflectance, err, errlen) ||
+        bsdf_check_spectrum(o, "specular_transmittance", &d.specular_transmittance, err, errlen))
+        return NULL;
+    d.eta = int_ior / ext_ior;
+    d.distr = microfacet_make(distribution, alpha_u, alpha_v, visible);
+    unsigned flags = BSDF_GLOSSY_REFLECTION | BSDF_GLOSSY_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE;
+    return bsdf_alloc(o, &roughdielectric_ops, flags, &d, sizeof d, err, errlen);
 }
 
-bsdf_t *bsdf_create_roughdielectric(const bsdf_roughdielectric_params *p, char *err, size_t errlen)
-{
-    if (bsdf_check_ior(p->int_ior, p->ext_ior, err, errlen) ||
-        bsdf_check_alpha("alpha_u", p->alpha_u, err, errlen) || bsdf_check_alpha("alpha_v", p->alpha_v, err, errlen) ||
-        bsdf_check_spectrum("specular_reflectance", &p->specular_reflectance, err, errlen) ||
-        bsdf_check_spectrum("specular_transmittance", &p->specular_transmittance, err, errlen))
-        return NULL;
-    unsigned flags = BSDF_GLOSSY_REFLECTION | BSDF_GLOSSY_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE;
-    bsdf_t *b = bsdf_alloc("roughdielectric", &roughdielectric_ops, flags, sizeof(roughdielectric_data), err, errlen);
-    if (b)
-        *(roughdielectric_data *)b->data = (roughdielectric_data){
-            p->int_ior / p->ext_ior, microfacet_make(p->distribution, p->alpha_u, p->alpha_v, p->sample_visible),
-            p->specular_reflectance, p->specular_transmittance};
-    return b;
-}
+static const scene_param_decl roughdielectric_params[] = {BSDF_PARAMS_DIELECTRIC, BSDF_PARAMS_ROUGHNESS,
+                                                          BSDF_PARAMS_END};
+
+const bsdf_plugin bsdf_roughdielectric = {
+    .decl = {.cls = SCENE_BSDF, .type = "roughdielectric", .params = roughdielectric_params,
+             .exclusive = {"alpha", "alpha_u"}},
+    .create = roughdielectric_create,
+};

@@ -1,9 +1,7 @@
 /* Two-sided adapter (Mitsuba `twosided`): the front BSDF on the front side and
  * the back BSDF (default: the front one) on the back, evaluated in the frame
  * mirrored through the surface. Directions on opposite sides never couple. */
-#include <stdio.h>
-
-#include "render/bsdf_impl.h"
+#include "bsdfs/bsdf_impl.h"
 
 typedef struct {
     const bsdf_t *front, *back;
@@ -58,25 +56,30 @@ static rgb twosided_albedo(const bsdf_t *b, vec2 uv)
     return bsdf_albedo(d->front, uv);
 }
 
-static const bsdf_ops twosided_ops = {twosided_sample, twosided_eval, twosided_pdf, twosided_albedo, NULL};
+static const bsdf_ops twosided_ops = {"twosided", twosided_sample, twosided_eval, twosided_pdf, twosided_albedo, NULL};
 
-bsdf_t *bsdf_create_twosided(const bsdf_t *front, const bsdf_t *back, char *err, size_t errlen)
+/* The nested BSDFs (one or two: the reader checked) are built in set first. */
+static bsdf_t *twosided_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {
-    if (!front) {
-        snprintf(err, errlen, "twosided needs a nested bsdf");
+    scene_obj *nested[2];
+    int n = scene_obj_children(o, SCENE_BSDF, nested, 2);
+    twosided_data d;
+    d.front = bsdf_set_get(set, nested[0], err, errlen);
+    d.back = n >= 2 ? bsdf_set_get(set, nested[1], err, errlen) : d.front;
+    if (!d.front || !d.back)
+        return NULL;
+    if ((d.front->flags | d.back->flags) & BSDF_TRANSMISSION) {
+        bsdf_refuse(o, err, errlen, "twosided: nested bsdfs must not transmit light (got %s)",
+                    (d.front->flags & BSDF_TRANSMISSION ? d.front : d.back)->ops->name);
         return NULL;
     }
-    if (!back)
-        back = front;
-    if ((bsdf_flags(front) | bsdf_flags(back)) & BSDF_TRANSMISSION) {
-        snprintf(err, errlen, "twosided: nested bsdfs must not transmit light (got %s)",
-                 bsdf_flags(front) & BSDF_TRANSMISSION ? bsdf_plugin_name(front) : bsdf_plugin_name(back));
-        return NULL;
-    }
-    unsigned lobes = (bsdf_flags(front) | bsdf_flags(back)) & ~(unsigned)(BSDF_FRONT_SIDE | BSDF_BACK_SIDE);
-    bsdf_t *b = bsdf_alloc("twosided", &twosided_ops, lobes | BSDF_FRONT_SIDE | BSDF_BACK_SIDE, sizeof(twosided_data),
-                           err, errlen);
-    if (b)
-        *(twosided_data *)b->data = (twosided_data){front, back};
-    return b;
+    unsigned lobes = (d.front->flags | d.back->flags) & ~(unsigned)(BSDF_FRONT_SIDE | BSDF_BACK_SIDE);
+    return bsdf_alloc(o, &twosided_ops, lobes | BSDF_FRONT_SIDE | BSDF_BACK_SIDE, &d, sizeof d, err, errlen);
 }
+
+static const scene_child_decl twosided_children[] = {{SCENE_BSDF, 1, 2, NULL}, {SCENE_SCENE, 0, 0, NULL}};
+
+const bsdf_plugin bsdf_twosided = {
+    .decl = {.cls = SCENE_BSDF, .type = "twosided", .children = twosided_children},
+    .create = twosided_create,
+};

@@ -1,8 +1,8 @@
 /* Thin dielectric sheet (Mitsuba `thindielectric`): light passes straight
  * through without bending; the reflectance sums the geometric series of
  * internal bounces, R' = R + T^2 R / (1 - R^2). */
-#include "celadon/fresnel.h"
-#include "render/bsdf_impl.h"
+#include "bsdfs/bsdf_impl.h"
+#include "bsdfs/fresnel.h"
 
 typedef struct {
     double eta;
@@ -56,21 +56,27 @@ static rgb thindielectric_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->specular_transmittance, uv);
 }
 
-static const bsdf_ops thindielectric_ops = {thindielectric_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only,
+static const bsdf_ops thindielectric_ops = {"thindielectric", thindielectric_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only,
                                             thindielectric_albedo,
                                             thindielectric_straight};
 
-bsdf_t *bsdf_create_thindielectric(const bsdf_dielectric_params *p, char *err, size_t errlen)
+static bsdf_t *thindielectric_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {
-    if (bsdf_check_ior(p->int_ior, p->ext_ior, err, errlen) ||
-        bsdf_check_spectrum("specular_reflectance", &p->specular_reflectance, err, errlen) ||
-        bsdf_check_spectrum("specular_transmittance", &p->specular_transmittance, err, errlen))
+    thindielectric_data d;
+    double int_ior, ext_ior;
+    if (bsdf_dielectric_param(set, o, &int_ior, &ext_ior, &d.specular_reflectance, &d.specular_transmittance, err,
+                              errlen) != 0 ||
+        bsdf_check_dielectric(o, int_ior, ext_ior, &d.specular_reflectance, &d.specular_transmittance, err, errlen))
         return NULL;
+    d.eta = int_ior / ext_ior;
     unsigned flags = BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE |
                      BSDF_STRAIGHT_TRANSMISSION;
-    bsdf_t *b = bsdf_alloc("thindielectric", &thindielectric_ops, flags, sizeof(thindielectric_data), err, errlen);
-    if (b)
-        *(thindielectric_data *)b->data =
-            (thindielectric_data){p->int_ior / p->ext_ior, p->specular_reflectance, p->specular_transmittance};
-    return b;
+    return bsdf_alloc(o, &thindielectric_ops, flags, &d, sizeof d, err, errlen);
 }
+
+static const scene_param_decl thindielectric_params[] = {BSDF_PARAMS_DIELECTRIC, BSDF_PARAMS_END};
+
+const bsdf_plugin bsdf_thindielectric = {
+    .decl = {.cls = SCENE_BSDF, .type = "thindielectric", .params = thindielectric_params},
+    .create = thindielectric_create,
+};

@@ -1,5 +1,5 @@
 /* Fresnel equations (Born & Wolf; Hecht, Optics ch. 4), unpolarised averages. */
-#include "celadon/fresnel.h"
+#include "bsdfs/fresnel.h"
 
 #include <stddef.h>
 

@@ -1,0 +1,68 @@
+#include "plugin_xml.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "celadon/scene.h"
+
+void plugin_xml_open(plugin_xml *f)
+{
+    memset(f, 0, sizeof *f);
+    f->bsdfs.textures = &f->textures;
+}
+
+void plugin_xml_close(plugin_xml *f)
+{
+    bsdf_set_free(&f->bsdfs);
+    texture_set_free(&f->textures);
+    for (int i = 0; i < f->ndocs; i++)
+        scene_desc_destroy(f->docs[i]);
+    f->ndocs = 0;
+}
+
+int plugin_xml_objects(plugin_xml *f, const char *xml, scene_class cls, scene_obj **out, int max, char *err,
+                       size_t errlen)
+{
+    if (f->ndocs == PLUGIN_XML_MAX_DOCS) {
+        snprintf(err, errlen, "plugin_xml: too many snippets");
+        return -1;
+    }
+    size_t len = strlen(xml) + 64;
+    char *doc = malloc(len);
+    if (!doc) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    snprintf(doc, len, "<scene version=\"3.0.0\">%s</scene>", xml);
+    scene_desc *d = scene_desc_create_from_text(doc, strlen(doc), "snippet.xml", NULL, 0, scene_plugin_find, err, errlen);
+    free(doc);
+    if (!d)
+        return -1;
+    f->docs[f->ndocs++] = d;
+    return scene_obj_children(scene_desc_root(d), cls, out, max);
+}
+
+const bsdf_t *plugin_xml_bsdf(plugin_xml *f, const char *xml, char *err, size_t errlen)
+{
+    scene_obj *o;
+    int n = plugin_xml_objects(f, xml, SCENE_BSDF, &o, 1, err, errlen);
+    if (n < 1) {
+        if (n == 0)
+            snprintf(err, errlen, "plugin_xml: no <bsdf> in the snippet");
+        return NULL;
+    }
+    return bsdf_set_get(&f->bsdfs, o, err, errlen);
+}
+
+const texture_t *plugin_xml_texture(plugin_xml *f, const char *xml, char *err, size_t errlen)
+{
+    scene_obj *o;
+    int n = plugin_xml_objects(f, xml, SCENE_TEXTURE, &o, 1, err, errlen);
+    if (n < 1) {
+        if (n == 0)
+            snprintf(err, errlen, "plugin_xml: no <texture> in the snippet");
+        return NULL;
+    }
+    return texture_set_get(&f->textures, o, err, errlen);
+}
