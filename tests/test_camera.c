@@ -1,7 +1,7 @@
 /* The perspective camera: rays against the geometry of its frustum. */
 #include <criterion/criterion.h>
 
-#include "celadon/camera.h"
+#include "sensors/sensors.h"
 #include "celadon/scene.h"
 
 static double angle_deg(vec3 a, vec3 b)
@@ -105,7 +105,8 @@ Test(camera, from_sensor_and_bad_input)
     d = scene_desc_create_from_text(clip, strlen(clip), "mem.xml", NULL, 0, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "%s", err);
     camera_t cam;
-    cr_assert_eq(camera_from_sensor(&cam, scene_obj_child(scene_desc_root(d), SCENE_SENSOR), 10, 10, err, sizeof err),
+    const sensor_plugin *perspective = sensor_plugin_find("perspective");
+    cr_assert_eq(perspective->create(scene_obj_child(scene_desc_root(d), SCENE_SENSOR), 10, 10, &cam, err, sizeof err),
                  -1);
     cr_assert_str_eq(err, "mem.xml:2: <sensor type=\"perspective\">: clip range [2, 1] needs 0 < near_clip < far_clip");
     scene_desc_destroy(d);
@@ -119,7 +120,7 @@ Test(camera, from_sensor_and_bad_input)
     d = scene_desc_create_from_text(good, strlen(good), "mem.xml", NULL, 0, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "%s", err);
     scene_obj *s = scene_obj_child(scene_desc_root(d), SCENE_SENSOR);
-    cr_assert_eq(camera_from_sensor(&cam, s, 40, 20, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(perspective->create(s, 40, 20, &cam, err, sizeof err), 0, "%s", err);
     cr_assert_float_eq(span(&cam, 0.5, 0, 0.5, 1), 30, 1e-12);
     camera_ray_t c = camera_ray(&cam, 20, 10, 0, 0);
     cr_assert_float_eq(c.ray.d.z, 1, 1e-15, "lookat without up still looks at the target");

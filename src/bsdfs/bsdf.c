@@ -4,21 +4,20 @@
 #include <string.h>
 
 #include "bsdfs/bsdf_impl.h"
+#include "core/core.h"
 
 bsdf_t *bsdf_alloc(const scene_obj *o, const bsdf_ops *ops, unsigned flags, const void *data, size_t data_size,
                    char *err, size_t errlen)
 {
-    /* Round the header up so the data that follows is suitably aligned. */
-    size_t head = (sizeof(bsdf_t) + 15u) & ~(size_t)15u;
-    bsdf_t *b = calloc(1, head + data_size);
+    void *at;
+    bsdf_t *b = record_alloc(sizeof *b, data, data_size, &at);
     if (!b) {
         bsdf_refuse(o, err, errlen, "out of memory");
         return NULL;
     }
     b->ops = ops;
     b->flags = flags;
-    b->data = (char *)b + head;
-    memcpy(b->data, data, data_size);
+    b->data = at;
     return b;
 }
 

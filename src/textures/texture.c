@@ -2,6 +2,7 @@
  * allocation, the to_uv parameter, and the set of a scene's textures. */
 #include <stdlib.h>
 
+#include "core/core.h"
 #include "textures/texture_impl.h"
 
 static vec2 uv_apply(const uv_transform *t, vec2 uv)
@@ -21,14 +22,13 @@ rgb texture_mean(const texture_t *t)
 
 texture_t *texture_alloc(const texture_ops *ops, size_t data_size)
 {
-    /* Round the header up so the data that follows is suitably aligned. */
-    size_t head = (sizeof(texture_t) + 15u) & ~(size_t)15u;
-    texture_t *t = calloc(1, head + data_size);
+    void *at;
+    texture_t *t = record_alloc(sizeof *t, NULL, data_size, &at);
     if (!t)
         return NULL;
     t->ops = ops;
     t->to_uv = (uv_transform){{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}}};
-    t->data = (char *)t + head;
+    t->data = at;
     return t;
 }
 

@@ -14,6 +14,7 @@ void plugin_xml_open(plugin_xml *f)
 
 void plugin_xml_close(plugin_xml *f)
 {
+    emitter_list_free(&f->emitters);
     bsdf_set_free(&f->bsdfs);
     texture_set_free(&f->textures);
     for (int i = 0; i < f->ndocs; i++)
@@ -65,4 +66,22 @@ const texture_t *plugin_xml_texture(plugin_xml *f, const char *xml, char *err, s
         return NULL;
     }
     return texture_set_get(&f->textures, o, err, errlen);
+}
+
+const emitter_t *plugin_xml_emitter(plugin_xml *f, const char *xml, char *err, size_t errlen)
+{
+    scene_obj *o;
+    int n = plugin_xml_objects(f, xml, SCENE_EMITTER, &o, 1, err, errlen);
+    if (n < 1) {
+        if (n == 0)
+            snprintf(err, errlen, "plugin_xml: no <emitter> in the snippet");
+        return NULL;
+    }
+    emitter_t *e = emitter_plugin_find(o->type)->create(o, NULL, &f->textures, err, errlen);
+    if (e && emitter_list_add(&f->emitters, e) != 0) {
+        emitter_destroy(e);
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    return e;
 }

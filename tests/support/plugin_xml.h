@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "bsdfs/bsdfs.h"
+#include "emitters/emitters.h"
 #include "textures/textures.h"
 
 enum { PLUGIN_XML_MAX_DOCS = 64 };
@@ -17,6 +18,7 @@ typedef struct {
     int ndocs;
     texture_set textures;
     bsdf_set bsdfs;
+    emitter_list emitters;
 } plugin_xml;
 
 void plugin_xml_open(plugin_xml *f);
@@ -33,5 +35,7 @@ int plugin_xml_objects(plugin_xml *f, const char *xml, scene_class cls, scene_ob
  * or NULL with a message in err (a load or a build error). */
 const bsdf_t *plugin_xml_bsdf(plugin_xml *f, const char *xml, char *err, size_t errlen);
 const texture_t *plugin_xml_texture(plugin_xml *f, const char *xml, char *err, size_t errlen);
+/* The same for a top-level <emitter> (not one nested in a shape). */
+const emitter_t *plugin_xml_emitter(plugin_xml *f, const char *xml, char *err, size_t errlen);
 
 #endif
