@@ -29,7 +29,7 @@ BENCH_C  := $(wildcard bench/*.c)
 # $(call objs,VARIANT,SOURCES)
 objs = $(patsubst %.c,build/$(1)/%.o,$(filter %.c,$(2))) $(patsubst %.cpp,build/$(1)/%.o,$(filter %.cpp,$(2)))
 
-.PHONY: all deps test test-fast test-asan demo bench bench-sor clean check-deps
+.PHONY: all deps test test-fast test-asan check-layout demo bench bench-sor clean
 all: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon
 
@@ -44,10 +44,6 @@ deps:
 	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; \
 	fi
-
-# Every user-facing target runs this first: a no-op when everything is there.
-check-deps:
-	@$(MAKE) --no-print-directory deps
 
 # ---------------------------------------------------------------- objects
 build/opt/%.o: %.c
@@ -83,7 +79,8 @@ build/bench/%: bench/%.c build/opt/libceladon.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -O3 -o $@ $< build/opt/libceladon.a $(LDLIBS)
 
-# The stamp makes a fresh machine run `make deps` once before compiling anything.
+# Every user-facing target runs this first, so a fresh machine gets `make deps`
+# before compiling anything: a no-op when everything is there.
 check-deps-stamp:
 	@$(MAKE) --no-print-directory deps
 .PHONY: check-deps-stamp
@@ -94,7 +91,7 @@ check-deps-stamp:
 ASAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:halt_on_error=1 \
             LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
             UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-test: check-deps-stamp
+test: check-deps-stamp check-layout
 	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon build/asan/celadon-tests build/asan/celadon
 	@echo "== optimised build"
 	CELADON_BIN=$(CURDIR)/build/celadon CELADON_BUILD=opt ./build/opt/celadon-tests --jobs 2
@@ -108,6 +105,11 @@ test-fast: check-deps-stamp
 test-asan: check-deps-stamp
 	@$(MAKE) --no-print-directory -j2 build/asan/celadon-tests build/asan/celadon
 	$(ASAN_ENV) CELADON_BIN=$(CURDIR)/build/asan/celadon CELADON_BUILD=asan ./build/asan/celadon-tests --jobs 2 $(ARGS)
+
+# The layout rules of docs/plugins.md: no folder of src/ over 20% of the
+# source lines, headers across folders only as the folder's interface.
+check-layout:
+	@tools/check-layout.sh
 
 clean:
 	rm -rf build out
