@@ -138,6 +138,21 @@ typedef const scene_plugin_decl *(*scene_plugin_lookup)(scene_class cls, const c
 /* The entry named type in a NULL-terminated table of declarations, or NULL. */
 const scene_plugin_decl *scene_plugin_table_find(const scene_plugin_decl *const *table, const char *type);
 
+/* A kind's registration table from LIST, an X-macro of X(kind, name) lines:
+ * each plugin is `const kind_plugin kind_name` (a struct whose first member
+ * is its scene_plugin_decl), defined in its own file. Defines
+ * `const scene_plugin_decl *const kind_plugins[]` (NULL-terminated) and
+ * `const kind_plugin *kind_plugin_find(const char *name)`. */
+#define SCENE_PLUGIN_EXTERN_(kind, name) extern const kind##_plugin kind##_##name;
+#define SCENE_PLUGIN_ENTRY_(kind, name) &kind##_##name.decl,
+#define SCENE_PLUGIN_TABLE(kind, LIST)                                                                             \
+    LIST(SCENE_PLUGIN_EXTERN_)                                                                                     \
+    const scene_plugin_decl *const kind##_plugins[] = {LIST(SCENE_PLUGIN_ENTRY_) NULL};                           \
+    const kind##_plugin *kind##_plugin_find(const char *name)                                                      \
+    {                                                                                                              \
+        return (const kind##_plugin *)scene_plugin_table_find(kind##_plugins, name);                               \
+    }
+
 /* ------------------------------------------------------------- reading */
 /* A -D name=value override; it takes precedence over <default>. */
 typedef struct { const char *name, *value; } scene_define;

@@ -92,10 +92,17 @@ int bsdf_spectrum_param(bsdf_set *set, scene_obj *o, const char *name, double de
                         size_t errlen);
 /* A float-or-IOR-name parameter, def when absent. */
 int bsdf_ior_param(scene_obj *o, const char *name, double def, double *out, char *err, size_t errlen);
+/* int_ior and ext_ior, Mitsuba's named IOR inside (e.g. "bk7") and air
+ * outside when absent. */
+int bsdf_ior_pair_param(scene_obj *o, const char *inside, double *int_ior, double *ext_ior, char *err,
+                        size_t errlen);
 /* The indices of refraction (bk7 inside, air outside by default) and the
  * specular reflectance and transmittance (1) of the dielectric family. */
 int bsdf_dielectric_param(bsdf_set *set, scene_obj *o, double *int_ior, double *ext_ior, bsdf_spectrum *reflectance,
                           bsdf_spectrum *transmittance, char *err, size_t errlen);
+/* The same, checked, for the smooth ones: *eta = int_ior / ext_ior. */
+int bsdf_smooth_dielectric_param(bsdf_set *set, scene_obj *o, double *eta, bsdf_spectrum *reflectance,
+                                 bsdf_spectrum *transmittance, char *err, size_t errlen);
 /* The indices of refraction (polypropylene inside, air outside by default),
  * the diffuse (0.5) and specular (1) reflectances and `nonlinear` of the
  * plastic family. */
@@ -118,9 +125,7 @@ int bsdf_roughness_param(scene_obj *o, microfacet_type *distribution, double *au
 int bsdf_check_ior(const scene_obj *o, double int_ior, double ext_ior, char *err, size_t errlen);
 int bsdf_check_alpha(const scene_obj *o, const char *name, double alpha, char *err, size_t errlen);
 int bsdf_check_spectrum(const scene_obj *o, const char *name, const bsdf_spectrum *s, char *err, size_t errlen);
-/* The values bsdf_dielectric_param read, for the smooth dielectrics. */
-int bsdf_check_dielectric(const scene_obj *o, double int_ior, double ext_ior, const bsdf_spectrum *reflectance,
-                          const bsdf_spectrum *transmittance, char *err, size_t errlen);
+
 /* "file:line: <bsdf type='T'>: reason" for any other refusal; returns -1. */
 int bsdf_refuse(const scene_obj *o, char *err, size_t errlen, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));

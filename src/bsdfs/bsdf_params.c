@@ -47,31 +47,46 @@ int bsdf_ior_param(scene_obj *o, const char *name, double def, double *out, char
     return 0;
 }
 
+int bsdf_ior_pair_param(scene_obj *o, const char *inside, double *int_ior, double *ext_ior, char *err,
+                        size_t errlen)
+{
+    double in, air;
+    bsdf_ior_lookup(inside, &in);
+    bsdf_ior_lookup("air", &air);
+    if (bsdf_ior_param(o, "int_ior", in, int_ior, err, errlen) != 0 ||
+        bsdf_ior_param(o, "ext_ior", air, ext_ior, err, errlen) != 0)
+        return -1;
+    return 0;
+}
+
 int bsdf_dielectric_param(bsdf_set *set, scene_obj *o, double *int_ior, double *ext_ior, bsdf_spectrum *reflectance,
                           bsdf_spectrum *transmittance, char *err, size_t errlen)
 {
-    double bk7, air;
-    bsdf_ior_lookup("bk7", &bk7);
-    bsdf_ior_lookup("air", &air);
-    if (bsdf_ior_param(o, "int_ior", bk7, int_ior, err, errlen) != 0 ||
-        bsdf_ior_param(o, "ext_ior", air, ext_ior, err, errlen) != 0)
-        return -1;
-    if (bsdf_spectrum_param(set, o, "specular_reflectance", 1.0, reflectance, err, errlen) != 0 ||
+    if (bsdf_ior_pair_param(o, "bk7", int_ior, ext_ior, err, errlen) != 0 ||
+        bsdf_spectrum_param(set, o, "specular_reflectance", 1.0, reflectance, err, errlen) != 0 ||
         bsdf_spectrum_param(set, o, "specular_transmittance", 1.0, transmittance, err, errlen) != 0)
         return -1;
+    return 0;
+}
+
+int bsdf_smooth_dielectric_param(bsdf_set *set, scene_obj *o, double *eta, bsdf_spectrum *reflectance,
+                                 bsdf_spectrum *transmittance, char *err, size_t errlen)
+{
+    double int_ior, ext_ior;
+    if (bsdf_dielectric_param(set, o, &int_ior, &ext_ior, reflectance, transmittance, err, errlen) != 0 ||
+        bsdf_check_ior(o, int_ior, ext_ior, err, errlen) ||
+        bsdf_check_spectrum(o, "specular_reflectance", reflectance, err, errlen) ||
+        bsdf_check_spectrum(o, "specular_transmittance", transmittance, err, errlen))
+        return -1;
+    *eta = int_ior / ext_ior;
     return 0;
 }
 
 int bsdf_plastic_param(bsdf_set *set, scene_obj *o, double *int_ior, double *ext_ior, bsdf_spectrum *diffuse,
                        bsdf_spectrum *specular, int *nonlinear, char *err, size_t errlen)
 {
-    double polypropylene, air;
-    bsdf_ior_lookup("polypropylene", &polypropylene);
-    bsdf_ior_lookup("air", &air);
-    if (bsdf_ior_param(o, "int_ior", polypropylene, int_ior, err, errlen) != 0 ||
-        bsdf_ior_param(o, "ext_ior", air, ext_ior, err, errlen) != 0)
-        return -1;
-    if (bsdf_spectrum_param(set, o, "diffuse_reflectance", 0.5, diffuse, err, errlen) != 0 ||
+    if (bsdf_ior_pair_param(o, "polypropylene", int_ior, ext_ior, err, errlen) != 0 ||
+        bsdf_spectrum_param(set, o, "diffuse_reflectance", 0.5, diffuse, err, errlen) != 0 ||
         bsdf_spectrum_param(set, o, "specular_reflectance", 1.0, specular, err, errlen) != 0)
         return -1;
     *nonlinear = scene_obj_bool(o, "nonlinear", false);
@@ -131,16 +146,6 @@ int bsdf_check_alpha(const scene_obj *o, const char *name, double alpha, char *e
 {
     if (!(alpha >= 0.0) || !isfinite(alpha))
         return bsdf_refuse(o, err, errlen, "%s must be a non-negative number, got %g", name, alpha);
-    return 0;
-}
-
-int bsdf_check_dielectric(const scene_obj *o, double int_ior, double ext_ior, const bsdf_spectrum *reflectance,
-                          const bsdf_spectrum *transmittance, char *err, size_t errlen)
-{
-    if (bsdf_check_ior(o, int_ior, ext_ior, err, errlen) ||
-        bsdf_check_spectrum(o, "specular_reflectance", reflectance, err, errlen) ||
-        bsdf_check_spectrum(o, "specular_transmittance", transmittance, err, errlen))
-        return -1;
     return 0;
 }
 

@@ -3,24 +3,15 @@
  * (docs/plugins.md). */
 #include "bsdfs/bsdfs.h"
 
-#define BSDF_PLUGINS(X) \
-    X(diffuse)          \
-    X(dielectric)       \
-    X(thindielectric)   \
-    X(roughdielectric)  \
-    X(conductor)        \
-    X(roughconductor)   \
-    X(plastic)          \
-    X(roughplastic)     \
-    X(twosided)
+#define BSDF_PLUGINS(X)                  \
+    X(bsdf, diffuse)                     \
+    X(bsdf, dielectric)                  \
+    X(bsdf, thindielectric)              \
+    X(bsdf, roughdielectric)             \
+    X(bsdf, conductor)                   \
+    X(bsdf, roughconductor)              \
+    X(bsdf, plastic)                     \
+    X(bsdf, roughplastic)                \
+    X(bsdf, twosided)
 
-#define DECLARE(name) extern const bsdf_plugin bsdf_##name;
-BSDF_PLUGINS(DECLARE)
-
-#define ENTRY(name) &bsdf_##name.decl,
-const scene_plugin_decl *const bsdf_plugins[] = {BSDF_PLUGINS(ENTRY) NULL};
-
-const bsdf_plugin *bsdf_plugin_find(const char *name)
-{
-    return (const bsdf_plugin *)scene_plugin_table_find(bsdf_plugins, name);
-}
+SCENE_PLUGIN_TABLE(bsdf, BSDF_PLUGINS)

@@ -44,12 +44,9 @@ static const bsdf_ops dielectric_ops = {"dielectric", dielectric_sample, bsdf_ev
 static bsdf_t *dielectric_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {
     dielectric_data d;
-    double int_ior, ext_ior;
-    if (bsdf_dielectric_param(set, o, &int_ior, &ext_ior, &d.specular_reflectance, &d.specular_transmittance, err,
-                              errlen) != 0 ||
-        bsdf_check_dielectric(o, int_ior, ext_ior, &d.specular_reflectance, &d.specular_transmittance, err, errlen))
+    if (bsdf_smooth_dielectric_param(set, o, &d.eta, &d.specular_reflectance, &d.specular_transmittance, err,
+                                     errlen) != 0)
         return NULL;
-    d.eta = int_ior / ext_ior;
     unsigned flags = BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE;
     return bsdf_alloc(o, &dielectric_ops, flags, &d, sizeof d, err, errlen);
 }

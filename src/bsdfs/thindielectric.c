@@ -63,12 +63,9 @@ static const bsdf_ops thindielectric_ops = {"thindielectric", thindielectric_sam
 static bsdf_t *thindielectric_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {
     thindielectric_data d;
-    double int_ior, ext_ior;
-    if (bsdf_dielectric_param(set, o, &int_ior, &ext_ior, &d.specular_reflectance, &d.specular_transmittance, err,
-                              errlen) != 0 ||
-        bsdf_check_dielectric(o, int_ior, ext_ior, &d.specular_reflectance, &d.specular_transmittance, err, errlen))
+    if (bsdf_smooth_dielectric_param(set, o, &d.eta, &d.specular_reflectance, &d.specular_transmittance, err,
+                                     errlen) != 0)
         return NULL;
-    d.eta = int_ior / ext_ior;
     unsigned flags = BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE |
                      BSDF_STRAIGHT_TRANSMISSION;
     return bsdf_alloc(o, &thindielectric_ops, flags, &d, sizeof d, err, errlen);

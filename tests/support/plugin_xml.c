@@ -44,40 +44,32 @@ int plugin_xml_objects(plugin_xml *f, const char *xml, scene_class cls, scene_ob
     return scene_obj_children(scene_desc_root(d), cls, out, max);
 }
 
-const bsdf_t *plugin_xml_bsdf(plugin_xml *f, const char *xml, char *err, size_t errlen)
+/* The first top-level object of class cls of the snippet, or NULL with err. */
+static scene_obj *first_object(plugin_xml *f, const char *xml, scene_class cls, char *err, size_t errlen)
 {
     scene_obj *o;
-    int n = plugin_xml_objects(f, xml, SCENE_BSDF, &o, 1, err, errlen);
-    if (n < 1) {
-        if (n == 0)
-            snprintf(err, errlen, "plugin_xml: no <bsdf> in the snippet");
-        return NULL;
-    }
-    return bsdf_set_get(&f->bsdfs, o, err, errlen);
+    int n = plugin_xml_objects(f, xml, cls, &o, 1, err, errlen);
+    if (n == 0)
+        snprintf(err, errlen, "plugin_xml: no <%s> in the snippet", scene_class_name(cls));
+    return n > 0 ? o : NULL;
+}
+
+const bsdf_t *plugin_xml_bsdf(plugin_xml *f, const char *xml, char *err, size_t errlen)
+{
+    scene_obj *o = first_object(f, xml, SCENE_BSDF, err, errlen);
+    return o ? bsdf_set_get(&f->bsdfs, o, err, errlen) : NULL;
 }
 
 const texture_t *plugin_xml_texture(plugin_xml *f, const char *xml, char *err, size_t errlen)
 {
-    scene_obj *o;
-    int n = plugin_xml_objects(f, xml, SCENE_TEXTURE, &o, 1, err, errlen);
-    if (n < 1) {
-        if (n == 0)
-            snprintf(err, errlen, "plugin_xml: no <texture> in the snippet");
-        return NULL;
-    }
-    return texture_set_get(&f->textures, o, err, errlen);
+    scene_obj *o = first_object(f, xml, SCENE_TEXTURE, err, errlen);
+    return o ? texture_set_get(&f->textures, o, err, errlen) : NULL;
 }
 
 const emitter_t *plugin_xml_emitter(plugin_xml *f, const char *xml, char *err, size_t errlen)
 {
-    scene_obj *o;
-    int n = plugin_xml_objects(f, xml, SCENE_EMITTER, &o, 1, err, errlen);
-    if (n < 1) {
-        if (n == 0)
-            snprintf(err, errlen, "plugin_xml: no <emitter> in the snippet");
-        return NULL;
-    }
-    emitter_t *e = emitter_plugin_find(o->type)->create(o, NULL, &f->textures, err, errlen);
+    scene_obj *o = first_object(f, xml, SCENE_EMITTER, err, errlen);
+    emitter_t *e = o ? emitter_plugin_find(o->type)->create(o, NULL, &f->textures, err, errlen) : NULL;
     if (e && emitter_list_add(&f->emitters, e) != 0) {
         emitter_destroy(e);
         snprintf(err, errlen, "out of memory");
