@@ -156,3 +156,52 @@ Test(scene_schema, every_parameter_round_trips_and_wrong_types_fail)
     remove(path);
     remove(dir);
 }
+
+/* The row of docs/scene-format.md's plugin tables whose first cell names
+ * plugin `type`, or NULL. */
+static const char *doc_row(const char *doc, const char *type)
+{
+    char name[80];
+    snprintf(name, sizeof name, "`%s`", type);
+    for (const char *line = doc; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+        const char *end = strchr(line, '\n'), *cell_end = line[0] == '|' ? strchr(line + 1, '|') : NULL;
+        if (!cell_end || (end && cell_end > end))
+            continue;
+        const char *hit = strstr(line, name);
+        if (hit && hit < cell_end)
+            return line;
+    }
+    return NULL;
+}
+
+/* The documentation lists what the registration tables declare: every
+ * plugin has a row in docs/scene-format.md, and its row names every
+ * parameter. */
+Test(scene_schema, docs_list_every_plugin_and_parameter)
+{
+    FILE *f = fopen("docs/scene-format.md", "r");
+    cr_assert_not_null(f, "run from the repository's top folder");
+    static char doc[1 << 16];
+    size_t n = fread(doc, 1, sizeof doc - 1, f);
+    fclose(f);
+    doc[n] = '\0';
+    int plugins = 0;
+    for (int i = 0; scene_plugin_at(i); i++) {
+        const scene_plugin_decl *pl = scene_plugin_at(i);
+        if (pl->cls == SCENE_SCENE)
+            continue;
+        const char *row = doc_row(doc, pl->type);
+        cr_assert_not_null(row, "docs/scene-format.md has no row for <%s type=\"%s\">", scene_class_name(pl->cls),
+                           pl->type);
+        size_t len = strcspn(row, "\n");
+        for (const scene_param_decl *q = pl->params; q && q->name; q++) {
+            char name[80];
+            snprintf(name, sizeof name, "`%s`", q->name);
+            const char *hit = strstr(row, name);
+            cr_assert(hit && (size_t)(hit - row) < len, "docs/scene-format.md: the row of %s does not name `%s`",
+                      pl->type, q->name);
+        }
+        plugins++;
+    }
+    cr_assert_geq(plugins, 31, "%d plugins", plugins);
+}
