@@ -93,7 +93,8 @@ Test(camera, from_sensor_and_bad_input)
                       "  </sensor>\n"
                       "  <sensor type=\"perspective\" id=\"bad\"/>\n"
                       "</scene>\n";
-    scene_desc *d = scene_desc_create_from_text(xml, strlen(xml), "mem.xml", NULL, 0, scene_plugin_find, err, sizeof err);
+    scene_desc *d =
+        scene_desc_create_from_text(xml, strlen(xml), "mem.xml", NULL, 0, scene_plugin_find, err, sizeof err);
     cr_assert_null(d, "two sensors are refused");
     cr_assert_str_eq(err, "mem.xml:6: <scene> takes at most 1 <sensor>");
     const char *clip = "<scene version=\"3.0.0\">\n"

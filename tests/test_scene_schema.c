@@ -131,7 +131,8 @@ Test(scene_schema, every_parameter_round_trips_and_wrong_types_fail)
                 int depth;
                 property_xml((scene_prop_type)t, q->name, q, prop, sizeof prop);
                 document(pl, prop, xml, sizeof xml, &depth);
-                scene_desc *d = scene_desc_create_from_text(xml, strlen(xml), path, NULL, 0, scene_plugin_find, err, sizeof err);
+                scene_desc *d =
+                    scene_desc_create_from_text(xml, strlen(xml), path, NULL, 0, scene_plugin_find, err, sizeof err);
                 if (q->types & (1u << t)) {
                     cr_assert_not_null(d, "%s %s as %s: %s\n%s", pl->type, q->name, schema_type_tag(t), err, xml);
                     scene_obj *o = descend(d, depth);

@@ -68,7 +68,8 @@ int bsdf_conductor_preset(const char *name, rgb *eta, rgb *k);
 /* ------------------------------------------------ parameters (bsdf_params.c) */
 /* Declarations of the parameters several plugins take. */
 #define BSDF_PARAMS_IOR                                                                                            \
-    {"int_ior", PARAM_FLOAT | PARAM_STRING, 0, bsdf_ior_names}, {"ext_ior", PARAM_FLOAT | PARAM_STRING, 0, bsdf_ior_names}
+    {"int_ior", PARAM_FLOAT | PARAM_STRING, 0, bsdf_ior_names},                                                    \
+        {"ext_ior", PARAM_FLOAT | PARAM_STRING, 0, bsdf_ior_names}
 #define BSDF_PARAMS_ROUGHNESS                                                                                      \
     {"distribution", PARAM_STRING, 0, "beckmann|ggx"}, {"alpha", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},           \
         {"alpha_u", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL}, {"alpha_v", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},     \

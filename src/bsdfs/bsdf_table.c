@@ -1,5 +1,5 @@
-/* The registration table of the BSDF plugins: one line each. The plugin NAME
- * is defined in its own file NAME.c as `const bsdf_plugin bsdf_NAME`
+/* The registration table of the BSDF plugins, one line each: the plugin
+ * NAME is `const bsdf_plugin bsdf_NAME`, defined in its own file NAME.c
  * (docs/plugins.md). */
 #include "bsdfs/bsdfs.h"
 
@@ -12,6 +12,7 @@
     X(bsdf, roughconductor)              \
     X(bsdf, plastic)                     \
     X(bsdf, roughplastic)                \
-    X(bsdf, twosided)
+    X(bsdf, twosided)                    \
+    /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(bsdf, BSDF_PLUGINS)

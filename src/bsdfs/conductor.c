@@ -29,7 +29,9 @@ static rgb conductor_albedo(const bsdf_t *b, vec2 uv)
     return rgb_mul(spectrum_eval(&d->specular_reflectance, uv), fresnel_conductor_rgb(1.0, d->eta, d->k));
 }
 
-static const bsdf_ops conductor_ops = {"conductor", conductor_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only, conductor_albedo, NULL};
+static const bsdf_ops conductor_ops = {"conductor",
+                                       conductor_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only, conductor_albedo,
+                                       NULL};
 
 static bsdf_t *conductor_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {

@@ -53,7 +53,8 @@ static rgb roughconductor_albedo(const bsdf_t *b, vec2 uv)
     return rgb_mul(spectrum_eval(&d->specular_reflectance, uv), fresnel_conductor_rgb(1.0, d->eta, d->k));
 }
 
-static const bsdf_ops roughconductor_ops = {"roughconductor", roughconductor_sample, roughconductor_eval, roughconductor_pdf,
+static const bsdf_ops roughconductor_ops = {"roughconductor",
+                                            roughconductor_sample, roughconductor_eval, roughconductor_pdf,
                                             roughconductor_albedo, NULL};
 
 static bsdf_t *roughconductor_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
@@ -78,6 +79,7 @@ static bsdf_t *roughconductor_create(scene_obj *o, bsdf_set *set, char *err, siz
 static const scene_param_decl roughconductor_params[] = {BSDF_PARAMS_CONDUCTOR, BSDF_PARAMS_ROUGHNESS, BSDF_PARAMS_END};
 
 const bsdf_plugin bsdf_roughconductor = {
-    .decl = {.cls = SCENE_BSDF, .type = "roughconductor", .params = roughconductor_params, .exclusive = {"alpha", "alpha_u"}},
+    .decl = {.cls = SCENE_BSDF, .type = "roughconductor", .params = roughconductor_params,
+             .exclusive = {"alpha", "alpha_u"}},
     .create = roughconductor_create,
 };

@@ -123,8 +123,9 @@ static rgb roughplastic_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->diffuse_reflectance, uv);
 }
 
-static const bsdf_ops roughplastic_ops = {"roughplastic", roughplastic_sample, roughplastic_eval, roughplastic_pdf,
-                                          roughplastic_albedo, NULL};
+static const bsdf_ops roughplastic_ops = {"roughplastic",
+                                          roughplastic_sample, roughplastic_eval, roughplastic_pdf, roughplastic_albedo,
+                                          NULL};
 
 /* The coating's energy tables: T(mu) and the internal reflectance. */
 static void roughplastic_tables(roughplastic_data *d)

@@ -1,5 +1,5 @@
-/* The registration table of the emitter plugins: one line each. The plugin NAME
- * is defined in its own file NAME.c as `const emitter_plugin emitter_NAME`
+/* The registration table of the emitter plugins, one line each: the plugin
+ * NAME is `const emitter_plugin emitter_NAME`, defined in its own file NAME.c
  * (docs/plugins.md). */
 #include "emitters/emitters.h"
 
@@ -8,6 +8,7 @@
     X(emitter, constant)                 \
     X(emitter, envmap)                   \
     X(emitter, point)                    \
-    X(emitter, directional)
+    X(emitter, directional)              \
+    /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(emitter, EMITTER_PLUGINS)

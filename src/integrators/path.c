@@ -129,7 +129,8 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             const emitter_t *e = sh->emitter;
             rgb le = emitter_eval_hit(e, &hit, ray.d);
             if (!rgb_is_black(le)) {
-                double w = prev_delta ? 1.0 : mis_power_heuristic(prev_pdf, sel * emitter_pdf_hit(e, prev_p, &hit, ray.d));
+                double w =
+                    prev_delta ? 1.0 : mis_power_heuristic(prev_pdf, sel * emitter_pdf_hit(e, prev_p, &hit, ray.d));
                 L = rgb_add(L, rgb_scale(rgb_mul(beta, le), w));
             }
         }

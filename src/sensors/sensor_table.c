@@ -4,12 +4,17 @@
  * that change nothing share rfilters.c; docs/plugins.md). */
 #include "sensors/sensors.h"
 
-#define SENSOR_PLUGINS(X) X(sensor, perspective)
-#define FILM_PLUGINS(X) X(film, hdrfilm)
+#define SENSOR_PLUGINS(X) \
+    X(sensor, perspective) \
+    /* one line per plugin, in any order */
+#define FILM_PLUGINS(X) \
+    X(film, hdrfilm)    \
+    /* one line per plugin, in any order */
 #define RFILTER_PLUGINS(X) \
     X(rfilter, box)        \
     X(rfilter, gaussian)   \
-    X(rfilter, tent)
+    X(rfilter, tent)       \
+    /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(sensor, SENSOR_PLUGINS)
 SCENE_PLUGIN_TABLE(film, FILM_PLUGINS)

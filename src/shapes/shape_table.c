@@ -1,5 +1,5 @@
-/* The registration table of the shape plugins: one line each. The plugin NAME
- * is defined in its own file NAME.c as `const shape_plugin shape_NAME`
+/* The registration table of the shape plugins, one line each: the plugin
+ * NAME is `const shape_plugin shape_NAME`, defined in its own file NAME.c
  * (docs/plugins.md). */
 #include "shapes/shapes.h"
 
@@ -11,6 +11,7 @@
     X(shape, disk)                       \
     X(shape, sphere)                     \
     X(shape, cylinder)                   \
-    X(shape, sor)
+    X(shape, sor)                        \
+    /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(shape, SHAPE_PLUGINS)

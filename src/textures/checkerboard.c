@@ -18,7 +18,8 @@ static const texture_ops checkerboard_ops = {checkerboard_lookup, NULL};
 static texture_t *checkerboard_create(scene_obj *o, char *err, size_t errlen)
 {
     if (scene_obj_texture(o, "color0") || scene_obj_texture(o, "color1")) {
-        scene_obj_error(o, err, errlen, "checkerboard colors must be constant colors (nested textures are not supported)");
+        scene_obj_error(o, err, errlen,
+                        "checkerboard colors must be constant colors (nested textures are not supported)");
         return NULL;
     }
     scene_rgb c0 = scene_obj_rgb(o, "color0", (scene_rgb){0.4, 0.4, 0.4});

@@ -36,7 +36,8 @@ int plugin_xml_objects(plugin_xml *f, const char *xml, scene_class cls, scene_ob
         return -1;
     }
     snprintf(doc, len, "<scene version=\"3.0.0\">%s</scene>", xml);
-    scene_desc *d = scene_desc_create_from_text(doc, strlen(doc), "snippet.xml", NULL, 0, scene_plugin_find, err, errlen);
+    scene_desc *d =
+        scene_desc_create_from_text(doc, strlen(doc), "snippet.xml", NULL, 0, scene_plugin_find, err, errlen);
     free(doc);
     if (!d)
         return -1;
