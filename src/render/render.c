@@ -1,6 +1,6 @@
 /* The render loop: passes of samples over 16x16 tiles shared out to OpenMP
- * threads, each pixel sample with its own RNG stream, a progress bar, and a
- * stop request (SIGINT) honoured after the sample in progress. */
+ * threads, each pixel sample with its own stream of the sampler, a progress
+ * bar, and a stop request (SIGINT) honoured after the sample in progress. */
 #include <omp.h>
 #include <signal.h>
 #include <stdio.h>
