@@ -182,13 +182,15 @@ int cmd_museum(int argc, char **argv)
     museum_report rep;
     char err[1024] = "";
     rc = museum_build((const char *const *)argv + optind, n, &o.museum, &rep, err, sizeof err);
-    int built = rep.n_vessels;
+    int built = rep.n_vessels, refused = 0;
     for (int i = 0; i < rep.n_photos; i++)
-        if (rep.photos[i].status != 0)
+        if (rep.photos[i].status != 0) {
             fprintf(stderr, "celadon: %s: %s\n", rep.photos[i].photo, rep.photos[i].error);
+            refused++;
+        }
     if (built > 0 && rc != 1)
         print_summary(&o.museum, &rep);
-    else
+    else if (!(built == 0 && refused == rep.n_photos && refused > 0)) /* those lines said it all */
         fprintf(stderr, "celadon: %s\n", err);
     museum_report_free(&rep);
     if (o.serve && rc != 1 && built > 0) {

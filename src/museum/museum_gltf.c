@@ -345,8 +345,10 @@ static int vessel_node(builder *b, const museum_exhibit *e, vec3 at, int materia
 
 static json_t *exhibit_extras(const museum_exhibit *e, int index)
 {
-    json_t *x = json_pack("{s:i, s:s, s:f, s:s}", "index", index, "title", e->title, "height_cm",
-                          100.0 * e->height_m, "photo", e->photo);
+    char profile[160];
+    snprintf(profile, sizeof profile, "vessels/%s/profile.json", e->slug);
+    json_t *x = json_pack("{s:i, s:s, s:f, s:s, s:s}", "index", index, "title", e->title, "height_cm",
+                          100.0 * e->height_m, "photo", e->photo, "profile", profile);
     if (e->date)
         json_object_set_new(x, "date", json_string(e->date));
     if (e->description)
