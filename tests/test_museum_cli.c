@@ -5,7 +5,6 @@
  * line, exit 2 and nothing written. */
 #include <criterion/criterion.h>
 #include <dirent.h>
-#include <ftw.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,16 +31,9 @@ static void setup(void)
     museum_fixture_photos(workdir, N_PHOTOS, photos);
 }
 
-static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
-{
-    (void)st, (void)flag, (void)ftw;
-    return remove(path);
-}
-
 static void teardown(void)
 {
-    if (workdir[0])
-        nftw(workdir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+    museum_fixture_remove_tree(workdir);
 }
 
 TestSuite(museum_cli, .init = setup, .fini = teardown);
@@ -72,6 +64,18 @@ static int exists(const char *path)
 {
     struct stat st;
     return stat(path, &st) == 0;
+}
+
+/* The number of exhibits in folder/museum.glb. */
+static int exhibits_in(const char *folder)
+{
+    char path[600];
+    snprintf(path, sizeof path, "%s/museum.glb", folder);
+    glb_file g;
+    glb_read(path, &g);
+    int exhibit[8], vessel[8], n = glb_exhibits(&g, exhibit, vessel, 8);
+    glb_close(&g);
+    return n;
 }
 
 static cli_result build(const char *out, const char *spp)
@@ -368,7 +372,7 @@ Test(museum_cli, bad_inputs_are_one_line_exit_2_and_nothing_written)
 
 Test(museum_cli, a_refused_photo_is_left_out_and_the_rest_make_the_museum)
 {
-    char out[512], bad[512], path[600];
+    char out[512], bad[512];
     in_work(out, sizeof out, "museum");
     write_text("blank.png", "");
     in_work(bad, sizeof bad, "blank.png");
@@ -377,12 +381,7 @@ Test(museum_cli, a_refused_photo_is_left_out_and_the_rest_make_the_museum)
     cr_expect_eq(r.status, 2, "a refused photo makes the exit code 2");
     cr_expect_not_null(strstr(r.err, "blank.png"), "%s", r.err);
     cli_result_free(&r);
-    snprintf(path, sizeof path, "%s/museum.glb", out);
-    glb_file g;
-    glb_read(path, &g);
-    int exhibit[8], vessel[8];
-    cr_expect_eq(glb_exhibits(&g, exhibit, vessel, 8), 1);
-    glb_close(&g);
+    cr_expect_eq(exhibits_in(out), 1);
 }
 
 /* The synth-dev catalogue photographs (../shared) make a museum too. */
@@ -399,11 +398,5 @@ Test(museum_cli, synth_dev_photos)
     cli_result r = museum_fixture_run(workdir, args);
     cr_expect_eq(r.status, 0, "%s", r.err);
     cli_result_free(&r);
-    char path[600];
-    snprintf(path, sizeof path, "%s/museum.glb", out);
-    glb_file g;
-    glb_read(path, &g);
-    int exhibit[8], vessel[8];
-    cr_expect_eq(glb_exhibits(&g, exhibit, vessel, 8), 2);
-    glb_close(&g);
+    cr_expect_eq(exhibits_in(out), 2);
 }

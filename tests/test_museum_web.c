@@ -8,7 +8,6 @@
  * the built page are missing. */
 #include <criterion/criterion.h>
 #include <criterion/logging.h>
-#include <ftw.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdio.h>
@@ -23,16 +22,9 @@ enum { N_PHOTOS = 3, SHOT_W = 640, SHOT_H = 360 };
 
 static char workdir[256];
 
-static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
-{
-    (void)st, (void)flag, (void)ftw;
-    return remove(path);
-}
-
 static void teardown(void)
 {
-    if (workdir[0])
-        nftw(workdir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+    museum_fixture_remove_tree(workdir);
 }
 
 TestSuite(museum_web, .fini = teardown);

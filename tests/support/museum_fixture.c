@@ -1,6 +1,7 @@
 #include "museum_fixture.h"
 
 #include <criterion/criterion.h>
+#include <ftw.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,6 +37,18 @@ void museum_fixture_photos(const char *dir, int n, char paths[][512])
         fprintf(f, "\",%.1f,Drawn for the tests: a known profile.\n", heights_cm[k % 4]);
     }
     fclose(f);
+}
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+void museum_fixture_remove_tree(const char *path)
+{
+    if (path[0])
+        nftw(path, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
 }
 
 cli_result museum_fixture_run(const char *dir, const char *const *args)

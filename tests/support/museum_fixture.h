@@ -16,6 +16,9 @@
  * height. paths[k] receives photo k's path. */
 void museum_fixture_photos(const char *dir, int n, char paths[][512]);
 
+/* Removes the folder tree at path (a test's scratch folder). */
+void museum_fixture_remove_tree(const char *path);
+
 /* Runs `celadon museum` with args (NULL-terminated) in scratch dir. */
 cli_result museum_fixture_run(const char *dir, const char *const *args);
 
