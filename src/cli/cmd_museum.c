@@ -2,12 +2,14 @@
  * the page, museum.xml + preview.png) in one folder, and a small server for
  * it on 127.0.0.1. The CLI parses, calls museum_build, prints. */
 #include <getopt.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
 #include "celadon/museum.h"
+#include "celadon/render.h"
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "museum/serve.h"
@@ -40,6 +42,8 @@ static void usage(FILE *f)
             "                       0: any free port) until Ctrl-C; without photos, serves an\n"
             "                       existing museum\n"
             "  -h, --help           this text\n\n"
+            "Ctrl-C during the preview stops it early: the museum is written with the preview\n"
+            "as far as it got.\n\n"
             "A vessel without a catalogue height is %.0f cm tall. exit status: 0 every photo is in\n"
             "the museum, 2 bad input or usage (refused photos are left out, the rest still make\n"
             "the museum), 1 internal failure\n",
@@ -150,6 +154,14 @@ static void print_summary(const museum_options *o, const museum_report *r)
                 o->web_dir);
 }
 
+/* Ctrl-C cuts the preview short: the museum is still written whole, with
+ * the preview as far as it got. */
+static void on_sigint(int sig)
+{
+    (void)sig;
+    render_request_stop();
+}
+
 static int serve(const char *dir, int port)
 {
     char manifest[4200], err[512];
@@ -179,6 +191,7 @@ int cmd_museum(int argc, char **argv)
     const char *web = getenv("CELADON_WEB_DIR");
     o.museum.web_dir = web && *web ? web : CELADON_WEB_DIR;
     o.museum.progress = 1;
+    signal(SIGINT, on_sigint);
     museum_report rep;
     char err[1024] = "";
     rc = museum_build((const char *const *)argv + optind, n, &o.museum, &rep, err, sizeof err);
@@ -193,6 +206,7 @@ int cmd_museum(int argc, char **argv)
     else if (!(built == 0 && refused == rep.n_photos && refused > 0)) /* those lines said it all */
         fprintf(stderr, "celadon: %s\n", err);
     museum_report_free(&rep);
+    signal(SIGINT, SIG_DFL);
     if (o.serve && rc != 1 && built > 0) {
         int src = serve(o.museum.out_dir, o.port);
         return src ? src : rc;
