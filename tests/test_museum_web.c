@@ -116,6 +116,16 @@ Test(museum_web, the_page_loads_and_shows_every_vessel, .timeout = 300)
     cr_expect_eq(json_integer_value(json_object_get(val, "warnings")), 0);
     cr_assert_null(json_object_get(res, "failure"), "%s", json_string_value(json_object_get(res, "failure")));
     cr_expect_eq(json_integer_value(json_object_get(res, "serverExit")), 0, "the server stops cleanly on SIGTERM");
+    json_t *served = json_object_get(res, "server");
+    static const char *const paths[] = {"/", "museum.glb", "..%2f..%2fetc%2fpasswd",
+                                        "vessels%2f..%2f..%2fmuseum.json", ".hidden",
+                                        "no-such-file"};
+    static const int codes[] = {200, 200, 404, 404, 404, 404};
+    for (int k = 0; k < 6; k++)
+        cr_expect_eq(json_integer_value(json_object_get(json_object_get(served, paths[k]), "status")), codes[k],
+                     "GET %s", paths[k]);
+    cr_expect_str_eq(json_string_value(json_object_get(json_object_get(served, "museum.glb"), "type")),
+                     "model/gltf-binary");
     json_t *page = json_object_get(res, "page");
     cr_expect(json_is_null(json_object_get(page, "error")), "page error: %s",
               json_string_value(json_object_get(page, "error")));

@@ -77,6 +77,14 @@ static int parse_res(const char *s, int *w, int *h)
     return sscanf(s, "%dx%d%c", w, h, &extra) == 2 && *w >= 8 && *h >= 8 && *w <= 8192 && *h <= 8192 ? 0 : -1;
 }
 
+static int all_digits(const char *s)
+{
+    for (const char *p = s; *p; p++)
+        if (*p < '0' || *p > '9')
+            return 0;
+    return *s != 0;
+}
+
 /* Returns -1 to continue, otherwise the exit code. */
 static int parse_options(int argc, char **argv, options *o)
 {
@@ -117,9 +125,7 @@ static int parse_options(int argc, char **argv, options *o)
             break;
         case OPT_SERVE: {
             /* --serve=PORT, or --serve PORT when the next word is a number. */
-            const char *port = optarg ? optarg : optind < argc && argv[optind][0] >= '0' && argv[optind][0] <= '9'
-                                                     ? argv[optind++]
-                                                     : NULL;
+            const char *port = optarg ? optarg : optind < argc && all_digits(argv[optind]) ? argv[optind++] : NULL;
             o->serve = 1;
             if (port && cli_parse_int(port, 0, 65535, &v) != 0)
                 return cli_usage_error("museum", "--serve wants a port 0..65535, not '%s'", port);

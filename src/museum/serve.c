@@ -60,11 +60,13 @@ static enum MHD_Result answer(void *cls, struct MHD_Connection *c, const char *u
     if (strcmp(method, "GET") && strcmp(method, "HEAD"))
         return reply_status(c, MHD_HTTP_METHOD_NOT_ALLOWED, "GET or HEAD only\n");
     char path[PATH_MAX];
-    int n = snprintf(path, sizeof path, "%s%s%s", root, url, url[strlen(url) - 1] == '/' ? "index.html" : "");
     struct stat st;
     int fd = -1;
-    if (safe_path(url) && n > 0 && (size_t)n < sizeof path)
-        fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (safe_path(url)) {
+        int n = snprintf(path, sizeof path, "%s%s%s", root, url, url[strlen(url) - 1] == '/' ? "index.html" : "");
+        if (n > 0 && (size_t)n < sizeof path)
+            fd = open(path, O_RDONLY | O_CLOEXEC);
+    }
     if (fd < 0 || fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         if (fd >= 0)
             close(fd);

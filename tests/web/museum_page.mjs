@@ -90,9 +90,23 @@ async function browse(url) {
   }
 }
 
+// What the server answers: the page and the glb with their types; paths
+// that climb out of the folder (escaped, so the client does not resolve the
+// "..") or name hidden files are not found.
+async function probe(url) {
+  const answers = {};
+  for (const p of ['', 'museum.glb', '..%2f..%2fetc%2fpasswd', 'vessels%2f..%2f..%2fmuseum.json', '.hidden', 'no-such-file']) {
+    const r = await fetch(url + p);
+    answers[p || '/'] = { status: r.status, type: r.headers.get('content-type') };
+    await r.arrayBuffer();
+  }
+  return answers;
+}
+
 const result = { validator: await validate(path.join(dir, 'museum.glb')) };
 const server = await serve();
 try {
+  result.server = await probe(server.url);
   result.page = await browse(server.url);
 } catch (e) {
   result.failure = String(e.message || e);
