@@ -55,22 +55,6 @@ typedef struct {
     int serve, port;
 } options;
 
-static int parse_lods(const char *s, museum_options *o)
-{
-    char buf[256];
-    if (strlen(s) >= sizeof buf)
-        return -1;
-    snprintf(buf, sizeof buf, "%s", s);
-    o->n_lods = 0;
-    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-        long long v;
-        if (o->n_lods == MUSEUM_MAX_LODS || cli_parse_int(tok, 3, 4096, &v) != 0)
-            return -1;
-        o->lods[o->n_lods++] = (int)v;
-    }
-    return o->n_lods > 0 ? 0 : -1;
-}
-
 static int parse_res(const char *s, int *w, int *h)
 {
     char extra;
@@ -110,7 +94,7 @@ static int parse_options(int argc, char **argv, options *o)
             o->museum.title = optarg;
             break;
         case OPT_LOD:
-            if (parse_lods(optarg, &o->museum) != 0)
+            if (cli_parse_int_list(optarg, 3, 4096, o->museum.lods, MUSEUM_MAX_LODS, &o->museum.n_lods) != 0)
                 return cli_usage_error("museum", "--lod wants up to 8 comma-separated integers 3..4096, not '%s'",
                                        optarg);
             break;
