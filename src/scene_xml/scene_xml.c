@@ -112,20 +112,40 @@ static scene_prop *find_prop(const scene_obj *o, const char *name)
     return NULL;
 }
 
-/* Resolves a file name against the folder of the file that mentions it. */
-static char *resolve_path(const char *from_file, const char *name)
+/* name in the folder dir; "." stays implicit. */
+static char *join_path(const char *dir, const char *name)
 {
-    if (name[0] == '/')
+    if (name[0] == '/' || strcmp(dir, ".") == 0)
         return xstrdup(name);
-    char *tmp = xstrdup(from_file);
-    const char *dir = dirname(tmp);
     size_t n = strlen(dir) + strlen(name) + 2;
     char *r = xrealloc(NULL, n);
-    if (strcmp(dir, ".") == 0)
-        snprintf(r, n, "%s", name);
-    else
-        snprintf(r, n, "%s/%s", dir, name);
+    snprintf(r, n, "%s/%s", dir, name);
+    return r;
+}
+
+static char *folder_of(const char *file)
+{
+    char *tmp = xstrdup(file);
+    char *dir = xstrdup(dirname(tmp));
     free(tmp);
+    return dir;
+}
+
+char *scene_resolve_path(scene_ctx *c, const char *from_file, const char *name)
+{
+    char *first = folder_of(from_file), *r = join_path(first, name);
+    free(first);
+    struct stat st;
+    if (name[0] == '/' || stat(r, &st) == 0)
+        return r;
+    for (int i = -1; i < c->npaths; i++) {
+        char *alt = join_path(i < 0 ? c->scene_dir : c->paths[i], name);
+        if (stat(alt, &st) == 0) {
+            free(r);
+            return alt;
+        }
+        free(alt);
+    }
     return r;
 }
 
@@ -162,7 +182,7 @@ static int add_prop(scene_ctx *c, scene_obj *o, scene_prop *p)
         rc = scene_fail(c, p->line, "bad value '%s' for '%s' of %s (one of: %s)", p->value.s, p->name, what,
                         par->choices);
     } else if (p->type == SCENE_STRING && (par->flags & PARAM_FILE)) {
-        char *path = resolve_path(p->file, p->value.s);
+        char *path = scene_resolve_path(c, p->file, p->value.s);
         rc = check_file(c, p->line, p->value.s, path);
         free(p->value.s);
         p->value.s = path;
@@ -319,7 +339,7 @@ static int parse_include(scene_ctx *c, const xmlNode *n, scene_obj *parent)
     char *name;
     if (scene_check_attrs(c, n, "filename") != 0 || scene_attr_req(c, n, "filename", &name) != 0)
         return -1;
-    char *path = resolve_path(c->file, name);
+    char *path = scene_resolve_path(c, c->file, name);
     char canon[PATH_MAX];
     char *buf = NULL;
     size_t len = 0;
@@ -342,6 +362,29 @@ static int parse_include(scene_ctx *c, const xmlNode *n, scene_obj *parent)
     free(buf);
     free(path);
     free(name);
+    return rc;
+}
+
+/* <path value="folder"/>: one more folder to look for files in, relative
+ * to the file that names it (or found as a file name is); it must exist. */
+static int parse_path(scene_ctx *c, const xmlNode *n)
+{
+    char *value;
+    if (scene_check_attrs(c, n, "value") != 0 || scene_attr_req(c, n, "value", &value) != 0)
+        return -1;
+    char *path = scene_resolve_path(c, c->file, value);
+    struct stat st;
+    int rc = 0;
+    if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        rc = scene_fail(c, scene_line(n), "<path>: folder '%s' not found (%s)", value, path);
+        free(path);
+    } else {
+        c->paths = xrealloc(c->paths, sizeof(char *) * (size_t)(c->npaths + 1));
+        memmove(c->paths + 1, c->paths, sizeof(char *) * (size_t)c->npaths);
+        c->paths[0] = path;
+        c->npaths++;
+    }
+    free(value);
     return rc;
 }
 
@@ -384,6 +427,16 @@ static int parse_ref(scene_ctx *c, const xmlNode *n, scene_obj *parent)
 
 static int parse_children(scene_ctx *c, const xmlNode *n, scene_obj *o, int file_scene_level);
 
+/* An object with an id at the top level that the scene itself cannot hold
+ * (a sampler, a film, an area emitter, ...) is only declared there, for
+ * <ref>s to place it, as in Mitsuba; unreferenced, it is not used. */
+static int declared_only(scene_ctx *c, const scene_obj *parent, const scene_obj *o)
+{
+    if (parent->cls != SCENE_SCENE || !o->id)
+        return 0;
+    return !schema_child_find(c->plugins(SCENE_SCENE, "scene"), o->cls) || c->plugins(o->cls, o->type)->host != SCENE_SCENE;
+}
+
 static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_obj *parent)
 {
     int line = scene_line(n);
@@ -407,7 +460,7 @@ static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_o
     o->id = id;
     o->name = name;
     id = name = NULL;
-    if (parse_children(c, n, o, 0) != 0 || attach(c, parent, o, o->name, line) != 0)
+    if (parse_children(c, n, o, 0) != 0 || (!declared_only(c, parent, o) && attach(c, parent, o, o->name, line) != 0))
         goto done;
     rc = 0;
 done:
@@ -426,6 +479,11 @@ static int parse_element(scene_ctx *c, const xmlNode *n, scene_obj *o, int file_
             return scene_fail(c, scene_line(n), "<default> must be a direct child of <scene>");
         return parse_default(c, n);
     }
+    if (strcmp(tag, "path") == 0) {
+        if (!file_scene_level)
+            return scene_fail(c, scene_line(n), "<path> must be a direct child of <scene>");
+        return parse_path(c, n);
+    }
     if (strcmp(tag, "include") == 0)
         return parse_include(c, n, o);
     if (strcmp(tag, "ref") == 0)
@@ -434,7 +492,7 @@ static int parse_element(scene_ctx *c, const xmlNode *n, scene_obj *o, int file_
         return parse_object(c, n, (scene_class)cls, o);
     if (scene_is_property_tag(tag)) {
         scene_prop p;
-        if (scene_parse_property(c, n, &p) != 0) {
+        if (scene_parse_property(c, n, o->cls, &p) != 0) {
             scene_prop_clear(&p);
             return -1;
         }
@@ -568,6 +626,7 @@ static scene_desc *load(const char *xml, size_t len, const char *path, const sce
     }
     char canon[PATH_MAX];
     c.stack[c.depth++] = xstrdup(realpath(path, canon) ? canon : path);
+    c.scene_dir = folder_of(path);
     if (rc == 0)
         rc = parse_document(&c, xml, len, path, NULL);
     if (rc == 0)
@@ -588,6 +647,10 @@ static scene_desc *load(const char *xml, size_t len, const char *path, const sce
     }
     while (c.depth > 0)
         free(c.stack[--c.depth]);
+    for (int i = 0; i < c.npaths; i++)
+        free(c.paths[i]);
+    free(c.paths);
+    free(c.scene_dir);
     free(c.params);
     free(c.refs);
     if (rc != 0) {

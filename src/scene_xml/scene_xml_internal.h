@@ -40,6 +40,10 @@ typedef struct {
     char *stack[SCENE_MAX_INCLUDE_DEPTH]; /* canonical paths of the files being read */
     int depth;
     const char *file; /* the file being read (interned) */
+    char *scene_dir;  /* the folder of the scene file itself */
+    char **paths;     /* the folders <path> added, latest first */
+    int npaths;
+    int line_hint;    /* the line of the element being read, for messages about its parts */
     char *err;
     size_t errlen;
     int failed;
@@ -64,9 +68,19 @@ int scene_parse_double(const char *s, double *out);
  * count, or -1 on a bad token or more than max. */
 int scene_parse_list(const char *s, double *out, int max);
 
-/* Parses a property element (<float>, <rgb>, <transform>, ...) into p
- * (name, type, value, file, line). Returns 0 or -1. */
-int scene_parse_property(scene_ctx *c, const xmlNode *n, scene_prop *p);
+/* Parses a property element (<float>, <rgb>, <transform>, ...) of an object
+ * of class owner into p (name, type, value, file, line). Returns 0 or -1. */
+int scene_parse_property(scene_ctx *c, const xmlNode *n, scene_class owner, scene_prop *p);
+/* A <spectrum> element of an object of class owner into p, as an RGB
+ * (scene_xml_spectrum.c). Returns 0 or -1. */
+int scene_parse_spectrum(scene_ctx *c, const xmlNode *n, scene_class owner, scene_prop *p);
+
+/* Where a file name is looked for (docs/scene-format.md, "Paths"): the
+ * folder of from_file (the file that names it), the scene file's folder,
+ * then each <path> folder, the latest first. Returns the first candidate
+ * that exists, or the first candidate when none does (the caller's open or
+ * stat then reports it); malloc'd. */
+char *scene_resolve_path(scene_ctx *c, const char *from_file, const char *name);
 /* Whether tag names a property element. */
 int scene_is_property_tag(const char *tag);
 void scene_prop_clear(scene_prop *p);

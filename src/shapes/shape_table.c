@@ -12,6 +12,7 @@
     X(shape, sphere)                     \
     X(shape, cylinder)                   \
     X(shape, sor)                        \
+    X(shape, serialized)                 \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(shape, SHAPE_PLUGINS)
