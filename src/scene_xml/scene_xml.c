@@ -167,6 +167,10 @@ static int add_prop(scene_ctx *c, scene_obj *o, scene_prop *p)
     describe(o, what, sizeof what);
     const scene_plugin_decl *sp = c->plugins(o->cls, o->type);
     const scene_param_decl *par = schema_param_find(sp, p->name);
+    if (!par && scene_param_obsolete(o->cls, p->name)) {
+        scene_prop_clear(p);
+        return 0;
+    }
     int rc = 0;
     const scene_prop *dup = find_prop(o, p->name);
     if (!par) {
@@ -446,7 +450,9 @@ static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_o
         scene_attr(c, n, "id", &id) != 0 || scene_attr(c, n, "name", &name) != 0)
         goto done;
     if (!c->plugins(cls, type)) {
-        scene_fail(c, line, "unknown plugin '%s' for <%s>", type, scene_class_name(cls));
+        const char *why = scene_plugin_refusal(cls, type);
+        scene_fail(c, line, "unknown plugin '%s' for <%s>%s%s%s", type, scene_class_name(cls), why ? " (" : "",
+                   why ? why : "", why ? ")" : "");
         goto done;
     }
     if (id) {
@@ -519,8 +525,8 @@ static int parse_children(scene_ctx *c, const xmlNode *n, scene_obj *o, int file
     return 0;
 }
 
-/* "major.minor.patch"; scenes before Mitsuba 2 used other parameter names. */
-static int check_version(scene_ctx *c, const xmlNode *root)
+/* "major.minor.patch"; a scene before Mitsuba 2 is upgraded in place. */
+static int check_version(scene_ctx *c, xmlNode *root)
 {
     char *v;
     if (scene_check_attrs(c, root, "version") != 0 || scene_attr_req(c, root, "version", &v) != 0)
@@ -528,12 +534,12 @@ static int check_version(scene_ctx *c, const xmlNode *root)
     int major, minor, patch, end = 0;
     int ok = sscanf(v, "%d.%d.%d%n", &major, &minor, &patch, &end) == 3 && v[end] == '\0';
     int rc = 0;
-    if (!ok)
+    if (!ok || major < 0 || minor < 0 || patch < 0)
         rc = scene_fail(c, scene_line(root), "bad scene version '%s' (expected e.g. \"3.0.0\")", v);
-    else if (major < 2 || major > 3)
-        rc = scene_fail(c, scene_line(root),
-                        "scene version '%s' is not supported (Mitsuba 2 or 3 scenes only; "
-                        "older ones use camelCase parameter names)", v);
+    else if (major > 3)
+        rc = scene_fail(c, scene_line(root), "scene version '%s' is not supported (Mitsuba 0.5 to 3 scenes)", v);
+    else if (major < 2)
+        scene_upgrade_v1(root);
     free(v);
     return rc;
 }
@@ -556,7 +562,7 @@ static int parse_document(scene_ctx *c, const char *xml, size_t len, const char 
         msg[strcspn(msg, "\n")] = '\0';
         rc = scene_fail(c, e ? e->line : 0, "malformed XML: %s", msg);
     } else {
-        const xmlNode *root = xmlDocGetRootElement(doc);
+        xmlNode *root = xmlDocGetRootElement(doc);
         if (!root)
             rc = scene_fail(c, 0, "empty document");
         else if (strcmp((const char *)root->name, "scene") != 0)

@@ -85,6 +85,21 @@ char *scene_resolve_path(scene_ctx *c, const char *from_file, const char *name);
 int scene_is_property_tag(const char *tag);
 void scene_prop_clear(scene_prop *p);
 
+/* ------------------------------------------------------- older scenes */
+/* Upgrades the document under root, of a Mitsuba before 2.0, in place
+ * (scene_xml_upgrade.c). */
+void scene_upgrade_v1(xmlNode *root);
+/* in as snake_case the way Mitsuba 3 converts camelCase: an upper-case run
+ * after a lower-case letter becomes "_" and the run in lower case. */
+void scene_snake_case(const char *in, char *out, size_t outlen);
+/* Whether parameter name of class cls is one Mitsuba 3 ignores and the
+ * reader drops. */
+int scene_param_obsolete(scene_class cls, const char *name);
+/* Why a Mitsuba plugin celadon does not have is refused, when it is one of
+ * those refused by name (polarized, spectral-only, dropped by Mitsuba 3),
+ * or NULL. */
+const char *scene_plugin_refusal(scene_class cls, const char *type);
+
 /* ------------------------------------------------ reading the declarations */
 const scene_param_decl *schema_param_find(const scene_plugin_decl *p, const char *name);
 const scene_child_decl *schema_child_find(const scene_plugin_decl *p, scene_class cls);
