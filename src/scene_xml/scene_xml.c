@@ -590,8 +590,9 @@ static int finish(scene_ctx *c)
         scene_obj *target = find_id(c->d, r->id);
         if (!target)
             return scene_fail(c, r->line, "<ref id=\"%s\">: no object has this id", r->id);
-        if (target->cls == SCENE_SHAPE)
-            return scene_fail(c, r->line, "<ref id=\"%s\">: shapes cannot be referenced (no instancing)", r->id);
+        if (target->cls == SCENE_SHAPE && strcmp(target->type, "shapegroup") != 0)
+            return scene_fail(c, r->line, "<ref id=\"%s\">: only a shapegroup can be referenced (by an instance)",
+                              r->id);
         if (attach(c, r->parent, target, r->name, r->line) != 0)
             return -1;
     }
