@@ -158,8 +158,8 @@ static int read_mesh(serialized_reader *r, int version, shape_mesh_data *m, char
         return -1;
     }
     int dbl = (flags & SERIALIZED_DOUBLE) != 0, rc = read_reals(r, dbl, nv, 3, m->pos);
-    if (rc == 0)
-        rc = read_reals(r, dbl, nv, 3, (flags & SERIALIZED_NORMALS) ? m->nrm : NULL);
+    if (rc == 0 && (flags & SERIALIZED_NORMALS))
+        rc = read_reals(r, dbl, nv, 3, m->nrm);
     if (rc == 0 && (flags & SERIALIZED_TEXCOORDS))
         rc = read_reals(r, dbl, nv, 2, m->uv);
     if (rc == 0 && (flags & SERIALIZED_COLORS))
@@ -204,9 +204,13 @@ static int serialized_read(const char *path, long long index, shape_mesh_data *m
         snprintf(why, whylen, "not a Mitsuba .serialized file");
     else if (version != 3 && version != 4)
         snprintf(why, whylen, "serialized format version %d is not supported (versions 3 and 4 are)", version);
-    else if (mesh_offset(&r, version, index, &off, why, whylen) == 0 && off + 4 > r.size)
+    else if (mesh_offset(&r, version, index, &off, why, whylen) != 0)
+        ; /* why says it */
+    else if (off + 4 > r.size)
         snprintf(why, whylen, "the offset of mesh %lld is past the end of the file", index);
-    else if (off + 4 <= r.size && inflateInit(&r.z) == Z_OK) {
+    else if (inflateInit(&r.z) != Z_OK)
+        snprintf(why, whylen, "out of memory");
+    else {
         r.z_open = 1;
         r.z.next_in = r.file + off + 4;
         r.z.avail_in = (uInt)(r.size - off - 4 < (1u << 31) ? r.size - off - 4 : (1u << 31));
