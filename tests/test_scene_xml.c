@@ -377,7 +377,7 @@ Test(scene_xml, parse_from_memory_and_sor_shape)
         "    <float name=\"height\" value=\"0.32\"/><boolean name=\"caps\" value=\"false\"/>\n"
         "    <emitter type=\"area\"><rgb name=\"radiance\" value=\"4\"/></emitter>\n"
         "  </shape>\n"
-        "  <emitter type=\"constant\"><spectrum name=\"radiance\" value=\"0.5\"/></emitter>\n"
+        "  <emitter type=\"constant\"><rgb name=\"radiance\" value=\"0.5\"/></emitter>\n"
         "</scene>\n";
     scene_desc *d = scene_desc_create_from_text(text, strlen(text), path, NULL, 0, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "%s", err);
@@ -396,7 +396,7 @@ Test(scene_xml, malformed_xml)
     load_fails("bad.xml", HEAD "  <shape type=\"sphere\">\n  </shap>\n</scene>\n", "bad.xml", 4, "malformed XML", NULL,
                0);
     load_fails("nover.xml", "<scene>\n</scene>\n", "nover.xml", 1, "needs a 'version' attribute", NULL, 0);
-    load_fails("old.xml", "<scene version=\"0.6.0\">\n</scene>\n", "old.xml", 1, "not supported", NULL, 0);
+    load_fails("new.xml", "<scene version=\"4.0.0\">\n</scene>\n", "new.xml", 1, "not supported", NULL, 0);
     load_fails("root.xml", "<?xml version=\"1.0\"?>\n<shape type=\"sphere\"/>\n", "root.xml", 2, "root element", NULL,
                0);
     load_fails("text.xml", HEAD "  <shape type=\"sphere\">radius</shape>\n</scene>\n", "text.xml", 3,
@@ -425,8 +425,8 @@ Test(scene_xml, unknown_things)
                "  </shape>\n</scene>\n", "i.xml", 5, "at most 1 <bsdf>", NULL, 0);
     load_fails("j.xml", HEAD "  <bsdf type=\"twosided\">\n  </bsdf>\n</scene>\n", "j.xml", 3,
                "needs at least 1 nested <bsdf>", NULL, 0);
-    load_fails("k.xml", HEAD "  <spectrum name=\"x\" value=\"400:0.1, 500:0.2\"/>\n</scene>\n", "k.xml", 3,
-               "wavelength:value spectra are not supported", NULL, 0);
+    load_fails("k.xml", HEAD "  <bsdf type=\"diffuse\">\n    <spectrum name=\"reflectance\" value=\"400:0.1, 5x00:0.2\"/>\n"
+               "  </bsdf>\n</scene>\n", "k.xml", 4, "bad wavelength:value pair", NULL, 0);
     load_fails("l.xml", HEAD "  <shape type=\"obj\"/>\n</scene>\n", "l.xml", 3, "needs the parameter 'filename'",
                NULL, 0);
     load_fails("m.xml", HEAD "  <bsdf type=\"diffuse\">\n    <texture type=\"checkerboard\"/>\n  </bsdf>\n</scene>\n",
