@@ -13,11 +13,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* An extra output: channels is 1 (written as "<name>.Y") or 3
- * ("<name>.R", "<name>.G", "<name>.B"). */
+/* An extra output of channels channels, written as "<name>.<letter>" with
+ * one letter of letters per channel, as Mitsuba's `aov` integrator names
+ * them: "T" for a depth, "XYZ" for a vector, "RGB" for a colour. letters
+ * NULL: "Y" for one channel, "RGB" for three. */
 typedef struct {
     const char *name;
     int channels;
+    const char *letters;
 } film_aov;
 
 typedef struct {

@@ -84,11 +84,11 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
     film_aov list[3];
     int naov = 0;
     if (opt->aovs & RENDER_AOV_DEPTH)
-        list[naov++] = (film_aov){"depth", 1};
+        list[naov++] = (film_aov){"depth", 1, "T"}; /* as Mitsuba's aov integrator names them */
     if (opt->aovs & RENDER_AOV_NORMAL)
-        list[naov++] = (film_aov){"normal", 3};
+        list[naov++] = (film_aov){"normal", 3, "XYZ"};
     if (opt->aovs & RENDER_AOV_ALBEDO)
-        list[naov++] = (film_aov){"albedo", 3};
+        list[naov++] = (film_aov){"albedo", 3, "RGB"};
     if (film_init(film, cam->width, cam->height, list, naov, err, errlen) != 0)
         return -1;
     int spp = scene_spp(s);
