@@ -98,7 +98,8 @@ Test(film, averages_weights_and_merges)
 {
     film_t a, b;
     char err[256];
-    const film_aov aov[] = {{"depth", 1, "T"}};
+    static const char *const t[1] = {"T"};
+    const film_aov aov[] = {{"depth", 1, t}};
     cr_assert_eq(film_init(&a, 4, 3, aov, 1, err, sizeof err), 0, "%s", err);
     cr_assert_eq(film_init(&b, 4, 3, aov, 1, err, sizeof err), 0);
     cr_assert_eq(a.nchannels, 4);
@@ -118,9 +119,8 @@ Test(film, averages_weights_and_merges)
             cr_assert_eq(px[i], 0.0f, "unsampled pixels are black");
     film_free(&a);
     film_free(&b);
-    const film_aov bad[] = {{"x", 2, NULL}, {"x", 3, "XY"}};
+    const film_aov bad[] = {{"x", 2, NULL}};
     cr_assert_eq(film_init(&a, 4, 3, bad, 1, err, sizeof err), -1);
-    cr_assert_eq(film_init(&a, 4, 3, bad + 1, 1, err, sizeof err), -1);
     cr_assert_eq(film_init(&a, 0, 3, NULL, 0, err, sizeof err), -1);
 }
 

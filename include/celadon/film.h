@@ -13,14 +13,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* An extra output of channels channels, written as "<name>.<letter>" with
- * one letter of letters per channel, as Mitsuba's `aov` integrator names
- * them: "T" for a depth, "XYZ" for a vector, "RGB" for a colour. letters
- * NULL: "Y" for one channel, "RGB" for three. */
+/* An extra output: channels is 1 or 3, written as "<name>.<suffix>" with
+ * one suffix per channel ("T" for a depth, "X", "Y", "Z" for a vector, as
+ * Mitsuba's `aov` integrator names them), or, without suffixes, as
+ * "<name>.Y" or "<name>.R", "<name>.G", "<name>.B". */
 typedef struct {
     const char *name;
     int channels;
-    const char *letters;
+    const char *const *suffixes; /* NULL: Y or R, G, B */
 } film_aov;
 
 typedef struct {

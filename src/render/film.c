@@ -33,11 +33,6 @@ int film_init(film_t *f, int width, int height, const film_aov *aovs, int naovs,
             snprintf(err, errlen, "AOV '%s' has %d channels (1 or 3 supported)", aovs[a].name, aovs[a].channels);
             return -1;
         }
-        if (aovs[a].letters && strlen(aovs[a].letters) != (size_t)aovs[a].channels) {
-            snprintf(err, errlen, "AOV '%s' names %zu channels, not %d", aovs[a].name, strlen(aovs[a].letters),
-                     aovs[a].channels);
-            return -1;
-        }
         n += aovs[a].channels;
     }
     f->width = width;
@@ -48,14 +43,15 @@ int film_init(film_t *f, int width, int height, const film_aov *aovs, int naovs,
     f->weight = calloc((size_t)width * height, sizeof(double));
     if (!f->names || !f->sum || !f->weight)
         abort();
+    static const char *const rgb_names[3] = {"R", "G", "B"};
     int k = 0;
     for (int c = 0; c < 3; c++)
-        f->names[k++] = dup_name("", (char[2]){"RGB"[c], 0});
-    for (int a = 0; a < naovs; a++) {
-        const char *letters = aovs[a].letters ? aovs[a].letters : aovs[a].channels == 1 ? "Y" : "RGB";
-        for (int c = 0; c < aovs[a].channels; c++)
-            f->names[k++] = dup_name(aovs[a].name, (char[2]){letters[c], 0});
-    }
+        f->names[k++] = dup_name("", rgb_names[c]);
+    for (int a = 0; a < naovs; a++)
+        for (int c = 0; c < aovs[a].channels; c++) {
+            const char *suffix = aovs[a].suffixes ? aovs[a].suffixes[c] : aovs[a].channels == 1 ? "Y" : rgb_names[c];
+            f->names[k++] = dup_name(aovs[a].name, suffix);
+        }
     return 0;
 }
 

@@ -81,14 +81,16 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
                  size_t errlen)
 {
     const camera_t *cam = &s->camera;
+    /* The channels as Mitsuba's aov integrator names them. */
+    static const char *const t[1] = {"T"}, *const xyz[3] = {"X", "Y", "Z"}, *const rgb[3] = {"R", "G", "B"};
     film_aov list[3];
     int naov = 0;
     if (opt->aovs & RENDER_AOV_DEPTH)
-        list[naov++] = (film_aov){"depth", 1, "T"}; /* as Mitsuba's aov integrator names them */
+        list[naov++] = (film_aov){"depth", 1, t};
     if (opt->aovs & RENDER_AOV_NORMAL)
-        list[naov++] = (film_aov){"normal", 3, "XYZ"};
+        list[naov++] = (film_aov){"normal", 3, xyz};
     if (opt->aovs & RENDER_AOV_ALBEDO)
-        list[naov++] = (film_aov){"albedo", 3, "RGB"};
+        list[naov++] = (film_aov){"albedo", 3, rgb};
     if (film_init(film, cam->width, cam->height, list, naov, err, errlen) != 0)
         return -1;
     int spp = scene_spp(s);
