@@ -366,3 +366,30 @@ Test(scene_mitsuba, instances_render_as_the_shapes_written_out)
     cr_assert_not_null(strstr(err, "glow.xml:4: a shape in a shapegroup cannot emit light"), "%s", err);
     scene_desc_destroy(d);
 }
+
+/* --spp N is the fallback for $spp: used where the scene declares no
+ * <default>, beaten by one, and no error where the scene has no $spp. */
+Test(scene_mitsuba, a_fallback_define_gives_way_to_the_scene)
+{
+    const char *uses = V3 "  <sensor type=\"perspective\"><sampler type=\"independent\">"
+                          "<integer name=\"sample_count\" value=\"$spp\"/></sampler></sensor>\n</scene>\n";
+    const char *declares = V3 "  <default name=\"spp\" value=\"64\"/>\n  <sensor type=\"perspective\">"
+                              "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"$spp\"/>"
+                              "</sampler></sensor>\n</scene>\n";
+    const scene_define fb[] = {{"spp", "3", true}};
+    char path[256], err[512];
+    long long want[2] = {3, 64};
+    const char *texts[2] = {uses, declares};
+    for (int i = 0; i < 2; i++) {
+        put("fb.xml", texts[i], path, sizeof path);
+        scene_desc *d = scene_desc_create_from_file(path, fb, 1, scene_plugin_find, err, sizeof err);
+        cr_assert_not_null(d, "%s", err);
+        scene_obj *smp = scene_obj_child(scene_obj_child(scene_desc_root(d), SCENE_SENSOR), SCENE_SAMPLER);
+        cr_expect_eq(scene_obj_int(smp, "sample_count", 0), want[i]);
+        scene_desc_destroy(d);
+    }
+    put("none.xml", V3 "</scene>\n", path, sizeof path);
+    scene_desc *d = scene_desc_create_from_file(path, fb, 1, scene_plugin_find, err, sizeof err);
+    cr_assert_not_null(d, "an unused fallback is no error: %s", err);
+    scene_desc_destroy(d);
+}

@@ -289,7 +289,7 @@ Test(scene_xml, defaults_and_overrides)
     cr_assert_eq(scene_obj_int(scene_obj_child(sensor, SCENE_FILM), "width", 0), 6464);
     scene_desc_destroy(d);
 
-    const scene_define defs[] = {{"spp", "256"}, {"res", "3"}};
+    const scene_define defs[] = {{"spp", "256", false}, {"res", "3", false}};
     d = load_ok("p.xml", text, defs, 2);
     sensor = scene_obj_child(scene_desc_root(d), SCENE_SENSOR);
     cr_assert_eq(scene_obj_int(scene_obj_child(sensor, SCENE_SAMPLER), "sample_count", 0), 256, "-D wins");
@@ -298,12 +298,12 @@ Test(scene_xml, defaults_and_overrides)
 
     /* A parameter with no default must come from -D. */
     const char *bare = HEAD "  <shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>\n</scene>\n";
-    const scene_define r[] = {{"r", "2.5"}};
+    const scene_define r[] = {{"r", "2.5", false}};
     d = load_ok("bare.xml", bare, r, 1);
     cr_assert_eq(scene_obj_float(scene_obj_child(scene_desc_root(d), SCENE_SHAPE), "radius", 0), 2.5);
     scene_desc_destroy(d);
     load_fails("bare.xml", bare, "bare.xml", 3, "undefined parameter '$r'", NULL, 0);
-    const scene_define typo[] = {{"r", "1"}, {"rr", "2"}};
+    const scene_define typo[] = {{"r", "1", false}, {"rr", "2", false}};
     load_fails("bare.xml", bare, "bare.xml", 0, "-D rr=2: the scene has no parameter", typo, 2);
 }
 
@@ -501,7 +501,7 @@ Test(scene_xml, missing_files_refs_and_cycles)
 Test(scene_xml, bundled_studio_scene)
 {
     char err[1024];
-    const scene_define defs[] = {{"spp", "4"}};
+    const scene_define defs[] = {{"spp", "4", false}};
     scene_desc *d = scene_desc_create_from_file("tests/data/scenes/studio.xml", defs, 1, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "%s", err);
     scene_obj *root = scene_desc_root(d), *shapes[3];

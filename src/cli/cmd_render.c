@@ -23,7 +23,8 @@ static void usage(FILE *f)
                "SORs are intersected exactly unless --geometry mesh:N revolves them into N\n"
                "angular segments traced by Embree (same sampler seeds otherwise).\n\n"
                "  -o OUT          .exr (float32 RGB + AOV channels) or .png/.jpg (sRGB 8-bit)\n"
-               "  --spp N         samples per pixel (default: the scene's sampler)\n"
+               "  --spp N         samples per pixel (default: the scene's sampler); also the\n"
+               "                  value of $spp where the scene has no <default> for it\n"
                "  --res WxH       film size (default: the scene's film)\n"
                "  --geometry G    analytic (default) or mesh:N, N >= 3\n"
                "  --threads N     OpenMP threads (default: all cores)\n"
@@ -53,8 +54,9 @@ int cmd_render(int argc, char **argv)
     const char *scene_path = NULL, *out = NULL;
     scene_options bo = scene_options_default();
     render_options ro = {0, 0, 1};
-    scene_define defs[MAX_DEFINES];
+    scene_define defs[MAX_DEFINES + 1];
     int ndefs = 0;
+    const char *spp_text = NULL;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -78,6 +80,7 @@ int cmd_render(int argc, char **argv)
             if (cli_parse_int(val, 1, 1 << 24, &v) != 0)
                 return cli_usage_error("render", "--spp wants an integer from 1 to 16777216, not '%s'", val);
             bo.spp = (int)v;
+            spp_text = val;
         } else if (!strcmp(a, "--res")) {
             int w, h, n = 0;
             if (sscanf(val, "%dx%d%n", &w, &h, &n) != 2 || val[n] || w < 1 || h < 1 || w > 65536 || h > 65536)
@@ -105,7 +108,7 @@ int cmd_render(int argc, char **argv)
             char *name = strndup(val, (size_t)(eq - val));
             if (!name)
                 return 1;
-            defs[ndefs++] = (scene_define){name, eq + 1};
+            defs[ndefs++] = (scene_define){name, eq + 1, false};
         } else if (!strcmp(a, "--aov")) {
             if (render_aov_parse(val, &ro.aovs) != 0)
                 return cli_usage_error("render", "--aov wants a list of depth, normal, albedo, not '%s'", val);
@@ -113,6 +116,12 @@ int cmd_render(int argc, char **argv)
             return cli_usage_error("render", "unknown option '%s'", a);
         }
     }
+    /* --spp N is also $spp where the scene leaves it to the command line. */
+    int has_spp = 0;
+    for (int i = 0; i < ndefs; i++)
+        has_spp |= !strcmp(defs[i].name, "spp");
+    if (spp_text && !has_spp && !(defs[ndefs++] = (scene_define){strdup("spp"), spp_text, true}).name)
+        return 1;
     int rc = 2, is_exr = 0;
     if (!scene_path)
         rc = cli_usage_error("render", "%s", "missing SCENE.xml");

@@ -404,10 +404,14 @@ static int parse_default(scene_ctx *c, const xmlNode *n)
         for (int i = 0; i < c->nparams; i++)
             if (strcmp(c->params[i].name, name) == 0)
                 p = &c->params[i];
-        if (!p) { /* an earlier -D or <default> wins */
+        if (!p) { /* an earlier -D or <default> wins over this one, which wins over a fallback */
             c->params = xrealloc(c->params, sizeof(scene_param) * (size_t)(c->nparams + 1));
             p = &c->params[c->nparams++];
-            *p = (scene_param){xstrdup(name), xstrdup(value), 0, 0, 0};
+            *p = (scene_param){xstrdup(name), xstrdup(value), 0, 0, 0, 0};
+        } else if (p->fallback) {
+            free(p->value);
+            p->value = xstrdup(value);
+            p->fallback = 0;
         }
         p->declared = 1;
     }
@@ -629,7 +633,8 @@ static scene_desc *load(const char *xml, size_t len, const char *path, const sce
             if (strcmp(c.params[j].name, defs[i].name) == 0)
                 rc = scene_fail(&c, 0, "-D %s given twice", defs[i].name);
         c.params = xrealloc(c.params, sizeof(scene_param) * (size_t)(c.nparams + 1));
-        c.params[c.nparams++] = (scene_param){xstrdup(defs[i].name), xstrdup(defs[i].value), 1, 0, 0};
+        c.params[c.nparams++] = (scene_param){xstrdup(defs[i].name), xstrdup(defs[i].value), !defs[i].fallback, 0, 0,
+                                              defs[i].fallback};
     }
     char canon[PATH_MAX];
     c.stack[c.depth++] = xstrdup(realpath(path, canon) ? canon : path);

@@ -21,6 +21,7 @@ typedef struct {
     int from_cli; /* given as -D (wins over <default>) */
     int used;     /* substituted somewhere */
     int declared; /* named by a <default> */
+    int fallback; /* a fallback define, until a <default> replaces it */
 } scene_param;
 
 typedef struct {
