@@ -3,7 +3,6 @@
  * scenes of Mitsuba 0.6 upgraded on reading, the plugins refused by name,
  * and instancing. Each test writes its own small scenes. */
 #include <criterion/criterion.h>
-#include <ftw.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,22 +13,13 @@
 #include "celadon/scene.h"
 #include "celadon/scene_xml.h"
 #include "scene_xml/scene_xml_internal.h"
+#include "support/scratch_dir.h"
 
 static char dir[64];
 
-static void make_dir(void)
-{
-    snprintf(dir, sizeof dir, "/tmp/celadon-mitsuba-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-}
+static void make_dir(void) { scratch_dir_make(dir, sizeof dir, "mitsuba"); }
 
-static int rm_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
-{
-    (void)st, (void)flag, (void)ftw;
-    return remove(path);
-}
-
-static void remove_dir(void) { nftw(dir, rm_entry, 8, FTW_DEPTH | FTW_PHYS); }
+static void remove_dir(void) { scratch_dir_remove(dir); }
 
 TestSuite(scene_mitsuba, .init = make_dir, .fini = remove_dir);
 

@@ -1,7 +1,6 @@
 /* The scene parser: every supported element round-trips its values, and every
  * kind of bad input gives one error naming the exact file and line. */
 #include <criterion/criterion.h>
-#include <ftw.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,23 +9,14 @@
 
 #include "celadon/scene.h"
 #include "celadon/scene_xml.h"
+#include "support/scratch_dir.h"
 
 /* ------------------------------------------------------------- fixtures */
 static char dir[64];
 
-static void make_dir(void)
-{
-    snprintf(dir, sizeof dir, "/tmp/celadon-scene-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-}
+static void make_dir(void) { scratch_dir_make(dir, sizeof dir, "scene"); }
 
-static int rm_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
-{
-    (void)st, (void)flag, (void)ftw;
-    return remove(path);
-}
-
-static void remove_dir(void) { nftw(dir, rm_entry, 8, FTW_DEPTH | FTW_PHYS); }
+static void remove_dir(void) { scratch_dir_remove(dir); }
 
 /* Writes dir/name and returns its path (static buffer per call site not
  * needed: callers copy). */
