@@ -10,7 +10,7 @@ static rgb rawconstant_lookup(const texture_t *t, vec2 uv)
     return t->mean;
 }
 
-static const texture_ops rawconstant_ops = {rawconstant_lookup, NULL};
+static const texture_ops rawconstant_ops = {.lookup = rawconstant_lookup}; /* constant: no gradient */
 
 static texture_t *rawconstant_create(scene_obj *o, char *err, size_t errlen)
 {
