@@ -114,7 +114,7 @@ while read -r f; do
     *) reason="exit status $rc: $reason" ;;
     esac
     echo "$result" >>"$work/results"
-    echo "| $f | $result | $reason |"
+    echo "| $f | $result | ${reason:+\`$reason\`} |"
     [ "$result" = refused ] && echo "$reason" | sed 's/^[^ ]*:[0-9]*: //;t;s/^[^ ]*: //' >>"$work/reasons"
 done <"$work/scenes"
 
@@ -129,6 +129,6 @@ done
 if [ -s "$work/reasons" ]; then
     echo
     echo "Refusals by reason (file:line left out):"
-    sort "$work/reasons" | uniq -c | sort -rn | sed 's/^ *\([0-9]*\) /- \1 × /'
+    sort "$work/reasons" | uniq -c | sort -rn | sed 's/^ *\([0-9]*\) \(.*\)/- \1 × `\2`/'
 fi
 [ "$(count crashed)" -eq 0 ] && [ "$(count hung)" -eq 0 ]
