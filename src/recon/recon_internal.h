@@ -19,10 +19,12 @@
 
 /* ---- mask (mask.c) */
 
-/* Fills gray (w*h floats, the signal the silhouette is measured on: alpha when
- * the image has a transparent background, else luminance) and mask (w*h, 1 =
- * object, before component filtering). threshold: -1 = automatic. Returns the
- * mode used and writes the 0..255 threshold to *threshold_used (-1 for alpha). */
+/* Fills gray (w*h floats, the signal the silhouette is measured on: alpha
+ * when the image has a transparent background, else luminance). With alpha,
+ * or a forced threshold (0..255; -1 = automatic), also fills mask (w*h, 1 =
+ * object, before component filtering) and returns how; otherwise returns
+ * RECON_MASK_GRAPH_CUT and leaves mask to the segmentation (segment.h).
+ * *threshold_used: the forced threshold, else -1. */
 recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *gray, uint8_t *mask,
                                      int *threshold_used);
 
@@ -31,6 +33,11 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
  * outermost object pixels (a vessel's outline meets a row once on each side).
  * Returns the object's pixel count, or -1 when out of memory. */
 long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *holes_filled);
+
+/* Labels the 8-connected components of mask: lab[p] (w*h ints) = 1..n, 0 for
+ * background; *area (malloc'd, n + 1 entries, [0] unused) their pixel counts.
+ * Returns n, or -1 when out of memory. */
+int recon_mask_label(const uint8_t *mask, int w, int h, int *lab, long **area);
 
 /* Morphological closing with a (2r+1)^2 square of a row-convex mask (one
  * interval per row, as recon_mask_clean leaves it), computed on the row
@@ -41,13 +48,61 @@ int recon_mask_close(uint8_t *mask, int w, int h, int r);
 /* Opening, likewise: removes slivers thinner than 2r+1 px. */
 int recon_mask_open(uint8_t *mask, int w, int h, int r);
 
-/* Floor shadows are soft and touch the vessel only at its foot: on the rows
- * of the object's lowest eighth, top to bottom, an end of the row that juts
- * out more than 3 px past the (trimmed) row above moves inward to the first
- * sharp step along the row (over two pixels, at least step; none: it stays). A vessel's outline changes smoothly from row to
- * row; a shadow that joined the mask does not. Returns 1 when anything
- * changed. */
-int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float step);
+/* ---- the vessel among the segmentation's objects (object_select.c) */
+
+/* Keeps in the low-resolution mask only the vessel: the largest component
+ * that is not a strip along the image border (a frame line, a caption bar).
+ * Another component of a quarter of its size or more is a second object and
+ * refuses the photo, unless it lies under the vessel and runs to the bottom
+ * border: a stand, reported in *stand (what = RECON_PART_STAND, rows at low
+ * resolution; row1 = -1 when none) and dropped. *dropped counts the removed
+ * components. Returns RECON_OK or the refusal with its reason in why. */
+recon_status recon_select_object(uint8_t *mask, int w, int h, int *dropped, recon_excluded *stand, char *why,
+                                 size_t len);
+
+/* ---- stands and shadows at the foot (support.c) */
+
+struct recon_segmentation_s;
+/* Cuts a stand (the object runs into the bottom border) or a floor shadow
+ * (its lowest pixels have no mirror image) off the low-resolution vessel mask
+ * m by a min-cut between seeds. Returns 1 and the part (rows at full
+ * resolution) when something was cut, 0 when nothing, -1 when out of memory.
+ * A stand's colours join the segmentation's not-object model. */
+int recon_cut_support(struct recon_segmentation_s *seg, uint8_t *m, recon_excluded *part);
+
+/* ---- the full-resolution mask (refine.c) */
+
+/* The vessel's mask at full resolution (img's size) from the low-resolution
+ * one: coarse labels held fixed except on a band of full-resolution pixels
+ * three cells wide around their outline, where the segmentation's energy is
+ * minimised again. Returns 0, or -1 when out of memory. */
+int recon_refine_mask(const image_t *img, const struct recon_segmentation_s *seg, const uint8_t *coarse,
+                      uint8_t *mask);
+
+/* ---- the caps: where the outline meets its top and bottom (caps.c) */
+
+/* The four corners (CORNER_ order) of the closed contour in the frame of the
+ * axis (origin on it, unit direction toward the top): on each side, the point
+ * that turns most within the top (bottom) zone, half the radius of the
+ * outline's last 5% of height deep; where none turns much more than the rest
+ * of the zone (a dome), the extreme point, its pole. Returns 0, or -1 when out
+ * of memory. */
+int recon_find_caps(const vec2 *contour, int n, vec2 origin, vec2 dir, vec2 corners[CORNER_COUNT]);
+
+/* ---- parts that are not revolved (parts.c) */
+
+typedef struct {
+    double h, r; /* axis frame, px */
+    double y;    /* image row (centre line) the point was measured on */
+    int gap;     /* background lies beyond this point on its row, then object again (a handle's loop) */
+} recon_outline_point;
+
+/* Resolves the runs of rows where the main side's outline (sorted by h)
+ * disagrees with the other side's by more than tol: keeps the side that
+ * continues the rows around the run smoothly, or sets r = NAN (bridged).
+ * Appends one entry per run to parts. Returns 0, or -1 when out of memory. */
+int recon_resolve_parts(recon_outline_point *main_side, int n, const recon_outline_point *other, int n_other,
+                        int main_is_right, double tol, recon_excluded *parts, int max_parts, int *n_parts);
 
 /* ---- Suzuki–Abe border following (border_follow.c) */
 
