@@ -77,8 +77,6 @@ typedef struct {
     int holes_filled;        /* background regions enclosed by the object, filled */
     int n_contour;
     vec2 *contour;           /* outer border, pixel centres, as traced (closed, no repeat) */
-    int n_approx;
-    vec2 *approx;            /* Douglas–Peucker approximation of the contour */
     vec2 corners[CORNER_COUNT]; /* snapped to the original contour */
     vec2 pca_mean;
     vec2 pca_axes[2];        /* unit eigenvectors, major first */
@@ -96,6 +94,8 @@ typedef struct {
     vec2 *polyline;          /* (r, h), px: (r, 0), the sub-pixel outline points with 0 < h < H in
                                 increasing h, (r, H); H = rim corners' height. Taken on side_used,
                                 except over the rows of excluded parts (see excluded[].profile) */
+    uint8_t *polyline_bridge; /* per polyline point: 1 when the rows up to the next point were left out
+                                 (the B-spline bridges them) */
     int n_excluded;
     recon_excluded excluded[RECON_MAX_EXCLUDED];
     /* Confidence figures (the quality gate, include/celadon/reconstruct.h) */

@@ -39,11 +39,25 @@ static double signed_area(const vec2 *c, int n)
     return 0.5 * s;
 }
 
-int recon_find_caps(const vec2 *contour, int n, vec2 origin, vec2 dir, vec2 corners[CORNER_COUNT])
+int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, vec2 corners[CORNER_COUNT])
 {
     double *turns = malloc((size_t)(n > 0 ? n : 1) * sizeof *turns);
-    if (!turns)
+    vec2 *contour = malloc((size_t)(n > 0 ? n : 1) * sizeof *contour);
+    if (!turns || !contour) {
+        free(turns);
+        free(contour);
         return -1;
+    }
+    /* The pixel staircase turns by up to 45 degrees from one step to the
+     * next: average each point with its two neighbours on either side
+     * ([1 2 3 2 1] / 9) before measuring turns. */
+    for (int i = 0; i < n; i++) {
+        static const double wt[5] = {1, 2, 3, 2, 1};
+        vec2 acc = v2(0, 0);
+        for (int j = -2; j <= 2; j++)
+            acc = v2_add(acc, v2_scale(contour_px[((i + j) % n + n) % n], wt[j + 2] / 9));
+        contour[i] = acc;
+    }
     vec2 nrm = v2(-dir.y, dir.x);
     double h_top = -INFINITY, h_bot = INFINITY;
     for (int i = 0; i < n; i++) {
@@ -53,7 +67,7 @@ int recon_find_caps(const vec2 *contour, int n, vec2 origin, vec2 dir, vec2 corn
     }
     double height = h_top - h_bot;
     int orient = signed_area(contour, n) > 0 ? 1 : -1;
-    int k = (int)fmax(3, 0.01 * height);
+    int k = (int)fmax(5, 0.01 * height);
     for (int end = 0; end < 2; end++) { /* 0: top (rim), 1: bottom (base) */
         double h_end = end ? h_bot : h_top, sign = end ? -1 : 1;
         /* The zone: half the radius of the outline's last 5% toward this end
@@ -65,33 +79,115 @@ int recon_find_caps(const vec2 *contour, int n, vec2 origin, vec2 dir, vec2 corn
                 r5 = fmax(r5, fabs(v2_dot(q, nrm)));
         }
         double zone = 0.5 * r5 + 3;
-        for (int s = 0; s < 2; s++) { /* 0: left, 1: right */
-            int best = -1, pole = -1, m = 0;
-            double bt = -INFINITY, bh = -INFINITY, ph = -INFINITY;
-            for (int i = 0; i < n; i++) {
-                vec2 q = v2_sub(contour[i], origin);
-                double h = v2_dot(q, dir), r = v2_dot(q, nrm);
-                if (sign * (h - h_end) < -zone || (s ? r <= 0 : r >= 0))
-                    continue;
-                if (sign * h > ph) {
-                    ph = sign * h;
-                    pole = i;
-                }
-                double t = turn_at(contour, n, i, k, orient);
-                turns[m++] = fabs(t);
-                /* the sharpest turn; among equals, the one nearest the end */
-                if (t > bt + 1e-9 || (fabs(t - bt) <= 1e-9 && sign * h > bh)) {
-                    bt = t;
-                    bh = sign * h;
-                    best = i;
-                }
-            }
-            if (m > 0 && bt < fmax(CORNER_MIN_TURN, CORNER_PEAK_RATIO * gsl_stats_median(turns, 1, (size_t)m)))
-                best = pole;
-            int q = end ? (s ? CORNER_BASE_RIGHT : CORNER_BASE_LEFT) : (s ? CORNER_RIM_RIGHT : CORNER_RIM_LEFT);
-            corners[q] = best >= 0 ? contour[best] : v2_add(origin, v2_scale(dir, h_end));
+        /* The rim (base) is a circle: both sides turn at the same height. Per
+         * 1 px bin of height in the zone and per side, the sharpest turn; the
+         * corners are the pair at the height where the weaker of the two
+         * sides (each the best within 2 px, a tilt's worth) turns most. */
+        int nb = (int)ceil(zone) + 1, m = 0;
+        double *bt = malloc((size_t)nb * 5 * sizeof *bt), *bw = bt + 2 * nb, *br = bw + nb;
+        int *bi = malloc((size_t)nb * 4 * sizeof *bi), *bo = bi + 2 * nb, pole[2] = {-1, -1};
+        if (!bt || !bi) {
+            free(bt);
+            free(bi);
+            free(turns);
+            free(contour);
+            return -1;
         }
+        for (int b = 0; b < 2 * nb; b++) {
+            bt[b] = br[b] = -INFINITY;
+            bi[b] = bo[b] = -1;
+        }
+        double ph[2] = {-INFINITY, -INFINITY};
+        for (int i = 0; i < n; i++) {
+            vec2 q = v2_sub(contour[i], origin);
+            double h = v2_dot(q, dir), r = v2_dot(q, nrm), depth = sign * (h_end - h);
+            if (depth > zone || r == 0)
+                continue;
+            int s = r > 0, b = (int)floor(depth < 0 ? 0 : depth);
+            if (sign * h > ph[s]) {
+                ph[s] = sign * h;
+                pole[s] = i;
+            }
+            double t = turn_at(contour, n, i, k, orient);
+            turns[m++] = fabs(t);
+            if (b < nb && t > bt[s * nb + b]) {
+                bt[s * nb + b] = t;
+                bi[s * nb + b] = i;
+            }
+            if (b < nb && fabs(r) > br[s * nb + b]) { /* the outermost point per bin and side */
+                br[s * nb + b] = fabs(r);
+                bo[s * nb + b] = i;
+            }
+        }
+        for (int b = 0; b < nb; b++) /* the half-width per bin where both sides have a point */
+            bw[b] = bo[b] >= 0 && bo[nb + b] >= 0 ? 0.5 * (br[b] + br[nb + b]) : -1;
+        int best_b = -1, pick[2] = {-1, -1};
+        double best = -INFINITY;
+        for (int b = 0; b < nb; b++) {
+            double side_best[2];
+            int side_pick[2];
+            for (int s = 0; s < 2; s++) {
+                side_best[s] = -INFINITY;
+                side_pick[s] = -1;
+                for (int c = b - 2; c <= b + 2; c++)
+                    if (c >= 0 && c < nb && bt[s * nb + c] > side_best[s]) {
+                        side_best[s] = bt[s * nb + c];
+                        side_pick[s] = bi[s * nb + c];
+                    }
+            }
+            double score = fmin(side_best[0], side_best[1]);
+            if (score > best + 1e-9) { /* ties: the bin nearest the end */
+                best = score;
+                best_b = b;
+                pick[0] = side_pick[0];
+                pick[1] = side_pick[1];
+            }
+        }
+        if (m > 0 && best < fmax(CORNER_MIN_TURN, CORNER_PEAK_RATIO * gsl_stats_median(turns, 1, (size_t)m)))
+            best_b = -1;
+        /* The circle's ellipse is where the outline is widest near the end:
+         * a rounded edge, or a wall that meets that ellipse tangentially,
+         * does not turn sharply there, but the outline narrows above it. The
+         * candidate: the first height, from the end, within 1 px of the
+         * widest before the outline narrows by 1 px (and 1%). */
+        int wide_b = -1;
+        double run = -INFINITY;
+        for (int b = 0, first = -1; b < nb; b++) {
+            if (bw[b] < 0)
+                continue;
+            if (bw[b] > run + 1) {
+                run = bw[b];
+                first = b;
+            } else if (bw[b] > run) {
+                run = bw[b];
+            } else if (bw[b] < run - fmax(1.0, 0.01 * run)) {
+                wide_b = first;
+                break;
+            }
+        }
+        /* A widest point nearer the end than the corner, with the outline
+         * narrowing between the two, is a foot ring (lip) below (above) the
+         * corner: it ends the vessel. Neither a corner nor a widest point: the
+         * outline only widens from the end (a dome), and its pole ends it. */
+        int ring = 0;
+        if (wide_b >= 0 && best_b > wide_b + 2)
+            for (int b = wide_b + 1; b < best_b && !ring; b++)
+                ring = bw[b] >= 0 && bw[b] < bw[wide_b] - fmax(1.0, 0.01 * bw[wide_b]);
+        if (wide_b >= 0 && (best_b < 0 || ring)) {
+            pick[0] = bo[wide_b];
+            pick[1] = bo[nb + wide_b];
+        } else if (best_b < 0) {
+            pick[0] = pole[0];
+            pick[1] = pole[1];
+        }
+        for (int s = 0; s < 2; s++) {
+            int q = end ? (s ? CORNER_BASE_RIGHT : CORNER_BASE_LEFT) : (s ? CORNER_RIM_RIGHT : CORNER_RIM_LEFT);
+            corners[q] = pick[s] >= 0 ? contour_px[pick[s]] : v2_add(origin, v2_scale(dir, h_end));
+        }
+        free(bt);
+        free(bi);
     }
     free(turns);
+    free(contour);
     return 0;
 }

@@ -47,13 +47,14 @@ static void free_arrays(recon_result *res)
 {
     free(res->mask);
     free(res->contour);
-    free(res->approx);
     free(res->silhouette[0]);
     free(res->silhouette[1]);
     free(res->polyline);
+    free(res->polyline_bridge);
+    res->polyline_bridge = NULL;
     res->mask = NULL;
-    res->contour = res->approx = res->polyline = res->silhouette[0] = res->silhouette[1] = NULL;
-    res->n_contour = res->n_approx = res->n_polyline = res->n_silhouette[0] = res->n_silhouette[1] = 0;
+    res->contour = res->polyline = res->silhouette[0] = res->silhouette[1] = NULL;
+    res->n_contour = res->n_polyline = res->n_silhouette[0] = res->n_silhouette[1] = 0;
 }
 
 void recon_result_free(recon_result *res)
@@ -298,16 +299,15 @@ static int fill_holes_but_windows(uint8_t *mask, int w, int h, vec2 origin, vec2
  * between the two is filled. Gaps off the axis (a handle's loop) stay. */
 static void fill_across_axis(uint8_t *mask, int w, int h, vec2 origin, vec2 dir)
 {
-    /* Only between the first and the last row the body holds the axis in:
-     * above and below it, object on both sides is not the body (two handles
-     * rising above the rim). */
+    /* Only below the first row the body holds the axis in: above it, object
+     * on both sides is not the body (two handles rising above the rim). */
     int j0 = h, j1 = -1;
     for (int j = 0; j < h; j++) {
         int c = (int)floor(origin.x + (j + 0.5 - origin.y) * dir.x / dir.y);
-        if (c >= 0 && c < w && mask[(size_t)j * w + c]) {
-            j0 = j < j0 ? j : j0;
+        if (j0 == h && c >= 0 && c < w && mask[(size_t)j * w + c])
+            j0 = j;
+        if (memchr(mask + (size_t)j * w, 1, (size_t)w))
             j1 = j;
-        }
     }
     for (int j = j0; j <= j1; j++) {
         uint8_t *m = mask + (size_t)j * w;
@@ -381,40 +381,41 @@ static int outline_points(const vec2 *sil, const uint8_t *gap, int n, vec2 origi
     return m;
 }
 
-/* The confidence figures of the profile rows: mean |r_main - r_other| over
- * the rows where both are kept, and the fraction of rows one-sided or bridged. */
-static void profile_figures(const recon_outline_point *main_pts, const recon_outline_point *orig, int n,
-                            const recon_outline_point *other, int n_other, recon_result *res)
+/* Points every pixel along the polyline's long segments (not its bridges):
+ * a ledge (a lip's underside, a foot's step) runs nearly horizontally
+ * between two rows, and the B-spline, held only at the rows, would round it
+ * off far from the outline. */
+static int densify_polyline(recon_result *res)
 {
-    double sum = 0, rmax = 0;
-    int both = 0, changed = 0;
-    for (int i = 0; i < n; i++) {
-        if (isnan(main_pts[i].r) || main_pts[i].r != orig[i].r) {
-            changed++;
-            continue;
-        }
-        rmax = fmax(rmax, main_pts[i].r);
-        /* the other side at this height, interpolated */
-        int lo = 0, hi = n_other - 1;
-        if (n_other < 2 || main_pts[i].h < other[0].h || main_pts[i].h > other[hi].h)
-            continue;
-        while (hi - lo > 1) {
-            int mid = (lo + hi) / 2;
-            if (other[mid].h <= main_pts[i].h)
-                lo = mid;
-            else
-                hi = mid;
-        }
-        double dh = other[hi].h - other[lo].h;
-        if (dh > 3)
-            continue;
-        double ro = dh <= 1e-9 ? other[lo].r : other[lo].r + (main_pts[i].h - other[lo].h) / dh * (other[hi].r - other[lo].r);
-        sum += fabs(main_pts[i].r - ro);
-        both++;
+    const vec2 *p = res->polyline;
+    const uint8_t *br = res->polyline_bridge;
+    int n = res->n_polyline, total = n;
+    for (int i = 0; i + 1 < n; i++)
+        if (!br[i])
+            total += (int)ceil(v2_len(v2_sub(p[i + 1], p[i]))) - 1;
+    vec2 *q = malloc((size_t)total * sizeof *q);
+    uint8_t *qb = calloc((size_t)total, 1);
+    if (!q || !qb) {
+        free(q);
+        free(qb);
+        return -1;
     }
-    res->r_max = rmax;
-    res->lr_disagreement = both && rmax > 0 ? sum / both / rmax : 0;
-    res->excluded_fraction = n ? (double)changed / n : 1;
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        q[m] = p[i];
+        qb[m++] = br[i];
+        if (i + 1 == n || br[i])
+            continue;
+        int k = (int)ceil(v2_len(v2_sub(p[i + 1], p[i])));
+        for (int j = 1; j < k; j++)
+            q[m++] = v2_lerp(p[i], p[i + 1], (double)j / k);
+    }
+    free(res->polyline);
+    free(res->polyline_bridge);
+    res->polyline = q;
+    res->polyline_bridge = qb;
+    res->n_polyline = m;
+    return 0;
 }
 
 recon_status recon_extract(const image_t *img, const recon_options *opt, recon_result *res, char *err,
@@ -608,42 +609,42 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     res->side_used = s ? RECON_SIDE_RIGHT : RECON_SIDE_LEFT;
 
     /* 7. Parts: where the two sides disagree, the side that continues the
-     * body, or a bridge. A washed-out side is not compared. */
+     * body, or a bridge; where they agree, their mean. */
     recon_outline_point *mp = pts, *op = pts + h;
     int nm = outline_points(res->silhouette[s], gaps + s * h, res->n_silhouette[s], origin, dir, s ? 1 : -1, H, mp);
     int no = outline_points(res->silhouette[1 - s], gaps + (1 - s) * h, res->n_silhouette[1 - s], origin, dir,
                             s ? -1 : 1, H, op);
-    recon_outline_point *orig = malloc((size_t)(nm > 0 ? nm : 1) * sizeof *orig);
-    if (!orig) {
-        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
-        goto out;
-    }
-    memcpy(orig, mp, (size_t)nm * sizeof *orig);
     double rmax = 0;
     for (int i = 0; i < nm; i++)
         rmax = fmax(rmax, mp[i].r);
     double tol = fmax(2.0, 0.02 * rmax);
-    if (!washed && recon_resolve_parts(mp, nm, op, no, s, tol, res->excluded + res->n_excluded,
-                                       RECON_MAX_EXCLUDED - res->n_excluded, &res->n_excluded) != 0) {
-        free(orig);
+    /* A washed-out side is not compared: the profile is the clean side's. */
+    res->r_max = rmax;
+    if (!washed && recon_resolve_parts(mp, nm, op, no, s, tol, res->excluded, RECON_MAX_EXCLUDED, &res->n_excluded,
+                                       &res->lr_disagreement, &res->excluded_fraction) != 0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
-    profile_figures(mp, orig, nm, op, no, res);
-    free(orig);
 
     /* 8. Polyline (r, h), base to rim, closed by the end heights. */
     res->polyline = malloc((size_t)(nm + 2) * sizeof *res->polyline);
-    if (!res->polyline) {
+    res->polyline_bridge = calloc((size_t)nm + 2, 1);
+    if (!res->polyline || !res->polyline_bridge) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
     int np = 0;
     for (int i = 0; i < nm; i++) {
-        if (isnan(mp[i].r))
+        if (isnan(mp[i].r)) {
+            if (np > 0)
+                res->polyline_bridge[np - 1] = 1;
             continue;
-        if (np == 0)
+        }
+        if (np == 0) {
+            /* the base: rows missing up to the first point are bridged */
+            res->polyline_bridge[np] = mp[i].h > 3;
             res->polyline[np++] = v2(mp[i].r, 0);
+        }
         res->polyline[np++] = v2(mp[i].r, mp[i].h);
     }
     if (np < 3) {
@@ -651,8 +652,11 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
                   np);
         goto out;
     }
+    res->polyline_bridge[np - 1] = res->polyline_bridge[np - 1] || H - res->polyline[np - 1].y > 3;
     res->polyline[np] = v2(res->polyline[np - 1].x, H);
     res->n_polyline = np + 1;
+    if (densify_polyline(res) != 0)
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
 
 out:
     free(gray);

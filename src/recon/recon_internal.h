@@ -97,12 +97,18 @@ typedef struct {
     int gap;     /* background lies beyond this point on its row, then object again (a handle's loop) */
 } recon_outline_point;
 
-/* Resolves the runs of rows where the main side's outline (sorted by h)
- * disagrees with the other side's by more than tol: keeps the side that
- * continues the rows around the run smoothly, or sets r = NAN (bridged).
- * Appends one entry per run to parts. Returns 0, or -1 when out of memory. */
+/* The profile's radius per row of the main side's outline (sorted by h),
+ * written over main_side[].r: the mean of the two sides where they agree
+ * within tol; over a handle's rows (a window, and its attachments) the side
+ * that the handle does not hide; over the other runs of rows where they
+ * disagree, the side that continues the rows around the run smoothly; NAN
+ * (bridged) where no side serves. Appends one entry per such run to parts,
+ * and gives the mean |r_main - r_other| over the rows both sides keep as a
+ * fraction of the largest radius, and the fraction of rows not kept on both
+ * sides. Returns 0, or -1 when out of memory. */
 int recon_resolve_parts(recon_outline_point *main_side, int n, const recon_outline_point *other, int n_other,
-                        int main_is_right, double tol, recon_excluded *parts, int max_parts, int *n_parts);
+                        int main_is_right, double tol, recon_excluded *parts, int max_parts, int *n_parts,
+                        double *lr_disagreement, double *excluded_fraction);
 
 /* ---- Suzuki–Abe border following (border_follow.c) */
 
@@ -124,51 +130,6 @@ typedef struct {
  * Returns 0, or -1 when out of memory. */
 int recon_border_follow(const uint8_t *mask, int w, int h, recon_border_set *out);
 void recon_border_set_free(recon_border_set *s);
-
-/* ---- Douglas–Peucker (douglas_peucker.c) */
-
-/* Approximates the closed polygon pts[0..n) so that every input point lies
- * within eps of the output polygon. Writes vertex indices (increasing) to
- * keep and returns their count (>= 1; 2 or more when n >= 2). */
-int recon_douglas_peucker_closed(const vec2 *pts, int n, double eps, int *keep);
-
-/* ---- 7x7 Gaussian and Shi–Tomasi (shi_tomasi.c) */
-
-/* 7x7 Gaussian blur (sigma 1.4, OpenCV's default for that size), separable,
- * replicated border. tmp: 8 w + 6 floats of scratch. In place on img. */
-void recon_gaussian7(float *img, float *tmp, int w, int h);
-
-/* Shi–Tomasi response: the smaller eigenvalue of the structure tensor of 3x3
- * Sobel gradients summed over a 3x3 window, at every pixel (in float).
- * Returns 0, or -1 when out of memory. */
-int recon_shi_tomasi(const float *img, int w, int h, float *response);
-/* The same response at one pixel (replicated border). */
-float recon_shi_tomasi_at(const float *img, int w, int h, int x, int y);
-
-/* ---- corners (corners.c) */
-
-/* Finds the four corners on the closed contour (pixel centres): rasterises the
- * Douglas–Peucker approximation (approx_idx into contour) around each vertex,
- * blurs it (7x7 Gaussian) and takes the Shi–Tomasi response there; among the
- * convex, corner-like vertices of each quadrant of the PCA frame (up =
- * axis_up, split at mean) picks the highest (rim) or lowest (base), then the
- * outermost near that height; snapped to the contour point of sharpest turn.
- * Returns a bit set of the corners found (bit q for CORNER_q; all: 0xF);
- * corner_idx holds contour indices. */
-int recon_find_corners(const vec2 *contour, int n, const int *approx_idx, int n_approx, vec2 mean, vec2 axis_up,
-                       int corner_idx[CORNER_COUNT]);
-
-/* ---- vessel shape (vessel_check.c) */
-
-/* Checks that the corners (CORNER_ order) and the final axis (unit direction
- * toward the rim) describe a vessel: axis within 30° of the image vertical;
- * rim and base corner pairs distinct, level within 10° and at the top
- * (bottom) fifth of the outline; the outline not widening right below both
- * rim corners (a disc, an ellipse, a rounded box). ext: the mask's outermost
- * object pixel per row, left (ext[0..h)) and right (ext[h..2h)), -1 where
- * none. Returns 1, or 0 with the reason in why. */
-int recon_check_vessel(const vec2 *corners, vec2 dir, const vec2 *contour, int n, const int *ext,
-                       int h, char *why, size_t len);
 
 /* ---- axis (axis.c) */
 

@@ -489,21 +489,21 @@ int recon_segment(const image_t *img, recon_segmentation *seg)
                 goto out;
             eval_backdrop(&seg->model.backdrop, bgc);
         }
-        /* Round 0 cuts without symmetry; its largest component gives the
-         * axis of the symmetry links, which the later rounds keep (only the
-         * colour models change, so only the t-links are rebuilt). */
-        if (r <= 1) {
+        /* The axis of the symmetry links comes from the initial object
+         * (what the backdrop cannot explain: a highlight that the colour
+         * models will take for backdrop is still there), and the rounds
+         * keep it: only the colour models change, so only the t-links are
+         * rebuilt. */
+        if (r == 0) {
             maxflow_reset(g);
             add_smoothness(g, nlw, w, h);
-        } else {
-            maxflow_reset_terminals(g);
-        }
-        if (r == 1) {
             for (size_t p = 0; p < n; p++)
                 use[p] = lab[p] == main_c;
             seg->have_axis = recon_mask_axis(use, w, h, &seg->axis_x0, &seg->axis_slope) == 0;
             if (seg->have_axis)
                 add_symmetry(g, seg);
+        } else {
+            maxflow_reset_terminals(g);
         }
         add_data_terms(g, seg, bgc);
         maxflow_solve(g);
