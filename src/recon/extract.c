@@ -381,17 +381,19 @@ static int outline_points(const vec2 *sil, const uint8_t *gap, int n, vec2 origi
     return m;
 }
 
-/* Points every pixel along the polyline's long segments (not its bridges):
- * a ledge (a lip's underside, a foot's step) runs nearly horizontally
- * between two rows, and the B-spline, held only at the rows, would round it
- * off far from the outline. */
+/* A ledge (a lip's underside, a foot's step) runs nearly horizontally
+ * between two rows: the row samples are far apart there, and the B-spline,
+ * held only at the rows, would round it off far from the outline. Such a
+ * segment (not a bridge) gets a point every pixel along it. */
+static int is_ledge(vec2 a, vec2 b) { return fabs(b.x - a.x) > 2 * fabs(b.y - a.y) && fabs(b.x - a.x) > 1.5; }
+
 static int densify_polyline(recon_result *res)
 {
     const vec2 *p = res->polyline;
     const uint8_t *br = res->polyline_bridge;
     int n = res->n_polyline, total = n;
     for (int i = 0; i + 1 < n; i++)
-        if (!br[i])
+        if (!br[i] && is_ledge(p[i], p[i + 1]))
             total += (int)ceil(v2_len(v2_sub(p[i + 1], p[i]))) - 1;
     vec2 *q = malloc((size_t)total * sizeof *q);
     uint8_t *qb = calloc((size_t)total, 1);
@@ -404,7 +406,7 @@ static int densify_polyline(recon_result *res)
     for (int i = 0; i < n; i++) {
         q[m] = p[i];
         qb[m++] = br[i];
-        if (i + 1 == n || br[i])
+        if (i + 1 == n || br[i] || !is_ledge(p[i], p[i + 1]))
             continue;
         int k = (int)ceil(v2_len(v2_sub(p[i + 1], p[i])));
         for (int j = 1; j < k; j++)
