@@ -136,6 +136,20 @@ bench-render: check-deps-stamp
 # ---------------------------------------------------------------- demo and benchmarks
 # The test drawer of synthetic photographs, which the tools and bench_recon link.
 SYNTH_C := $(addprefix tests/support/,synth_vessel.c synth_body.c synth_profile.c synth_raster.c)
+SCENE_C := $(SYNTH_C) $(addprefix tests/support/,synth_scene.c synth_scene_layers.c synth_noise.c synth_jpeg.c)
+
+# `make hard-cases` draws the named hard cases of tests/support/synth_scene.c
+# (the reconstruction's test photographs) into out/hard-cases/, with a contact
+# sheet and a sheet with their truth drawn on.
+.PHONY: hard-cases
+build/tools/draw_hard_cases: tests/tools/draw_hard_cases.c $(SCENE_C) build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -o $@ tests/tools/draw_hard_cases.c $(SCENE_C) build/opt/libceladon.a $(LDLIBS)
+
+hard-cases: check-deps-stamp
+	@$(MAKE) --no-print-directory build/tools/draw_hard_cases
+	@mkdir -p out/hard-cases
+	build/tools/draw_hard_cases out/hard-cases
 
 # `make demo` reconstructs the bundled catalogue photo; `make demo-photo`
 # redraws that photo (tests/tools/draw_demo_photo.c) from its analytic vessel.

@@ -171,16 +171,15 @@ int synth_body_outline_x(const synth_body *b, double y, double *x_left, double *
     return 1;
 }
 
-void synth_body_rows(const synth_body *b, int *row0, int *row1)
+void synth_body_y_extent(const synth_body *b, double *y_top, double *y_bottom)
 {
-    double wb, wt, reach = radius_bound(b);
+    double wb, wt, reach = b->tilt_deg == 0 ? 0 : radius_bound(b);
     synth_body_axis_extent(b, &wb, &wt);
     vec2 d = synth_body_axis(b);
-    /* |n.y| = |d.x|: the image's y-extent of the box [-R, R] x [wb, wt]. */
-    double y_top = b->base_center.y + wt * d.y - reach * fabs(d.x);
-    double y_bottom = b->base_center.y + wb * d.y + reach * fabs(d.x);
-    *row0 = (int)floor(fmin(y_top, y_bottom)) - 1;
-    *row1 = (int)ceil(fmax(y_top, y_bottom)) + 1;
+    /* |n.y| = |d.x|: the y-extent of the axis-frame box [-R, R] x [wb, wt]. */
+    double y0 = b->base_center.y + wt * d.y - reach * fabs(d.x), y1 = b->base_center.y + wb * d.y + reach * fabs(d.x);
+    *y_top = fmin(y0, y1);
+    *y_bottom = fmax(y0, y1);
 }
 
 /* dr/dh at h in [0, H], by a second-order difference that stays inside. */

@@ -70,9 +70,9 @@ void synth_body_axis_extent(const synth_body *b, double *w_bottom, double *w_top
  * for these profiles and tilts below ~20°). */
 int synth_body_outline_x(const synth_body *b, double y, double *x_left, double *x_right);
 
-/* Pixel rows [*row0, *row1] that the image can touch (a bound, not clipped
- * to any image). */
-void synth_body_rows(const synth_body *b, int *row0, int *row1);
+/* The image's vertical extent: exact (the outline's highest and lowest y)
+ * when untilted, a bound when tilted. */
+void synth_body_y_extent(const synth_body *b, double *y_top, double *y_bottom);
 
 /* The four corners where the outline leaves the base and rim ellipses for the
  * wall's contour (CORNER_* order): level, (±r(0), 0) and (±r(H), H) in the

@@ -5,21 +5,24 @@
 #include <stdlib.h>
 #include <string.h>
 
-int synth_cover_spans(float *cov, int width, int height, int row0, int row1, int subrows, synth_span_fn span,
-                      const void *shape)
+int synth_cover_spans(float *cov, int width, int height, int row0, int row1, double y_top, double y_bottom,
+                      int subrows, synth_span_fn span, const void *shape)
 {
     float *row = malloc((size_t)width * sizeof *row);
     if (!row)
         return -1;
     for (int j = row0 < 0 ? 0 : row0; j <= row1 && j < height; j++) {
+        double lo = fmax(j, y_top), hi = fmin(j + 1.0, y_bottom), strip = (hi - lo) / subrows;
+        if (!(strip > 0))
+            continue;
         memset(row, 0, (size_t)width * sizeof *row);
         for (int k = 0; k < subrows; k++) {
-            double xl, xr, y = j + (k + 0.5) / subrows;
+            double xl, xr, y = lo + (k + 0.5) * strip;
             if (!span(shape, y, &xl, &xr) || xr <= 0 || xl >= width)
                 continue;
             int i0 = (int)fmax(0, floor(xl)), i1 = (int)fmin(width - 1, floor(xr));
             for (int i = i0; i <= i1; i++)
-                row[i] += (float)((fmin(xr, i + 1.0) - fmax(xl, (double)i)) / subrows);
+                row[i] += (float)((fmin(xr, i + 1.0) - fmax(xl, (double)i)) * strip);
         }
         float *dst = cov + (size_t)j * width;
         for (int i = 0; i < width; i++)

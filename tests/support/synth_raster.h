@@ -10,13 +10,16 @@
  * returns 1 and its ends, or 0 when the line misses it. */
 typedef int (*synth_span_fn)(const void *shape, double y, double *x_left, double *x_right);
 
-/* Coverage of a span shape over pixel rows [row0, row1] (clipped to the
- * image): each row is cut into `subrows` lines at the midpoints of equal
- * strips; on each the exact interval is clipped to every pixel. Exact along
- * x, midpoint rule along y (error O(curvature / subrows²) per pixel).
- * Returns 0, or -1 when out of memory. */
-int synth_cover_spans(float *cov, int width, int height, int row0, int row1, int subrows, synth_span_fn span,
-                      const void *shape);
+/* Coverage of a span shape lying within y_top <= y <= y_bottom (pass
+ * ±INFINITY when unknown) over pixel rows [row0, row1] (clipped to the
+ * image): the part of each row within [y_top, y_bottom] is cut into
+ * `subrows` equal strips, sampled on their middle lines; on each line the
+ * exact interval is clipped to every pixel. Exact along x, midpoint rule
+ * along y (error O(curvature / subrows²) per pixel), and exact for a
+ * horizontal top or bottom edge at y_top or y_bottom. Returns 0, or -1 when
+ * out of memory. */
+int synth_cover_spans(float *cov, int width, int height, int row0, int row1, double y_top, double y_bottom,
+                      int subrows, synth_span_fn span, const void *shape);
 
 /* A signed distance bound: negative inside the shape, positive outside, and
  * |f(p) - f(q)| <= lipschitz · |p - q|. */

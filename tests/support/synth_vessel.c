@@ -82,7 +82,8 @@ int synth_draw(const synth_params *p, image_t *img)
     synth_body b = body_of(p);
     float *cov = calloc((size_t)W * Hi, sizeof *cov);
     *img = image_alloc(W, Hi, ch);
-    if (!cov || !img->data || synth_cover_spans(cov, W, Hi, 0, Hi - 1, p->subrows > 0 ? p->subrows : 16, body_span, &b)) {
+    int sub = p->subrows > 0 ? p->subrows : 16;
+    if (!cov || !img->data || synth_cover_spans(cov, W, Hi, 0, Hi - 1, -INFINITY, INFINITY, sub, body_span, &b)) {
         free(cov);
         image_free(img);
         return -1;
