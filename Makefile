@@ -134,18 +134,18 @@ bench-render: check-deps-stamp
 	build/bench/bench_render | tee out/bench/bench_render.txt
 
 # ---------------------------------------------------------------- demo and benchmarks
-# The test drawer of synthetic photographs, which the tools and bench_recon link.
+# The test drawers of synthetic photographs: bench_recon links the vessel's,
+# the tools in tests/tools/ the scene's too.
 SYNTH_C := $(addprefix tests/support/,synth_vessel.c synth_body.c synth_profile.c synth_raster.c)
 SCENE_C := $(SYNTH_C) $(addprefix tests/support/,synth_scene.c synth_scene_layers.c synth_noise.c synth_jpeg.c)
+build/tools/%: tests/tools/%.c $(SCENE_C) build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(SCENE_C) build/opt/libceladon.a $(LDLIBS)
 
 # `make hard-cases` draws the named hard cases of tests/support/synth_scene.c
 # (the reconstruction's test photographs) into out/hard-cases/, with a contact
 # sheet and a sheet with their truth drawn on.
 .PHONY: hard-cases
-build/tools/draw_hard_cases: tests/tools/draw_hard_cases.c $(SCENE_C) build/opt/libceladon.a
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -o $@ tests/tools/draw_hard_cases.c $(SCENE_C) build/opt/libceladon.a $(LDLIBS)
-
 hard-cases: check-deps-stamp
 	@$(MAKE) --no-print-directory build/tools/draw_hard_cases
 	@mkdir -p out/hard-cases
@@ -154,10 +154,6 @@ hard-cases: check-deps-stamp
 # `make demo` reconstructs the bundled catalogue photo; `make demo-photo`
 # redraws that photo (tests/tools/draw_demo_photo.c) from its analytic vessel.
 .PHONY: demo-photo
-build/tools/draw_demo_photo: tests/tools/draw_demo_photo.c $(SYNTH_C) build/opt/libceladon.a
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -o $@ tests/tools/draw_demo_photo.c $(SYNTH_C) build/opt/libceladon.a $(LDLIBS)
-
 demo-photo: check-deps-stamp
 	@$(MAKE) --no-print-directory build/tools/draw_demo_photo
 	@mkdir -p scenes/demo

@@ -41,6 +41,14 @@ static double mask_sum(const image_t *m)
     return a;
 }
 
+/* The named case drawn at width x height (the image is the caller's). */
+static void draw_case(const char *name, int width, int height, synth_scene_params *p, synth_scene_truth *t,
+                      image_t *img)
+{
+    cr_assert_eq(synth_scene_case(name, width, height, p), 0, "%s", name);
+    cr_assert_eq(synth_scene_draw(p, img, NULL, t), 0, "%s", name);
+}
+
 /* ∫ 2 r(h) dh over [0, H] by Simpson's rule. */
 static double level_area(const synth_body *b)
 {
@@ -200,8 +208,7 @@ Test(synth_scene, truth_outline_agrees_with_drawn_pixels)
         synth_scene_params p;
         synth_scene_truth t;
         image_t img;
-        cr_assert_eq(synth_scene_case(cases[k], 300, 400, &p), 0);
-        cr_assert_eq(synth_scene_draw(&p, &img, NULL, &t), 0);
+        draw_case(cases[k], 300, 400, &p, &t, &img);
         int checked = 0;
         for (int j = 0; j < img.height; j++)
             check_row_edges(&img, &p, &t, j, &checked);
@@ -269,8 +276,7 @@ Test(synth_scene, every_case_draws_and_only_the_cut_one_touches_the_border)
         synth_scene_params p;
         synth_scene_truth t;
         image_t img;
-        cr_assert_eq(synth_scene_case(name, 90, 120, &p), 0, "%s", name);
-        cr_assert_eq(synth_scene_draw(&p, &img, NULL, &t), 0, "%s", name);
+        draw_case(name, 90, 120, &p, &t, &img);
         cr_expect_eq(img.channels, p.grayscale ? 1 : 3, "%s", name);
         cr_expect_eq(t.touches_border, strcmp(name, "vase_cut_bottom") == 0, "%s", name);
         for (int k = 0; k < t.part_count; k++)
@@ -283,9 +289,8 @@ Test(synth_scene, handles_stand_out_of_the_body_with_a_hole)
 {
     synth_scene_params p, bare;
     synth_scene_truth t;
-    image_t img, mask, bg;
-    cr_assert_eq(synth_scene_case("amphora_handles", 300, 400, &p), 0);
-    cr_assert_eq(synth_scene_draw(&p, &img, &mask, &t), 0);
+    image_t img, bg;
+    draw_case("amphora_handles", 300, 400, &p, &t, &img);
     bare = p;
     bare.vessel_count = 0;
     memset(bare.attachments, 0, sizeof bare.attachments);
@@ -315,7 +320,7 @@ Test(synth_scene, handles_stand_out_of_the_body_with_a_hole)
         cr_expect(side > 0 ? h->col1 > xr + 0.05 * H : h->col0 < xl - 0.05 * H, "side %d: cols %d..%d", side, h->col0,
                   h->col1);
     }
-    image_free(&img), image_free(&mask), image_free(&bg);
+    image_free(&img), image_free(&bg);
 }
 
 Test(synth_scene, cast_shadow_darkens_one_side_only)
@@ -352,8 +357,7 @@ Test(synth_scene, stand_begins_at_the_foot)
         synth_scene_params p;
         synth_scene_truth t;
         image_t img;
-        cr_assert_eq(synth_scene_case(cases[k], 240, 320, &p), 0);
-        cr_assert_eq(synth_scene_draw(&p, &img, NULL, &t), 0);
+        draw_case(cases[k], 240, 320, &p, &t, &img);
         const synth_part_truth *s = find_part(&t, SYNTH_PART_STAND, 0);
         cr_assert(s, "%s", cases[k]);
         cr_expect_eq(s->side, 0, "%s", cases[k]);
@@ -376,8 +380,7 @@ Test(synth_scene, lid_and_knob_are_in_the_profile)
     synth_scene_params p;
     synth_scene_truth t;
     image_t img;
-    cr_assert_eq(synth_scene_case("lidded_jar", 240, 320, &p), 0);
-    cr_assert_eq(synth_scene_draw(&p, &img, NULL, &t), 0);
+    draw_case("lidded_jar", 240, 320, &p, &t, &img);
     double H = t.body.height_px;
     /* The knob's flat top is the topmost outline; under it the knob bulges
      * over its stem, and the lid's flange overhangs the neck. */
@@ -394,8 +397,7 @@ Test(synth_scene, two_vessels_and_caption_parts)
     synth_scene_params p;
     synth_scene_truth t;
     image_t img;
-    cr_assert_eq(synth_scene_case("two_vessels", 300, 240, &p), 0);
-    cr_assert_eq(synth_scene_draw(&p, &img, NULL, &t), 0);
+    draw_case("two_vessels", 300, 240, &p, &t, &img);
     const synth_part_truth *s = find_part(&t, SYNTH_PART_SECOND_VESSEL, 0);
     cr_assert(s);
     double xl, xr;
@@ -403,8 +405,7 @@ Test(synth_scene, two_vessels_and_caption_parts)
     cr_expect_eq(s->side, 1);
     cr_expect_gt(s->col0, t.base_center.x + synth_scene_radius(&t, 0));
     image_free(&img);
-    cr_assert_eq(synth_scene_case("beaker_caption_bw", 200, 260, &p), 0);
-    cr_assert_eq(synth_scene_draw(&p, &img, NULL, &t), 0);
+    draw_case("beaker_caption_bw", 200, 260, &p, &t, &img);
     cr_expect_eq(img.channels, 1);
     const synth_part_truth *cap = find_part(&t, SYNTH_PART_CAPTION, 0), *bar = find_part(&t, SYNTH_PART_SCALE_BAR, 0);
     cr_assert(cap && bar);

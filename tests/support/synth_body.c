@@ -229,12 +229,13 @@ int synth_body_surface(const synth_body *b, vec2 q, double *h, double *phi)
         return 2;
     }
     double reach = radius_bound(b) * se, lo = fmax(0, (w - reach) / ce), hi = fmin(H, (w + reach) / ce);
-    for (double y = hi; y >= lo; y -= 1.0) {
+    const double step = 2.0;
+    for (double y = hi; y >= lo; y -= step) {
         double r = synth_body_radius(b, y), g = (r * r - s * s) * se * se - (w - y * ce) * (w - y * ce);
         if (g < 0)
             continue;
-        double in = y, out = fmin(hi, y + 1.0);
-        for (int k = 0; k < 30; k++) {
+        double in = y, out = fmin(hi, y + step);
+        for (int k = 0; k < 20; k++) {
             double m = 0.5 * (in + out), rm = synth_body_radius(b, m);
             if ((rm * rm - s * s) * se * se - (w - m * ce) * (w - m * ce) >= 0)
                 in = m;

@@ -84,9 +84,10 @@ void synth_body_corners(const synth_body *b, vec2 corners[CORNER_COUNT]);
  * (px) and angle phi around the axis (0 faces the camera, positive toward
  * +n). Returns 1 on the wall, 2 on the rim disc (top), 0 when q is outside
  * (h and phi are then the nearest silhouette's: h = w / cos e clamped to
- * [0, H], phi = ±π/2). The wall point is found on a 1 px scan down the
- * viewing ray and bisected: exact to ~1e-6 px except where a feature thinner
- * than the scan step hides another one (shading only). */
+ * [0, H], phi = ±π/2). The wall point is found on a 2 px scan down the
+ * viewing ray and bisected: exact to ~2e-6 px except where the ray crosses
+ * the solid over less than the scan step (a grazing ray within a fraction of
+ * a pixel of the outline, which then gets the fallback): shading only. */
 int synth_body_surface(const synth_body *b, vec2 q, double *h, double *phi);
 
 #endif

@@ -19,38 +19,29 @@ static void init_basis(void)
             basis[u][x] = (u == 0 ? sqrt(0.125) : 0.5) * cos((2 * x + 1) * u * M_PI / 16);
 }
 
-/* One 8x8 block in place: forward DCT, quantise with step q, inverse. */
+/* out = op(a) op(b), op transposing its matrix when the flag is set. */
+static void product(const double a[8][8], int ta, const double b[8][8], int tb, double out[8][8])
+{
+    for (int i = 0; i < 8; i++)
+        for (int j = 0; j < 8; j++) {
+            double s = 0;
+            for (int k = 0; k < 8; k++)
+                s += (ta ? a[k][i] : a[i][k]) * (tb ? b[j][k] : b[k][j]);
+            out[i][j] = s;
+        }
+}
+
+/* One 8x8 block in place: forward DCT (B X Bᵀ), quantise with steps q,
+ * inverse (Bᵀ C B). */
 static void quantise_block(double blk[8][8], const double q[64])
 {
     double tmp[8][8], coef[8][8];
-    for (int y = 0; y < 8; y++)
-        for (int u = 0; u < 8; u++) {
-            double s = 0;
-            for (int x = 0; x < 8; x++)
-                s += basis[u][x] * blk[y][x];
-            tmp[y][u] = s;
-        }
-    for (int v = 0; v < 8; v++)
-        for (int u = 0; u < 8; u++) {
-            double s = 0;
-            for (int y = 0; y < 8; y++)
-                s += basis[v][y] * tmp[y][u];
-            coef[v][u] = q[8 * v + u] * round(s / q[8 * v + u]);
-        }
-    for (int v = 0; v < 8; v++)
-        for (int x = 0; x < 8; x++) {
-            double s = 0;
-            for (int u = 0; u < 8; u++)
-                s += basis[u][x] * coef[v][u];
-            tmp[v][x] = s;
-        }
-    for (int y = 0; y < 8; y++)
-        for (int x = 0; x < 8; x++) {
-            double s = 0;
-            for (int v = 0; v < 8; v++)
-                s += basis[v][y] * tmp[v][x];
-            blk[y][x] = s;
-        }
+    product(blk, 0, basis, 1, tmp);
+    product(basis, 0, tmp, 0, coef);
+    for (int k = 0; k < 64; k++)
+        coef[k / 8][k % 8] = q[k] * round(coef[k / 8][k % 8] / q[k]);
+    product(coef, 0, basis, 0, tmp);
+    product(basis, 1, tmp, 0, blk);
 }
 
 void synth_jpeg_quantise(image_t *img, int quality)

@@ -205,20 +205,26 @@ static void shade_wall(const synth_scene_vessel *v, double h, double phi, double
     }
 }
 
-/* The share of the pixel at (x, y) inside the body's rim disc (its top
- * face), anti-aliasing the edge between the disc and the wall: a one-pixel
- * ramp on the ellipse's distance bound. 0 when level. */
-static double rim_disc_share(const synth_body *b, double x, double y)
+/* The rim disc (the top face) under the pixel at (x, y): returns the share
+ * of the pixel inside it, anti-aliasing the edge between disc and wall by a
+ * one-pixel ramp on the ellipse's distance bound (0 when level), and sets
+ * *depth, the point's distance toward the camera over the disc's radius
+ * (+1 its front edge, -1 its back). */
+static double rim_disc(const synth_body *b, double x, double y, double *depth)
 {
+    *depth = 0;
     if (b->elevation_deg == 0)
         return 0;
     vec2 d = synth_body_axis(b), n = v2(-d.y, d.x), rel = v2_sub(v2(x, y), b->base_center);
     double e = b->elevation_deg * M_PI / 180, H = b->height_px, rt = synth_body_radius(b, H);
-    return feature(ellipse_sdf(v2_dot(rel, n), v2_dot(rel, d) - H * cos(e), rt, rt * sin(e)));
+    double u = v2_dot(rel, d) - H * cos(e);
+    *depth = fmax(-1, fmin(1, -u / (rt * sin(e))));
+    return feature(ellipse_sdf(v2_dot(rel, n), u, rt, rt * sin(e)));
 }
 
-/* The colour of a visible surface point (where: 1 wall, 2 rim disc). */
-static void surface_colour(const synth_scene_vessel *v, int where, double h, double phi, double col[3])
+/* The colour of a visible surface point (where: 1 wall, 2 rim disc, whose
+ * point is `depth` toward the camera). */
+static void surface_colour(const synth_scene_vessel *v, int where, double h, double phi, double depth, double col[3])
 {
     for (int q = 0; q < 3; q++)
         col[q] = v->glaze[q];
@@ -227,9 +233,9 @@ static void surface_colour(const synth_scene_vessel *v, int where, double h, dou
     if (!v->lit)
         return;
     if (where == 2) {
-        /* An open mouth's interior, lighter on the far wall (phi near
-         * ±180°); or a lid's top, lit from above. */
-        double shade = v->open_mouth ? 0.15 + 0.12 * (1 - cos(phi)) : 0.45 + 0.6 * v3_norm(KEY).y;
+        /* An open mouth shows the inner wall, lit at the back and dark at
+         * the front; a lid's top is lit from above. */
+        double shade = v->open_mouth ? 0.14 + 0.14 * (1 - depth) : 0.45 + 0.6 * v3_norm(KEY).y;
         for (int q = 0; q < 3; q++)
             col[q] *= shade;
     } else
@@ -241,14 +247,14 @@ static void vessel_colour(const void *ctx, double x, double y, float rgb[3])
     const synth_scene_vessel *v = ctx;
     double col[3] = {v->glaze[0], v->glaze[1], v->glaze[2]};
     if (v->lit || v->decor != SYNTH_DECOR_NONE) {
-        double h, phi, share = v->lit ? rim_disc_share(&v->body, x, y) : 0;
+        double h, phi, depth = 0, share = v->lit ? rim_disc(&v->body, x, y, &depth) : 0;
         int where = synth_body_surface(&v->body, v2(x, y), &h, &phi);
-        surface_colour(v, where, h, phi, col);
+        surface_colour(v, where, h, phi, depth, col);
         if (share > 0 && share < 1) {
             /* Across the rim disc's edge: the disc's colour and the wall's
              * at the rim, mixed by the share of the pixel in the disc. */
             double other[3], H = v->body.height_px;
-            surface_colour(v, where == 2 ? 1 : 2, H, phi, other);
+            surface_colour(v, where == 2 ? 1 : 2, H, phi, depth, other);
             double a = where == 2 ? 1 - share : share;
             for (int q = 0; q < 3; q++)
                 col[q] += a * (other[q] - col[q]);
@@ -289,7 +295,7 @@ static void stand_colour(const void *ctx, double x, double y, float rgb[3])
     const stand_look *s = ctx;
     double shade;
     if (s->stand->kind == SYNTH_STAND_CYLINDER) {
-        double h, phi, top = rim_disc_share(&s->cylinder, x, y);
+        double h, phi, depth, top = rim_disc(&s->cylinder, x, y, &depth);
         synth_body_surface(&s->cylinder, v2(x, y), &h, &phi);
         double wall = 0.74 + 0.26 * fmax(0, v3_dot(v3(sin(phi), 0, cos(phi)), v3_norm(KEY)));
         shade = top + (1 - top) * wall;
