@@ -109,9 +109,8 @@ static int draw_layers(const synth_scene_params *p, scene_canvas *c, layer_stack
         const synth_attachment *a = &p->attachments[k];
         if (a->kind == SYNTH_ATTACH_NONE)
             continue;
-        if (!(w = push(s, n, attach_part[a->kind], a->side, 1)))
+        if (!(w = push(s, n, attach_part[a->kind], a->side, 1)) || scene_attachment(p, k, c, w))
             return -1;
-        scene_attachment(p, k, c, w);
     }
     if (p->vessel_count >= 1 && (!(w = push(s, n, SYNTH_PART_KIND_COUNT, 0, 1)) || scene_vessel(p, 0, c, w)))
         return -1;

@@ -434,7 +434,7 @@ static void lug_colour(const void *ctx, double x, double y, float rgb[3])
     tube_colour(l->look, fmin(1, 1 + f), rgb);
 }
 
-void scene_attachment(const synth_scene_params *p, int index, scene_canvas *c, float *weight)
+int scene_attachment(const synth_scene_params *p, int index, scene_canvas *c, float *weight)
 {
     const synth_attachment *a = &p->attachments[index];
     int n = p->supersample > 8 ? p->supersample : 8;
@@ -448,11 +448,11 @@ void scene_attachment(const synth_scene_params *p, int index, scene_canvas *c, f
         synth_cover_sdf(weight, c->width, c->height, (int)(o.x - reach), (int)(o.y - reach), (int)(o.x + reach),
                         (int)(o.y + reach), n, 1.0, lug_sdf, &l);
         composite(c, weight, lug_colour, &l);
-        return;
+        return 0;
     }
     stroke *st = malloc(sizeof *st);
     if (!st)
-        return;
+        return -1;
     build_stroke(p, a, st);
     for (int k = 0; k <= STROKE_SEGMENTS; k++) {
         x0 = fmin(x0, st->pt[k].x - st->half[k]), x1 = fmax(x1, st->pt[k].x + st->half[k]);
@@ -463,6 +463,7 @@ void scene_attachment(const synth_scene_params *p, int index, scene_canvas *c, f
                     st);
     composite(c, weight, stroke_colour, st);
     free(st);
+    return 0;
 }
 
 /* ------------------------------------------------------------------ caption, scale bar, frame */

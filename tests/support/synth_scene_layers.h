@@ -23,8 +23,8 @@ int scene_stand(const synth_scene_params *p, scene_canvas *c, float *weight);
 /* vessels[index]'s body. Returns 0, or -1 when out of memory. */
 int scene_vessel(const synth_scene_params *p, int index, scene_canvas *c, float *weight);
 
-/* attachments[index] of vessels[0]. */
-void scene_attachment(const synth_scene_params *p, int index, scene_canvas *c, float *weight);
+/* attachments[index] of vessels[0]. Returns 0, or -1 when out of memory. */
+int scene_attachment(const synth_scene_params *p, int index, scene_canvas *c, float *weight);
 
 void scene_caption(const synth_scene_params *p, scene_canvas *c, float *weight);
 void scene_scale_bar(const synth_scene_params *p, scene_canvas *c, float *weight);
