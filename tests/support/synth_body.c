@@ -186,7 +186,8 @@ void synth_body_y_extent(const synth_body *b, double *y_top, double *y_bottom)
 static double radius_slope(const synth_body *b, double h)
 {
     double dh = 1e-4 * b->height_px, sgn = h < 0.5 * b->height_px ? 1 : -1;
-    double r0 = synth_body_radius(b, h), r1 = synth_body_radius(b, h + sgn * dh), r2 = synth_body_radius(b, h + 2 * sgn * dh);
+    double r0 = synth_body_radius(b, h), r1 = synth_body_radius(b, h + sgn * dh);
+    double r2 = synth_body_radius(b, h + 2 * sgn * dh);
     return sgn * (-3 * r0 + 4 * r1 - r2) / (2 * dh);
 }
 

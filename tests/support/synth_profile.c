@@ -91,7 +91,7 @@ double synth_profile_max_radius(synth_profile profile)
 
 const char *synth_profile_name(synth_profile profile)
 {
-    static const char *const names[SYNTH_PROFILE_COUNT] = {"vase",      "bowl",       "bottle",      "jar",     "maebyeong",
-                                                           "ewer",      "lidded_jar", "footed_bowl", "cylinder"};
+    static const char *const names[SYNTH_PROFILE_COUNT] = {"vase", "bowl",       "bottle",      "jar",     "maebyeong",
+                                                           "ewer", "lidded_jar", "footed_bowl", "cylinder"};
     return (unsigned)profile < SYNTH_PROFILE_COUNT ? names[profile] : NULL;
 }

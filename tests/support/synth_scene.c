@@ -310,146 +310,150 @@ typedef struct {
 /* Backdrops. The museum's sweeps brighten from a mid-grey wall at the top
  * (~0.35 encoded) to a light floor at the bottom (~0.88) over most of the
  * image height, fastest a little under the vessels' feet. */
-#define SWEEP_GREY                                                                                                     \
-    {.kind = SYNTH_BACKDROP_SWEEP, .wall = {0.33f, 0.33f, 0.34f}, .floor = {0.95f, 0.95f, 0.94f}, .horizon = 0.68,      \
-     .softness = 0.17, .vignette = 0.15}
-#define SWEEP_LIGHT                                                                                                    \
-    {.kind = SYNTH_BACKDROP_SWEEP, .wall = {0.62f, 0.62f, 0.63f}, .floor = {0.97f, 0.97f, 0.96f}, .horizon = 0.70,      \
-     .softness = 0.20, .vignette = 0.10}
+#define SWEEP(top, bottom, mid, width, vign, ...)                                                                     \
+    {.kind = SYNTH_BACKDROP_SWEEP, .wall = {top, top, top + 0.01f}, .floor = {bottom, bottom, bottom - 0.01f},        \
+     .horizon = (mid), .softness = (width), .vignette = (vign), __VA_ARGS__}
+#define SWEEP_GREY SWEEP(0.33f, 0.95f, 0.68, 0.17, 0.15, .frame = 0)
+#define SWEEP_LIGHT SWEEP(0.62f, 0.97f, 0.70, 0.20, 0.10, .frame = 0)
 #define FLAT_LIGHT {.kind = SYNTH_BACKDROP_FLAT, .wall = {0.93f, 0.93f, 0.92f}}
 #define FLAT_BW {.kind = SYNTH_BACKDROP_FLAT, .wall = {0.80f, 0.80f, 0.80f}, .vignette = 0.12}
 #define BLACK_CLOTH {.kind = SYNTH_BACKDROP_FLAT, .wall = {0.03f, 0.03f, 0.03f}}
 #define PAPER                                                                                                          \
-    {.kind = SYNTH_BACKDROP_FLAT, .wall = {0.90f, 0.87f, 0.80f}, .vignette = 0.3, .grain = 0.05, .grain_px = 48,        \
+    {.kind = SYNTH_BACKDROP_FLAT, .wall = {0.90f, 0.87f, 0.80f}, .vignette = 0.3, .grain = 0.05, .grain_px = 48,       \
      .frame = 1}
 
-/* Bodies: the profile and the camera's elevation (sizes filled in later). */
-#define BODY(prof, elev) {.profile = (prof), .radius_scale = 1, .elevation_deg = (elev)}
+/* A vessel in one flat colour (for exact outline tests), and a lit one with
+ * a highlight stripe of some strength at an azimuth; sizes are filled in by
+ * synth_scene_case. */
+#define FLAT(prof, elev, ...)                                                                                         \
+    .body = {.profile = (prof), .radius_scale = 1, .elevation_deg = (elev)}, .glaze = __VA_ARGS__
+#define LIT(prof, elev, colour, stripe, stripe_deg)                                                                   \
+    FLAT(prof, elev, colour), .lit = 1, .highlight = (stripe), .highlight_deg = (stripe_deg), .highlight_width_deg = 8
+#define DECOR(kind, colour) .decor = SYNTH_DECOR_##kind, .decor_colour = colour
 
-/* A lit vessel with a highlight stripe of a strength at an azimuth. */
-#define LIT(prof, elev, colour, stripe, stripe_deg) \
-    .body = BODY(prof, elev), .glaze = colour, .lit = 1, .highlight = (stripe), .highlight_deg = (stripe_deg), \
-    .highlight_width_deg = 8
+/* Attachments: side, the two heights, reach and thickness (fractions of H). */
+#define HANDLE(side, h0, h1, reach, thick) {SYNTH_ATTACH_HANDLE, side, h0, h1, reach, thick}
+#define SPOUT(side, h0, h1, reach, thick) {SYNTH_ATTACH_SPOUT, side, h0, h1, reach, thick}
+#define LUG(side, h, reach, thick) {SYNTH_ATTACH_LUG, side, h, h, reach, thick}
+
+/* A museum's JPEG: a little sensor noise, quality 90. */
+#define MUSEUM_JPEG .noise = 0.005, .jpeg_quality = 90
 
 #define SHADOW_RIGHT {.strength = 0.45, .side = 1, .length = 0.85, .breadth = 0.10, .rise_deg = 10, .softness = 0.06}
 #define SHADOW_LEFT {.strength = 0.40, .side = -1, .length = 0.70, .breadth = 0.09, .rise_deg = 14, .softness = 0.07}
 
+/* Each row: name, what makes it hard; height, fit, base_y, center_x,
+ * second_x, second_height (see scene_case); the scene. */
 static const scene_case CASES[] = {
     {"maebyeong_flat", "maebyeong in one flat colour on a flat backdrop, level camera: the exact-outline reference",
      0.80, 0.8, 0.90, 0.5, 0, 0,
-     {.backdrop = FLAT_LIGHT, .vessel_count = 1, .vessels = {{.body = BODY(SYNTH_PROFILE_MAEBYEONG, 0), .glaze = CELADON}}}},
+     {.backdrop = FLAT_LIGHT, .vessel_count = 1, .vessels = {{FLAT(SYNTH_PROFILE_MAEBYEONG, 0, CELADON)}}}},
     {"maebyeong_studio", "celadon maebyeong on a grey sweep: inlaid roundels, a highlight stripe on the right outline",
      0.72, 0.8, 0.86, 0.5, 0, 0,
      {.backdrop = SWEEP_GREY, .vessel_count = 1,
-      .vessels = {{LIT(SYNTH_PROFILE_MAEBYEONG, 0, CELADON, 0.45, 80), .decor = SYNTH_DECOR_MEDALLIONS, .decor_colour = INLAY_WHITE}},
-      .contact_shadow = 0.5}},
+      .vessels = {{LIT(SYNTH_PROFILE_MAEBYEONG, 0, CELADON, 0.45, 80), DECOR(MEDALLIONS, INLAY_WHITE)}},
+      .contact_shadow = 0.5, MUSEUM_JPEG}},
     {"maebyeong_shadow", "the studio maebyeong with a soft floor shadow on the right running up the sweep",
      0.72, 0.8, 0.86, 0.5, 0, 0,
      {.backdrop = SWEEP_GREY, .vessel_count = 1,
-      .vessels = {{LIT(SYNTH_PROFILE_MAEBYEONG, 0, CELADON, 0.45, 80), .decor = SYNTH_DECOR_MEDALLIONS, .decor_colour = INLAY_WHITE}},
-      .shadow = SHADOW_RIGHT, .contact_shadow = 0.5}},
+      .vessels = {{LIT(SYNTH_PROFILE_MAEBYEONG, 0, CELADON, 0.45, 80), DECOR(MEDALLIONS, INLAY_WHITE)}},
+      .shadow = SHADOW_RIGHT, .contact_shadow = 0.5, MUSEUM_JPEG}},
     {"maebyeong_high", "maebyeong seen 12 deg from above: base and rim are ellipse arcs, the mouth shows; shadow left",
      0.72, 0.8, 0.86, 0.5, 0, 0,
-     {.backdrop = SWEEP_GREY, .vessel_count = 1, .vessels = {{LIT(SYNTH_PROFILE_MAEBYEONG, 12, CELADON, 0.45, 0), .open_mouth = 1}},
-      .shadow = SHADOW_LEFT, .contact_shadow = 0.5}},
+     {.backdrop = SWEEP_GREY, .vessel_count = 1,
+      .vessels = {{LIT(SYNTH_PROFILE_MAEBYEONG, 12, CELADON, 0.45, 0), .open_mouth = 1}},
+      .shadow = SHADOW_LEFT, .contact_shadow = 0.5, MUSEUM_JPEG}},
     {"ewer_neck", "pear-shaped tenmoku bottle, narrow neck under a rounded shoulder, glossy stripe on the left outline",
      0.76, 0.8, 0.88, 0.5, 0, 0,
      {.backdrop = SWEEP_LIGHT, .vessel_count = 1,
-      .vessels = {{LIT(SYNTH_PROFILE_EWER, 0, TENMOKU, 0.6, -82), .decor = SYNTH_DECOR_BANDS,
-                   .decor_colour = RUST}},
-      .contact_shadow = 0.6}},
+      .vessels = {{LIT(SYNTH_PROFILE_EWER, 0, TENMOKU, 0.6, -82), DECOR(BANDS, RUST)}},
+      .contact_shadow = 0.6, MUSEUM_JPEG}},
     {"ewer_handle_spout", "celadon ewer with a loop handle on the right and a spout on the left",
      0.70, 0.6, 0.86, 0.5, 0, 0,
      {.backdrop = SWEEP_GREY, .vessel_count = 1, .vessels = {{LIT(SYNTH_PROFILE_EWER, 0, CELADON, 0.45, 30)}},
-      .attachments = {{SYNTH_ATTACH_HANDLE, 1, 0.32, 0.80, 0.12, 0.045}, {SYNTH_ATTACH_SPOUT, -1, 0.36, 0.58, 0.10, 0.10}},
-      .contact_shadow = 0.5}},
-    {"lidded_jar", "blue-and-white lidded jar, level camera: its domed lid and knob are part of the profile; shadow left",
+      .attachments = {HANDLE(1, 0.32, 0.80, 0.12, 0.045), SPOUT(-1, 0.36, 0.58, 0.10, 0.10)},
+      .contact_shadow = 0.5, MUSEUM_JPEG}},
+    {"lidded_jar", "blue-and-white lidded jar, level camera: domed lid and knob are part of the profile; shadow left",
      0.76, 0.8, 0.87, 0.5, 0, 0,
      {.backdrop = SWEEP_GREY, .vessel_count = 1,
-      .vessels = {{LIT(SYNTH_PROFILE_LIDDED_JAR, 0, PORCELAIN, 0.45, 40), .decor = SYNTH_DECOR_BANDS,
-                   .decor_colour = COBALT}},
-      .shadow = SHADOW_LEFT, .contact_shadow = 0.5}},
+      .vessels = {{LIT(SYNTH_PROFILE_LIDDED_JAR, 0, PORCELAIN, 0.45, 40), DECOR(BANDS, COBALT)}},
+      .shadow = SHADOW_LEFT, .contact_shadow = 0.5, MUSEUM_JPEG}},
     {"lidded_jar_flat_high", "flat-colour lidded jar seen 10 deg from above on a flat backdrop: exact elliptic caps",
      0.78, 0.8, 0.86, 0.5, 0, 0,
-     {.backdrop = FLAT_LIGHT, .vessel_count = 1,
-      .vessels = {{.body = BODY(SYNTH_PROFILE_LIDDED_JAR, 10), .glaze = COBALT}}}},
+     {.backdrop = FLAT_LIGHT, .vessel_count = 1, .vessels = {{FLAT(SYNTH_PROFILE_LIDDED_JAR, 10, COBALT)}}}},
     {"lidded_jar_high", "lidded jar 8 deg from above under studio light, with a floor shadow to the right",
      0.74, 0.8, 0.86, 0.5, 0, 0,
      {.backdrop = SWEEP_GREY, .vessel_count = 1,
-      .vessels = {{LIT(SYNTH_PROFILE_LIDDED_JAR, 8, PORCELAIN, 0.45, -30), .decor = SYNTH_DECOR_BANDS,
-                   .decor_colour = COBALT}},
-      .shadow = SHADOW_RIGHT, .contact_shadow = 0.5}},
+      .vessels = {{LIT(SYNTH_PROFILE_LIDDED_JAR, 8, PORCELAIN, 0.45, -30), DECOR(BANDS, COBALT)}},
+      .shadow = SHADOW_RIGHT, .contact_shadow = 0.5, MUSEUM_JPEG}},
     {"amphora_handles", "black-glazed amphora with two loop handles from shoulder to neck and painted bands",
      0.74, 0.6, 0.86, 0.5, 0, 0,
      {.backdrop = SWEEP_GREY, .vessel_count = 1,
-      .vessels = {{LIT(SYNTH_PROFILE_VASE, 0, BLACK_GLAZE, 0.45, 70), .decor = SYNTH_DECOR_BANDS, .decor_colour = TERRACOTTA}},
-      .attachments = {{SYNTH_ATTACH_HANDLE, -1, 0.45, 0.86, 0.09, 0.03}, {SYNTH_ATTACH_HANDLE, 1, 0.45, 0.86, 0.09, 0.03}},
-      .contact_shadow = 0.5}},
+      .vessels = {{LIT(SYNTH_PROFILE_VASE, 0, BLACK_GLAZE, 0.45, 70), DECOR(BANDS, TERRACOTTA)}},
+      .attachments = {HANDLE(-1, 0.45, 0.86, 0.09, 0.03), HANDLE(1, 0.45, 0.86, 0.09, 0.03)},
+      .contact_shadow = 0.5, MUSEUM_JPEG}},
     {"jar_lugs_high", "terracotta jar seen 15 deg from above with two solid lugs, a frame line, a shadow to the right",
      0.62, 0.7, 0.84, 0.5, 0, 0,
-     {.backdrop = {.kind = SYNTH_BACKDROP_SWEEP, .wall = {0.36f, 0.36f, 0.37f}, .floor = {0.95f, 0.95f, 0.94f},
-                   .horizon = 0.66, .softness = 0.16, .vignette = 0.2, .frame = 1},
-      .vessel_count = 1,
-      .vessels = {{LIT(SYNTH_PROFILE_JAR, 15, TERRACOTTA, 0.45, 0), .open_mouth = 1, .decor = SYNTH_DECOR_MEDALLIONS, .decor_colour = RUST}},
-      .attachments = {{SYNTH_ATTACH_LUG, -1, 0.84, 0.84, 0.07, 0.13}, {SYNTH_ATTACH_LUG, 1, 0.84, 0.84, 0.07, 0.13}},
-      .shadow = SHADOW_RIGHT, .contact_shadow = 0.5}},
+     {.backdrop = SWEEP(0.36f, 0.95f, 0.66, 0.16, 0.2, .frame = 1), .vessel_count = 1,
+      .vessels = {{LIT(SYNTH_PROFILE_JAR, 15, TERRACOTTA, 0.45, 0), .open_mouth = 1, DECOR(MEDALLIONS, RUST)}},
+      .attachments = {LUG(-1, 0.84, 0.07, 0.13), LUG(1, 0.84, 0.07, 0.13)},
+      .shadow = SHADOW_RIGHT, .contact_shadow = 0.5, MUSEUM_JPEG}},
     {"bottle_stand", "dark glossy bottle on a white cylinder stand a little wider than its foot, off the bottom border",
-     0.55, 0.8, 0.62, 0.5, 0, 0,
+     0.56, 0.8, 0.78, 0.5, 0, 0,
      {.backdrop = SWEEP_LIGHT, .vessel_count = 1, .vessels = {{LIT(SYNTH_PROFILE_BOTTLE, 0, BLACK_GLAZE, 0.45, 60)}},
-      .stand = {SYNTH_STAND_CYLINDER, 1.15, 1.2, 0, STAND_WHITE}, .contact_shadow = 0.35}},
+      .stand = {SYNTH_STAND_CYLINDER, 1.15, 1.2, 0, STAND_WHITE}, .contact_shadow = 0.35, MUSEUM_JPEG}},
     {"footed_bowl_stand", "terracotta footed bowl on a narrower white stand (a waist at the foot), near-white backdrop",
      0.36, 0.85, 0.55, 0.5, 0, 0,
      {.backdrop = FLAT_LIGHT, .vessel_count = 1,
-      .vessels = {{LIT(SYNTH_PROFILE_FOOTED_BOWL, 0, TERRACOTTA, 0.45, 50), .decor = SYNTH_DECOR_BANDS,
-                   .decor_colour = BLACK_GLAZE}},
-      .stand = {SYNTH_STAND_CYLINDER, 0.8, 2.0, 0, STAND_WHITE}}},
+      .vessels = {{LIT(SYNTH_PROFILE_FOOTED_BOWL, 0, TERRACOTTA, 0.45, 50), DECOR(BANDS, BLACK_GLAZE)}},
+      .stand = {SYNTH_STAND_CYLINDER, 0.8, 2.0, 0, STAND_WHITE}, MUSEUM_JPEG}},
     {"vase_plinth", "vase on a white box plinth wider than its foot, camera 6 deg above (the plinth's top shows)",
      0.66, 0.8, 0.76, 0.5, 0, 0,
      {.backdrop = SWEEP_GREY, .vessel_count = 1,
-      .vessels = {{LIT(SYNTH_PROFILE_VASE, 6, CELADON, 0.45, 20), .open_mouth = 1, .decor = SYNTH_DECOR_BANDS, .decor_colour = INLAY_WHITE}},
-      .stand = {SYNTH_STAND_BOX, 1.8, 0.16, 0.8, STAND_WHITE}, .shadow = SHADOW_RIGHT, .contact_shadow = 0.4}},
+      .vessels = {{LIT(SYNTH_PROFILE_VASE, 6, CELADON, 0.45, 20), .open_mouth = 1, DECOR(BANDS, INLAY_WHITE)}},
+      .stand = {SYNTH_STAND_BOX, 1.8, 0.16, 0.8, STAND_WHITE}, .shadow = SHADOW_RIGHT, .contact_shadow = 0.4,
+      MUSEUM_JPEG}},
     {"two_vessels", "a maebyeong and a smaller jar side by side on one sweep (refuse: two vessels)",
      0.66, 0.45, 0.86, 0.34, 0.76, 0.62,
      {.backdrop = SWEEP_GREY, .vessel_count = 2,
-      .vessels = {{LIT(SYNTH_PROFILE_MAEBYEONG, 0, CELADON, 0.45, 40)}, {LIT(SYNTH_PROFILE_JAR, 0, TERRACOTTA, 0.45, 40)}},
-      .contact_shadow = 0.5}},
+      .vessels = {{LIT(SYNTH_PROFILE_MAEBYEONG, 0, CELADON, 0.45, 40)},
+                  {LIT(SYNTH_PROFILE_JAR, 0, TERRACOTTA, 0.45, 40)}},
+      .contact_shadow = 0.5, MUSEUM_JPEG}},
     {"vase_cut_bottom", "vase cut by the image's bottom border (refuse: border contact)",
      0.92, 0.8, 1.10, 0.5, 0, 0,
-     {.backdrop = SWEEP_GREY, .vessel_count = 1, .vessels = {{LIT(SYNTH_PROFILE_VASE, 0, CELADON, 0.45, 40)}}}},
-    {"beaker_caption_bw", "black-and-white photo of a near-cylindrical jar on plain grey with a caption and a scale bar",
+     {.backdrop = SWEEP_GREY, .vessel_count = 1, .vessels = {{LIT(SYNTH_PROFILE_VASE, 0, CELADON, 0.45, 40)}},
+      MUSEUM_JPEG}},
+    {"beaker_caption_bw", "black-and-white photo of a near-cylindrical jar on plain grey, a caption and a scale bar",
      0.74, 0.8, 0.84, 0.5, 0, 0,
      {.backdrop = FLAT_BW, .vessel_count = 1, .vessels = {{LIT(SYNTH_PROFILE_JAR, 0, PORCELAIN, 0.3, 60)}},
       .caption = 1, .scale_bar = 1, .grayscale = 1, .noise = 0.01}},
     {"jar_handles_bw", "black-and-white two-handled jar, dark on light, with JPEG artefacts",
      0.70, 0.55, 0.86, 0.5, 0, 0,
      {.backdrop = FLAT_BW, .vessel_count = 1,
-      .vessels = {{LIT(SYNTH_PROFILE_JAR, 0, TERRACOTTA, 0.45, 40), .decor = SYNTH_DECOR_MEDALLIONS,
-                   .decor_colour = BLACK_GLAZE}},
-      .attachments = {{SYNTH_ATTACH_HANDLE, -1, 0.40, 0.88, 0.12, 0.04}, {SYNTH_ATTACH_HANDLE, 1, 0.40, 0.88, 0.12, 0.04}},
+      .vessels = {{LIT(SYNTH_PROFILE_JAR, 0, TERRACOTTA, 0.45, 40), DECOR(MEDALLIONS, BLACK_GLAZE)}},
+      .attachments = {HANDLE(-1, 0.40, 0.88, 0.12, 0.04), HANDLE(1, 0.40, 0.88, 0.12, 0.04)},
       .contact_shadow = 0.4, .grayscale = 1, .jpeg_quality = 70}},
-    {"vase_black", "white porcelain vase lit on a black backdrop", 0.76, 0.8, 0.88, 0.5, 0, 0,
-     {.backdrop = BLACK_CLOTH, .vessel_count = 1, .vessels = {{LIT(SYNTH_PROFILE_VASE, 0, PORCELAIN, 0.45, 40)}}, .noise = 0.01}},
-    {"bowl_paper", "footed bowl on textured paper with vignetting and a thin dark frame line", 0.40, 0.8, 0.72, 0.5, 0, 0,
+    {"vase_black", "white porcelain vase lit on a black backdrop",
+     0.76, 0.8, 0.88, 0.5, 0, 0,
+     {.backdrop = BLACK_CLOTH, .vessel_count = 1, .vessels = {{LIT(SYNTH_PROFILE_VASE, 0, PORCELAIN, 0.45, 40)}},
+      .noise = 0.01}},
+    {"bowl_paper", "footed bowl on textured paper with vignetting and a thin dark frame line",
+     0.40, 0.8, 0.72, 0.5, 0, 0,
      {.backdrop = PAPER, .vessel_count = 1,
-      .vessels = {{LIT(SYNTH_PROFILE_FOOTED_BOWL, 0, TERRACOTTA, 0.45, 30), .decor = SYNTH_DECOR_BANDS,
-                   .decor_colour = BLACK_GLAZE}},
+      .vessels = {{LIT(SYNTH_PROFILE_FOOTED_BOWL, 0, TERRACOTTA, 0.45, 30), DECOR(BANDS, BLACK_GLAZE)}},
       .contact_shadow = 0.5, .jpeg_quality = 85}},
     {"white_on_grey", "white-glazed jar on a light grey sweep (low contrast), highlight on the right outline, JPEG 60",
      0.74, 0.8, 0.86, 0.5, 0, 0,
-     {.backdrop = {.kind = SYNTH_BACKDROP_SWEEP, .wall = {0.80f, 0.80f, 0.80f}, .floor = {0.90f, 0.90f, 0.89f},
-                   .horizon = 0.82, .softness = 0.06, .vignette = 0.1},
-      .vessel_count = 1, .vessels = {{LIT(SYNTH_PROFILE_JAR, 0, PORCELAIN, 0.6, 82)}},
-      .contact_shadow = 0.3, .jpeg_quality = 60}},
-    {"backdrop_only", "the grey sweep with vignetting, paper grain and sensor noise, and no vessel", 0.7, 0.8, 0.86, 0.5,
-     0, 0,
-     {.backdrop = {.kind = SYNTH_BACKDROP_SWEEP, .wall = {0.33f, 0.33f, 0.34f}, .floor = {0.95f, 0.95f, 0.94f},
-                   .horizon = 0.68, .softness = 0.17, .vignette = 0.15, .grain = 0.02, .grain_px = 64},
-      .noise = 0.01}},
-    {"bottle_tilted", "bottle leaning 3 deg in the image plane (level camera), a shadow on the right", 0.74, 0.8, 0.88,
-     0.5, 0, 0,
+     {.backdrop = SWEEP(0.80f, 0.90f, 0.82, 0.06, 0.1, .frame = 0), .vessel_count = 1,
+      .vessels = {{LIT(SYNTH_PROFILE_JAR, 0, PORCELAIN, 0.6, 82)}}, .contact_shadow = 0.3, .jpeg_quality = 60}},
+    {"backdrop_only", "the grey sweep with vignetting, paper grain and sensor noise, and no vessel",
+     0.7, 0.8, 0.86, 0.5, 0, 0,
+     {.backdrop = SWEEP(0.33f, 0.95f, 0.68, 0.17, 0.15, .grain = 0.02, .grain_px = 64), .noise = 0.01}},
+    {"bottle_tilted", "bottle leaning 3 deg in the image plane (level camera), a shadow on the right",
+     0.74, 0.8, 0.88, 0.5, 0, 0,
      {.backdrop = SWEEP_GREY, .vessel_count = 1,
       .vessels = {{LIT(SYNTH_PROFILE_BOTTLE, 0, CELADON, 0.45, 40), .body.tilt_deg = 3}},
-      .shadow = SHADOW_RIGHT, .contact_shadow = 0.5}},
+      .shadow = SHADOW_RIGHT, .contact_shadow = 0.5, MUSEUM_JPEG}},
 };
 
 enum { CASE_COUNT = sizeof CASES / sizeof CASES[0] };

@@ -30,9 +30,11 @@ static void paint_thumbnail(cairo_surface_t *sheet, const image_t *img, int x, i
             int i0 = (int)(i / s), i1 = (int)((i + 1) / s), j0 = (int)(j / s), j1 = (int)((j + 1) / s);
             double sum[3] = {0}, n = 0;
             for (int b = j0; b < j1 && b < img->height; b++)
-                for (int a = i0; a < i1 && a < img->width; a++, n++)
+                for (int a = i0; a < i1 && a < img->width; a++, n++) {
+                    const float *px = img->data + ((size_t)b * img->width + a) * img->channels;
                     for (int q = 0; q < 3; q++)
-                        sum[q] += img->data[((size_t)b * img->width + a) * img->channels + (img->channels == 1 ? 0 : q)];
+                        sum[q] += px[img->channels == 1 ? 0 : q];
+                }
             uint32_t px = 0xff000000u;
             for (int q = 0; q < 3; q++)
                 px |= (uint32_t)lround(255 * fmin(1, sum[q] / fmax(1, n))) << (16 - 8 * q);
