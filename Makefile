@@ -134,13 +134,26 @@ bench-render: check-deps-stamp
 	build/bench/bench_render | tee out/bench/bench_render.txt
 
 # ---------------------------------------------------------------- demo and benchmarks
+# The test drawers of synthetic photographs: bench_recon links the vessel's,
+# the tools in tests/tools/ the scene's too.
+SYNTH_C := $(addprefix tests/support/,synth_vessel.c synth_body.c synth_profile.c synth_raster.c)
+SCENE_C := $(SYNTH_C) $(addprefix tests/support/,synth_scene.c synth_scene_layers.c synth_noise.c synth_jpeg.c)
+build/tools/%: tests/tools/%.c $(SCENE_C) build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(SCENE_C) build/opt/libceladon.a $(LDLIBS)
+
+# `make hard-cases` draws the named hard cases of tests/support/synth_scene.c
+# (the reconstruction's test photographs) into out/hard-cases/, with a contact
+# sheet and a sheet with their truth drawn on.
+.PHONY: hard-cases
+hard-cases: check-deps-stamp
+	@$(MAKE) --no-print-directory build/tools/draw_hard_cases
+	@mkdir -p out/hard-cases
+	build/tools/draw_hard_cases out/hard-cases
+
 # `make demo` reconstructs the bundled catalogue photo; `make demo-photo`
 # redraws that photo (tests/tools/draw_demo_photo.c) from its analytic vessel.
 .PHONY: demo-photo
-build/tools/draw_demo_photo: tests/tools/draw_demo_photo.c tests/support/synth_vessel.c build/opt/libceladon.a
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -o $@ tests/tools/draw_demo_photo.c tests/support/synth_vessel.c build/opt/libceladon.a $(LDLIBS)
-
 demo-photo: check-deps-stamp
 	@$(MAKE) --no-print-directory build/tools/draw_demo_photo
 	@mkdir -p scenes/demo
@@ -157,9 +170,9 @@ demo: check-deps-stamp
 BENCH_BIN := $(patsubst bench/%.c,build/bench/%,$(BENCH_C))
 # The OpenCV reference uses Debian's python3-opencv, if installed (not by deps).
 PYTHON_CV ?= /usr/bin/python3
-build/bench/bench_recon: bench/bench_recon.c tests/support/synth_vessel.c build/opt/libceladon.a
+build/bench/bench_recon: bench/bench_recon.c $(SYNTH_C) build/opt/libceladon.a
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_recon.c tests/support/synth_vessel.c build/opt/libceladon.a $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_recon.c $(SYNTH_C) build/opt/libceladon.a $(LDLIBS)
 
 bench: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon $(BENCH_BIN)
