@@ -199,14 +199,11 @@ static recon_status segment_vessel(const image_t *img, recon_result *res, vec2 *
     }
     /* The axis of the vessel alone, for the support cut's symmetry test. */
     seg.have_axis = recon_mask_axis(seg.object, seg.w, seg.h, &seg.axis_x0, &seg.axis_slope) == 0;
-    recon_excluded part;
-    int cut = recon_cut_support(&seg, seg.object, &part);
-    if (cut < 0 || recon_colour_model_prepare(&seg.model) != 0) {
+    if (recon_cut_support(&seg, seg.object, res->excluded, RECON_MAX_EXCLUDED, &res->n_excluded) != 0 ||
+        recon_colour_model_prepare(&seg.model) != 0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
-    if (cut > 0 && res->n_excluded < RECON_MAX_EXCLUDED)
-        res->excluded[res->n_excluded++] = part;
     if (recon_mask_axis(seg.object, seg.w, seg.h, &seg.axis_x0, &seg.axis_slope) != 0) {
         st = fail(RECON_ERR_NO_OBJECT, err, errlen, "no object found: the object is too small");
         goto out;
@@ -603,6 +600,8 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     recon_side want = opt ? opt->side : RECON_SIDE_AUTO;
     if (want == RECON_SIDE_LEFT)
         s = 0;
+    else if (want == RECON_SIDE_AUTO && washed)
+        s = washed > 0; /* the clean side */
     else if (want == RECON_SIDE_AUTO) {
         double q0 = res->edge_contrast[0] / (res->edge_noise_px[0] + 0.05);
         double q1 = res->edge_contrast[1] / (res->edge_noise_px[1] + 0.05);
@@ -620,9 +619,10 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     for (int i = 0; i < nm; i++)
         rmax = fmax(rmax, mp[i].r);
     double tol = fmax(2.0, 0.02 * rmax);
-    /* A washed-out side is not compared: the profile is the clean side's. */
+    /* A washed-out side is not compared (its outline lies inside the true
+     * one): the profile is the clean side's, its parts found on it alone. */
     res->r_max = rmax;
-    if (!washed && recon_resolve_parts(mp, nm, op, no, s, tol, res->excluded, RECON_MAX_EXCLUDED, &res->n_excluded,
+    if (recon_resolve_parts(mp, nm, op, washed ? 0 : no, s, tol, res->excluded, RECON_MAX_EXCLUDED, &res->n_excluded,
                                        &res->lr_disagreement, &res->excluded_fraction) != 0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;

@@ -63,12 +63,15 @@ recon_status recon_select_object(uint8_t *mask, int w, int h, int *dropped, reco
 /* ---- stands and shadows at the foot (support.c) */
 
 struct recon_segmentation_s;
-/* Cuts a stand (the object runs into the bottom border) or a floor shadow
- * (its lowest pixels have no mirror image) off the low-resolution vessel mask
- * m by a min-cut between seeds. Returns 1 and the part (rows at full
- * resolution) when something was cut, 0 when nothing, -1 when out of memory.
- * A stand's colours join the segmentation's not-object model. */
-int recon_cut_support(struct recon_segmentation_s *seg, uint8_t *m, recon_excluded *part);
+/* Cuts off the low-resolution vessel mask m a floor shadow joined to its
+ * foot (its lowest pixels have no mirror image), then a stand under it (the
+ * object runs into the bottom border, or steps out below the foot), each
+ * found by a min-cut between seeds and kept only when the evidence holds
+ * (support.c). Appends each part cut (rows at full resolution) to parts. A
+ * stand's colours join the segmentation's not-object model. Returns 0, or -1
+ * when out of memory. */
+int recon_cut_support(struct recon_segmentation_s *seg, uint8_t *m, recon_excluded *parts, int max_parts,
+                      int *n_parts);
 
 /* ---- the full-resolution mask (refine.c) */
 

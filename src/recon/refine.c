@@ -24,6 +24,15 @@ static void pixel_rgb(const image_t *img, size_t p, float out[3])
     }
 }
 
+/* The modelled backdrop colour at full-resolution pixel (X, Y). */
+static void backdrop_at(const recon_segmentation *seg, int X, int Y, float out[3])
+{
+    double bg[3];
+    recon_backdrop_at(&seg->model.backdrop, (X + 0.5) / seg->factor, (Y + 0.5) / seg->factor, bg);
+    for (int c = 0; c < 3; c++)
+        out[c] = (float)bg[c];
+}
+
 /* Marks the cells within one cell (8-neighbourhood) of a cell whose label
  * differs from a 4-neighbour's. */
 static void boundary_band(const uint8_t *m, int w, int h, uint8_t *band)
@@ -112,12 +121,15 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
             if (a < 0)
                 continue;
             const float *ca = col + 3 * (size_t)a;
-            double bg[3], co, cb;
-            float bgf[3];
-            recon_backdrop_at(&seg->model.backdrop, (X + 0.5) / f, (Y + 0.5) / f, bg);
-            for (int c = 0; c < 3; c++)
-                bgf[c] = (float)bg[c];
-            recon_colour_costs(&seg->model, ca, bgf, &co, &cb);
+            double co, cb;
+            float bgf[3], mc[3], mbgf[3];
+            backdrop_at(seg, X, Y, bgf);
+            long M = seg->have_axis ? mirror_full(seg, W, H, X, Y) : -1;
+            if (M >= 0) {
+                pixel_rgb(img, (size_t)M, mc);
+                backdrop_at(seg, (int)(M % W), (int)(M / W), mbgf);
+            }
+            recon_colour_costs(&seg->model, ca, bgf, M >= 0 ? mc : NULL, M >= 0 ? mbgf : NULL, &co, &cb);
             double src = cb, snk = co; /* the cost of ending as backdrop / as object */
             /* Links: to band neighbours once (forward half), to fixed
              * neighbours as terminal costs (all eight directions). */
@@ -143,7 +155,6 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
                     snk += wt;
             }
             if (seg->have_axis) {
-                long M = mirror_full(seg, W, H, X, Y);
                 if (M >= 0 && node[M] < 0) {
                     if (mask[M])
                         src += lambda;

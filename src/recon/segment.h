@@ -46,10 +46,12 @@ typedef struct recon_segmentation_s {
     int rounds;
 } recon_segmentation;
 
-/* Costs of one colour c at low-resolution position (x, y): -log p(c | object)
- * and -log p(c | not object). */
-void recon_colour_costs(const recon_colour_model *m, const float *c, const float *backdrop_c, double *cost_object,
-                        double *cost_backdrop);
+/* Costs of one colour c whose backdrop colour is backdrop_c: -log p(c |
+ * object) and -log p(c | not object). mirror_c and its backdrop colour (both
+ * NULL when unknown) are the pixel's mirror image across the axis: a shadow
+ * is unlikely where the mirror is darkened alike. */
+void recon_colour_costs(const recon_colour_model *m, const float *c, const float *backdrop_c, const float *mirror_c,
+                        const float *mirror_backdrop_c, double *cost_object, double *cost_backdrop);
 
 /* Sets the backdrop and shadow terms of m from its backdrop's residual
  * covariance and the priors (which depend on have_support). Returns 0, or -1
