@@ -15,7 +15,7 @@
 #include "../tests/support/synth_vessel.h"
 #include "celadon/mesh.h"
 #include "celadon/overlay.h"
-#include "celadon/progress.h"
+#include "core/core.h"
 #include "celadon/reconstruct.h"
 #include "recon/recon_internal.h"
 

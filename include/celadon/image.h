@@ -43,7 +43,4 @@ int image_write_u16(const char *path, int width, int height, int channels,
 image_t image_alloc(int width, int height, int channels);
 void image_free(image_t *img);
 
-/* Luminance-like gray (Rec.601 weights on the encoded values), alpha ignored. */
-float *image_to_gray(const image_t *img);
-
 #endif

@@ -15,7 +15,7 @@
 #include "celadon/reconstruct.h"
 #include "cli/cli_args.h"
 #include "cli/commands.h"
-#include "core/folder.h"
+#include "core/core.h"
 
 typedef struct {
     const char *out_dir;

@@ -10,7 +10,7 @@
 #include "celadon/curve_distance.h"
 #include "celadon/curve_domains.h"
 #include "celadon/curve_fit.h"
-#include "celadon/progress.h"
+#include "core/core.h"
 
 enum { MIN_SIDE_PX = 32 };
 #define MAX_MEGAPIXELS 100.0

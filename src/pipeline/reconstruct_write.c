@@ -8,9 +8,8 @@
 
 #include "celadon/mesh.h"
 #include "celadon/overlay.h"
-#include "celadon/progress.h"
+#include "core/core.h"
 #include "celadon/reconstruct.h"
-#include "core/folder.h"
 
 enum { MAX_FILES = 4 + 2 * (1 + RECONSTRUCT_MAX_LODS) };
 

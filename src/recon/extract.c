@@ -9,7 +9,7 @@
 
 #include <gsl/gsl_statistics_double.h>
 
-#include "celadon/progress.h"
+#include "core/core.h"
 #include "recon/recon_internal.h"
 #include "recon/segment.h"
 
