@@ -11,7 +11,6 @@
 
 #include "core/core.h"
 #include "recon/recon_internal.h"
-#include "recon/segment.h"
 
 static recon_status fail(recon_status st, char *err, size_t errlen, const char *fmt, ...)
 {

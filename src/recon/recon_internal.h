@@ -7,80 +7,8 @@
 #include <stdint.h>
 
 #include "celadon/recon.h"
+#include "segment/segment.h"
 
-/* On x86-64 the build targets the baseline (SSE2); the whole-row filter
- * loops also get an AVX2 clone, picked at load time when the CPU has it
- * (GCC/Clang function multiversioning). No FMA: both clones round alike. */
-#if defined(__x86_64__) && defined(__GNUC__)
-#define RECON_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define RECON_VECTOR_CLONES
-#endif
-
-/* ---- mask (mask.c) */
-
-/* Fills gray (w*h floats, the signal the silhouette is measured on: alpha
- * when the image has a transparent background, else luminance). With alpha,
- * or a forced threshold (0..255; -1 = automatic), also fills mask (w*h, 1 =
- * object, before component filtering) and returns how; otherwise returns
- * RECON_MASK_GRAPH_CUT and leaves mask to the segmentation (segment.h).
- * *threshold_used: the forced threshold, else -1. */
-recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *gray, uint8_t *mask,
-                                     int *threshold_used);
-
-/* Keeps the largest 8-connected object, fills its holes (background parts not
- * 4-connected to the image border; counted) and then each row between its
- * outermost object pixels (a vessel's outline meets a row once on each side).
- * Returns the object's pixel count, or -1 when out of memory. */
-long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *holes_filled);
-
-/* Labels the 8-connected components of mask: lab[p] (w*h ints) = 1..n, 0 for
- * background; *area (malloc'd, n + 1 entries, [0] unused) their pixel counts.
- * Returns n, or -1 when out of memory. */
-int recon_mask_label(const uint8_t *mask, int w, int h, int *lab, long **area);
-
-/* Morphological closing with a (2r+1)^2 square of a row-convex mask (one
- * interval per row, as recon_mask_clean leaves it), computed on the row
- * intervals: bridges slits narrower than 2r+1 px (a decoration line as light
- * as the backdrop that reaches the outline). Returns 0, or -1 when out of
- * memory. */
-int recon_mask_close(uint8_t *mask, int w, int h, int r);
-/* Opening, likewise: removes slivers thinner than 2r+1 px. */
-int recon_mask_open(uint8_t *mask, int w, int h, int r);
-
-/* ---- the vessel among the segmentation's objects (object_select.c) */
-
-/* Keeps in the low-resolution mask only the vessel: the largest component
- * that is not a strip along the image border (a frame line, a caption bar).
- * Another component of a quarter of its size or more is a second object and
- * refuses the photo, unless it lies under the vessel and runs to the bottom
- * border: a stand, reported in *stand (what = RECON_PART_STAND, rows at low
- * resolution; row1 = -1 when none) and dropped. *dropped counts the removed
- * components. Returns RECON_OK or the refusal with its reason in why. */
-recon_status recon_select_object(uint8_t *mask, int w, int h, int *dropped, recon_excluded *stand, char *why,
-                                 size_t len);
-
-/* ---- stands and shadows at the foot (support.c) */
-
-struct recon_segmentation_s;
-/* Cuts off the low-resolution vessel mask m a floor shadow joined to its
- * foot (its lowest pixels have no mirror image), then a stand under it (the
- * object runs into the bottom border, or steps out below the foot), each
- * found by a min-cut between seeds and kept only when the evidence holds
- * (support.c). Appends each part cut (rows at full resolution) to parts. A
- * stand's colours join the segmentation's not-object model. Returns 0, or -1
- * when out of memory. */
-int recon_cut_support(struct recon_segmentation_s *seg, uint8_t *m, recon_excluded *parts, int max_parts,
-                      int *n_parts);
-
-/* ---- the full-resolution mask (refine.c) */
-
-/* The vessel's mask at full resolution (img's size) from the low-resolution
- * one: coarse labels held fixed except on a band of full-resolution pixels
- * three cells wide around their outline, where the segmentation's energy is
- * minimised again. Returns 0, or -1 when out of memory. */
-int recon_refine_mask(const image_t *img, const struct recon_segmentation_s *seg, const uint8_t *coarse,
-                      uint8_t *mask);
 
 /* ---- the caps: where the outline meets its top and bottom (caps.c) */
 

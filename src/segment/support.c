@@ -24,9 +24,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "recon/maxflow.h"
-#include "recon/recon_internal.h"
-#include "recon/segment.h"
+#include "segment/maxflow.h"
+#include "segment/segment.h"
 
 /* Seeds are hard: a capacity no cut can afford. */
 #define HARD 1e9

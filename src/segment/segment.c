@@ -1,6 +1,6 @@
 /* recon_segment: the object/backdrop min-cut at a reduced resolution.
  * See segment.h and docs/algorithms-recon.md ("Segmentation"). */
-#include "recon/segment.h"
+#include "segment/segment.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -8,8 +8,7 @@
 
 #include <gsl/gsl_statistics_double.h>
 
-#include "recon/maxflow.h"
-#include "recon/recon_internal.h"
+#include "segment/maxflow.h"
 
 /* The working resolution: the longer side is brought down to about this many
  * pixels (an integer box factor), enough for a vessel's outline to within a

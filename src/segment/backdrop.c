@@ -1,6 +1,6 @@
 /* recon_backdrop: robust penalised least squares of a cubic B-spline surface.
  * See backdrop.h. */
-#include "recon/backdrop.h"
+#include "segment/backdrop.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -7,9 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "recon/maxflow.h"
-#include "recon/recon_internal.h"
-#include "recon/segment.h"
+#include "segment/maxflow.h"
+#include "segment/segment.h"
 
 /* Must match the symmetry link of the low-resolution rounds (segment.c). */
 #define SYMMETRY_EPS 0.02

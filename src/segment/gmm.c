@@ -1,6 +1,6 @@
 /* Gaussian mixtures of colours, fitted as GrabCut fits them: Orchard–Bouman
  * splitting for the start, then a few rounds of hard assignment and refit. */
-#include "recon/gmm.h"
+#include "segment/gmm.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,7 +1,7 @@
 /* Gaussian mixture models of colours (3 channels), full covariance: the
  * object's colour model of the segmentation (segment.c). */
-#ifndef CELADON_RECON_GMM_H
-#define CELADON_RECON_GMM_H
+#ifndef CELADON_SEGMENT_GMM_H
+#define CELADON_SEGMENT_GMM_H
 
 #include <stdint.h>
 

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "recon/recon_internal.h"
+#include "segment/segment.h"
 
 typedef struct {
     long area;

@@ -2,8 +2,8 @@
  * a vignetted wall, a lit floor. A tensor-product cubic B-spline surface per
  * channel, fitted robustly to the pixels known to be backdrop and bent as
  * little as possible where none are (behind the object). */
-#ifndef CELADON_RECON_BACKDROP_H
-#define CELADON_RECON_BACKDROP_H
+#ifndef CELADON_SEGMENT_BACKDROP_H
+#define CELADON_SEGMENT_BACKDROP_H
 
 #include <stdint.h>
 
