@@ -68,7 +68,7 @@ recon_status recon_select_object(uint8_t *mask, int w, int h, int *dropped, reco
             *stand = (recon_excluded){.what = RECON_PART_STAND, .row0 = c->y0, .row1 = c->y1};
             continue;
         }
-        st = RECON_ERR_CORNERS;
+        st = RECON_ERR_SHAPE;
         snprintf(why, len,
                  "two objects: beside the largest (%ld px at this scale) there is another of %.0f%% of its size; "
                  "photograph one vessel at a time",

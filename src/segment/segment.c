@@ -365,42 +365,6 @@ static int object_samples(const int *lab, int main_c, int w, int h, int *idx)
     return n;
 }
 
-/* Backdrop pixels: farther than r from every object pixel (a square
- * neighbourhood, computed separably). */
-static void backdrop_pixels(const uint8_t *object, int w, int h, int r, uint8_t *use, uint8_t *tmp)
-{
-    for (int y = 0; y < h; y++) {
-        const uint8_t *m = object + (size_t)y * w;
-        uint8_t *t = tmp + (size_t)y * w;
-        int last = -1000000;
-        for (int x = 0; x < w; x++) {
-            if (m[x])
-                last = x;
-            t[x] = x - last <= r;
-        }
-        last = 1000000;
-        for (int x = w - 1; x >= 0; x--) {
-            if (m[x])
-                last = x;
-            t[x] |= last - x <= r;
-        }
-    }
-    for (int x = 0; x < w; x++) {
-        int last = -1000000;
-        for (int y = 0; y < h; y++) {
-            if (tmp[(size_t)y * w + x])
-                last = y;
-            use[(size_t)y * w + x] = y - last > r;
-        }
-        last = 1000000;
-        for (int y = h - 1; y >= 0; y--) {
-            if (tmp[(size_t)y * w + x])
-                last = y;
-            use[(size_t)y * w + x] &= last - y > r;
-        }
-    }
-}
-
 static void eval_backdrop(const recon_backdrop *b, float *out)
 {
     for (int y = 0; y < b->height; y++)
@@ -470,7 +434,7 @@ int recon_segment(const image_t *img, recon_segmentation *seg)
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++)
             use[(size_t)y * w + x] = x < ring || y < ring || x >= w - ring || y >= h - ring;
-    if (recon_backdrop_fit(&seg->model.backdrop, seg->rgb, w, h, use, 1, 4, 4) != 0 ||
+    if (recon_backdrop_fit(&seg->model.backdrop, seg->rgb, w, h, use, 1, 6, 4) != 0 ||
         recon_colour_model_prepare(&seg->model) != 0)
         goto out;
     eval_backdrop(&seg->model.backdrop, bgc);
@@ -501,12 +465,6 @@ int recon_segment(const image_t *img, recon_segmentation *seg)
         if (fit_object_model(seg, lab, main_c, idx) != 0) {
             rc = 1;
             goto out;
-        }
-        backdrop_pixels(seg->object, w, h, 2, use, use + n);
-        if (recon_backdrop_fit(&seg->model.backdrop, seg->rgb, w, h, use, 2, 14, 1) == 0) {
-            if (recon_colour_model_prepare(&seg->model) != 0)
-                goto out;
-            eval_backdrop(&seg->model.backdrop, bgc);
         }
         /* The axis of the symmetry links comes from the initial object
          * (what the backdrop cannot explain: a highlight that the colour
