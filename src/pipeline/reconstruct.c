@@ -59,7 +59,6 @@ static void bridged_hausdorff(reconstruction *r)
             u1 -= margin;
         double c2p, p2c;
         curve_range_polyline_hausdorff(&r->curve, u0, u1 > u0 ? u1 : u0, p + a, b - a + 1, &c2p, &p2c);
-        if (getenv("HD_DEBUG")) fprintf(stderr, "piece %d-%d u %.4f-%.4f c2p %.2f p2c %.2f\n", a, b, u0, u1, c2p, p2c);
         r->err_curve_to_polyline = fmax(r->err_curve_to_polyline, c2p);
         r->err_polyline_to_curve = fmax(r->err_polyline_to_curve, p2c);
         if (b + 1 < n)

@@ -12,6 +12,9 @@
 #include "core/core.h"
 #include "recon/recon_internal.h"
 
+/* The largest lean of a vessel's axis from the image's vertical. */
+#define MAX_TILT_DEG 30.0
+
 static recon_status fail(recon_status st, char *err, size_t errlen, const char *fmt, ...)
 {
     if (err && errlen) {
@@ -86,9 +89,11 @@ static double quantile(const double *v, int n, double q, double *tmp)
     return gsl_stats_select(tmp, 1, (size_t)n, (size_t)(q * (n - 1) + 0.5));
 }
 
-/* Drops points more than 1 px from the median x of their 7-row neighbourhood
- * (a decoration or a highlight spoiling one row's ramp); an outline is smooth
- * at that scale, and the median of a straight run is its centre value. */
+/* Drops points more than 1 px (plus a third of the local slope, dx per row:
+ * a near-horizontal outline is measured less precisely per row) from their
+ * 7-row neighbourhood's robust line: the median of x_j - s (j - k) over the
+ * window, s the slope across it. A decoration or a highlight spoiling one
+ * row's ramp is dropped; a steep but smooth outline is kept. */
 static int drop_outliers(vec2 *pts, double *contrast, uint8_t *gap, int n)
 {
     if (n < 7)
@@ -98,15 +103,16 @@ static int drop_outliers(vec2 *pts, double *contrast, uint8_t *gap, int n)
         return n;
     for (int k = 0; k < n; k++) {
         int a = k < 3 ? 0 : (k + 3 >= n ? n - 7 : k - 3);
+        double slope = (pts[a + 6].x - pts[a].x) / (pts[a + 6].y - pts[a].y);
         double v[7]; /* insertion-sorted: qsort's call overhead dominates for 7 */
         for (int i = 0; i < 7; i++) {
-            double x = pts[a + i].x;
+            double x = pts[a + i].x - slope * (pts[a + i].y - pts[k].y);
             int q = i;
             for (; q > 0 && v[q - 1] > x; q--)
                 v[q] = v[q - 1];
             v[q] = x;
         }
-        dev[k] = fabs(pts[k].x - v[3]);
+        dev[k] = fabs(pts[k].x - v[3]) - fabs(slope) / 3;
     }
     int m = 0;
     for (int k = 0; k < n; k++)
@@ -123,11 +129,29 @@ static int drop_outliers(vec2 *pts, double *contrast, uint8_t *gap, int n)
  * is the body's outermost pixel of row j on that side (-1: none), outer[j]
  * the object's. Fills pts, contrast and gap (object again beyond a gap);
  * returns the count. */
-static int trace_side(const float *gray, const int *ext, const int *outer, int w, int h, int j0, int j1, int side,
-                      double delta, vec2 *pts, double *contrast, uint8_t *gap)
+/* Row j of the signal the outline is measured on: the photo's colours in
+ * [0, 1] (a gray photo's one channel), or the alpha-based gray when the mask
+ * came from alpha. buf: width * 3 floats. */
+static recon_signal signal_row(const image_t *img, const float *gray, int alpha, int j, float *buf)
 {
+    const int w = img->width, c = img->channels, colour = c >= 3 && !alpha;
+    if (alpha || c < 3)
+        return (recon_signal){alpha ? gray + (size_t)j * w : (gray + (size_t)j * w), w, 1};
+    const float *p = img->data + (size_t)j * w * c;
+    for (int i = 0; i < w; i++)
+        for (int k = 0; k < 3; k++) {
+            float v = p[(size_t)i * c + k];
+            buf[3 * i + k] = v > 0 ? (v < 1 ? v : 1) : 0;
+        }
+    return (recon_signal){buf, w, colour ? 3 : 1};
+}
+
+static int trace_side(const image_t *img, const float *gray, int alpha, const int *ext, const int *outer, int side,
+                      double delta, vec2 *pts, double *contrast, uint8_t *gap, float *buf)
+{
+    const int w = img->width, h = img->height;
     int n = 0;
-    for (int j = j0 < 0 ? 0 : j0; j <= j1 && j < h; j++) {
+    for (int j = 0; j < h; j++) {
         if (ext[j] < 0)
             continue;
         /* The outline's slope (dx per row) from the neighbouring rows: the
@@ -141,11 +165,18 @@ static int trace_side(const float *gray, const int *ext, const int *outer, int w
          * quarter of this row's step (the pixel 3 px inside against the one
          * 12 px outside) or by delta (the noise), whichever is more: JPEG
          * ringing beside a strong edge is not the edge. */
+        recon_signal sig = signal_row(img, gray, alpha, j, buf);
         int in = ext[j] - 3 * side, outp = ext[j] + 12 * side;
         double d = delta;
-        if (in >= 0 && in < w && outp >= 0 && outp < w)
-            d = fmax(d, 0.25 * fabs(gray[(size_t)j * w + in] - gray[(size_t)j * w + outp]));
-        recon_edge e = recon_subpixel_edge(gray, w, h, j, ext[j], side, slope, d);
+        if (in >= 0 && in < w && outp >= 0 && outp < w) {
+            double d2 = 0;
+            for (int c = 0; c < sig.channels; c++) {
+                double t = sig.row[(size_t)in * sig.channels + c] - sig.row[(size_t)outp * sig.channels + c];
+                d2 += t * t;
+            }
+            d = fmax(d, 0.25 * sqrt(d2));
+        }
+        recon_edge e = recon_subpixel_edge(&sig, ext[j], side, slope, d);
         if (!e.ok)
             continue;
         gap[n] = outer[j] != ext[j];
@@ -439,6 +470,7 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     double *con = NULL;
     uint8_t *gaps = NULL;
     recon_outline_point *pts = NULL;
+    float *rowbuf = NULL;
     if (!gray || !res->mask) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
@@ -505,7 +537,8 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     con = malloc((size_t)h * 4 * sizeof *con);
     gaps = malloc((size_t)h * 2);
     pts = malloc((size_t)h * 2 * sizeof *pts);
-    if (!ext || !con || !gaps || !pts) {
+    rowbuf = malloc((size_t)w * 3 * sizeof *rowbuf);
+    if (!ext || !con || !gaps || !pts || !rowbuf) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
@@ -517,8 +550,9 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
             st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
             goto out;
         }
-        int m = trace_side(gray, ext + (size_t)s * h, ext + (size_t)(2 + s) * h, w, h, 0, h - 1, s ? 1 : -1, delta,
-                           res->silhouette[s], con + s * h, gaps + s * h);
+        int m = trace_side(img, gray, res->mask_mode == RECON_MASK_ALPHA, ext + (size_t)s * h,
+                           ext + (size_t)(2 + s) * h, s ? 1 : -1, delta, res->silhouette[s], con + s * h,
+                           gaps + s * h, rowbuf);
         res->n_silhouette[s] = m;
         res->edge_contrast[s] = quantile(con + s * h, m, 0.1, tmp);
         res->edge_noise_px[s] = roughness(res->silhouette[s], m, tmp, tmp + h);
@@ -565,7 +599,10 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     }
 
     /* 5. The caps: where the outline meets its top and bottom, on each side. */
-    if (recon_find_caps(res->contour, nc, origin, dir, res->corners) != 0) {
+    int base_is_cut = 0;
+    for (int i = 0; i < res->n_excluded; i++)
+        base_is_cut |= res->excluded[i].what == RECON_PART_STAND || res->excluded[i].what == RECON_PART_SHADOW;
+    if (recon_find_caps(res->contour, nc, origin, dir, base_is_cut, res->corners) != 0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
@@ -586,12 +623,22 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     double H = 0.5 * (v2_dot(v2_sub(res->corners[CORNER_RIM_LEFT], origin), dir) +
                       v2_dot(v2_sub(res->corners[CORNER_RIM_RIGHT], origin), dir));
     if (!(H > 2)) {
-        st = fail(RECON_ERR_CORNERS, err, errlen, "the outline has no height between its base and its rim");
+        st = fail(RECON_ERR_SHAPE, err, errlen, "the outline has no height between its base and its rim");
         goto out;
     }
     res->axis_origin = origin;
     res->axis_direction = dir;
     res->tilt_deg = atan2(dir.x, -dir.y) * 180 / M_PI;
+    /* A vessel stands on its foot: an axis more than 30 degrees from the
+     * image's vertical is an object lying down or a photo turned on its side,
+     * whose base and rim the caps would not find. */
+    if (fabs(res->tilt_deg) > MAX_TILT_DEG) {
+        st = fail(RECON_ERR_SHAPE, err, errlen,
+                  "the object's axis leans %.0f degrees from the image's vertical (at most %.0f): photograph the vessel "
+                  "upright, or rotate the photo",
+                  res->tilt_deg, MAX_TILT_DEG);
+        goto out;
+    }
 
     /* 6. Side: the requested one, or the one whose edge has the better
      * contrast-to-noise (a highlight on the edge lowers the contrast there). */
@@ -649,7 +696,7 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
         res->polyline[np++] = v2(mp[i].r, mp[i].h);
     }
     if (np < 3) {
-        st = fail(RECON_ERR_CORNERS, err, errlen, "the outline between the base and the rim is too short (%d points)",
+        st = fail(RECON_ERR_SHAPE, err, errlen, "the outline between the base and the rim is too short (%d points)",
                   np);
         goto out;
     }
@@ -665,6 +712,7 @@ out:
     free(con);
     free(gaps);
     free(pts);
+    free(rowbuf);
     recon_border_set_free(&bs);
     if (st != RECON_OK)
         free_arrays(res);

@@ -9,16 +9,17 @@
 #include "celadon/recon.h"
 #include "segment/segment.h"
 
-
 /* ---- the caps: where the outline meets its top and bottom (caps.c) */
 
 /* The four corners (CORNER_ order) of the closed contour in the frame of the
  * axis (origin on it, unit direction toward the top): on each side, the point
  * that turns most within the top (bottom) zone, half the radius of the
  * outline's last 5% of height deep; where none turns much more than the rest
- * of the zone (a dome), the extreme point, its pole. Returns 0, or -1 when out
- * of memory. */
-int recon_find_caps(const vec2 *contour, int n, vec2 origin, vec2 dir, vec2 corners[CORNER_COUNT]);
+ * of the zone (a dome), the extreme point, its pole; also at the top when it
+ * lies deeper below the top than the base's ellipse allows (a knob), unless
+ * base_is_cut (a stand or a shadow cut it). Returns 0, or -1 when out of
+ * memory. */
+int recon_find_caps(const vec2 *contour, int n, vec2 origin, vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT]);
 
 /* ---- parts that are not revolved (parts.c) */
 
@@ -88,14 +89,22 @@ typedef struct {
     int ok;
 } recon_edge;
 
-/* Sub-pixel position of the outermost edge of the object on row j, on side
- * (-1 left, +1 right), from the gray ramp: the fraction of each pixel covered
- * by the object, (v - bg)/(fg - bg), summed over the pixels the edge crosses,
- * is the object's length in that window (exact for a straight edge under box
- * anti-aliasing). The search starts at i0, the mask's outermost object pixel
- * on that side of the row; slope is the outline's dx per row (from the
- * neighbouring rows); delta the smallest difference from the background that
- * counts as object. */
-recon_edge recon_subpixel_edge(const float *gray, int w, int h, int j, int i0, int side, double slope, double delta);
+/* One pixel row of the signal the outline is measured on: its colours
+ * (channels 3) or one value per pixel (channels 1: gray, or alpha). */
+typedef struct {
+    const float *row;
+    int width, channels;
+} recon_signal;
+
+/* Sub-pixel position of the outermost edge of the object on a row, on side
+ * (-1 left, +1 right), from the anti-aliased ramp: the fraction of each pixel
+ * covered by the object, the projection of (c - bg) onto fg - bg over
+ * |fg - bg|^2, summed over the pixels the edge crosses, is the object's
+ * length in that window (exact for a straight edge under box anti-aliasing).
+ * The search starts at i0, the mask's outermost object pixel on that side of
+ * the row; slope is the outline's dx per row (from the neighbouring rows);
+ * delta the smallest colour distance from the background that counts as
+ * object. */
+recon_edge recon_subpixel_edge(const recon_signal *s, int i0, int side, double slope, double delta);
 
 #endif
