@@ -39,7 +39,7 @@ static double signed_area(const vec2 *c, int n)
     return 0.5 * s;
 }
 
-int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, vec2 corners[CORNER_COUNT])
+int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT])
 {
     double *turns = malloc((size_t)(n > 0 ? n : 1) * sizeof *turns);
     vec2 *contour = malloc((size_t)(n > 0 ? n : 1) * sizeof *contour);
@@ -68,6 +68,8 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, vec2 c
     double height = h_top - h_bot;
     int orient = signed_area(contour, n) > 0 ? 1 : -1;
     int k = (int)fmax(5, 0.01 * height);
+    /* per end: the picked points, and the extreme point (pole) per side */
+    int picked[2][2], poles[2][2];
     for (int end = 0; end < 2; end++) { /* 0: top (rim), 1: bottom (base) */
         double h_end = end ? h_bot : h_top, sign = end ? -1 : 1;
         /* The zone: half the radius of the outline's last 5% toward this end
@@ -181,12 +183,40 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, vec2 c
             pick[1] = pole[1];
         }
         for (int s = 0; s < 2; s++) {
-            int q = end ? (s ? CORNER_BASE_RIGHT : CORNER_BASE_LEFT) : (s ? CORNER_RIM_RIGHT : CORNER_RIM_LEFT);
-            corners[q] = pick[s] >= 0 ? contour_px[pick[s]] : v2_add(origin, v2_scale(dir, h_end));
+            picked[end][s] = pick[s];
+            poles[end][s] = pole[s];
         }
         free(bt);
         free(bi);
     }
+    /* A rim seen from an elevation e is an ellipse whose ends lie r sin(e)
+     * below the outline's top; the base's ellipse lies as deep, or deeper by
+     * a foot ring's height: depth / r at the base bounds sin(e) from above.
+     * A top picked deeper than that ratio allows (within 2 px of measurement
+     * at the base scaled by the radii, and 3 px of its own) is no rim but a
+     * dome, a knob's rounded top: its pole. Not where a stand or a shadow
+     * has cut the base, whose depth then says nothing of the camera. */
+    double depth[2], rad[2];
+    for (int end = 0; end < 2; end++) {
+        double h_end = end ? h_bot : h_top;
+        depth[end] = rad[end] = 0;
+        for (int s = 0; s < 2; s++)
+            if (picked[end][s] >= 0) {
+                vec2 q = v2_sub(contour[picked[end][s]], origin);
+                depth[end] += 0.5 * fabs(h_end - v2_dot(q, dir));
+                rad[end] += 0.5 * fabs(v2_dot(q, nrm));
+            }
+    }
+    if (!base_is_cut && rad[0] > 1 && rad[1] > 1 && poles[0][0] >= 0 && poles[0][1] >= 0 &&
+        depth[0] > rad[0] * depth[1] / rad[1] + 2 * rad[0] / rad[1] + 3)
+        for (int s = 0; s < 2; s++)
+            picked[0][s] = poles[0][s];
+    for (int end = 0; end < 2; end++)
+        for (int s = 0; s < 2; s++) {
+            int q = end ? (s ? CORNER_BASE_RIGHT : CORNER_BASE_LEFT) : (s ? CORNER_RIM_RIGHT : CORNER_RIM_LEFT);
+            double h_end = end ? h_bot : h_top;
+            corners[q] = picked[end][s] >= 0 ? contour_px[picked[end][s]] : v2_add(origin, v2_scale(dir, h_end));
+        }
     free(turns);
     free(contour);
     return 0;
