@@ -8,8 +8,8 @@
  * smoothing spline (a P-spline: cubic B-splines on uniform knots with a
  * second-difference penalty, Eilers & Marx 1996) is fitted to every
  * observation, the agreeing rows and the windows' rows held as inliers, the
- * others kept unless they lie outside the fit by more than tol: a part only
- * adds to the outline, so its rows fall out. Each row's radius is then the mean of
+ * others kept while they lie within tol of it (next to a window, unless they
+ * lie outside it by more: a handle's attachment only adds to the outline). Each row's radius is then the mean of
  * its inlying sides; one inlying side is moved by its offset from the mean in
  * the nearest rows where both sides lie in; none leaves the row to the
  * B-spline's bridge. See recon_internal.h. */
@@ -28,6 +28,8 @@
 /* The penalty on second differences of the coefficients, per unit of data
  * weight: light, so the agreeing rows decide the shape where they are. */
 #define PENALTY 0.1
+/* rows either side of an excluded run that belong to its fillet */
+#define ATTACH_ROWS 3
 enum { IRLS_ROUNDS = 8 };
 
 typedef struct {
@@ -132,6 +134,23 @@ static void window_zone(const uint8_t *gap, int n, uint8_t *zone)
     }
 }
 
+/* Clears ATTACH_ROWS flags at each end of every run of set flags. */
+static void trim_runs(uint8_t *flag, int n)
+{
+    for (int i = 0; i < n;) {
+        if (!flag[i]) {
+            i++;
+            continue;
+        }
+        int a = i;
+        while (i < n && flag[i])
+            i++;
+        for (int j = a; j < i; j++)
+            if (j < a + ATTACH_ROWS || j >= i - ATTACH_ROWS)
+                flag[j] = 0;
+    }
+}
+
 /* The offset of one side from the two sides' mean in the nearest rows (up
  * to 8 on each side of [a, b)) where both lie in. */
 static double local_offset(const double *r_side, const double *r_other, const uint8_t *both, int n, int a, int b)
@@ -166,11 +185,12 @@ int recon_resolve_parts(recon_outline_point *main_side, int n, const recon_outli
     ps.m += 2;
     size_t nn = (size_t)n;
     double *h = malloc(nn * 2 * sizeof *h), *r = malloc(nn * 2 * sizeof *r), *wt = malloc(nn * 2 * sizeof *wt);
+    double *stretch = malloc(nn * sizeof *stretch);
     double *A = malloc((size_t)ps.m * (ps.m + 1) * sizeof *A);
     uint8_t *flags = malloc(nn * 8);
     ps.c = malloc((size_t)ps.m * sizeof *ps.c);
     int rc = -1;
-    if (!h || !r || !wt || !A || !flags || !ps.c)
+    if (!h || !r || !wt || !stretch || !A || !flags || !ps.c)
         goto out;
     /* Observations: [0, n) the main side's rows, [n, 2n) the other side at
      * the same heights. */
@@ -185,10 +205,28 @@ int recon_resolve_parts(recon_outline_point *main_side, int n, const recon_outli
     }
     window_zone(gap, n, zone);
     window_zone(gap + n, n, zone + n);
+    /* The body seen through a window is held in, but not in the window's
+     * first and last rows: there the hole closes along the attachment's
+     * fillet, outside the body. */
+    trim_runs(gap, n);
+    trim_runs(gap + n, n);
+    /* Distances to the outline are measured across it, not along the row:
+     * where the outline runs at slope s = |dr/dh| a horizontal difference
+     * is sqrt(1 + s^2) times the normal one (a shoulder turning flat into a
+     * neck moves many pixels per row). s from the main side's neighbours two
+     * rows away. */
+    for (int i = 0; i < n; i++) {
+        int a = i - 2 < 0 ? 0 : i - 2, b = i + 2 >= n ? n - 1 : i + 2;
+        double sl = b > a && main_side[b].h > main_side[a].h ? (main_side[b].r - main_side[a].r) / (main_side[b].h - main_side[a].h) : 0;
+        stretch[i] = sqrt(1 + sl * sl);
+    }
     int n_forced = 0;
     for (int i = 0; i < 2 * n; i++) {
         int row = i % n;
-        int agree = !zone[row] && !zone[n + row] && !isnan(r[n + row]) && fabs(r[row] - r[n + row]) <= tol;
+        /* held in: rows where the sides agree, and rows only the main side
+         * has (nothing tells a part there); not next to a window */
+        int alone = isnan(r[n + row]);
+        int agree = !zone[row] && !zone[n + row] && (alone || fabs(r[row] - r[n + row]) <= tol * stretch[row]);
         forced[row] = (uint8_t)agree;
         wt[i] = isnan(r[i]) ? 0 : (agree || gap[i] ? 1 : 0);
         n_forced += wt[i] > 0;
@@ -196,19 +234,42 @@ int recon_resolve_parts(recon_outline_point *main_side, int n, const recon_outli
     if (n_forced < 8)
         for (int i = 0; i < 2 * n; i++)
             wt[i] = !isnan(r[i]);
-    /* IRLS: the free observations are in unless they lie outside the fit by
-     * more than tol (a part only adds to the outline; a side inside the fit
-     * is a sharp narrowing the spline rounds off, or a worn edge). */
+    /* IRLS: a free observation is in while it lies within tol of the fit.
+     * Next to a window only the side outside the fit falls out: a handle's
+     * attachment adds to the outline there, and a lid or a neck narrower
+     * than the spline can bend to is the body's. There the first fit (on
+     * the rows held in and the body seen through the window) admits rows
+     * once and later rounds only drop them: readmitting rows at the edge of
+     * an attachment as the fit moves out would creep up its fillet. */
     for (int it = 0; it < IRLS_ROUNDS; it++) {
         if (pspline_fit(&ps, h, r, wt, 2 * n, A) != 0)
             goto out;
         for (int i = 0; i < 2 * n; i++)
-            if (!isnan(r[i]) && !forced[i % n] && !gap[i])
-                wt[i] = r[i] - pspline_eval(&ps, h[i]) <= tol;
+            if (!isnan(r[i]) && !forced[i % n] && !gap[i] && (it == 0 || !zone[i] || wt[i] > 0)) {
+                double e = (r[i] - pspline_eval(&ps, h[i])) / stretch[i % n];
+                wt[i] = e <= tol && (zone[i] || e >= -tol);
+            }
     }
     for (int i = 0; i < 2 * n; i++)
         in[i] = !isnan(r[i]) && wt[i] > 0;
-
+    /* A part joins the body through a fillet that bends the outline a few
+     * rows before it leaves the fit: rows within ATTACH_ROWS of a side's
+     * excluded run are dropped from that side too where the other side holds
+     * the row clear of any run of its own, and by a window in any case (two
+     * handles, or a handle where the other side is not seen: bridged). */
+    uint8_t *near_out[2] = {forced, both}; /* scratch: both are free here */
+    for (int s = 0; s < 2; s++)
+        for (int i = 0; i < n; i++) {
+            near_out[s][i] = 0;
+            for (int j = i - ATTACH_ROWS; j <= i + ATTACH_ROWS; j++)
+                if (j >= 0 && j < n && !isnan(r[s * n + j]) && !in[s * n + j])
+                    near_out[s][i] = 1;
+        }
+    for (int i = 0; i < n; i++) {
+        for (int s = 0; s < 2; s++)
+            if (near_out[s][i] && ((in[(1 - s) * n + i] && !near_out[1 - s][i]) || zone[s * n + i]))
+                in[s * n + i] = 0;
+    }
     /* Figures on the outlines as measured. */
     double sum = 0, rmax = 0;
     int both_n = 0, one_sided = 0;
@@ -271,6 +332,7 @@ out:
     free(h);
     free(r);
     free(wt);
+    free(stretch);
     free(A);
     free(flags);
     free(ps.c);
