@@ -1,7 +1,7 @@
 /* The hand-written stages against independent truths: Suzuki–Abe border
  * following on hand-made masks (checked against a brute-force border set),
- * Douglas–Peucker's deviation bound, the Gaussian's normalisation and the
- * Shi–Tomasi response on an L corner versus a straight edge. */
+ * and the sub-pixel edge on rows whose pixels are the exact coverage of a
+ * straight edge at a known fractional position. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
@@ -239,3 +239,47 @@ Test(recon_border, object_on_image_frame)
 }
 
 /* ---- Douglas–Peucker */
+
+/* ---- the sub-pixel edge */
+
+/* One row of colours crossed by the straight edge x = xe + slope (y - 0.5)
+ * (y in [0, 1) over the row): each pixel is bg + a (fg - bg), a the
+ * fraction of its area on the object's side (object left of the edge for
+ * side +1, right of it for side -1), by 4000 sub-rows (exact in x). */
+static void edge_row(float *row, int w, double xe, double slope, int side, const float fg[3], const float bg[3])
+{
+    for (int i = 0; i < w; i++) {
+        double a = 0;
+        for (int k = 0; k < 4000; k++) {
+            double x = xe + slope * ((k + 0.5) / 4000 - 0.5) - i; /* the edge within pixel i */
+            double left = x < 0 ? 0 : (x > 1 ? 1 : x);            /* the part of the pixel left of it */
+            a += side > 0 ? left : 1 - left;
+        }
+        a /= 4000;
+        for (int c = 0; c < 3; c++)
+            row[3 * i + c] = (float)(bg[c] + a * (fg[c] - bg[c]));
+    }
+}
+
+Test(recon_subpixel, known_fractional_edges)
+{
+    static const float fg[3] = {0.20f, 0.50f, 0.30f}, bg[3] = {0.90f, 0.90f, 0.85f};
+    static const double xs[] = {20.0, 20.13, 20.5, 20.87, 21.0}, slopes[] = {0, 0.6, -1.7, 2.5};
+    float row[3 * 48];
+    double worst = 0;
+    for (int side = -1; side <= 1; side += 2)
+        for (size_t k = 0; k < sizeof xs / sizeof xs[0]; k++)
+            for (size_t m = 0; m < sizeof slopes / sizeof slopes[0]; m++) {
+                double xe = xs[k], sl = slopes[m];
+                edge_row(row, 48, xe, sl, side, fg, bg);
+                /* the mask's outermost object pixel: the last (first) one the
+                 * object covers at all */
+                int i0 = side > 0 ? (int)ceil(xe + 0.5 * fabs(sl)) - 1 : (int)floor(xe - 0.5 * fabs(sl));
+                recon_edge e = recon_subpixel_edge(&(recon_signal){row, 48, 3}, i0, side, sl, 0.01);
+                cr_assert(e.ok, "side %d edge %.2f slope %.1f: no edge", side, xe, sl);
+                double err = fabs(e.x - xe);
+                worst = fmax(worst, err);
+                cr_expect_leq(err, 0.01, "side %d edge %.2f slope %.1f: found at %.4f", side, xe, sl, e.x);
+            }
+    cr_log_info("sub-pixel edge: worst error %.5f px over 40 rows", worst);
+}

@@ -31,8 +31,7 @@ typedef enum {
 typedef enum {
     RECON_OK = 0,
     RECON_ERR_NO_OBJECT,
-    RECON_ERR_TOUCHES_BORDER,
-    RECON_ERR_CORNERS,
+    RECON_ERR_SHAPE, /* two objects, no height between base and rim, lying down */
     RECON_ERR_SIZE,
     RECON_ERR_INTERNAL /* allocation failure and the like: exit code 1 */
 } recon_status;
