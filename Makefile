@@ -187,6 +187,19 @@ hard-cases: check-deps-stamp
 	@mkdir -p out/hard-cases
 	build/tools/draw_hard_cases out/hard-cases
 
+# `make real-dev` reconstructs the real museum photographs of
+# ../shared/data/real-dev (when present) with --force into out/real-dev/, one
+# folder per photo with its overlay, and the report with every quality figure
+# in out/real-dev/report.json (docs/algorithms-recon.md, "Accuracy").
+REAL_DEV ?= ../shared/data/real-dev
+.PHONY: real-dev
+real-dev: check-deps-stamp
+	@$(MAKE) --no-print-directory build/celadon
+	@test -d $(REAL_DEV) || { echo "make real-dev: $(REAL_DEV) not found (set REAL_DEV=...)" >&2; exit 2; }
+	@rm -rf out/real-dev && mkdir -p out/real-dev
+	build/celadon reconstruct $(REAL_DEV)/*.jpg -o out/real-dev --force --json > out/real-dev.json
+	@mv out/real-dev.json out/real-dev/report.json
+
 # `make demo` reconstructs the bundled catalogue photo; `make demo-photo`
 # redraws that photo (tests/tools/draw_demo_photo.c) from its analytic vessel.
 .PHONY: demo-photo
