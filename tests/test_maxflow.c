@@ -451,13 +451,45 @@ Test(maxflow, reset_and_reuse_give_the_same_cut)
     for (int v = 0; v < n; v++)
         side[v] = (unsigned char)maxflow_source_side(g, v);
     cr_expect_eq(memcmp(side, fresh_mixed, (size_t)n), 0);
+    /* a's t-links again: the kept n-links lose the last solve's flow */
+    maxflow_reset_terminals(g);
+    for (int v = 0; v < n; v++)
+        maxflow_add_terminals(g, v, a.cs[v], a.ct[v]);
+    cr_expect_eq(maxflow_solve(g), flow_a, "reset_terminals twice");
+    for (int v = 0; v < n; v++)
+        side[v] = (unsigned char)maxflow_source_side(g, v);
+    cr_expect_eq(memcmp(side, fresh_a, (size_t)n), 0);
+    maxflow_destroy(g);
+
+    /* n-links added after reset_terminals join the kept ones */
+    test_graph more = random_grid(30, 20, 8, 150, 0);
+    unsigned char *fresh_more = malloc((size_t)n);
+    cr_assert_not_null(fresh_more);
+    double flow_more = solve_fresh(&more, fresh_more);
+    cr_assert_gt(more.m, a.m);
+    g = maxflow_create(n, more.m);
+    cr_assert_not_null(g);
+    test_graph head = more;
+    head.m = a.m; /* more's first a.m links, then the rest after a reset */
+    solve(g, &head, side);
+    maxflow_reset_terminals(g);
+    for (int v = 0; v < n; v++)
+        maxflow_add_terminals(g, v, more.cs[v], more.ct[v]);
+    for (int e = a.m; e < more.m; e++)
+        maxflow_add_edge(g, more.ei[e], more.ej[e], more.cij[e], more.cji[e]);
+    cr_expect_eq(maxflow_solve(g), flow_more, "links added after reset_terminals");
+    for (int v = 0; v < n; v++)
+        side[v] = (unsigned char)maxflow_source_side(g, v);
+    cr_expect_eq(memcmp(side, fresh_more, (size_t)n), 0);
     maxflow_destroy(g);
     free(fresh_a);
     free(fresh_b);
     free(fresh_mixed);
+    free(fresh_more);
     free(side);
     graph_free(&a);
     graph_free(&b);
+    graph_free(&more);
 }
 
 Test(maxflow, degenerate_graphs)
