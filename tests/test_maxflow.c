@@ -7,6 +7,7 @@
  * every maximum flow). The value of the cut the solver returns is recomputed
  * from its sides each time (max-flow = min-cut). */
 #include <criterion/criterion.h>
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -498,6 +499,7 @@ Test(maxflow, degenerate_graphs)
     cr_assert_not_null(g);
     cr_expect_eq(maxflow_solve(g), 0, "no nodes");
     maxflow_destroy(g);
+    cr_expect_null(maxflow_create(1, INT_MAX / 2 + 1), "more links than int arc indices reach");
 
     /* one node: the cheaper t-link is cut; equal ones tie (sink side) */
     const double caps[][3] = {{3, 5, 0}, {5, 3, 1}, {0, 0, 0}, {4, 4, 0}, {0, 7, 0}, {7, 0, 1}};

@@ -90,6 +90,8 @@ static int queue_pop(mf_queue *q)
 maxflow_graph *maxflow_create(int n_nodes, int max_edges)
 {
     assert(n_nodes >= 0 && max_edges >= 0);
+    if (max_edges > INT_MAX / 2) /* arcs are indexed by int */
+        return NULL;
     maxflow_graph *g = calloc(1, sizeof *g);
     if (!g)
         return NULL;

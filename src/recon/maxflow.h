@@ -3,7 +3,7 @@
  * neighbouring pixels, any other pairwise links). Boykov–Kolmogorov max-flow;
  * docs/algorithms-recon.md ("Min-cut") describes it, its cost and its tests.
  *
- * Usage, one graph per round:
+ * Usage (one allocation, reused round after round):
  *     maxflow_graph *g = maxflow_create(n, max_edges);
  *     maxflow_add_terminals(g, p, cost_if_sink_side, cost_if_source_side);  (every p that has one)
  *     maxflow_add_edge(g, p, q, cap_pq, cap_qp);                             (each pair once)
@@ -14,8 +14,9 @@
  *     maxflow_destroy(g);
  *
  * Preconditions (checked by assert): node indices in [0, n), capacities
- * finite and >= 0, at most max_edges calls of maxflow_add_edge between resets,
- * no additions between maxflow_solve and the next reset. Capacities are
+ * finite and >= 0, at most max_edges calls of maxflow_add_edge since the last
+ * maxflow_reset (maxflow_reset_terminals keeps the links, so they still
+ * count), no additions between maxflow_solve and the next reset. Capacities are
  * doubles: with integer capacities (below 2^53 in total) the flow and the cut
  * are exact. One graph is used by one thread at a time. */
 #ifndef CELADON_RECON_MAXFLOW_H
@@ -24,7 +25,8 @@
 typedef struct maxflow_graph maxflow_graph;
 
 /* A graph of n_nodes >= 0 nodes (numbered 0..n_nodes-1, no links yet) with
- * room for max_edges >= 0 calls of maxflow_add_edge. NULL when out of memory.
+ * room for max_edges >= 0 calls of maxflow_add_edge. NULL when out of memory
+ * or when max_edges > INT_MAX / 2.
  * Memory: about 36 * n_nodes + 72 * max_edges bytes. */
 maxflow_graph *maxflow_create(int n_nodes, int max_edges);
 
