@@ -4,20 +4,20 @@
 
 CC      ?= cc
 CXX     ?= c++
-PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo
+PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
-            libigraph-dev
+            libmicrohttpd-dev libcsv-dev chromium libigraph-dev
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
-PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lembree3
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lembree3 -lcsv
 
 WARN     := -Wall -Wextra -Werror
 CFLAGS   ?= -O2 -g
 CXXFLAGS ?= -O2 -g
 ALL_CFLAGS   = -std=c11 -D_GNU_SOURCE $(WARN) -fopenmp -Iinclude -Isrc $(PKG_CFLAGS) $(CFLAGS)
-ALL_CXXFLAGS = -std=c++17 $(WARN) -Iinclude $(PKG_CFLAGS) $(CXXFLAGS)
+ALL_CXXFLAGS = -std=c++17 $(WARN) -Iinclude -Isrc $(PKG_CFLAGS) $(CXXFLAGS)
 LDLIBS   = $(PKG_LIBS) -fopenmp -lstdc++ -lm
 SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
@@ -30,9 +30,9 @@ BENCH_C  := $(wildcard bench/*.c)
 # $(call objs,VARIANT,SOURCES)
 objs = $(patsubst %.c,build/$(1)/%.o,$(filter %.c,$(2))) $(patsubst %.cpp,build/$(1)/%.o,$(filter %.cpp,$(2)))
 
-.PHONY: all deps test test-fast test-asan demo bench bench-sor clean check-deps
+.PHONY: all deps test test-fast test-asan check-layout demo bench bench-sor clean web
 all: check-deps-stamp
-	@$(MAKE) --no-print-directory build/celadon
+	@$(MAKE) --no-print-directory build/celadon web
 
 # ---------------------------------------------------------------- dependencies
 # Installs only what is missing; works as root or through sudo.
@@ -45,10 +45,39 @@ deps:
 	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; \
 	fi
+	@$(MAKE) --no-print-directory deps-web
 
-# Every user-facing target runs this first: a no-op when everything is there.
-check-deps:
-	@$(MAKE) --no-print-directory deps
+# The museum's page and its tests: Node.js and npm from Debian when `node` is
+# missing, then the npm packages pinned by web/package-lock.json (again only
+# when the lock file changed). Never committed: web/node_modules.
+.PHONY: deps-web
+deps-web:
+	@if ! command -v node >/dev/null || ! command -v npm >/dev/null; then \
+	  echo "celadon: installing Debian packages: nodejs npm"; \
+	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq nodejs npm >/dev/null; \
+	fi
+	@if [ ! -f web/node_modules/.package-lock.json ] || [ web/package-lock.json -nt web/node_modules/.package-lock.json ]; then \
+	  echo "celadon: installing the page's npm packages (web/package-lock.json)"; \
+	  cd web && npm ci --no-audit --no-fund --loglevel=error; \
+	fi
+
+# ---------------------------------------------------------------- the museum's page
+# `celadon museum` copies build/web/index.html and museum.js (web/*.js and
+# three.js bundled by esbuild) into every museum; the CLI finds them through
+# CELADON_WEB_DIR (compiled in, or from the environment).
+WEB_JS := $(wildcard web/*.js)
+web: build/web/index.html
+	@if [ -x web/node_modules/.bin/esbuild ]; then $(MAKE) --no-print-directory build/web/museum.js; \
+	else echo "celadon: web/node_modules is missing (make deps): the museum's page is not built"; fi
+build/web/index.html: web/index.html
+	@mkdir -p $(dir $@)
+	cp $< $@
+build/web/museum.js: $(WEB_JS) web/package-lock.json
+	@mkdir -p $(dir $@)
+	cd web && ./node_modules/.bin/esbuild main.js --bundle --format=esm --minify --target=es2020 \
+	  --log-level=warning --outfile=../$@
+build/opt/src/cli/cmd_museum.o build/asan/src/cli/cmd_museum.o: ALL_CFLAGS += -DCELADON_WEB_DIR='"$(CURDIR)/build/web"'
 
 # ---------------------------------------------------------------- objects
 build/opt/%.o: %.c
@@ -84,7 +113,8 @@ build/bench/%: bench/%.c build/opt/libceladon.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -O3 -o $@ $< build/opt/libceladon.a $(LDLIBS)
 
-# The stamp makes a fresh machine run `make deps` once before compiling anything.
+# Every user-facing target runs this first, so a fresh machine gets `make deps`
+# before compiling anything: a no-op when everything is there.
 check-deps-stamp:
 	@$(MAKE) --no-print-directory deps
 .PHONY: check-deps-stamp
@@ -95,20 +125,25 @@ check-deps-stamp:
 ASAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:halt_on_error=1 \
             LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
             UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-test: check-deps-stamp
-	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon build/asan/celadon-tests build/asan/celadon
+test: check-deps-stamp check-layout
+	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon build/asan/celadon-tests build/asan/celadon web
 	@echo "== optimised build"
 	CELADON_BIN=$(CURDIR)/build/celadon CELADON_BUILD=opt ./build/opt/celadon-tests --jobs 2
 	@echo "== ASan+UBSan build"
 	$(ASAN_ENV) CELADON_BIN=$(CURDIR)/build/asan/celadon CELADON_BUILD=asan ./build/asan/celadon-tests --jobs 2
 
 test-fast: check-deps-stamp
-	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon
+	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon web
 	CELADON_BIN=$(CURDIR)/build/celadon CELADON_BUILD=opt ./build/opt/celadon-tests --jobs 2 $(ARGS)
 
 test-asan: check-deps-stamp
-	@$(MAKE) --no-print-directory -j2 build/asan/celadon-tests build/asan/celadon
+	@$(MAKE) --no-print-directory -j2 build/asan/celadon-tests build/asan/celadon web
 	$(ASAN_ENV) CELADON_BIN=$(CURDIR)/build/asan/celadon CELADON_BUILD=asan ./build/asan/celadon-tests --jobs 2 $(ARGS)
+
+# The layout rules of docs/plugins.md: no folder of src/ over 20% of the
+# source lines, headers across folders only as the folder's interface.
+check-layout:
+	@tools/check-layout.sh
 
 clean:
 	rm -rf build out

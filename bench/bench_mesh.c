@@ -8,7 +8,7 @@
 #include <unistd.h>
 
 #include "celadon/mesh.h"
-#include "celadon/progress.h"
+#include "core/core.h"
 
 static int cmp_double(const void *a, const void *b)
 {

@@ -13,14 +13,10 @@
 #include <time.h>
 
 #include "../tests/support/synth_vessel.h"
-#include "celadon/curve_distance.h"
-#include "celadon/curve_domains.h"
-#include "celadon/curve_fit.h"
 #include "celadon/mesh.h"
 #include "celadon/overlay.h"
-#include "celadon/progress.h"
-#include "celadon/recon.h"
-#include "celadon/recon_texture.h"
+#include "core/core.h"
+#include "celadon/reconstruct.h"
 #include "recon/recon_internal.h"
 
 #define REPS 21
@@ -170,29 +166,40 @@ int main(int argc, char **argv)
                     recon_subpixel_edge(gray, w, h, j, ext[s * h + j], s ? 1 : -1, 0.0, delta);
     });
     free(ext);
-    recon_options ropt = {.threshold = -1, .side = RECON_SIDE_AUTO};
-    recon_result res = {0};
-    TIME_STAGE("recon_extract (all image stages)", REPS, recon_result_free(&res),
-               if (recon_extract(&img, &ropt, &res, err, sizeof err) != RECON_OK) die(err));
-
-    bspline_t curve = {0};
-    bspline_fit_info info;
-    TIME_STAGE("B-spline fit (1 px)", REPS, bspline_free(&curve),
-               if (bspline_fit_profile(res.polyline, res.n_polyline, 1.0, &curve, &info)) die("fit failed"));
-    double *u = NULL;
-    int nu = 0;
-    TIME_STAGE("curvature domains (0.25 px, 0.25 deg)", REPS, free(u),
-               if (curve_domains_by_curvature_variation(&curve, 0.25, 0.25, &u, &nu)) die("domains failed"));
-    double e1, e2;
-    TIME_STAGE("Hausdorff errors", REPS, , curve_polyline_hausdorff(&curve, res.polyline, res.n_polyline, &e1, &e2));
-    recon_texture_t tex = {0};
-    TIME_STAGE("texture (scanline)", REPS, recon_texture_free(&tex),
-               if (recon_texture_from_photo(&img, &res, &tex, err, sizeof err)) die(err));
+    /* The whole pipeline as the CLI, the museum and the tests run it: its
+     * own per-stage timings, median of REPS runs. */
+    reconstruct_options ropt = reconstruct_options_default();
+    reconstruction rec = {0};
+    double st[7][REPS], cpu_all[REPS];
+    static const char *st_name[7] = {"decode",          "image stages (recon_extract)", "B-spline fit (1 px)",
+                                     "curvature domains (0.25 px, 0.25 deg)", "Hausdorff errors",
+                                     "texture (scanline)", "total (up to the texture)"};
+    for (int r = -1; r < REPS; r++) {
+        reconstruction_free(&rec);
+        double c0 = thread_cpu_seconds();
+        if (reconstruct_photo(photo, &ropt, &rec, err, sizeof err) != 0)
+            die(err);
+        if (r < 0)
+            continue;
+        cpu_all[r] = 1e3 * (thread_cpu_seconds() - c0);
+        const double v[7] = {rec.ms.decode, rec.ms.image, rec.ms.bspline, rec.ms.domains, rec.ms.hausdorff,
+                             rec.ms.texture, rec.ms.total};
+        for (int k = 0; k < 7; k++)
+            st[k][r] = v[k];
+    }
+    printf("reconstruct_photo (the library pipeline), median of %d runs   wall ms\n", REPS);
+    for (int k = 0; k < 7; k++)
+        printf("  %-40s %9.3f\n", st_name[k], median(st[k], REPS));
+    printf("  %-40s %9s %9.3f\n", "CPU, whole call", "", median(cpu_all, REPS));
     uint8_t *ov = NULL;
-    TIME_STAGE("overlay", REPS, free(ov), ov = overlay_render(&img, &res, &curve));
+    TIME_STAGE("overlay", REPS, free(ov), ov = overlay_render(&rec.photo, &rec.extract, &rec.curve));
+    const bspline_t curve = rec.curve;
+    const double *u = rec.domains;
+    const int nu = rec.n_domains;
     printf("  (%d contour points, %d polyline points, %d control points, %d domain boundaries,\n"
            "   Hausdorff %.3f / %.3f px, texture %dx%d)\n",
-           nc, res.n_polyline, curve.n_ctrl, nu, e1, e2, tex.width, tex.height);
+           nc, rec.extract.n_polyline, curve.n_ctrl, nu, rec.err_curve_to_polyline, rec.err_polyline_to_curve,
+           rec.texture.width, rec.texture.height);
 
     if (stages_only)
         goto done;
@@ -251,10 +258,7 @@ int main(int argc, char **argv)
 done:
 
     free(ov);
-    recon_texture_free(&tex);
-    free(u);
-    bspline_free(&curve);
-    recon_result_free(&res);
+    reconstruction_free(&rec);
     free(contour);
     free(keep);
     recon_border_set_free(&bs);

@@ -17,9 +17,9 @@
 
 enum { WIDTH = 640, HEIGHT = 360, SPP = 16, MESH_SEGMENTS = 360 };
 
-static scene_build_options build_options(int segments)
+static scene_options build_options(int segments)
 {
-    scene_build_options bo = scene_build_defaults();
+    scene_options bo = scene_options_default();
     bo.width = WIDTH, bo.height = HEIGHT, bo.spp = SPP, bo.seed = 1;
     bo.mesh_segments = segments;
     return bo;
@@ -38,8 +38,8 @@ static double cpu_seconds(void)
 static double timed_render(const char *scene_path, int segments, int threads)
 {
     char err[2048];
-    scene_build_options bo = build_options(segments);
-    scene_t *s = scene_load(scene_path, NULL, 0, &bo, err, sizeof err);
+    scene_options bo = build_options(segments);
+    scene_t *s = scene_create_from_file(scene_path, NULL, 0, &bo, err, sizeof err);
     if (!s) {
         fprintf(stderr, "bench_render: %s\n", err);
         return -1.0;
@@ -51,7 +51,7 @@ static double timed_render(const char *scene_path, int segments, int threads)
     int rc = render_scene(s, &ro, &film, &st, err, sizeof err);
     double cpu = cpu_seconds() - cpu0;
     long long tris = scene_triangle_count(s);
-    scene_free(s);
+    scene_destroy(s);
     if (rc != 0) {
         fprintf(stderr, "bench_render: %s\n", err);
         return -1.0;

@@ -24,7 +24,7 @@
 
 #include "celadon/accel.h"
 #include "celadon/curve_domains.h"
-#include "celadon/progress.h"
+#include "core/core.h"
 #include "support/sor_profiles.h"
 
 #define HEIGHT 1.0

@@ -2,7 +2,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 
-#include "celadon/fresnel.h"
+#include "bsdfs/fresnel.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

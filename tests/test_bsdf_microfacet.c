@@ -3,7 +3,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 
-#include "celadon/microfacet.h"
+#include "bsdfs/microfacet.h"
 #include "test_bsdf_support.h"
 
 #ifndef M_PI

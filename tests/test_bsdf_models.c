@@ -4,16 +4,32 @@
  * and parameter handling. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
-#include "celadon/fresnel.h"
+#include "bsdfs/bsdf_impl.h"
+#include "bsdfs/fresnel.h"
+#include "support/plugin_xml.h"
 #include "test_bsdf_support.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
 
-static char err[256];
+static char err[512];
+static plugin_xml fx;
+
+/* The BSDF of an XML snippet, which must build. */
+static const bsdf_t *bsdf_of(const char *xml)
+{
+    const bsdf_t *b = plugin_xml_bsdf(&fx, xml, err, sizeof err);
+    cr_assert_not_null(b, "%s: %s", xml, err);
+    return b;
+}
+
+static void open_fixture(void) { plugin_xml_open(&fx); }
+static void close_fixture(void) { plugin_xml_close(&fx); }
+TestSuite(bsdf_models, .init = open_fixture, .fini = close_fixture);
 
 /* Mean sample weight (the directional albedo), its standard error, and the
  * fraction of samples of the given lobe type. */
@@ -44,10 +60,8 @@ static rgb mean_weight(const bsdf_t *b, const bsdf_query *q, int n, unsigned typ
 
 Test(bsdf_models, white_diffuse_reflects_everything)
 {
-    bsdf_diffuse_params p = bsdf_diffuse_defaults();
-    cr_assert_float_eq(p.reflectance.value.g, 0.5, 0);
-    p.reflectance = bsdf_spectrum_const(rgb_gray(1.0));
-    bsdf_t *b = bsdf_create_diffuse(&p, err, sizeof err);
+    cr_assert_float_eq(bsdf_albedo(bsdf_of("<bsdf type='diffuse'/>"), v2(0, 0)).g, 0.5, 0, "Mitsuba's default");
+    const bsdf_t *b = bsdf_of("<bsdf type='diffuse'><rgb name='reflectance' value='1'/></bsdf>");
     bsdf_query q = query_at(37.0, 0.0, TRANSPORT_RADIANCE);
     /* Hemispherical integral of f cos by midpoint quadrature in (cos, phi). */
     double sum = 0.0;
@@ -68,15 +82,12 @@ Test(bsdf_models, white_diffuse_reflects_everything)
         cr_assert_eq(s.sampled_type, BSDF_DIFFUSE_REFLECTION);
     }
     cr_assert_eq(bsdf_albedo(b, v2(0, 0)).b, 1.0);
-    bsdf_free(b);
 }
 
 Test(bsdf_models, dielectric_splits_by_fresnel_and_conserves_energy)
 {
-    bsdf_dielectric_params p = bsdf_dielectric_defaults();
-    cr_assert_float_eq(p.int_ior, 1.5046, 1e-12);
-    cr_assert_float_eq(p.ext_ior, 1.000277, 1e-12);
-    bsdf_t *b = bsdf_create_dielectric(&p, err, sizeof err);
+    /* Mitsuba's defaults: bk7 inside, air outside. */
+    const bsdf_t *b = bsdf_of("<bsdf type='dielectric'/>");
     double eta = 1.5046 / 1.000277;
     const double thetas[] = {0.0, 45.0, 80.0, 135.0, 150.0};
     for (int i = 0; i < 5; i++) {
@@ -113,15 +124,12 @@ Test(bsdf_models, dielectric_splits_by_fresnel_and_conserves_energy)
     cr_assert_eq(frac, 1.0);
     cr_assert(rgb_is_black(bsdf_eval(b, &q, v3(0, 0, 1))));
     cr_assert_eq(bsdf_pdf(b, &q, v3(0, 0, 1)), 0.0);
-    bsdf_free(b);
 }
 
 Test(bsdf_models, thindielectric_sums_internal_bounces)
 {
-    bsdf_dielectric_params p = bsdf_dielectric_defaults();
-    p.int_ior = 1.5;
-    p.ext_ior = 1.0;
-    bsdf_t *b = bsdf_create_thindielectric(&p, err, sizeof err);
+    const bsdf_t *b = bsdf_of("<bsdf type='thindielectric'><float name='int_ior' value='1.5'/>"
+                              "<float name='ext_ior' value='1'/></bsdf>");
     bsdf_query q = query_at(60.0, 10.0, TRANSPORT_RADIANCE);
     double r = fresnel_dielectric(q.wi.z, 1.5, NULL, NULL, NULL), t = 1 - r;
     /* R + T R T + T R^3 T + ... = R + T^2 R / (1 - R^2) */
@@ -136,7 +144,6 @@ Test(bsdf_models, thindielectric_sums_internal_bounces)
     cr_assert_eq(s.sampled_type, BSDF_DELTA_TRANSMISSION);
     cr_assert(s.wo.x == -q.wi.x && s.wo.y == -q.wi.y && s.wo.z == -q.wi.z, "passes straight through");
     cr_assert_eq(s.eta, 1.0);
-    bsdf_free(b);
 }
 
 Test(bsdf_models, conductor_presets_and_fresnel)
@@ -146,10 +153,9 @@ Test(bsdf_models, conductor_presets_and_fresnel)
     const char *metals[] = {"Ag", "Al", "Au", "Cu"};
     for (int i = 0; i < 4; i++) {
         cr_assert_eq(bsdf_conductor_preset(metals[i], &eta, &k), 0);
-        bsdf_conductor_params p = bsdf_conductor_defaults();
-        p.eta = eta;
-        p.k = k;
-        bsdf_t *b = bsdf_create_conductor(&p, err, sizeof err);
+        char xml[160];
+        snprintf(xml, sizeof xml, "<bsdf type='conductor'><string name='material' value='%s'/></bsdf>", metals[i]);
+        const bsdf_t *b = bsdf_of(xml);
         for (int th = 0; th < 90; th += 20) {
             bsdf_query q = query_at(th, 0.0, TRANSPORT_RADIANCE);
             bsdf_sample_rec s;
@@ -165,16 +171,13 @@ Test(bsdf_models, conductor_presets_and_fresnel)
             cr_assert(a.r > a.g && a.g > a.b, "%s is reddish-yellow", metals[i]);
         if (strcmp(metals[i], "Ag") == 0)
             cr_assert(a.b > 0.9, "silver is white");
-        bsdf_free(b);
     }
     /* Default material "none": a perfect mirror. */
-    bsdf_conductor_params p = bsdf_conductor_defaults();
-    bsdf_t *b = bsdf_create_conductor(&p, err, sizeof err);
+    const bsdf_t *b = bsdf_of("<bsdf type='conductor'/>");
     bsdf_query q = query_at(70.0, 0.0, TRANSPORT_RADIANCE);
     bsdf_sample_rec s;
     cr_assert(bsdf_sample(b, &q, 0.5, v2(0.5, 0.5), &s));
     cr_assert_float_eq(s.weight.r, 1.0, 1e-12);
-    bsdf_free(b);
 }
 
 /* Smooth plastic's energy balance: with the linear model the diffuse lobe
@@ -184,11 +187,13 @@ Test(bsdf_models, conductor_presets_and_fresnel)
 Test(bsdf_models, plastic_albedo_closed_form)
 {
     for (int nonlinear = 0; nonlinear < 2; nonlinear++) {
-        bsdf_plastic_params p = bsdf_plastic_defaults();
-        cr_assert_float_eq(p.int_ior, 1.49, 1e-12);
-        p.nonlinear = nonlinear;
-        p.diffuse_reflectance = bsdf_spectrum_const(rgb_make(0.8, 0.8, 0.8));
-        bsdf_t *b = bsdf_create_plastic(&p, err, sizeof err);
+        /* Mitsuba's default int_ior: polypropylene, 1.49. */
+        char xml[200];
+        snprintf(xml, sizeof xml,
+                 "<bsdf type='plastic'><boolean name='nonlinear' value='%s'/>"
+                 "<rgb name='diffuse_reflectance' value='0.8'/></bsdf>",
+                 nonlinear ? "true" : "false");
+        const bsdf_t *b = bsdf_of(xml);
         double eta = 1.49 / 1.000277, fdr = fresnel_diffuse_reflectance(1.0 / eta), rho = 0.8;
         double rho_eff = nonlinear ? rho * (1 - fdr) / (1 - rho * fdr) : rho;
         const double thetas[] = {0.0, 50.0, 80.0};
@@ -200,7 +205,6 @@ Test(bsdf_models, plastic_albedo_closed_form)
             cr_assert_float_eq(m.r, expect, 4.0 * se + 2e-4, "nonlinear %d theta %g: %g vs %g (se %g)", nonlinear,
                                thetas[i], m.r, expect, se);
         }
-        bsdf_free(b);
     }
 }
 
@@ -210,40 +214,35 @@ Test(bsdf_models, rough_models_tend_to_smooth_ones)
     bsdf_query q = query_at(40.0, 0.0, TRANSPORT_IMPORTANCE);
     double se, frac;
 
-    bsdf_roughdielectric_params rd = bsdf_roughdielectric_defaults();
-    cr_assert_float_eq(rd.alpha_u, 0.1, 0);
-    rd.alpha_u = rd.alpha_v = 0.01;
-    bsdf_t *b = bsdf_create_roughdielectric(&rd, err, sizeof err);
-    double f = fresnel_dielectric(q.wi.z, rd.int_ior / rd.ext_ior, NULL, NULL, NULL);
+    const bsdf_t *b = bsdf_of("<bsdf type='roughdielectric'><float name='alpha' value='0.01'/></bsdf>");
+    double f = fresnel_dielectric(q.wi.z, 1.5046 / 1.000277, NULL, NULL, NULL);
     rgb m = mean_weight(b, &q, 40000, BSDF_GLOSSY_REFLECTION, &frac, &se);
     cr_assert_float_eq(m.r, 1.0, 2e-3, "R + T = %g", m.r);
     cr_assert_float_eq(frac, f, 5.0 * sqrt(f * (1 - f) / 40000) + 1e-3);
-    bsdf_free(b);
 
-    bsdf_roughconductor_params rc = bsdf_roughconductor_defaults();
-    rc.alpha_u = rc.alpha_v = 0.01;
-    b = bsdf_create_roughconductor(&rc, err, sizeof err);
+    b = bsdf_of("<bsdf type='roughconductor'><float name='alpha' value='0.01'/></bsdf>");
     m = mean_weight(b, &q, 20000, BSDF_GLOSSY_REFLECTION, NULL, NULL);
     cr_assert_float_eq(m.r, 1.0, 2e-3);
-    bsdf_free(b);
 
-    bsdf_roughplastic_params rp = bsdf_roughplastic_defaults();
-    rp.alpha = 0.01;
-    rp.diffuse_reflectance = bsdf_spectrum_const(rgb_gray(0.8));
-    b = bsdf_create_roughplastic(&rp, err, sizeof err);
-    f = fresnel_dielectric(q.wi.z, rp.int_ior / rp.ext_ior, NULL, NULL, NULL);
+    b = bsdf_of("<bsdf type='roughplastic'><float name='alpha' value='0.01'/>"
+                "<rgb name='diffuse_reflectance' value='0.8'/></bsdf>");
+    f = fresnel_dielectric(q.wi.z, 1.49 / 1.000277, NULL, NULL, NULL);
     m = mean_weight(b, &q, 100000, BSDF_GLOSSY_REFLECTION, NULL, &se);
     cr_assert_float_eq(m.r, f + (1 - f) * 0.8, 4.0 * se + 3e-3, "%g vs %g", m.r, f + (1 - f) * 0.8);
-    bsdf_free(b);
 }
 
 Test(bsdf_models, twosided_mirrors_the_back)
 {
-    bsdf_roughconductor_params rc = bsdf_roughconductor_defaults();
-    rc.alpha_u = 0.2;
-    rc.alpha_v = 0.4;
-    bsdf_t *front = bsdf_create_roughconductor(&rc, err, sizeof err);
-    bsdf_t *b = bsdf_create_twosided(front, NULL, err, sizeof err);
+    scene_obj *o[2];
+    cr_assert_eq(plugin_xml_objects(&fx,
+                                    "<bsdf type='roughconductor' id='front'><float name='alpha_u' value='0.2'/>"
+                                    "<float name='alpha_v' value='0.4'/></bsdf>"
+                                    "<bsdf type='twosided'><ref id='front'/></bsdf>",
+                                    SCENE_BSDF, o, 2, err, sizeof err),
+                 2, "%s", err);
+    const bsdf_t *front = bsdf_set_get(&fx.bsdfs, o[0], err, sizeof err);
+    const bsdf_t *b = bsdf_set_get(&fx.bsdfs, o[1], err, sizeof err);
+    cr_assert(front && b, "%s", err);
     cr_assert_eq(bsdf_flags(b) & (BSDF_FRONT_SIDE | BSDF_BACK_SIDE), BSDF_FRONT_SIDE | BSDF_BACK_SIDE);
     bsdf_query qf = query_at(35.0, 20.0, TRANSPORT_RADIANCE), qb = qf;
     qb.wi.z = -qb.wi.z;
@@ -254,28 +253,23 @@ Test(bsdf_models, twosided_mirrors_the_back)
     bsdf_sample_rec s;
     cr_assert(bsdf_sample(b, &qb, 0.5, v2(0.3, 0.7), &s));
     cr_assert_lt(s.wo.z, 0.0);
-    bsdf_free(b);
 
-    bsdf_dielectric_params dp = bsdf_dielectric_defaults();
-    bsdf_t *glass = bsdf_create_dielectric(&dp, err, sizeof err);
-    cr_assert_null(bsdf_create_twosided(glass, NULL, err, sizeof err));
-    cr_assert(strstr(err, "dielectric"), "%s", err);
-    bsdf_free(glass);
-    bsdf_free(front);
+    cr_assert_null(plugin_xml_bsdf(&fx, "<bsdf type='twosided'><bsdf type='dielectric'/></bsdf>", err, sizeof err));
+    cr_assert(strstr(err, "must not transmit light (got dielectric)"), "%s", err);
 }
 
 Test(bsdf_models, parameters_names_and_errors)
 {
-    const char *const *names = bsdf_plugin_params("roughconductor");
-    cr_assert_not_null(names);
-    int has_alpha_u = 0, n = 0;
-    for (; names[n]; n++)
-        has_alpha_u |= strcmp(names[n], "alpha_u") == 0;
+    const bsdf_plugin *rough = bsdf_plugin_find("roughconductor");
+    cr_assert_not_null(rough);
+    int has_alpha_u = 0;
+    for (const scene_param_decl *q = rough->decl.params; q->name; q++)
+        has_alpha_u |= strcmp(q->name, "alpha_u") == 0;
     cr_assert(has_alpha_u);
-    cr_assert_null(bsdf_plugin_params("velvet"));
-    cr_assert_not_null(bsdf_plugin_params("twosided"));
-    cr_assert_null(bsdf_plugin_params("twosided")[0]);
-    cr_assert_not_null(texture_plugin_params("bitmap"));
+    cr_assert_null(bsdf_plugin_find("velvet"));
+    cr_assert_not_null(bsdf_plugin_find("twosided"));
+    cr_assert_null(bsdf_plugin_find("twosided")->decl.params);
+    cr_assert_not_null(texture_plugin_find("bitmap"));
 
     double ior;
     cr_assert_eq(bsdf_ior_lookup("BK7", &ior), 0);
@@ -285,30 +279,36 @@ Test(bsdf_models, parameters_names_and_errors)
     cr_assert_eq(bsdf_ior_lookup("diamond", &ior), 0);
     cr_assert_float_eq(ior, 2.419, 1e-12);
     cr_assert_eq(bsdf_ior_lookup("glass?", &ior), -1);
-    /* Every listed name resolves (the lists feed "valid choices are" messages). */
+    /* Every name the reader accepts (the choices of int_ior) resolves. */
     int n_ior = 0;
-    for (const char *const *nm = bsdf_ior_names(); *nm; nm++, n_ior++)
-        cr_assert_eq(bsdf_ior_lookup(*nm, &ior), 0, "%s", *nm);
+    for (const char *nm = bsdf_ior_names; *nm; n_ior++) {
+        char word[64];
+        size_t len = strcspn(nm, "|");
+        snprintf(word, sizeof word, "%.*s", (int)len, nm);
+        cr_assert_eq(bsdf_ior_lookup(word, &ior), 0, "%s", word);
+        nm += len + (nm[len] == '|');
+    }
     cr_assert_eq(n_ior, 23);
-    int n_metal = 0;
+    const char *metals[] = {"none", "Ag", "Al", "Au", "Cu"};
     rgb eta, k;
-    for (const char *const *nm = bsdf_conductor_names(); *nm; nm++, n_metal++)
-        cr_assert_eq(bsdf_conductor_preset(*nm, &eta, &k), 0, "%s", *nm);
-    cr_assert_eq(n_metal, 5);
+    for (int i = 0; i < 5; i++)
+        cr_assert_eq(bsdf_conductor_preset(metals[i], &eta, &k), 0, "%s", metals[i]);
 
-    bsdf_dielectric_params dp = bsdf_dielectric_defaults();
-    dp.int_ior = -1.0;
-    cr_assert_null(bsdf_create_dielectric(&dp, err, sizeof err));
-    cr_assert(strstr(err, "int_ior"), "%s", err);
-    bsdf_roughdielectric_params rd = bsdf_roughdielectric_defaults();
-    rd.alpha_v = NAN;
-    cr_assert_null(bsdf_create_roughdielectric(&rd, err, sizeof err));
+    /* Bad values are refused when the BSDF is built, naming the parameter. */
+    cr_assert_null(plugin_xml_bsdf(&fx, "<bsdf type='dielectric'><float name='int_ior' value='-1'/></bsdf>", err,
+                                   sizeof err));
+    cr_assert(strstr(err, "snippet.xml:1: <bsdf type='dielectric'>: int_ior must be a positive number"), "%s", err);
+    cr_assert_null(plugin_xml_bsdf(&fx, "<bsdf type='roughdielectric'><float name='alpha_v' value='-0.5'/></bsdf>",
+                                   err, sizeof err));
     cr_assert(strstr(err, "alpha_v"), "%s", err);
-    bsdf_diffuse_params df = bsdf_diffuse_defaults();
-    df.reflectance = bsdf_spectrum_const(rgb_make(0.5, -0.1, 0.2));
-    cr_assert_null(bsdf_create_diffuse(&df, err, sizeof err));
+    cr_assert_null(plugin_xml_bsdf(&fx, "<bsdf type='diffuse'><rgb name='reflectance' value='0.5, -0.1, 0.2'/></bsdf>",
+                                   err, sizeof err));
     cr_assert(strstr(err, "reflectance"), "%s", err);
-    cr_assert_null(bsdf_create_twosided(NULL, NULL, err, sizeof err));
+    cr_assert_null(plugin_xml_bsdf(&fx, "<bsdf type='twosided'/>", err, sizeof err));
+    cr_assert(strstr(err, "needs at least 1 nested <bsdf>"), "%s", err);
+    cr_assert_null(plugin_xml_bsdf(&fx, "<bsdf type='conductor'><string name='material' value='Unobtainium'/></bsdf>",
+                                   err, sizeof err));
+    cr_assert(strstr(err, "unknown conductor material 'Unobtainium'"), "%s", err);
 
     microfacet_type t;
     cr_assert_eq(microfacet_type_parse("ggx", &t), 0);
@@ -325,33 +325,26 @@ Test(bsdf_models, extreme_inputs_stay_finite)
     rng_seed(&rng, 3, 3);
     for (int a = 0; a < 3; a++)
         for (int kind = 0; kind < 4; kind++) {
-            bsdf_t *b = NULL;
             for (int dist = 0; dist < 2; dist++) {
-                microfacet_type t = dist ? MICROFACET_GGX : MICROFACET_BECKMANN;
-                if (kind == 0) {
-                    bsdf_roughconductor_params p = bsdf_roughconductor_defaults();
-                    p.alpha_u = p.alpha_v = alphas[a];
-                    p.distribution = t;
-                    b = bsdf_create_roughconductor(&p, err, sizeof err);
-                } else if (kind == 1) {
-                    bsdf_roughdielectric_params p = bsdf_roughdielectric_defaults();
-                    p.alpha_u = alphas[a];
-                    p.alpha_v = 0.3;
-                    p.distribution = t;
-                    b = bsdf_create_roughdielectric(&p, err, sizeof err);
-                } else if (kind == 2) {
-                    bsdf_roughplastic_params p = bsdf_roughplastic_defaults();
-                    p.alpha = alphas[a];
-                    p.distribution = t;
-                    b = bsdf_create_roughplastic(&p, err, sizeof err);
-                } else {
-                    bsdf_roughdielectric_params p = bsdf_roughdielectric_defaults();
-                    p.alpha_u = p.alpha_v = alphas[a];
-                    p.sample_visible = 0;
-                    p.distribution = t;
-                    b = bsdf_create_roughdielectric(&p, err, sizeof err);
-                }
-                cr_assert_not_null(b, "%s", err);
+                const char *t = dist ? "ggx" : "beckmann";
+                char xml[300];
+                if (kind == 0)
+                    snprintf(xml, sizeof xml, "<bsdf type='roughconductor'><float name='alpha' value='%g'/>"
+                             "<string name='distribution' value='%s'/></bsdf>", alphas[a], t);
+                else if (kind == 1)
+                    snprintf(xml, sizeof xml, "<bsdf type='roughdielectric'><float name='alpha_u' value='%g'/>"
+                             "<float name='alpha_v' value='0.3'/><string name='distribution' value='%s'/></bsdf>",
+                             alphas[a], t);
+                else if (kind == 2)
+                    snprintf(xml, sizeof xml, "<bsdf type='roughplastic'><float name='alpha' value='%g'/>"
+                             "<string name='distribution' value='%s'/></bsdf>", alphas[a], t);
+                else
+                    snprintf(xml, sizeof xml, "<bsdf type='roughdielectric'><float name='alpha' value='%g'/>"
+                             "<boolean name='sample_visible' value='false'/>"
+                             "<string name='distribution' value='%s'/></bsdf>", alphas[a], t);
+                plugin_xml_close(&fx);
+                plugin_xml_open(&fx);
+                const bsdf_t *b = bsdf_of(xml);
                 for (int w = 0; w < 6; w++) {
                     bsdf_query q = {v3_norm(wis[w]), v2(0, 0), TRANSPORT_RADIANCE};
                     for (int k = 0; k < 200; k++) {
@@ -367,7 +360,6 @@ Test(bsdf_models, extreme_inputs_stay_finite)
                         cr_assert(isfinite(f.r) && isfinite(bsdf_pdf(b, &q, s.wo)));
                     }
                 }
-                bsdf_free(b);
             }
         }
 }

@@ -81,7 +81,7 @@ Test(bsdf_props, albedo_at_most_one_and_sample_matches_eval_pdf, .timeout = 60)
                                   cases[ci].name, thetas[ti], mode, rgb_max(mean), se);
             }
     }
-    bsdf_cases_free(cases, nc);
+    bsdf_cases_free();
 }
 
 typedef struct {
@@ -128,7 +128,7 @@ static void chi2_cases(const char *prefix)
         }
     }
     cr_assert_gt(tested, 0);
-    bsdf_cases_free(cases, nc);
+    bsdf_cases_free();
 }
 
 Test(bsdf_chi2, diffuse_and_twosided, .timeout = 60) { chi2_cases("diffuse"); chi2_cases("twosided"); }
@@ -166,7 +166,7 @@ Test(bsdf_props, reciprocity)
         if (bsdf_flags(cases[ci].bsdf) & BSDF_SMOOTH)
             cr_assert_gt(nonzero, 100, "%s: evaluates to zero", cases[ci].name);
     }
-    bsdf_cases_free(cases, nc);
+    bsdf_cases_free();
 }
 
 /* Refraction is not symmetric, but adjoint: the importance-mode BSDF equals the
@@ -196,7 +196,7 @@ Test(bsdf_props, roughdielectric_adjoint)
         }
     }
     cr_assert_gt(checked, 100);
-    bsdf_cases_free(cases, nc);
+    bsdf_cases_free();
 }
 
 /* One-sided models are black from the back, as in Mitsuba. */
@@ -215,5 +215,5 @@ Test(bsdf_props, one_sided_models_are_black_from_behind)
         cr_assert(rgb_is_black(bsdf_eval(cases[ci].bsdf, &q, v3(0, 0, 1))), "%s", cases[ci].name);
         cr_assert_eq(bsdf_pdf(cases[ci].bsdf, &q, v3(0, 0, -1)), 0.0, "%s", cases[ci].name);
     }
-    bsdf_cases_free(cases, nc);
+    bsdf_cases_free();
 }

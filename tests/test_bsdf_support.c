@@ -1,6 +1,10 @@
 /* Chi-square machinery shared by the material tests (see test_bsdf_support.h). */
 #include "test_bsdf_support.h"
 
+#include <string.h>
+
+#include "support/plugin_xml.h"
+
 #include <criterion/criterion.h>
 #include <gsl/gsl_cdf.h>
 #include <math.h>
@@ -121,97 +125,75 @@ bsdf_query query_at(double theta_deg, double phi_deg, transport_mode mode)
     return q;
 }
 
-/* Textures the cases borrow; created once per test process. */
-static texture_t *case_checker;
+/* The cases, as a scene would declare them: their names are the ids; the
+ * two-sided ones borrow cases by reference. */
+static const char cases_xml[] =
+    "<bsdf type='diffuse' id='diffuse (checkerboard)'>"
+    "  <texture type='checkerboard' name='reflectance'><rgb name='color0' value='0.9, 0.6, 0.3'/></texture></bsdf>"
+    "<bsdf type='conductor' id='conductor Au'><string name='material' value='Au'/></bsdf>"
+    "<bsdf type='roughconductor' id='roughconductor beckmann 0.3 Au'>"
+    "  <string name='material' value='Au'/><float name='alpha' value='0.3'/></bsdf>"
+    "<bsdf type='roughconductor' id='roughconductor ggx 0.15x0.5 Cu'><string name='material' value='Cu'/>"
+    "  <string name='distribution' value='ggx'/><float name='alpha_u' value='0.15'/><float name='alpha_v' value='0.5'/>"
+    "</bsdf>"
+    "<bsdf type='roughconductor' id='roughconductor ggx 0.3 all normals'><string name='material' value='Cu'/>"
+    "  <string name='distribution' value='ggx'/><float name='alpha' value='0.3'/>"
+    "  <boolean name='sample_visible' value='false'/></bsdf>"
+    "<bsdf type='roughconductor' id='roughconductor beckmann 0.25x0.4 all normals'><string name='material' value='Cu'/>"
+    "  <float name='alpha_u' value='0.25'/><float name='alpha_v' value='0.4'/>"
+    "  <boolean name='sample_visible' value='false'/></bsdf>"
+    "<bsdf type='dielectric' id='dielectric'/>"
+    "<bsdf type='thindielectric' id='thindielectric'/>"
+    "<bsdf type='roughdielectric' id='roughdielectric beckmann 0.3'><float name='alpha' value='0.3'/></bsdf>"
+    "<bsdf type='roughdielectric' id='roughdielectric ggx 0.2x0.35 water'><string name='distribution' value='ggx'/>"
+    "  <float name='alpha_u' value='0.2'/><float name='alpha_v' value='0.35'/><float name='int_ior' value='1.333'/>"
+    "</bsdf>"
+    "<bsdf type='roughdielectric' id='roughdielectric beckmann 0.3 all normals'><float name='alpha' value='0.3'/>"
+    "  <float name='int_ior' value='1.333'/><boolean name='sample_visible' value='false'/></bsdf>"
+    "<bsdf type='plastic' id='plastic'/>"
+    "<bsdf type='plastic' id='plastic nonlinear'><boolean name='nonlinear' value='true'/>"
+    "  <rgb name='diffuse_reflectance' value='0.9, 0.2, 0.05'/></bsdf>"
+    "<bsdf type='roughplastic' id='roughplastic beckmann 0.2'><float name='alpha' value='0.2'/></bsdf>"
+    "<bsdf type='roughplastic' id='roughplastic ggx 0.3 nonlinear'><string name='distribution' value='ggx'/>"
+    "  <float name='alpha' value='0.3'/><boolean name='nonlinear' value='true'/>"
+    "  <rgb name='diffuse_reflectance' value='0.95, 0.5, 0.1'/></bsdf>"
+    "<bsdf type='twosided' id='twosided roughconductor'><ref id='roughconductor beckmann 0.3 Au'/></bsdf>"
+    "<bsdf type='twosided' id='twosided diffuse | roughplastic'>"
+    "  <ref id='diffuse (checkerboard)'/><ref id='roughplastic beckmann 0.2'/></bsdf>";
 
-static bsdf_t *checked(bsdf_t *b, const char *err)
-{
-    cr_assert_not_null(b, "creating a test BSDF: %s", err);
-    return b;
-}
+/* Whether a case's non-delta part is reciprocal, and whether it scatters on
+ * both sides (also tested with wi on the back). */
+static const struct {
+    const char *prefix;
+    int two_sided_incidence, reciprocal;
+} case_kinds[] = {{"diffuse", 0, 1},    {"conductor", 0, 1},   {"roughconductor", 0, 1}, {"dielectric", 1, 0},
+                  {"thindielectric", 1, 0}, {"roughdielectric", 1, 0}, {"plastic", 0, 1},  {"roughplastic", 0, 1},
+                  {"twosided", 1, 1}};
+
+static plugin_xml cases_fixture;
 
 int bsdf_cases_make(bsdf_case *c)
 {
-    char err[256];
-    int n = 0;
-    rgb au_eta, au_k, cu_eta, cu_k;
-    cr_assert_eq(bsdf_conductor_preset("Au", &au_eta, &au_k), 0);
-    cr_assert_eq(bsdf_conductor_preset("Cu", &cu_eta, &cu_k), 0);
-    texture_checkerboard_params cp = texture_checkerboard_defaults();
-    cp.color0 = rgb_make(0.9, 0.6, 0.3);
-    case_checker = texture_create_checkerboard(&cp);
-
-    bsdf_diffuse_params dp = bsdf_diffuse_defaults();
-    dp.reflectance = bsdf_spectrum_tex(case_checker);
-    c[n++] = (bsdf_case){"diffuse (checkerboard)", checked(bsdf_create_diffuse(&dp, err, sizeof err), err), 0, 1};
-
-    bsdf_conductor_params cd = bsdf_conductor_defaults();
-    cd.eta = au_eta;
-    cd.k = au_k;
-    c[n++] = (bsdf_case){"conductor Au", checked(bsdf_create_conductor(&cd, err, sizeof err), err), 0, 1};
-
-    bsdf_roughconductor_params rc = bsdf_roughconductor_defaults();
-    rc.eta = au_eta;
-    rc.k = au_k;
-    rc.alpha_u = rc.alpha_v = 0.3;
-    c[n++] = (bsdf_case){"roughconductor beckmann 0.3 Au", checked(bsdf_create_roughconductor(&rc, err, sizeof err), err), 0, 1};
-    rc.eta = cu_eta;
-    rc.k = cu_k;
-    rc.distribution = MICROFACET_GGX;
-    rc.alpha_u = 0.15;
-    rc.alpha_v = 0.5;
-    c[n++] = (bsdf_case){"roughconductor ggx 0.15x0.5 Cu", checked(bsdf_create_roughconductor(&rc, err, sizeof err), err), 0, 1};
-    rc.sample_visible = 0;
-    rc.alpha_u = rc.alpha_v = 0.3;
-    c[n++] = (bsdf_case){"roughconductor ggx 0.3 all normals", checked(bsdf_create_roughconductor(&rc, err, sizeof err), err), 0, 1};
-    rc.distribution = MICROFACET_BECKMANN;
-    rc.alpha_u = 0.25;
-    rc.alpha_v = 0.4;
-    c[n++] = (bsdf_case){"roughconductor beckmann 0.25x0.4 all normals", checked(bsdf_create_roughconductor(&rc, err, sizeof err), err), 0, 1};
-
-    bsdf_dielectric_params de = bsdf_dielectric_defaults();
-    c[n++] = (bsdf_case){"dielectric", checked(bsdf_create_dielectric(&de, err, sizeof err), err), 1, 0};
-    c[n++] = (bsdf_case){"thindielectric", checked(bsdf_create_thindielectric(&de, err, sizeof err), err), 1, 0};
-
-    bsdf_roughdielectric_params rd = bsdf_roughdielectric_defaults();
-    rd.alpha_u = rd.alpha_v = 0.3;
-    c[n++] = (bsdf_case){"roughdielectric beckmann 0.3", checked(bsdf_create_roughdielectric(&rd, err, sizeof err), err), 1, 0};
-    rd.distribution = MICROFACET_GGX;
-    rd.alpha_u = 0.2;
-    rd.alpha_v = 0.35;
-    rd.int_ior = 1.333;
-    c[n++] = (bsdf_case){"roughdielectric ggx 0.2x0.35 water", checked(bsdf_create_roughdielectric(&rd, err, sizeof err), err), 1, 0};
-    rd.distribution = MICROFACET_BECKMANN;
-    rd.sample_visible = 0;
-    rd.alpha_u = rd.alpha_v = 0.3;
-    c[n++] = (bsdf_case){"roughdielectric beckmann 0.3 all normals", checked(bsdf_create_roughdielectric(&rd, err, sizeof err), err), 1, 0};
-
-    bsdf_plastic_params pl = bsdf_plastic_defaults();
-    c[n++] = (bsdf_case){"plastic", checked(bsdf_create_plastic(&pl, err, sizeof err), err), 0, 1};
-    pl.nonlinear = 1;
-    pl.diffuse_reflectance = bsdf_spectrum_const(rgb_make(0.9, 0.2, 0.05));
-    c[n++] = (bsdf_case){"plastic nonlinear", checked(bsdf_create_plastic(&pl, err, sizeof err), err), 0, 1};
-
-    bsdf_roughplastic_params rp = bsdf_roughplastic_defaults();
-    rp.alpha = 0.2;
-    c[n++] = (bsdf_case){"roughplastic beckmann 0.2", checked(bsdf_create_roughplastic(&rp, err, sizeof err), err), 0, 1};
-    rp.distribution = MICROFACET_GGX;
-    rp.alpha = 0.3;
-    rp.nonlinear = 1;
-    rp.diffuse_reflectance = bsdf_spectrum_const(rgb_make(0.95, 0.5, 0.1));
-    c[n++] = (bsdf_case){"roughplastic ggx 0.3 nonlinear", checked(bsdf_create_roughplastic(&rp, err, sizeof err), err), 0, 1};
-
-    /* Two-sided wrappers borrow the BSDFs above. */
-    c[n++] = (bsdf_case){"twosided roughconductor", checked(bsdf_create_twosided(c[2].bsdf, NULL, err, sizeof err), err), 1, 1};
-    c[n++] = (bsdf_case){"twosided diffuse | roughplastic", checked(bsdf_create_twosided(c[0].bsdf, c[13].bsdf, err, sizeof err), err), 1, 1};
+    char err[512];
+    scene_obj *objs[BSDF_CASES_MAX];
+    plugin_xml_open(&cases_fixture);
+    int n = plugin_xml_objects(&cases_fixture, cases_xml, SCENE_BSDF, objs, BSDF_CASES_MAX, err, sizeof err);
+    cr_assert_gt(n, 0, "%s", err);
     cr_assert_leq(n, BSDF_CASES_MAX);
+    for (int i = 0; i < n; i++) {
+        const bsdf_t *b = bsdf_set_get(&cases_fixture.bsdfs, objs[i], err, sizeof err);
+        cr_assert_not_null(b, "creating a test BSDF: %s", err);
+        int kind = -1;
+        for (int k = 0; k < (int)(sizeof case_kinds / sizeof case_kinds[0]); k++)
+            if (strcmp(objs[i]->type, case_kinds[k].prefix) == 0)
+                kind = k;
+        cr_assert_geq(kind, 0);
+        c[i] = (bsdf_case){objs[i]->id, b, case_kinds[kind].two_sided_incidence, case_kinds[kind].reciprocal};
+    }
     return n;
 }
 
-void bsdf_cases_free(bsdf_case *cases, int n)
+void bsdf_cases_free(void)
 {
-    for (int i = 0; i < n; i++)
-        bsdf_free(cases[i].bsdf);
-    texture_free(case_checker);
-    case_checker = NULL;
+    plugin_xml_close(&cases_fixture);
 }

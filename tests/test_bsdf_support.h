@@ -6,7 +6,7 @@
 
 #include <stddef.h>
 
-#include "celadon/bsdf.h"
+#include "bsdfs/bsdfs.h"
 #include "celadon/rng.h"
 
 /* Significance of each chi-square test after Sidak correction for the number
@@ -37,14 +37,15 @@ bsdf_query query_at(double theta_deg, double phi_deg, transport_mode mode);
 /* The BSDF configurations every generic property test runs over. */
 typedef struct {
     const char *name;
-    bsdf_t *bsdf;
+    const bsdf_t *bsdf;
     int two_sided_incidence; /* also test wi on the back side */
     int reciprocal;          /* f(wi, wo) = f(wo, wi) for the non-delta part */
 } bsdf_case;
 
 enum { BSDF_CASES_MAX = 24 };
-/* Builds the cases (asserting on failure); returns their number. */
+/* Builds the cases (asserting on failure); returns their number. They live
+ * until bsdf_cases_free. */
 int bsdf_cases_make(bsdf_case *cases);
-void bsdf_cases_free(bsdf_case *cases, int n);
+void bsdf_cases_free(void);
 
 #endif

@@ -1,7 +1,8 @@
 /* The perspective camera: rays against the geometry of its frustum. */
 #include <criterion/criterion.h>
 
-#include "celadon/camera.h"
+#include "sensors/sensors.h"
+#include "celadon/scene.h"
 
 static double angle_deg(vec3 a, vec3 b)
 {
@@ -92,7 +93,8 @@ Test(camera, from_sensor_and_bad_input)
                       "  </sensor>\n"
                       "  <sensor type=\"perspective\" id=\"bad\"/>\n"
                       "</scene>\n";
-    scene_desc *d = scene_xml_parse(xml, strlen(xml), "mem.xml", NULL, 0, err, sizeof err);
+    scene_desc *d =
+        scene_desc_create_from_text(xml, strlen(xml), "mem.xml", NULL, 0, scene_plugin_find, err, sizeof err);
     cr_assert_null(d, "two sensors are refused");
     cr_assert_str_eq(err, "mem.xml:6: <scene> takes at most 1 <sensor>");
     const char *clip = "<scene version=\"3.0.0\">\n"
@@ -101,13 +103,14 @@ Test(camera, from_sensor_and_bad_input)
                        "    <float name=\"near_clip\" value=\"2\"/><float name=\"far_clip\" value=\"1\"/>\n"
                        "  </sensor>\n"
                        "</scene>\n";
-    d = scene_xml_parse(clip, strlen(clip), "mem.xml", NULL, 0, err, sizeof err);
+    d = scene_desc_create_from_text(clip, strlen(clip), "mem.xml", NULL, 0, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "%s", err);
     camera_t cam;
-    cr_assert_eq(camera_from_sensor(&cam, scene_obj_child(scene_desc_root(d), SCENE_SENSOR), 10, 10, err, sizeof err),
+    const sensor_plugin *perspective = sensor_plugin_find("perspective");
+    cr_assert_eq(perspective->create(scene_obj_child(scene_desc_root(d), SCENE_SENSOR), 10, 10, &cam, err, sizeof err),
                  -1);
     cr_assert_str_eq(err, "mem.xml:2: <sensor type=\"perspective\">: clip range [2, 1] needs 0 < near_clip < far_clip");
-    scene_desc_free(d);
+    scene_desc_destroy(d);
 
     const char *good = "<scene version=\"3.0.0\">\n"
                        "  <sensor type=\"perspective\">\n"
@@ -115,17 +118,17 @@ Test(camera, from_sensor_and_bad_input)
                        "    <transform name=\"to_world\"><lookat origin=\"0 0 -3\" target=\"0 0 0\"/></transform>\n"
                        "  </sensor>\n"
                        "</scene>\n";
-    d = scene_xml_parse(good, strlen(good), "mem.xml", NULL, 0, err, sizeof err);
+    d = scene_desc_create_from_text(good, strlen(good), "mem.xml", NULL, 0, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "%s", err);
     scene_obj *s = scene_obj_child(scene_desc_root(d), SCENE_SENSOR);
-    cr_assert_eq(camera_from_sensor(&cam, s, 40, 20, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(perspective->create(s, 40, 20, &cam, err, sizeof err), 0, "%s", err);
     cr_assert_float_eq(span(&cam, 0.5, 0, 0.5, 1), 30, 1e-12);
     camera_ray_t c = camera_ray(&cam, 20, 10, 0, 0);
     cr_assert_float_eq(c.ray.d.z, 1, 1e-15, "lookat without up still looks at the target");
     cr_assert_float_eq(c.tmin, CAMERA_DEFAULT_NEAR_CLIP, 1e-15);
     char msg[256];
     cr_assert_eq(scene_obj_unconsumed(scene_desc_root(d), msg, sizeof msg), 0, "%s", msg);
-    scene_desc_free(d);
+    scene_desc_destroy(d);
 
     transform4 scaled = transform_scale(v3(2, 2, 2));
     cr_assert_eq(camera_init(&cam, &scaled, 40, CAMERA_FOV_X, 8, 8, 0.1, 10, err, sizeof err), -1);

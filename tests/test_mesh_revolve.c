@@ -180,7 +180,7 @@ Test(mesh_revolve, texture_coordinates_follow_the_convention)
     bspline_free(&c);
 }
 
-/* On a cap, u follows the angle as on the analytic cap (DESIGN.md's u of phi):
+/* On a cap, u follows the angle as on the analytic cap (the u of phi of docs/conventions.md):
  * at any point of a cap triangle the interpolated u is within half a
  * segment's u span (1/S) of the u of the point's own angle. A single centre
  * vertex would pull the middle of the cap toward one u. */

@@ -244,7 +244,7 @@ Test(recon_extract, side_option_is_honoured)
 
 Test(recon_extract, profile_to_image_frame)
 {
-    /* DESIGN.md: image point = origin + r·right + h·direction, right = (-d.y, d.x). */
+    /* docs/conventions.md: image point = origin + r·right + h·direction, right = (-d.y, d.x). */
     vec2 o = v2(100, 200), d = v2_norm(v2(0.1, -1));
     vec2 q = recon_profile_to_image(o, d, 10, 50, 1);
     vec2 e = v2_add(o, v2_add(v2_scale(v2(-d.y, d.x), 10), v2_scale(d, 50)));

@@ -7,7 +7,8 @@
  *   sphere of radiance L, radius R, centre at distance d: E = pi L (R/d)^2
  * and the envmap's orientation and sampling density. */
 #include "celadon/film.h"
-#include "render/scene_impl.h"
+#include "celadon/rng.h"
+#include "support/plugin_xml.h"
 #include "test_render_util.h"
 
 static const char *plane_fmt =
@@ -81,40 +82,39 @@ Test(render_lights, envmap_orientation_and_density)
         px[3 * i] = px[3 * i + 1] = px[3 * i + 2] = (float)(i + 1);
     const char *names[] = {"R", "G", "B"};
     cr_assert_eq(exr_write_float(path, 4, 2, 3, names, px, err, sizeof err), 0, "%s", err);
-    envmap_data env = {0};
-    env.to_world = transform_identity();
-    env.to_local = transform_identity();
-    env.scale = 1.0;
-    cr_assert_eq(emitter_envmap_load(&env, path, err, sizeof err), 0, "%s", err);
+    plugin_xml fx;
+    plugin_xml_open(&fx);
+    char xml[400];
+    snprintf(xml, sizeof xml, "<emitter type='envmap'><string name='filename' value='%s'/></emitter>", path);
+    const emitter_t *env = plugin_xml_emitter(&fx, xml, err, sizeof err);
+    cr_assert_not_null(env, "%s", err);
     const double s = sqrt(0.5);
     /* phi = atan2(x, -z): column 0 holds x > 0, z < 0; column 1 x > 0, z > 0;
      * column 2 x < 0, z > 0; column 3 x < 0, z < 0. Row 0 is y > 0. */
-    cr_expect_float_eq(emitter_envmap_eval(&env, v3(0.5, s, -0.5)).g, 1.0, 1e-6);
-    cr_expect_float_eq(emitter_envmap_eval(&env, v3(0.5, s, 0.5)).g, 2.0, 1e-6);
-    cr_expect_float_eq(emitter_envmap_eval(&env, v3(-0.5, s, 0.5)).g, 3.0, 1e-6);
-    cr_expect_float_eq(emitter_envmap_eval(&env, v3(-0.5, s, -0.5)).g, 4.0, 1e-6);
-    cr_expect_float_eq(emitter_envmap_eval(&env, v3(-0.5, -s, -0.5)).g, 8.0, 1e-6);
-    cr_expect_leq(emitter_envmap_eval(&env, v3(0.0, 1.0, 0.0)).g, 4.0, "straight up is in the top row");
-    /* Sampled directions carry the density emitter_envmap_pdf reports, and
+    cr_expect_float_eq(emitter_eval_env(env, v3(0.5, s, -0.5)).g, 1.0, 1e-6);
+    cr_expect_float_eq(emitter_eval_env(env, v3(0.5, s, 0.5)).g, 2.0, 1e-6);
+    cr_expect_float_eq(emitter_eval_env(env, v3(-0.5, s, 0.5)).g, 3.0, 1e-6);
+    cr_expect_float_eq(emitter_eval_env(env, v3(-0.5, s, -0.5)).g, 4.0, 1e-6);
+    cr_expect_float_eq(emitter_eval_env(env, v3(-0.5, -s, -0.5)).g, 8.0, 1e-6);
+    cr_expect_leq(emitter_eval_env(env, v3(0.0, 1.0, 0.0)).g, 4.0, "straight up is in the top row");
+    /* Sampled directions carry the density emitter_pdf_env reports, and
      * the density integrates to 1 over the sphere. */
     rng_t rng;
     rng_seed(&rng, 9, 1);
     double integral = 0.0;
     enum { N = 20000 };
     for (int i = 0; i < N; i++) {
-        vec3 d;
-        rgb val;
-        double pdf;
+        emitter_sample_rec es;
         vec2 u = v2(rng_next_double(&rng), rng_next_double(&rng));
-        if (emitter_envmap_sample(&env, u, &d, &val, &pdf)) {
-            cr_assert_float_eq(emitter_envmap_pdf(&env, d), pdf, 1e-6 * pdf);
-            cr_assert_float_eq(emitter_envmap_eval(&env, d).g, val.g, 1e-9);
+        if (emitter_sample(env, v3(0, 0, 0), v3(u.x, u.y, 0.0), &es)) {
+            cr_assert_float_eq(emitter_pdf_env(env, es.wi), es.pdf, 1e-6 * es.pdf);
+            cr_assert_float_eq(emitter_eval_env(env, es.wi).g, es.value.g, 1e-9);
         }
         vec3 w = warp_square_to_uniform_sphere(v2(rng_next_double(&rng), rng_next_double(&rng)));
-        integral += emitter_envmap_pdf(&env, w) * 4.0 * M_PI / N;
+        integral += emitter_pdf_env(env, w) * 4.0 * M_PI / N;
     }
     cr_expect_float_eq(integral, 1.0, 0.03, "density integrates to %g", integral);
-    emitter_envmap_free(&env);
+    plugin_xml_close(&fx);
     render_fixture_close(&f);
 }
 

@@ -9,22 +9,22 @@ static scene_t *load_one(render_fixture *f, const char *shape)
     snprintf(xml, sizeof xml,
              "<scene version=\"3.0.0\"><sensor type=\"perspective\"/>%s</scene>", shape);
     render_write_file(f, "scene.xml", xml, path, sizeof path);
-    scene_t *s = scene_load(path, NULL, 0, NULL, err, sizeof err);
+    scene_t *s = scene_create_from_file(path, NULL, 0, NULL, err, sizeof err);
     cr_assert_not_null(s, "%s", err);
-    cr_assert_eq(s->nshapes, 1);
-    cr_assert(s->shapes[0].is_mesh);
+    cr_assert_eq(s->shapes.count, 1);
+    cr_assert(s->shapes.items[0].is_mesh);
     return s;
 }
 
 static void expect_mesh(render_fixture *f, const char *shape, int tris, double area, int has_uv)
 {
     scene_t *s = load_one(f, shape);
-    shape_t *sh = &s->shapes[0];
+    shape_t *sh = &s->shapes.items[0];
     cr_expect_eq(sh->mesh.n_tris, tris, "%s: %d triangles", shape, sh->mesh.n_tris);
     cr_expect(has_uv ? sh->mesh.uv != NULL : sh->mesh.uv == NULL, "%s: uv", shape);
     cr_assert_eq(shape_prepare_sampling(sh), 0);
     cr_expect_float_eq(sh->mesh.area, area, 1e-6 * area, "%s: area %g, want %g", shape, sh->mesh.area, area);
-    scene_free(s);
+    scene_destroy(s);
 }
 
 Test(render_meshes, obj_ply_rectangle_cube)
@@ -86,14 +86,14 @@ Test(render_meshes, smooth_normals_unless_face_normals)
     scene_t *s = load_one(&f, "<shape type=\"obj\"><string name=\"filename\" value=\"roof.obj\"/></shape>");
     surface_hit h;
     ray3 r = {v3(0, 3, 0.5), v3(0, -1, 0)};
-    cr_assert(scene_intersect(s, &r, 0.0, INFINITY, &h));
+    cr_assert(shape_list_intersect(&s->shapes, &r, 0.0, INFINITY, &h));
     cr_expect_float_eq(h.sh.n.y, 1.0, 1e-6, "ridge shading normal %g %g %g", h.sh.n.x, h.sh.n.y, h.sh.n.z);
-    scene_free(s);
+    scene_destroy(s);
     s = load_one(&f, "<shape type=\"obj\"><string name=\"filename\" value=\"roof.obj\"/>"
                      "<boolean name=\"face_normals\" value=\"true\"/></shape>");
     r.o.x = -0.5;
-    cr_assert(scene_intersect(s, &r, 0.0, INFINITY, &h));
+    cr_assert(shape_list_intersect(&s->shapes, &r, 0.0, INFINITY, &h));
     cr_expect_float_eq(h.sh.n.y, sqrt(0.5), 1e-6, "face normal %g %g %g", h.sh.n.x, h.sh.n.y, h.sh.n.z);
-    scene_free(s);
+    scene_destroy(s);
     render_fixture_close(&f);
 }

@@ -17,9 +17,9 @@ static scene_t *load_shape(render_fixture *f, const char *type, const char *para
     char xml[2048], path[256], err[512];
     snprintf(xml, sizeof xml, scene_fmt, type, params);
     render_write_file(f, "scene.xml", xml, path, sizeof path);
-    scene_build_options bo = scene_build_defaults();
+    scene_options bo = scene_options_default();
     bo.mesh_segments = mesh_segments;
-    scene_t *s = scene_load(path, NULL, 0, &bo, err, sizeof err);
+    scene_t *s = scene_create_from_file(path, NULL, 0, &bo, err, sizeof err);
     cr_assert_not_null(s, "%s", err);
     return s;
 }
@@ -30,7 +30,7 @@ static scene_t *load_shape(render_fixture *f, const char *type, const char *para
 static double sampled_area(const scene_t *s, int n, double *worst_mismatch)
 {
     int checked = 0;
-    const shape_t *sh = &s->shapes[0];
+    const shape_t *sh = &s->shapes.items[0];
     rng_t rng;
     rng_seed(&rng, 42, 7);
     double sum = 0.0;
@@ -45,7 +45,7 @@ static double sampled_area(const scene_t *s, int n, double *worst_mismatch)
         /* A ray arriving from outside along the normal finds the same point. */
         ray3 r = {v3_add(h.p, v3_scale(h.ng, 1e-3)), v3_neg(h.ng)};
         surface_hit g;
-        if (scene_intersect(s, &r, 0.0, 2e-3, &g) && v3_len(v3_sub(g.p, h.p)) < 1e-6) {
+        if (shape_list_intersect(&s->shapes, &r, 0.0, 2e-3, &g) && v3_len(v3_sub(g.p, h.p)) < 1e-6) {
             double q = shape_pdf_area(sh, &g);
             *worst_mismatch = fmax(*worst_mismatch, fabs(q - pdf) / pdf);
             checked++;
@@ -63,14 +63,14 @@ Test(render_sampling, sphere_and_stretched_disk_areas)
     scene_t *s = load_shape(&f, "sphere", "<float name=\"radius\" value=\"2\"/>", 0);
     cr_expect_float_eq(sampled_area(s, 4000, &mismatch), 16.0 * M_PI, 1e-9 * 16 * M_PI);
     cr_expect_lt(mismatch, 1e-9);
-    scene_free(s);
+    scene_destroy(s);
     s = load_shape(&f, "disk",
                    "<transform name=\"to_world\"><scale x=\"2\" y=\"3\" z=\"1\"/><rotate x=\"1\" angle=\"30\"/>"
                    "</transform>",
                    0);
     cr_expect_float_eq(sampled_area(s, 4000, &mismatch), 6.0 * M_PI, 1e-9 * 6 * M_PI);
     cr_expect_lt(mismatch, 1e-9);
-    scene_free(s);
+    scene_destroy(s);
     render_fixture_close(&f);
 }
 
@@ -82,14 +82,14 @@ Test(render_sampling, sor_area_matches_its_fine_mesh)
     const char *params = "<string name=\"filename\" value=\"profile.json\"/><float name=\"height\" value=\"2\"/>"
                          "<transform name=\"to_world\"><rotate z=\"1\" angle=\"20\"/><translate x=\"1\"/></transform>";
     scene_t *mesh = load_shape(&f, "sor", params, 2048);
-    double mesh_area = mesh->shapes[0].mesh.area, mismatch;
-    scene_free(mesh);
+    double mesh_area = mesh->shapes.items[0].mesh.area, mismatch;
+    scene_destroy(mesh);
     scene_t *s = load_shape(&f, "sor", params, 0);
     double area = sampled_area(s, 20000, &mismatch);
     /* The tabulated u-CDF is piecewise constant, so 1/pdf varies within a
      * cell and the estimate carries Monte Carlo error (~0.3% here). */
     cr_expect_float_eq(area, mesh_area, 0.01 * mesh_area, "sampled %g, mesh %g", area, mesh_area);
     cr_expect_lt(mismatch, 1e-6, "hit and sample densities differ by %g", mismatch);
-    scene_free(s);
+    scene_destroy(s);
     render_fixture_close(&f);
 }

@@ -94,10 +94,10 @@ static inline float *render_to_pixels(const char *scene_path, int mesh_segments,
                                       unsigned aovs, int *w, int *h, int *nch)
 {
     char err[1024];
-    scene_build_options bo = scene_build_defaults();
+    scene_options bo = scene_options_default();
     bo.mesh_segments = mesh_segments;
     bo.seed = seed;
-    scene_t *s = scene_load(scene_path, NULL, 0, &bo, err, sizeof err);
+    scene_t *s = scene_create_from_file(scene_path, NULL, 0, &bo, err, sizeof err);
     cr_assert_not_null(s, "%s", err);
     render_options ro = {threads, aovs, 0};
     film_t film;
@@ -107,7 +107,7 @@ static inline float *render_to_pixels(const char *scene_path, int mesh_segments,
     cr_assert_not_null(px);
     film_develop(&film, px);
     film_free(&film);
-    scene_free(s);
+    scene_destroy(s);
     return px;
 }
 

@@ -6,10 +6,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/scene_xml_schema.h"
+#include "celadon/scene.h"
+#include "scene_xml/scene_xml_internal.h"
 
 /* The XML for one property of type t named name, and the value it carries. */
-static void property_xml(scene_prop_type t, const char *name, const schema_param *par, char *buf, size_t len)
+static void property_xml(scene_prop_type t, const char *name, const scene_param_decl *par, char *buf, size_t len)
 {
     switch (t) {
     case SCENE_FLOAT: snprintf(buf, len, "<float name=\"%s\" value=\"0.375\"/>", name); break;
@@ -19,7 +20,7 @@ static void property_xml(scene_prop_type t, const char *name, const schema_param
         char word[64] = "a word";
         if (par && par->choices) /* the last allowed choice */
             snprintf(word, sizeof word, "%s", strrchr(par->choices, '|') ? strrchr(par->choices, '|') + 1 : par->choices);
-        else if (par && (par->flags & PF_FILE))
+        else if (par && (par->flags & PARAM_FILE))
             snprintf(word, sizeof word, "exists.dat");
         snprintf(buf, len, "<string name=\"%s\" value=\"%s\"/>", name, word);
         break;
@@ -35,7 +36,7 @@ static void property_xml(scene_prop_type t, const char *name, const schema_param
     }
 }
 
-static void check_value(scene_prop *p, scene_prop_type t, const schema_param *par)
+static void check_value(scene_prop *p, scene_prop_type t, const scene_param_decl *par)
 {
     cr_assert_eq(p->type, t, "%s: type %d, want %d", par->name, p->type, t);
     switch (t) {
@@ -43,7 +44,7 @@ static void check_value(scene_prop *p, scene_prop_type t, const schema_param *pa
     case SCENE_INTEGER: cr_assert_eq(p->value.i, 17); break;
     case SCENE_BOOLEAN: cr_assert(p->value.b); break;
     case SCENE_STRING:
-        if (par->flags & PF_FILE)
+        if (par->flags & PARAM_FILE)
             cr_assert_not_null(strstr(p->value.s, "/exists.dat"), "%s", p->value.s);
         else if (par->choices)
             cr_assert(schema_choice_ok(par->choices, p->value.s), "%s", p->value.s);
@@ -66,16 +67,16 @@ static void check_value(scene_prop *p, scene_prop_type t, const schema_param *pa
 /* Wraps the plugin's element in the context it needs; the property sits
  * alone on line 3 of the document. Returns the object found after parsing
  * via *depth (how many first-children to descend from the root). */
-static void document(const schema_plugin *pl, const char *prop, char *buf, size_t len, int *depth)
+static void document(const scene_plugin_decl *pl, const char *prop, char *buf, size_t len, int *depth)
 {
     char extra[256] = "";
-    for (const schema_param *q = pl->params; q->name; q++)
-        if ((q->flags & PF_REQUIRED) && !strstr(prop, q->name)) {
+    for (const scene_param_decl *q = pl->params; q && q->name; q++)
+        if ((q->flags & PARAM_REQUIRED) && !strstr(prop, q->name)) {
             char more[128];
-            property_xml(q->types & PT_STRING ? SCENE_STRING : SCENE_FLOAT, q->name, q, more, sizeof more);
+            property_xml(q->types & PARAM_STRING ? SCENE_STRING : SCENE_FLOAT, q->name, q, more, sizeof more);
             strncat(extra, more, sizeof extra - strlen(extra) - 1);
         }
-    if (pl->children[0].max > 0 && pl->children[0].min > 0)
+    if (pl->children && pl->children[0].max > 0 && pl->children[0].min > 0)
         strncat(extra, "<bsdf type=\"diffuse\"/>", sizeof extra - strlen(extra) - 1);
     const char *cls = scene_class_name(pl->cls);
     const char *open = "", *close = "";
@@ -120,18 +121,19 @@ Test(scene_schema, every_parameter_round_trips_and_wrong_types_fail)
     fclose(f);
     snprintf(path, sizeof path, "%s/s.xml", dir);
     int checked = 0, refused = 0;
-    for (int i = 0; schema_plugin_at(i); i++) {
-        const schema_plugin *pl = schema_plugin_at(i);
+    for (int i = 0; scene_plugin_at(i); i++) {
+        const scene_plugin_decl *pl = scene_plugin_at(i);
         if (pl->cls == SCENE_SCENE)
             continue;
-        for (const schema_param *q = pl->params; q->name; q++)
+        for (const scene_param_decl *q = pl->params; q && q->name; q++)
             for (int t = SCENE_FLOAT; t <= SCENE_OBJECT; t++) {
                 char prop[256], xml[2048];
                 int depth;
                 property_xml((scene_prop_type)t, q->name, q, prop, sizeof prop);
                 document(pl, prop, xml, sizeof xml, &depth);
-                scene_desc *d = scene_xml_parse(xml, strlen(xml), path, NULL, 0, err, sizeof err);
-                if (q->types & PT(t)) {
+                scene_desc *d =
+                    scene_desc_create_from_text(xml, strlen(xml), path, NULL, 0, scene_plugin_find, err, sizeof err);
+                if (q->types & (1u << t)) {
                     cr_assert_not_null(d, "%s %s as %s: %s\n%s", pl->type, q->name, schema_type_tag(t), err, xml);
                     scene_obj *o = descend(d, depth);
                     cr_assert_str_eq(o->type, pl->type);
@@ -145,7 +147,7 @@ Test(scene_schema, every_parameter_round_trips_and_wrong_types_fail)
                     cr_assert(strstr(err, "must be") || strstr(err, "inside"), "%s", err);
                     refused++;
                 }
-                scene_desc_free(d);
+                scene_desc_destroy(d);
             }
     }
     cr_assert_gt(checked, 90, "checked %d", checked);
@@ -154,4 +156,53 @@ Test(scene_schema, every_parameter_round_trips_and_wrong_types_fail)
     snprintf(path, sizeof path, "%s/exists.dat", dir);
     remove(path);
     remove(dir);
+}
+
+/* The row of docs/scene-format.md's plugin tables whose first cell names
+ * plugin `type`, or NULL. */
+static const char *doc_row(const char *doc, const char *type)
+{
+    char name[80];
+    snprintf(name, sizeof name, "`%s`", type);
+    for (const char *line = doc; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+        const char *end = strchr(line, '\n'), *cell_end = line[0] == '|' ? strchr(line + 1, '|') : NULL;
+        if (!cell_end || (end && cell_end > end))
+            continue;
+        const char *hit = strstr(line, name);
+        if (hit && hit < cell_end)
+            return line;
+    }
+    return NULL;
+}
+
+/* The documentation lists what the registration tables declare: every
+ * plugin has a row in docs/scene-format.md, and its row names every
+ * parameter. */
+Test(scene_schema, docs_list_every_plugin_and_parameter)
+{
+    FILE *f = fopen("docs/scene-format.md", "r");
+    cr_assert_not_null(f, "run from the repository's top folder");
+    static char doc[1 << 16];
+    size_t n = fread(doc, 1, sizeof doc - 1, f);
+    fclose(f);
+    doc[n] = '\0';
+    int plugins = 0;
+    for (int i = 0; scene_plugin_at(i); i++) {
+        const scene_plugin_decl *pl = scene_plugin_at(i);
+        if (pl->cls == SCENE_SCENE)
+            continue;
+        const char *row = doc_row(doc, pl->type);
+        cr_assert_not_null(row, "docs/scene-format.md has no row for <%s type=\"%s\">", scene_class_name(pl->cls),
+                           pl->type);
+        size_t len = strcspn(row, "\n");
+        for (const scene_param_decl *q = pl->params; q && q->name; q++) {
+            char name[80];
+            snprintf(name, sizeof name, "`%s`", q->name);
+            const char *hit = strstr(row, name);
+            cr_assert(hit && (size_t)(hit - row) < len, "docs/scene-format.md: the row of %s does not name `%s`",
+                      pl->type, q->name);
+        }
+        plugins++;
+    }
+    cr_assert_geq(plugins, 31, "%d plugins", plugins);
 }

@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "celadon/scene.h"
 #include "celadon/scene_xml.h"
 
 /* ------------------------------------------------------------- fixtures */
@@ -44,7 +45,7 @@ static scene_desc *load_ok(const char *name, const char *text, const scene_defin
 {
     char path[256], err[1024] = "";
     snprintf(path, sizeof path, "%s", put(name, text));
-    scene_desc *d = scene_xml_load(path, defs, ndefs, err, sizeof err);
+    scene_desc *d = scene_desc_create_from_file(path, defs, ndefs, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "load failed: %s", err);
     return d;
 }
@@ -56,7 +57,7 @@ static void load_fails(const char *name, const char *text, const char *errfile, 
 {
     char path[256], err[1024] = "", prefix[300];
     snprintf(path, sizeof path, "%s", put(name, text));
-    scene_desc *d = scene_xml_load(path, defs, ndefs, err, sizeof err);
+    scene_desc *d = scene_desc_create_from_file(path, defs, ndefs, scene_plugin_find, err, sizeof err);
     cr_assert_null(d, "expected an error for:\n%s", text);
     if (line > 0)
         snprintf(prefix, sizeof prefix, "%s/%s:%d: ", dir, errfile, line);
@@ -162,7 +163,7 @@ Test(scene_xml, every_property_type_round_trips)
     cr_assert_not_null(strstr(msg, "<shape type=\"cylinder\"> property 'radius' was not used"), "%s", msg);
     scene_obj_float(shapes[1], "radius", 1);
     cr_assert_eq(scene_obj_unconsumed(root, msg, sizeof msg), 0, "%s", msg);
-    scene_desc_free(d);
+    scene_desc_destroy(d);
 }
 
 Test(scene_xml, transforms_compose_in_document_order)
@@ -217,7 +218,7 @@ Test(scene_xml, transforms_compose_in_document_order)
     transform4 none = scene_obj_transform(scene_desc_root(d), "to_world");
     transform4 id = transform_identity();
     cr_assert_eq(transform_max_diff(&none, &id), 0, "absent transform is the identity");
-    scene_desc_free(d);
+    scene_desc_destroy(d);
 }
 
 Test(scene_xml, sensor_film_sampler_and_lookat_basis)
@@ -267,7 +268,7 @@ Test(scene_xml, sensor_film_sampler_and_lookat_basis)
     scene_obj *rf = scene_obj_child(film, SCENE_RFILTER);
     cr_assert_str_eq(rf->type, "gaussian");
     cr_assert_eq(scene_obj_float(rf, "stddev", 0.5), 0.25);
-    scene_desc_free(d);
+    scene_desc_destroy(d);
 }
 
 Test(scene_xml, defaults_and_overrides)
@@ -286,21 +287,21 @@ Test(scene_xml, defaults_and_overrides)
     scene_obj *sensor = scene_obj_child(scene_desc_root(d), SCENE_SENSOR);
     cr_assert_eq(scene_obj_int(scene_obj_child(sensor, SCENE_SAMPLER), "sample_count", 0), 16);
     cr_assert_eq(scene_obj_int(scene_obj_child(sensor, SCENE_FILM), "width", 0), 6464);
-    scene_desc_free(d);
+    scene_desc_destroy(d);
 
     const scene_define defs[] = {{"spp", "256"}, {"res", "3"}};
     d = load_ok("p.xml", text, defs, 2);
     sensor = scene_obj_child(scene_desc_root(d), SCENE_SENSOR);
     cr_assert_eq(scene_obj_int(scene_obj_child(sensor, SCENE_SAMPLER), "sample_count", 0), 256, "-D wins");
     cr_assert_eq(scene_obj_int(scene_obj_child(sensor, SCENE_FILM), "width", 0), 33);
-    scene_desc_free(d);
+    scene_desc_destroy(d);
 
     /* A parameter with no default must come from -D. */
     const char *bare = HEAD "  <shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>\n</scene>\n";
     const scene_define r[] = {{"r", "2.5"}};
     d = load_ok("bare.xml", bare, r, 1);
     cr_assert_eq(scene_obj_float(scene_obj_child(scene_desc_root(d), SCENE_SHAPE), "radius", 0), 2.5);
-    scene_desc_free(d);
+    scene_desc_destroy(d);
     load_fails("bare.xml", bare, "bare.xml", 3, "undefined parameter '$r'", NULL, 0);
     const scene_define typo[] = {{"r", "1"}, {"rr", "2"}};
     load_fails("bare.xml", bare, "bare.xml", 0, "-D rr=2: the scene has no parameter", typo, 2);
@@ -363,7 +364,7 @@ Test(scene_xml, include_and_references)
     cr_assert_str_eq(check->type, "checkerboard");
     cr_assert_eq(scene_obj_rgb(check, "color0", (scene_rgb){0, 0, 0}).b, 0.1);
     cr_assert_eq(scene_obj_texture(check, "color1"), wood);
-    scene_desc_free(d);
+    scene_desc_destroy(d);
 }
 
 Test(scene_xml, parse_from_memory_and_sor_shape)
@@ -378,7 +379,7 @@ Test(scene_xml, parse_from_memory_and_sor_shape)
         "  </shape>\n"
         "  <emitter type=\"constant\"><spectrum name=\"radiance\" value=\"0.5\"/></emitter>\n"
         "</scene>\n";
-    scene_desc *d = scene_xml_parse(text, strlen(text), path, NULL, 0, err, sizeof err);
+    scene_desc *d = scene_desc_create_from_text(text, strlen(text), path, NULL, 0, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "%s", err);
     scene_obj *sor = scene_obj_child(scene_desc_root(d), SCENE_SHAPE);
     cr_assert_eq(scene_obj_float(sor, "height", 1), 0.32);
@@ -386,7 +387,7 @@ Test(scene_xml, parse_from_memory_and_sor_shape)
     cr_assert_str_eq(scene_obj_child(sor, SCENE_EMITTER)->type, "area");
     cr_assert_eq(scene_obj_rgb(scene_obj_child(scene_desc_root(d), SCENE_EMITTER), "radiance",
                                (scene_rgb){0, 0, 0}).r, 0.5);
-    scene_desc_free(d);
+    scene_desc_destroy(d);
 }
 
 /* ------------------------------------------------------------- errors */
@@ -480,9 +481,9 @@ Test(scene_xml, missing_files_refs_and_cycles)
     char err[512], sub[128];
     snprintf(sub, sizeof sub, "%s/folder.xml", dir);
     cr_assert_eq(mkdir(sub, 0755), 0);
-    cr_assert_null(scene_xml_load(sub, NULL, 0, err, sizeof err));
+    cr_assert_null(scene_desc_create_from_file(sub, NULL, 0, scene_plugin_find, err, sizeof err));
     cr_assert_not_null(strstr(err, "Is a directory"), "%s", err);
-    cr_assert_null(scene_xml_load("/nonexistent/scene.xml", NULL, 0, err, sizeof err));
+    cr_assert_null(scene_desc_create_from_file("/nonexistent/scene.xml", NULL, 0, scene_plugin_find, err, sizeof err));
     cr_assert_str_eq(err, "/nonexistent/scene.xml: cannot read scene: No such file or directory");
     /* x.xml includes y.xml which includes x.xml again: the error is in y.xml. */
     put("y.xml", HEAD "\n  <include filename=\"x.xml\"/>\n</scene>\n");
@@ -501,7 +502,7 @@ Test(scene_xml, bundled_studio_scene)
 {
     char err[1024];
     const scene_define defs[] = {{"spp", "4"}};
-    scene_desc *d = scene_xml_load("tests/data/scenes/studio.xml", defs, 1, err, sizeof err);
+    scene_desc *d = scene_desc_create_from_file("tests/data/scenes/studio.xml", defs, 1, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "%s", err);
     scene_obj *root = scene_desc_root(d), *shapes[3];
     scene_obj *sensor = scene_obj_child(root, SCENE_SENSOR);
@@ -523,7 +524,7 @@ Test(scene_xml, bundled_studio_scene)
     vec3 ln = v3_norm(transform_normal(&lm, v3(0, 0, 1)));
     cr_assert(fabs(ln.y + 1) < 1e-15 && transform_point(&lm, v3(0, 0, 0)).y == 3);
     cr_assert_eq(scene_obj_rgb(scene_obj_child(shapes[2], SCENE_EMITTER), "radiance", (scene_rgb){0, 0, 0}).g, 6);
-    scene_desc_free(d);
+    scene_desc_destroy(d);
 }
 
 /* The bundled Cornell box: every wall faces into the room, and the light
@@ -531,7 +532,7 @@ Test(scene_xml, bundled_studio_scene)
 Test(scene_xml, bundled_cbox_walls_face_inward)
 {
     char err[1024];
-    scene_desc *d = scene_xml_load("tests/data/scenes/cbox.xml", NULL, 0, err, sizeof err);
+    scene_desc *d = scene_desc_create_from_file("tests/data/scenes/cbox.xml", NULL, 0, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "%s", err);
     scene_obj *root = scene_desc_root(d), *shapes[16];
     int n = scene_obj_children(root, SCENE_SHAPE, shapes, 16);
@@ -553,5 +554,5 @@ Test(scene_xml, bundled_cbox_walls_face_inward)
     cr_assert_str_eq(scene_obj_child(root, SCENE_INTEGRATOR)->type, "path");
     cr_assert_eq(scene_obj_bool(scene_obj_child(sensor, SCENE_FILM), "sample_border", false), true);
     cr_assert_str_eq(scene_obj_child(shapes[7], SCENE_BSDF)->type, "dielectric");
-    scene_desc_free(d);
+    scene_desc_destroy(d);
 }

@@ -1,7 +1,8 @@
 /* The entry points agree with each other (hierarchy vs naive, whole vs per
- * primitive, intersect vs occluded), and the hit record is what DESIGN.md
- * promises: unit outward normals, an orthonormal shading frame along dP/dphi,
- * (u, v) in [0,1] from phi and height, continuous across Bézier joints. */
+ * primitive, intersect vs occluded), and the hit record is what sor.h and
+ * docs/conventions.md promise: unit outward normals, an orthonormal shading
+ * frame along dP/dphi, (u, v) in [0,1] from phi and height, continuous across
+ * Bézier joints. */
 #include <criterion/criterion.h>
 #include <stdio.h>
 
@@ -94,7 +95,7 @@ Test(sor_consistency, hit_records_follow_the_conventions)
                       p.z <= hi.z + e,
                   "%s: hit outside sor_bounds", name);
             CHECK(v3_len(v3_sub(p, ray3_at(ray, h.t))) <= e, "%s: p is not the ray at t", name);
-            /* phi and the texture convention of DESIGN.md. */
+            /* phi and the texture convention of docs/conventions.md. */
             double rho = sqrt(p.x * p.x + p.z * p.z);
             CHECK(h.phi >= 0.0 && h.phi < 2.0 * M_PI, "%s: phi %g", name, h.phi);
             if (rho > 1e-6) {

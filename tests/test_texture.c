@@ -6,10 +6,14 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "celadon/texture.h"
+#include "celadon/film.h"
+#include "celadon/image.h"
+#include "support/plugin_xml.h"
+#include "textures/textures.h"
 
 static char dir[64];
 static char png[128];
+static plugin_xml fx;
 
 /* A 4x2 RGB image: pixel (i, j) has channels (40 i + 10 j, 255 - 60 i, 128). */
 static uint8_t pixel_value(int i, int j, int c)
@@ -29,12 +33,24 @@ static void write_png(void)
                 px[(j * 4 + i) * 3 + c] = pixel_value(i, j, c);
     char err[256];
     cr_assert_eq(image_write_u8(png, 4, 2, 3, px, err, sizeof err), 0, "%s", err);
+    plugin_xml_open(&fx);
 }
 
 static void remove_png(void)
 {
-    unlink(png);
-    rmdir(dir);
+    plugin_xml_close(&fx);
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    cr_assert_eq(system(cmd), 0);
+}
+
+/* The texture of an XML snippet, which must build. */
+static const texture_t *texture_of(const char *xml)
+{
+    char err[512];
+    const texture_t *t = plugin_xml_texture(&fx, xml, err, sizeof err);
+    cr_assert_not_null(t, "%s: %s", xml, err);
+    return t;
 }
 
 static rgb expected_linear(int i, int j)
@@ -51,29 +67,30 @@ static void assert_rgb(rgb a, rgb b, double tol, const char *what)
               "%s: (%g %g %g) vs (%g %g %g)", what, a.r, a.g, a.b, b.r, b.g, b.b);
 }
 
-static texture_t *load(texture_filter filter, texture_wrap wrap, int raw)
+/* The bitmap of the test image; filter and wrap NULL for Mitsuba's defaults. */
+static const texture_t *load(const char *filter, const char *wrap, int raw)
 {
-    texture_bitmap_params p = texture_bitmap_defaults();
-    p.filename = png;
-    p.filter_type = filter;
-    p.wrap_mode = wrap;
-    p.raw = raw;
-    char err[256];
-    texture_t *t = texture_create_bitmap(&p, err, sizeof err);
-    cr_assert_not_null(t, "%s", err);
-    return t;
+    char xml[512], f[64] = "", w[64] = "";
+    if (filter)
+        snprintf(f, sizeof f, "<string name='filter_type' value='%s'/>", filter);
+    if (wrap)
+        snprintf(w, sizeof w, "<string name='wrap_mode' value='%s'/>", wrap);
+    snprintf(xml, sizeof xml, "<texture type='bitmap'><string name='filename' value='%s'/>%s%s%s</texture>", png, f,
+             w, raw ? "<boolean name='raw' value='true'/>" : "");
+    return texture_of(xml);
 }
 
 TestSuite(texture, .init = write_png, .fini = remove_png);
 
 Test(texture, bitmap_decodes_srgb_unless_raw)
 {
-    texture_bitmap_params d = texture_bitmap_defaults();
-    cr_assert_eq(d.filter_type, TEXTURE_FILTER_BILINEAR);
-    cr_assert_eq(d.wrap_mode, TEXTURE_WRAP_REPEAT);
-    cr_assert_eq(d.raw, 0);
-    texture_t *t = load(TEXTURE_FILTER_BILINEAR, TEXTURE_WRAP_REPEAT, 0);
-    texture_t *raw = load(TEXTURE_FILTER_BILINEAR, TEXTURE_WRAP_REPEAT, 1);
+    /* Mitsuba's defaults are bilinear, repeat, decoded: the same texture as spelled out. */
+    const texture_t *t = load(NULL, NULL, 0);
+    const texture_t *spelled = load("bilinear", "repeat", 0);
+    const texture_t *raw = load("bilinear", "repeat", 1);
+    const vec2 probes[] = {{0.1, 0.3}, {0.37, 0.8}, {-0.93, 1.05}};
+    for (int k = 0; k < 3; k++)
+        assert_rgb(texture_eval(t, probes[k]), texture_eval(spelled, probes[k]), 0.0, "defaults");
     rgb mean = rgb_gray(0.0);
     for (int j = 0; j < 2; j++)
         for (int i = 0; i < 4; i++) {
@@ -86,33 +103,28 @@ Test(texture, bitmap_decodes_srgb_unless_raw)
     assert_rgb(texture_mean(t), mean, 1e-6, "mean");
     /* Mid-grey 128 decodes to about 0.2158 (IEC 61966-2-1). */
     cr_assert_float_eq(texture_eval(t, texel_centre(0, 0)).b, 0.21586, 1e-5);
-    cr_assert_eq(texture_is_constant(t), 0);
-    texture_free(t);
-    texture_free(raw);
 }
 
 Test(texture, bilinear_interpolates_linear_values)
 {
-    texture_t *t = load(TEXTURE_FILTER_BILINEAR, TEXTURE_WRAP_CLAMP, 0);
+    const texture_t *t = load("bilinear", "clamp", 0);
     /* x = u * 4 - 0.5 = 1.25, y = v * 2 - 0.5 = 0.5: a quarter of the way from
      * texel column 1 to 2, halfway between rows 0 and 1. */
     vec2 uv = v2(1.75 / 4.0, 0.5);
     rgb top = rgb_lerp(expected_linear(1, 0), expected_linear(2, 0), 0.25);
     rgb bottom = rgb_lerp(expected_linear(1, 1), expected_linear(2, 1), 0.25);
     assert_rgb(texture_eval(t, uv), rgb_lerp(top, bottom, 0.5), 1e-6, "bilinear");
-    texture_free(t);
 
-    texture_t *n = load(TEXTURE_FILTER_NEAREST, TEXTURE_WRAP_CLAMP, 0);
+    const texture_t *n = load("nearest", "clamp", 0);
     assert_rgb(texture_eval(n, uv), expected_linear(1, 1), 1e-6, "nearest");
     assert_rgb(texture_eval(n, v2(0.74, 0.49)), expected_linear(2, 0), 1e-6, "nearest");
-    texture_free(n);
 }
 
 Test(texture, wrap_modes_follow_mitsuba)
 {
-    texture_t *rep = load(TEXTURE_FILTER_BILINEAR, TEXTURE_WRAP_REPEAT, 0);
-    texture_t *mir = load(TEXTURE_FILTER_BILINEAR, TEXTURE_WRAP_MIRROR, 0);
-    texture_t *cla = load(TEXTURE_FILTER_BILINEAR, TEXTURE_WRAP_CLAMP, 0);
+    const texture_t *rep = load("bilinear", "repeat", 0);
+    const texture_t *mir = load("bilinear", "mirror", 0);
+    const texture_t *cla = load("bilinear", "clamp", 0);
     const vec2 probes[] = {{0.1, 0.3}, {0.37, 0.8}, {0.93, 0.05}, {0.5, 0.5}};
     for (int k = 0; k < 4; k++) {
         vec2 p = probes[k];
@@ -134,66 +146,60 @@ Test(texture, wrap_modes_follow_mitsuba)
     cr_assert(isfinite(x.r));
     x = texture_eval(mir, v2(1e300, -1e300));
     cr_assert(isfinite(x.r));
-    texture_free(rep);
-    texture_free(mir);
-    texture_free(cla);
 }
 
 Test(texture, to_uv_and_grey_images)
 {
-    float grey[4] = {0.0f, 0.25f, 0.5f, 1.0f};
-    image_t img = {2, 2, 1, 8, 0, grey};
-    texture_bitmap_params p = texture_bitmap_defaults();
-    p.filter_type = TEXTURE_FILTER_NEAREST;
-    p.to_uv = uv_transform_scale(0.5, 0.5);
-    char err[256];
-    texture_t *t = texture_create_bitmap_image(&img, 0, &p, err, sizeof err);
-    cr_assert_not_null(t);
+    /* A one-channel float EXR: linear, so not decoded. */
+    const float grey[4] = {0.0f, 0.25f, 0.5f, 1.0f};
+    const char *const names[] = {"Y"};
+    char exr[160], err[256], xml[512];
+    snprintf(exr, sizeof exr, "%s/grey.exr", dir);
+    cr_assert_eq(exr_write_float(exr, 2, 2, 1, names, grey, err, sizeof err), 0, "%s", err);
+    snprintf(xml, sizeof xml,
+             "<texture type='bitmap'><string name='filename' value='%s'/><string name='filter_type' value='nearest'/>"
+             "<transform name='to_uv'><scale x='0.5' y='0.5'/></transform></texture>",
+             exr);
+    const texture_t *t = texture_of(xml);
     /* uv (1.5, 0.5) -> (0.75, 0.25): texel (1, 0); grey replicated, no decoding. */
     rgb c = texture_eval(t, v2(1.5, 0.5));
-    cr_assert(c.r == 0.25 && c.g == 0.25 && c.b == 0.25);
-    texture_free(t);
+    cr_assert(c.r == 0.25 && c.g == 0.25 && c.b == 0.25, "%g %g %g", c.r, c.g, c.b);
 }
 
 Test(texture, checkerboard_pattern)
 {
-    texture_checkerboard_params p = texture_checkerboard_defaults();
-    cr_assert_float_eq(p.color0.r, 0.4, 0);
-    cr_assert_float_eq(p.color1.r, 0.2, 0);
-    texture_t *t = texture_create_checkerboard(&p);
+    /* Mitsuba's defaults: color0 0.4, color1 0.2. */
+    const texture_t *t = texture_of("<texture type='checkerboard'/>");
     cr_assert_float_eq(texture_eval(t, v2(0.25, 0.25)).g, 0.4, 0);
     cr_assert_float_eq(texture_eval(t, v2(0.75, 0.25)).g, 0.2, 0);
     cr_assert_float_eq(texture_eval(t, v2(0.25, 0.75)).g, 0.2, 0);
     cr_assert_float_eq(texture_eval(t, v2(0.75, 0.75)).g, 0.4, 0);
     cr_assert_float_eq(texture_eval(t, v2(-0.25, 0.25)).g, 0.2, 0); /* frac(-0.25) = 0.75 */
     cr_assert_float_eq(texture_mean(t).b, 0.3, 1e-15);
-    texture_free(t);
-    p.to_uv = uv_transform_scale(4.0, 4.0);
-    t = texture_create_checkerboard(&p);
+    t = texture_of("<texture type='checkerboard'><transform name='to_uv'><scale value='4'/></transform></texture>");
     cr_assert_float_eq(texture_eval(t, v2(0.15, 0.05)).g, 0.2, 0); /* (0.6, 0.2) in tiles */
     cr_assert_float_eq(texture_eval(t, v2(0.1, 0.05)).g, 0.4, 0);  /* (0.4, 0.2) */
-    texture_free(t);
-    texture_t *c = texture_create_constant(rgb_make(1, 2, 3));
-    cr_assert(texture_is_constant(c));
-    cr_assert_eq(texture_eval(c, v2(9, 9)).b, 3.0);
-    texture_free(c);
 }
 
 Test(texture, bad_input)
 {
-    texture_bitmap_params p = texture_bitmap_defaults();
-    char err[256] = "";
-    p.filename = "/nonexistent/nope.png";
-    cr_assert_null(texture_create_bitmap(&p, err, sizeof err));
-    cr_assert_gt(strlen(err), 0);
-    p.filename = NULL;
-    cr_assert_null(texture_create_bitmap(&p, err, sizeof err));
-    texture_wrap w;
-    texture_filter f;
-    cr_assert_eq(texture_wrap_parse("mirror", &w), 0);
-    cr_assert_eq(w, TEXTURE_WRAP_MIRROR);
-    cr_assert_eq(texture_wrap_parse("border", &w), -1);
-    cr_assert_eq(texture_filter_parse("nearest", &f), 0);
-    cr_assert_eq(texture_filter_parse("trilinear", &f), -1);
-    cr_assert_null(texture_plugin_params("noise"));
+    char err[512] = "", xml[512], path[160];
+    /* A missing file is the reader's error; a file that is no image, the bitmap's. */
+    cr_assert_null(plugin_xml_texture(&fx, "<texture type='bitmap'><string name='filename' value='/nonexistent/nope.png'/>"
+                                           "</texture>", err, sizeof err));
+    cr_assert(strstr(err, "not found"), "%s", err);
+    snprintf(path, sizeof path, "%s/notes.png", dir);
+    FILE *fp = fopen(path, "w");
+    cr_assert_not_null(fp);
+    fputs("not an image\n", fp);
+    fclose(fp);
+    snprintf(xml, sizeof xml, "<texture type='bitmap'><string name='filename' value='%s'/></texture>", path);
+    cr_assert_null(plugin_xml_texture(&fx, xml, err, sizeof err));
+    cr_assert(strncmp(err, "snippet.xml:1: ", 15) == 0 && strlen(err) > 15, "%s", err);
+    /* Option words outside Mitsuba's are refused by the reader. */
+    snprintf(xml, sizeof xml, "<texture type='bitmap'><string name='filename' value='%s'/>"
+             "<string name='wrap_mode' value='border'/></texture>", png);
+    cr_assert_null(plugin_xml_texture(&fx, xml, err, sizeof err));
+    cr_assert(strstr(err, "bad value 'border' for 'wrap_mode'"), "%s", err);
+    cr_assert_null(texture_plugin_find("noise"));
 }

@@ -33,9 +33,5 @@ static inline rgb rgb_srgb_to_linear(rgb a)
 {
     return (rgb){srgb_to_linear(a.r), srgb_to_linear(a.g), srgb_to_linear(a.b)};
 }
-static inline rgb rgb_linear_to_srgb(rgb a)
-{
-    return (rgb){linear_to_srgb(a.r), linear_to_srgb(a.g), linear_to_srgb(a.b)};
-}
 
 #endif

@@ -33,7 +33,7 @@ typedef struct {
     const char *scene_path;
     const scene_define *defs; /* -D overrides */
     int ndefs;
-    scene_build_options build; /* size, spp, seed; mesh_segments is ignored */
+    scene_options build; /* size, spp, seed; mesh_segments is ignored */
     int threads;               /* 0: OpenMP's default */
     const int *segments;       /* N values, >= 3, strictly increasing, at least 2 */
     int nsegments;

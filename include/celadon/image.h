@@ -18,6 +18,15 @@ typedef struct {
  * one-line reason (without the file name) in err. */
 int image_read(const char *path, image_t *img, char *err, size_t errlen);
 
+/* image_read behind the checks a photo must pass: a readable, non-empty
+ * regular file, an image format, each side at least min_side px and at most
+ * max_megapixels (checked on the header, before any pixel is decoded).
+ * Decoding libraries' own stderr lines are suppressed (stderr is captured
+ * around the call, so calls are serialised). Returns 0, or -1 with a
+ * one-line reason (without the file name) in err. */
+int image_read_checked(const char *path, int min_side, double max_megapixels, image_t *img, char *err,
+                       size_t errlen);
+
 /* Reads only the header: size and channels, cheap. */
 int image_probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen);
 
@@ -33,8 +42,5 @@ int image_write_u16(const char *path, int width, int height, int channels,
 
 image_t image_alloc(int width, int height, int channels);
 void image_free(image_t *img);
-
-/* Luminance-like gray (Rec.601 weights on the encoded values), alpha ignored. */
-float *image_to_gray(const image_t *img);
 
 #endif

@@ -14,7 +14,7 @@ typedef struct {
     int n_verts, n_tris;
     float *pos;    /* 3 per vertex, object space (Y up, base at y = 0) */
     float *nrm;    /* 3 per vertex, unit, outward */
-    float *uv;     /* 2 per vertex, DESIGN.md texture convention */
+    float *uv;     /* 2 per vertex, texture convention of docs/conventions.md */
     uint32_t *tri; /* 3 per triangle, counter-clockwise seen from outside */
 } mesh_t;
 
@@ -29,7 +29,7 @@ enum { MESH_CAP_BASE = 1u, MESH_CAP_MOUTH = 2u };
  *
  * Layout (what the counts are, for any segments >= 3 and n_rings >= 2):
  *   wall: vertex ring*segments + j at phi_j = 2 pi j / segments; no seam column
- *         (the texture u of DESIGN.md is mirror-symmetric, u(0) = u(2 pi) = 1);
+ *         (the texture u of docs/conventions.md is mirror-symmetric, u(0) = u(2 pi) = 1);
  *         2 * segments * (n_rings - 1) triangles.
  *   each cap asked for in caps (MESH_CAP_*): its own copy of the end ring
  *         (normal -Y for the base, +Y for the mouth, so the crease stays

@@ -1,4 +1,5 @@
-/* The reconstructed profile of one vessel: the profile.json contract of DESIGN.md. */
+/* The reconstructed profile of one vessel: profile.json (its fields:
+ * docs/user-guide.md#profilejson; its frames: docs/conventions.md). */
 #ifndef CELADON_PROFILE_H
 #define CELADON_PROFILE_H
 

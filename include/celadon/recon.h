@@ -1,7 +1,7 @@
 /* Reconstruction from one photograph, up to the profile polyline: mask,
  * outer contour (Suzuki–Abe), Douglas–Peucker, 7x7 Gaussian, Shi–Tomasi
  * corners, axis of revolution (PCA + corner pairs), sub-pixel silhouette and
- * the one-sided profile polyline in the (r, h) frame of DESIGN.md. */
+ * the one-sided profile polyline in the (r, h) frame of docs/conventions.md. */
 #ifndef CELADON_RECON_H
 #define CELADON_RECON_H
 
@@ -54,7 +54,7 @@ typedef struct {
     vec2 pca_mean;
     vec2 pca_axes[2];        /* unit eigenvectors, major first */
     double pca_eigenvalues[2];
-    vec2 axis_origin, axis_direction; /* DESIGN.md: origin at h = 0, unit toward the rim */
+    vec2 axis_origin, axis_direction; /* docs/conventions.md: origin at h = 0, unit toward the rim */
     double tilt_deg;         /* angle of the axis from the image vertical; positive: rim leans right */
     recon_side side_used;
     double edge_noise_px[2];  /* per side [0] left, [1] right: median |2nd difference| of the edge */

@@ -19,7 +19,7 @@ typedef struct {
  * the last polyline point's h), one per pixel of H; on each the segment
  * between the left and right silhouette is resampled, with bilinear
  * interpolation in the photo, to the widest row's width. Columns follow the
- * texture u of DESIGN.md for the visible half (u = 1 - phi/pi): column u
+ * texture u of docs/conventions.md for the visible half (u = 1 - phi/pi): column u
  * samples the point c - a cos(pi u) of a row whose silhouette is c -/+ a, so
  * u = 0 is the left silhouette, 0.5 the front meridian, 1 the right one.
  * Returns 0, or -1 with a one-line reason in err. */

@@ -1,15 +1,16 @@
-/* Rendering a built scene (scene.h) with the `path` integrator: unidirectional
- * path tracing with next-event estimation and multiple importance sampling.
+/* Rendering a built scene (scene.h) with its integrator (Mitsuba's `path`
+ * by default: unidirectional path tracing with next-event estimation and
+ * multiple importance sampling) and its sampler.
  *
- * Determinism: sample s of pixel (x, y) draws from rng_for_sample(seed, x, y,
- * s) and each pixel's samples are added in order, so an image depends on the
- * seed only, never on the thread count or schedule. */
+ * Determinism: sample s of pixel (x, y) draws from its own stream of the
+ * sampler (for `independent`: rng_for_sample(seed, x, y, s)) and each
+ * pixel's samples are added in order, so an image depends on the seed only,
+ * never on the thread count or schedule. */
 #ifndef CELADON_RENDER_H
 #define CELADON_RENDER_H
 
 #include "celadon/color.h"
 #include "celadon/film.h"
-#include "celadon/rng.h"
 #include "celadon/scene.h"
 
 enum { RENDER_AOV_DEPTH = 1u, RENDER_AOV_NORMAL = 2u, RENDER_AOV_ALBEDO = 4u };
@@ -41,9 +42,5 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
  * before it starts, as soon as it starts); the request is cleared when
  * render_scene returns. Async-signal-safe (meant for a SIGINT handler). */
 void render_request_stop(void);
-
-/* Radiance along one camera ray of pixel sample rng (the `path` integrator);
- * aov (may be NULL) receives depth, normal (3) and albedo (3) of the first hit. */
-rgb integrator_path_li(const scene_t *s, const ray3 *ray, double tmin, double tmax, rng_t *rng, double *aov);
 
 #endif

@@ -1,20 +1,27 @@
 /* The built, renderable scene: a Mitsuba 3 scene description (scene_xml.h)
- * turned into a camera, shapes with their BSDFs, emitters and integrator
- * settings, with an acceleration structure for ray queries.
+ * turned into a camera, a sampler, an integrator, shapes with their BSDFs,
+ * and emitters, with an acceleration structure for ray queries. Each object
+ * is built by the plugin its XML names, through the registration table of its
+ * kind (src/bsdfs/, src/shapes/, ...; docs/plugins.md).
  *
  * Geometry: every shape is traced through one Embree scene (accel.h):
  * triangle meshes (obj, ply, rectangle, cube, and `sor` under --geometry
  * mesh:N) as triangles; analytic shapes (sphere, disk, cylinder, and `sor` by
  * default) as user geometries intersected exactly in double precision in
- * their object space. */
+ * their object space.
+ *
+ * Lifetime: a scene_t is made by scene_create or scene_create_from_file and
+ * released by scene_destroy; it does not keep the description. After
+ * creation every query below may be called from any number of threads. */
 #ifndef CELADON_SCENE_H
 #define CELADON_SCENE_H
 
-#include <stdint.h>
+#include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
-#include "celadon/camera.h"
 #include "celadon/scene_xml.h"
+#include "celadon/vecmath.h"
 
 typedef struct scene scene_t;
 
@@ -24,26 +31,55 @@ typedef struct {
     int spp;             /* sampler sample_count */
     long long seed;      /* sampler seed; < 0 keeps the scene's */
     int mesh_segments;   /* 0: SORs analytic; N >= 3: revolved into N angular segments */
-} scene_build_options;
+} scene_options;
 
-scene_build_options scene_build_defaults(void);
+/* Every field at "keep the scene's own". */
+scene_options scene_options_default(void);
 
-/* Builds a scene from a loaded description. Returns NULL with one line
- * "file:line: problem" in err on any defect (unsupported combination, bad
- * value, unreadable mesh, profile or image). */
-scene_t *scene_build(scene_desc *desc, const scene_build_options *opt, char *err, size_t errlen);
-/* scene_xml_load + scene_build. */
-scene_t *scene_load(const char *path, const scene_define *defs, int ndefs, const scene_build_options *opt,
-                    char *err, size_t errlen);
-void scene_free(scene_t *s);
+/* The declaration of every plugin the renderer builds (scene_xml.h), the
+ * lookup scene_create_from_file checks scene files with; and the i-th of
+ * them, NULL past the end. */
+const scene_plugin_decl *scene_plugin_find(scene_class cls, const char *type);
+const scene_plugin_decl *scene_plugin_at(int i);
 
-/* Settings the render loop needs. */
-const camera_t *scene_camera(const scene_t *s);
+/* Builds a scene from a loaded description (opt may be NULL). Returns NULL
+ * with one line "file:line: problem" in err on any defect (unsupported
+ * combination, bad value, unreadable mesh, profile or image). */
+scene_t *scene_create(scene_desc *desc, const scene_options *opt, char *err, size_t errlen);
+/* scene_desc_create_from_file (checked against scene_plugin_find) and
+ * scene_create. */
+scene_t *scene_create_from_file(const char *path, const scene_define *defs, int ndefs, const scene_options *opt,
+                                char *err, size_t errlen);
+void scene_destroy(scene_t *s);
+
+/* Settings of the render. */
+void scene_film_size(const scene_t *s, int *width, int *height);
 int scene_spp(const scene_t *s);
 uint64_t scene_seed(const scene_t *s);
-/* Counts for reports. */
-int scene_shape_count(const scene_t *s);
-int scene_emitter_count(const scene_t *s);
+/* Triangles traced (meshes, and SORs under mesh:N), for reports. */
 long long scene_triangle_count(const scene_t *s);
+
+/* ------------------------------------------------------------- probing */
+/* For tools that compare scenes shape by shape (the cross-check). */
+
+/* How many of the scene's shapes are of plugin type ("sor", "sphere", ...). */
+int scene_shapes_of_type(const scene_t *s, const char *type);
+
+/* The camera ray through film position (px + sx, py + sy) in pixels (pixel
+ * (0,0) at the top left, (sx, sy) in [0,1)^2), with the t range between the
+ * near and far clip planes. */
+ray3 scene_camera_ray(const scene_t *s, int px, int py, double sx, double sy, double *tmin, double *tmax);
+
+typedef struct {
+    double t;               /* distance along the ray (unit direction) */
+    vec3 n;                 /* unit shading normal, world space */
+    double eps;             /* a ray continuing from the hit starts at t + eps */
+    int shape;              /* the shape's index, in document order */
+    const char *shape_type; /* its plugin name */
+    bool sheet;             /* its BSDF lets light through undeviated (a thin sheet: thindielectric) */
+} scene_hit;
+
+/* The nearest hit along r with t in (tmin, tmax): true with *hit filled. */
+bool scene_first_hit(const scene_t *s, const ray3 *r, double tmin, double tmax, scene_hit *hit);
 
 #endif

@@ -1,7 +1,7 @@
 /* Exact ray intersection with a surface of revolution (SOR) whose profile is a
  * clamped cubic B-spline C(u) = (r(u), h(u)), u in [0,1] from base to rim.
  *
- * Object space (DESIGN.md): Y is the axis, the base at y = 0, the profile scaled
+ * Object space (docs/conventions.md): Y is the axis, the base at y = 0, the profile scaled
  * uniformly so the rim is at y = height. A profile point (r, h) at angle phi is
  * (r cos phi, h, r sin phi), phi = atan2(z, x) in [0, 2 pi). Texture u is
  * 1 - phi/pi on [0, pi] and phi/pi - 1 on [pi, 2 pi]; v = h / height.

@@ -3,6 +3,7 @@
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 int cli_usage_error(const char *cmd, const char *fmt, const char *arg)
 {
@@ -21,4 +22,20 @@ int cli_parse_int(const char *s, long long lo, long long hi, long long *out)
         return -1;
     *out = v;
     return 0;
+}
+
+int cli_parse_int_list(const char *s, long long lo, long long hi, int *out, int max, int *n)
+{
+    char buf[256];
+    if (strlen(s) >= sizeof buf)
+        return -1;
+    snprintf(buf, sizeof buf, "%s", s);
+    *n = 0;
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        long long v;
+        if (*n == max || cli_parse_int(tok, lo, hi, &v) != 0)
+            return -1;
+        out[(*n)++] = (int)v;
+    }
+    return *n > 0 ? 0 : -1;
 }

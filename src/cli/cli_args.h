@@ -9,4 +9,8 @@ int cli_usage_error(const char *cmd, const char *fmt, const char *arg);
 /* A whole decimal integer in [lo, hi]: 0, or -1 when s is anything else. */
 int cli_parse_int(const char *s, long long lo, long long hi, long long *out);
 
+/* A comma-separated list of 1..max whole integers, each in [lo, hi], into
+ * out[0..*n): 0, or -1 when s is anything else. */
+int cli_parse_int_list(const char *s, long long lo, long long hi, int *out, int max, int *n);
+
 #endif

@@ -178,7 +178,7 @@ int cmd_crosscheck(int argc, char **argv)
     const char *dir = NULL;
     int segments[MAX_SEGMENTS], nseg = 0;
     scene_define defs[MAX_DEFINES];
-    crosscheck_params p = {.defs = defs, .build = scene_build_defaults(), .segments = segments, .geo_grid = 4,
+    crosscheck_params p = {.defs = defs, .build = scene_options_default(), .segments = segments, .geo_grid = 4,
                            .progress = 1};
     int rc = -1;
     for (int i = 1; i < argc && rc < 0; i++) {

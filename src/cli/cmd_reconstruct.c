@@ -2,7 +2,6 @@
  * and diagnostic overlays. Photos of one call are processed in parallel (one
  * per thread, each single-threaded); every photo's outputs are written into a
  * temporary folder and moved into place only when all of them are complete. */
-#include <dirent.h>
 #include <errno.h>
 #include <getopt.h>
 #include <jansson.h>
@@ -11,46 +10,19 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
-#include "celadon/curve_distance.h"
-#include "celadon/curve_domains.h"
-#include "celadon/curve_fit.h"
-#include "celadon/image.h"
-#include "celadon/mesh.h"
-#include "celadon/overlay.h"
-#include "celadon/profile.h"
-#include "celadon/progress.h"
-#include "celadon/recon.h"
-#include "celadon/recon_texture.h"
+#include "celadon/reconstruct.h"
 #include "cli/cli_args.h"
 #include "cli/commands.h"
-
-enum { MIN_SIDE_PX = 32, MAX_LODS = 8 };
-#define MAX_MEGAPIXELS 100.0
-/* The curvature-adaptive domains (rings of the mesh): each within 0.25 px of
- * its chord, and its tangent angle within 0.25 deg of linear in arc length
- * (more domains where the curvature changes; bounds the interpolated shading
- * normal's error between rings). */
-#define DOMAIN_TOL_PX 0.25
-#define DOMAIN_TOL_NORMAL_DEG 0.25
+#include "core/core.h"
 
 typedef struct {
     const char *out_dir;
-    recon_options recon;
-    int segments;
-    int lods[MAX_LODS], n_lods;
-    int mouth_cap;
+    reconstruct_options pipeline;
     int json;
-    double smoothing_px;
 } options;
 
-typedef struct {
-    int segments, vertices, faces;
-} mesh_stats;
-
-/* Everything one photo's run reports (the paper's Table 1 and more). */
 typedef struct {
     const char *photo;
     char out[PATH_MAX];
@@ -61,10 +33,9 @@ typedef struct {
     const char *side;
     int threshold_used, dropped_objects, holes_filled;
     int contour_points, approx_points, polyline_points, control_points, domains;
-    mesh_stats mesh, lods[MAX_LODS];
+    reconstruct_mesh_stats mesh, lods[RECONSTRUCT_MAX_LODS];
     double err_curve_to_polyline, err_polyline_to_curve;
-    double ms_decode, ms_image, ms_bspline, ms_domains, ms_hausdorff, ms_texture, ms_mesh, ms_overlay, ms_write,
-        ms_total;
+    reconstruct_timings ms;
 } report;
 
 static void usage(FILE *f)
@@ -102,7 +73,7 @@ static int parse_int(const char *s, long lo, long hi, int *out)
     return 0;
 }
 
-static int parse_lods(const char *s, options *o)
+static int parse_lods(const char *s, reconstruct_options *o)
 {
     char buf[256];
     if (strlen(s) >= sizeof buf)
@@ -110,7 +81,7 @@ static int parse_lods(const char *s, options *o)
     snprintf(buf, sizeof buf, "%s", s);
     o->n_lods = 0;
     for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-        if (o->n_lods == MAX_LODS || parse_int(tok, 3, 100000, &o->lods[o->n_lods]) != 0)
+        if (o->n_lods == RECONSTRUCT_MAX_LODS || parse_int(tok, 3, 100000, &o->lods[o->n_lods]) != 0)
             return -1;
         o->n_lods++;
     }
@@ -128,7 +99,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"json", no_argument, NULL, OPT_JSON},         {"smoothing", required_argument, NULL, OPT_SMOOTHING},
         {"help", no_argument, NULL, 'h'},              {NULL, 0, NULL, 0},
     };
-    *o = (options){.recon = {.threshold = -1, .side = RECON_SIDE_AUTO}, .segments = 360, .smoothing_px = 1.0};
+    *o = (options){.pipeline = reconstruct_options_default()};
     opterr = 0;
     optind = 1;
     int c;
@@ -138,37 +109,37 @@ static int parse_options(int argc, char **argv, options *o)
             o->out_dir = optarg;
             break;
         case OPT_THRESHOLD:
-            if (parse_int(optarg, 0, 255, &o->recon.threshold) != 0)
+            if (parse_int(optarg, 0, 255, &o->pipeline.recon.threshold) != 0)
                 return cli_usage_error("reconstruct", "--threshold wants an integer 0..255, not '%s'", optarg);
             break;
         case OPT_SIDE:
             if (!strcmp(optarg, "left"))
-                o->recon.side = RECON_SIDE_LEFT;
+                o->pipeline.recon.side = RECON_SIDE_LEFT;
             else if (!strcmp(optarg, "right"))
-                o->recon.side = RECON_SIDE_RIGHT;
+                o->pipeline.recon.side = RECON_SIDE_RIGHT;
             else if (!strcmp(optarg, "auto"))
-                o->recon.side = RECON_SIDE_AUTO;
+                o->pipeline.recon.side = RECON_SIDE_AUTO;
             else
                 return cli_usage_error("reconstruct", "--side wants left, right or auto, not '%s'", optarg);
             break;
         case OPT_SEGMENTS:
-            if (parse_int(optarg, 3, 100000, &o->segments) != 0)
+            if (parse_int(optarg, 3, 100000, &o->pipeline.segments) != 0)
                 return cli_usage_error("reconstruct", "--segments wants an integer 3..100000, not '%s'", optarg);
             break;
         case OPT_LOD:
-            if (parse_lods(optarg, o) != 0)
+            if (parse_lods(optarg, &o->pipeline) != 0)
                 return cli_usage_error("reconstruct", "--lod wants up to 8 comma-separated integers 3..100000, not '%s'", optarg);
             break;
         case OPT_MOUTH_CAP:
-            o->mouth_cap = 1;
+            o->pipeline.mouth_cap = 1;
             break;
         case OPT_JSON:
             o->json = 1;
             break;
         case OPT_SMOOTHING: {
             char *end;
-            o->smoothing_px = strtod(optarg, &end);
-            if (end == optarg || *end || !(o->smoothing_px >= 0.01 && o->smoothing_px <= 100.0))
+            o->pipeline.smoothing_px = strtod(optarg, &end);
+            if (end == optarg || *end || !(o->pipeline.smoothing_px >= 0.01 && o->pipeline.smoothing_px <= 100.0))
                 return cli_usage_error("reconstruct", "--smoothing wants pixels between 0.01 and 100, not '%s'", optarg);
             break;
         }
@@ -188,84 +159,6 @@ static int parse_options(int argc, char **argv, options *o)
     return -1;
 }
 
-/* ------------------------------------------------------------------ folders */
-
-/* Creates path and its missing parents; *created counts the folders made
- * (innermost last in made[]) so a run that produced nothing can remove them. */
-static int make_dirs(const char *path, char made[][PATH_MAX], int max_made, int *created)
-{
-    char buf[PATH_MAX];
-    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) {
-        errno = ENAMETOOLONG;
-        return -1;
-    }
-    for (char *p = buf + 1;; p++) {
-        if (*p != '/' && *p != '\0')
-            continue;
-        char saved = *p;
-        *p = '\0';
-        if (mkdir(buf, 0777) == 0) {
-            if (*created < max_made)
-                snprintf(made[(*created)++], PATH_MAX, "%s", buf);
-        } else if (errno != EEXIST) {
-            return -1;
-        }
-        *p = saved;
-        if (!saved)
-            break;
-    }
-    struct stat st;
-    if (stat(path, &st) != 0)
-        return -1;
-    if (!S_ISDIR(st.st_mode)) {
-        errno = ENOTDIR;
-        return -1;
-    }
-    return 0;
-}
-
-/* Removes the files in a folder this run made, then the folder. */
-static void remove_tree(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (d) {
-        struct dirent *e;
-        char path[PATH_MAX + 256];
-        while ((e = readdir(d)))
-            if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
-                snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-                remove(path);
-            }
-        closedir(d);
-    }
-    rmdir(dir);
-}
-
-/* Moves the finished outputs from tmp to final: one rename when final does
- * not exist yet, else file by file (undone if one fails). */
-static int publish(const char *tmp, const char *final, const char *const *files, int n_files)
-{
-    struct stat st;
-    if (stat(final, &st) != 0)
-        return rename(tmp, final);
-    for (int i = 0; i < n_files; i++) {
-        char from[PATH_MAX + 64], to[PATH_MAX + 64];
-        snprintf(from, sizeof from, "%s/%s", tmp, files[i]);
-        snprintf(to, sizeof to, "%s/%s", final, files[i]);
-        if (rename(from, to) != 0) {
-            int saved = errno;
-            for (int k = 0; k < i; k++) {
-                snprintf(to, sizeof to, "%s/%s", final, files[k]);
-                remove(to);
-            }
-            errno = saved;
-            return -1;
-        }
-    }
-    rmdir(tmp);
-    return 0;
-}
-
 /* The file name without folder and last extension ("photo" when that is empty). */
 static void file_stem(const char *path, char *stem, size_t len)
 {
@@ -281,312 +174,36 @@ static void file_stem(const char *path, char *stem, size_t len)
 
 /* ------------------------------------------------------------------ one photo */
 
-static double ms_since(double t0) { return 1e3 * (now_seconds() - t0); }
-
-/* Copies the captured text to stderr, leaving out libpng's own lines. */
-static void replay_captured(FILE *cap)
+/* The library pipeline, then the outputs into rep->out; the run's figures
+ * are kept in the report (the arrays are released). */
+static void reconstruct_one(const options *o, report *rep)
 {
-    char line[1024];
-    rewind(cap);
-    while (fgets(line, sizeof line, cap))
-        if (strncmp(line, "libpng ", 7) != 0)
-            fputs(line, stderr);
-}
-
-/* libpng (inside OpenImageIO) prints "libpng error: ..." on stderr for a
- * damaged PNG, on top of the error OpenImageIO returns; that would break the
- * one-line-per-bad-photo rule. So probing and decoding run with stderr
- * captured in a temporary file, replayed afterwards without libpng's lines.
- * Serialised: stderr is one per process. */
-static int read_image_quietly(const char *path, image_t *img, int probe_only, int *w, int *h, char *err,
-                              size_t errlen)
-{
-    int rc;
-#pragma omp critical(celadon_stderr)
-    {
-        fflush(stderr);
-        FILE *cap = tmpfile();
-        int saved = cap ? dup(2) : -1;
-        int captured = saved >= 0 && dup2(fileno(cap), 2) >= 0;
-        int ch;
-        rc = probe_only ? image_probe(path, w, h, &ch, err, errlen) : image_read(path, img, err, errlen);
-        if (captured) {
-            fflush(stderr);
-            dup2(saved, 2);
-            replay_captured(cap);
-        }
-        if (saved >= 0)
-            close(saved);
-        if (cap)
-            fclose(cap);
-    }
-    return rc;
-}
-
-/* Problems with the file itself, before decoding: missing, a folder, empty,
- * not an image, too small or too large. */
-static int check_file(const char *path, report *rep)
-{
-    struct stat st;
-    if (stat(path, &st) != 0) {
-        snprintf(rep->error, sizeof rep->error, "cannot open: %s", strerror(errno));
-        return -1;
-    }
-    if (S_ISDIR(st.st_mode)) {
-        snprintf(rep->error, sizeof rep->error, "is a folder, not a photo");
-        return -1;
-    }
-    if (!S_ISREG(st.st_mode)) {
-        snprintf(rep->error, sizeof rep->error, "not a regular file");
-        return -1;
-    }
-    if (st.st_size == 0) {
-        snprintf(rep->error, sizeof rep->error, "empty file");
-        return -1;
-    }
-    if (access(path, R_OK) != 0) {
-        snprintf(rep->error, sizeof rep->error, "cannot read: %s", strerror(errno));
-        return -1;
-    }
-    int w, h;
-    char err[400];
-    if (read_image_quietly(path, NULL, 1, &w, &h, err, sizeof err) != 0) {
-        snprintf(rep->error, sizeof rep->error, "not a readable image (%s)", err);
-        return -1;
-    }
-    if (w < MIN_SIDE_PX || h < MIN_SIDE_PX) {
-        snprintf(rep->error, sizeof rep->error, "image too small (%dx%d; at least %dx%d needed)", w, h, MIN_SIDE_PX,
-                 MIN_SIDE_PX);
-        return -1;
-    }
-    if ((double)w * h > MAX_MEGAPIXELS * 1e6) {
-        snprintf(rep->error, sizeof rep->error, "image too large (%dx%d; at most %.0f megapixels)", w, h,
-                 MAX_MEGAPIXELS);
-        return -1;
-    }
-    return 0;
-}
-
-static int fail(report *rep, int code, const char *fmt, const char *what)
-{
+    reconstruction r;
+    int code = reconstruct_photo(rep->photo, &o->pipeline, &r, rep->error, sizeof rep->error);
+    if (code == 0)
+        code = reconstruct_write(&r, rep->photo, rep->out, &o->pipeline, rep->error, sizeof rep->error);
     rep->exit_code = code;
-    snprintf(rep->error, sizeof rep->error, fmt, what);
-    return -1;
-}
-
-/* The meshes: model.* at --segments, then model_N.* for each --lod. Adds the
- * written file names to files[]. */
-static int write_meshes(const options *o, const bspline_t *curve, const double *u, int n_u, const char *tmp,
-                        report *rep, const char **files, int *n_files, char names[][32])
-{
-    unsigned caps = MESH_CAP_BASE | (o->mouth_cap ? MESH_CAP_MOUTH : 0u);
-    char path[PATH_MAX + 64], err[400];
-    for (int k = -1; k < o->n_lods; k++) {
-        int segments = k < 0 ? o->segments : o->lods[k];
-        mesh_t m;
-        double t0 = now_seconds();
-        if (mesh_revolve(curve, u, n_u, 1.0, segments, caps, &m) != 0)
-            return fail(rep, 1, "%s", "cannot build the mesh (out of memory?)");
-        if (k < 0)
-            rep->ms_mesh = ms_since(t0);
-        mesh_stats *st = k < 0 ? &rep->mesh : &rep->lods[k];
-        *st = (mesh_stats){segments, m.n_verts, m.n_tris};
-        char stem[24];
-        if (k < 0)
-            snprintf(stem, sizeof stem, "model");
-        else
-            snprintf(stem, sizeof stem, "model_%d", segments);
-        t0 = now_seconds();
-        int rc = 0;
-        for (int f = 0; f < 2 && rc == 0; f++) {
-            char *name = names[*n_files];
-            snprintf(name, 32, "%s.%s", stem, f ? "ply" : "obj");
-            snprintf(path, sizeof path, "%s/%s", tmp, name);
-            rc = f ? mesh_write_ply(path, &m, err, sizeof err) : mesh_write_obj(path, &m, "model.mtl", err, sizeof err);
-            if (rc == 0) {
-                /* A LOD equal to an earlier one writes the same names once. */
-                int dup = 0;
-                for (int i = 0; i < *n_files; i++)
-                    dup |= !strcmp(files[i], name);
-                if (!dup)
-                    files[(*n_files)++] = name;
-            }
-        }
-        rep->ms_write += ms_since(t0);
-        mesh_free(&m);
-        if (rc != 0)
-            return fail(rep, 1, "cannot write the mesh: %s", err);
+    if (code == 0) {
+        const recon_result *x = &r.extract;
+        rep->width = r.photo.width;
+        rep->height = r.photo.height;
+        rep->tilt_deg = x->tilt_deg;
+        rep->side = x->side_used == RECON_SIDE_LEFT ? "left" : "right";
+        rep->threshold_used = x->threshold_used;
+        rep->dropped_objects = x->dropped_objects;
+        rep->holes_filled = x->holes_filled;
+        rep->contour_points = x->n_contour;
+        rep->approx_points = x->n_approx;
+        rep->polyline_points = x->n_polyline;
+        rep->control_points = r.curve.n_ctrl;
+        rep->domains = r.n_domains;
+        rep->err_curve_to_polyline = r.err_curve_to_polyline;
+        rep->err_polyline_to_curve = r.err_polyline_to_curve;
+        rep->mesh = r.mesh;
+        memcpy(rep->lods, r.lods, sizeof rep->lods);
+        rep->ms = r.ms;
     }
-    return 0;
-}
-
-static void fill_profile(profile_t *p, const char *photo, const recon_result *res, const bspline_t *curve,
-                         double *domains, int n_domains, const report *rep)
-{
-    memset(p, 0, sizeof *p);
-    snprintf(p->source_path, sizeof p->source_path, "%s", photo);
-    p->source_width = rep->width;
-    p->source_height = rep->height;
-    p->axis_origin = res->axis_origin;
-    p->axis_direction = res->axis_direction;
-    p->tilt_deg = res->tilt_deg;
-    memcpy(p->corners, res->corners, sizeof p->corners);
-    snprintf(p->side, sizeof p->side, "%s", rep->side);
-    p->n_polyline = res->n_polyline;
-    p->polyline = res->polyline;
-    p->curve = *curve;
-    p->n_domains = n_domains;
-    p->domains = domains;
-    p->err_curve_to_polyline = rep->err_curve_to_polyline;
-    p->err_polyline_to_curve = rep->err_polyline_to_curve;
-    p->contour_points = rep->contour_points;
-    p->ms_image_processing = rep->ms_image;
-    p->ms_bspline = rep->ms_bspline + rep->ms_domains;
-    p->ms_texture = rep->ms_texture;
-    p->ms_mesh = rep->ms_mesh;
-}
-
-/* Runs the whole pipeline for one photo, writing into the empty folder tmp.
- * Returns 0, or -1 with rep->exit_code and rep->error set. */
-static int run_pipeline(const options *o, const char *photo, const char *tmp, report *rep)
-{
-    double t_start = now_seconds();
-    image_t img = {0};
-    recon_result res = {0};
-    bspline_t curve = {0};
-    double *domains = NULL;
-    int n_domains = 0;
-    recon_texture_t tex = {0};
-    uint8_t *overlay = NULL;
-    char err[400], path[PATH_MAX + 64];
-    const char *files[8 + 2 * MAX_LODS];
-    char mesh_names[2 + 2 * MAX_LODS][32];
-    int n_files = 0, status = -1;
-
-    if (check_file(photo, rep) != 0) {
-        rep->exit_code = 2;
-        return -1;
-    }
-    double t0 = now_seconds();
-    if (read_image_quietly(photo, &img, 0, NULL, NULL, err, sizeof err) != 0) {
-        fail(rep, 2, "cannot decode the image (%s)", err);
-        goto done;
-    }
-    rep->ms_decode = ms_since(t0);
-    rep->width = img.width;
-    rep->height = img.height;
-
-    recon_status rs = recon_extract(&img, &o->recon, &res, err, sizeof err);
-    if (rs != RECON_OK) {
-        fail(rep, rs == RECON_ERR_INTERNAL ? 1 : 2, "%s", err);
-        goto done;
-    }
-    rep->ms_image = res.ms_image_processing;
-    rep->tilt_deg = res.tilt_deg;
-    rep->side = res.side_used == RECON_SIDE_LEFT ? "left" : "right";
-    rep->threshold_used = res.threshold_used;
-    rep->dropped_objects = res.dropped_objects;
-    rep->holes_filled = res.holes_filled;
-    rep->contour_points = res.n_contour;
-    rep->approx_points = res.n_approx;
-    rep->polyline_points = res.n_polyline;
-
-    t0 = now_seconds();
-    bspline_fit_info info;
-    if (bspline_fit_profile(res.polyline, res.n_polyline, o->smoothing_px, &curve, &info) != 0) {
-        fail(rep, 2, "%s", "the profile is too short or degenerate to fit a curve");
-        goto done;
-    }
-    rep->ms_bspline = ms_since(t0);
-    rep->control_points = curve.n_ctrl;
-    t0 = now_seconds();
-    if (curve_domains_by_curvature_variation(&curve, DOMAIN_TOL_PX, DOMAIN_TOL_NORMAL_DEG, &domains, &n_domains) != 0) {
-        fail(rep, 1, "%s", "cannot split the curve into domains");
-        goto done;
-    }
-    rep->ms_domains = ms_since(t0);
-    rep->domains = n_domains;
-    t0 = now_seconds();
-    curve_polyline_hausdorff(&curve, res.polyline, res.n_polyline, &rep->err_curve_to_polyline,
-                             &rep->err_polyline_to_curve);
-    rep->ms_hausdorff = ms_since(t0);
-
-    t0 = now_seconds();
-    if (recon_texture_from_photo(&img, &res, &tex, err, sizeof err) != 0) {
-        fail(rep, 2, "%s", err);
-        goto done;
-    }
-    rep->ms_texture = ms_since(t0);
-
-    t0 = now_seconds();
-    snprintf(path, sizeof path, "%s/texture.png", tmp);
-    if (image_write_u8(path, tex.width, tex.height, 3, tex.rgb, err, sizeof err) != 0) {
-        fail(rep, 1, "cannot write texture.png: %s", err);
-        goto done;
-    }
-    files[n_files++] = "texture.png";
-    snprintf(path, sizeof path, "%s/model.mtl", tmp);
-    if (mesh_write_mtl(path, "texture.png", err, sizeof err) != 0) {
-        fail(rep, 1, "cannot write model.mtl: %s", err);
-        goto done;
-    }
-    files[n_files++] = "model.mtl";
-    rep->ms_write = ms_since(t0);
-    if (write_meshes(o, &curve, domains, n_domains, tmp, rep, files, &n_files, mesh_names) != 0)
-        goto done;
-    t0 = now_seconds();
-    overlay = overlay_render(&img, &res, &curve);
-    if (!overlay) {
-        fail(rep, 1, "%s", "out of memory drawing the overlay");
-        goto done;
-    }
-    rep->ms_overlay = ms_since(t0);
-    t0 = now_seconds();
-    snprintf(path, sizeof path, "%s/overlay.png", tmp);
-    if (image_write_u8(path, img.width, img.height, 3, overlay, err, sizeof err) != 0) {
-        fail(rep, 1, "cannot write overlay.png: %s", err);
-        goto done;
-    }
-    files[n_files++] = "overlay.png";
-    profile_t prof;
-    fill_profile(&prof, photo, &res, &curve, domains, n_domains, rep);
-    snprintf(path, sizeof path, "%s/profile.json", tmp);
-    if (profile_write_json(path, &prof, err, sizeof err) != 0) {
-        fail(rep, 1, "cannot write profile.json: %s", err);
-        goto done;
-    }
-    files[n_files++] = "profile.json";
-    rep->ms_write += ms_since(t0);
-    if (publish(tmp, rep->out, files, n_files) != 0) {
-        snprintf(rep->error, sizeof rep->error, "cannot move the outputs into %.512s: %s", rep->out, strerror(errno));
-        rep->exit_code = 1;
-        goto done;
-    }
-    rep->ms_total = ms_since(t_start);
-    status = 0;
-done:
-    free(overlay);
-    recon_texture_free(&tex);
-    free(domains);
-    bspline_free(&curve);
-    recon_result_free(&res);
-    image_free(&img);
-    return status;
-}
-
-/* One photo: a fresh temporary folder inside DIR, the pipeline, and on
- * failure nothing left behind. */
-static void reconstruct_photo(const options *o, int index, report *rep)
-{
-    char tmp[PATH_MAX];
-    snprintf(tmp, sizeof tmp, "%s/.celadon-tmp-%ld-%d", o->out_dir, (long)getpid(), index);
-    if (mkdir(tmp, 0777) != 0) {
-        rep->exit_code = 1;
-        snprintf(rep->error, sizeof rep->error, "cannot create a folder in %.512s: %s", o->out_dir, strerror(errno));
-        return;
-    }
-    if (run_pipeline(o, rep->photo, tmp, rep) != 0)
-        remove_tree(tmp);
+    reconstruction_free(&r);
 }
 
 static void print_summary(const report *r)
@@ -602,11 +219,11 @@ static void print_summary(const report *r)
             r->photo, r->out, r->tilt_deg, r->side, r->threshold_used, r->dropped_objects,
             r->dropped_objects == 1 ? "" : "s", r->contour_points, r->control_points, r->domains,
             r->err_curve_to_polyline, r->err_polyline_to_curve, r->mesh.vertices, r->mesh.faces, r->mesh.segments,
-            r->ms_total, r->ms_decode, r->ms_image, r->ms_bspline, r->ms_domains, r->ms_hausdorff, r->ms_texture,
-            r->ms_mesh, r->ms_overlay, r->ms_write);
+            r->ms.total, r->ms.decode, r->ms.image, r->ms.bspline, r->ms.domains, r->ms.hausdorff, r->ms.texture,
+            r->ms.mesh, r->ms.overlay, r->ms.write);
 }
 
-static json_t *mesh_json(const mesh_stats *m)
+static json_t *mesh_json(const reconstruct_mesh_stats *m)
 {
     return json_pack("{s:i, s:i, s:i}", "segments", m->segments, "vertices", m->vertices, "faces", m->faces);
 }
@@ -619,12 +236,12 @@ static json_t *report_json(const options *o, const report *r)
         return json_pack("{s:s, s:b, s:i, s:s}", "photo", r->photo, "ok", 0, "exit_code", r->exit_code, "error",
                          r->error);
     json_t *lods = json_array();
-    for (int k = 0; k < o->n_lods; k++)
+    for (int k = 0; k < o->pipeline.n_lods; k++)
         json_array_append_new(lods, mesh_json(&r->lods[k]));
     json_t *timings = json_pack(
-        "{s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f}", "decode", r->ms_decode, "image_processing", r->ms_image,
-        "bspline", r->ms_bspline, "domains", r->ms_domains, "hausdorff", r->ms_hausdorff, "texture", r->ms_texture,
-        "mesh", r->ms_mesh, "overlay", r->ms_overlay, "write", r->ms_write, "total", r->ms_total);
+        "{s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f}", "decode", r->ms.decode, "image_processing", r->ms.image,
+        "bspline", r->ms.bspline, "domains", r->ms.domains, "hausdorff", r->ms.hausdorff, "texture", r->ms.texture,
+        "mesh", r->ms.mesh, "overlay", r->ms.overlay, "write", r->ms.write, "total", r->ms.total);
     json_t *errors = json_pack("{s:f, s:f}", "curve_to_polyline", r->err_curve_to_polyline, "polyline_to_curve",
                                r->err_polyline_to_curve);
     return json_pack("{s:s, s:b, s:s, s:i, s:i, s:f, s:s, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, "
@@ -686,7 +303,7 @@ int cmd_reconstruct(int argc, char **argv)
         free(reps);
         return 2;
     }
-    if (make_dirs(o.out_dir, made, 16, &n_made) != 0) {
+    if (folder_make(o.out_dir, made, 16, &n_made) != 0) {
         fprintf(stderr, "celadon: %s: cannot create the output folder: %s\n", o.out_dir, strerror(errno));
         free(reps);
         return 2;
@@ -696,7 +313,7 @@ int cmd_reconstruct(int argc, char **argv)
     omp_set_max_active_levels(1);
 #pragma omp parallel for schedule(dynamic, 1) if (n > 1)
     for (int i = 0; i < n; i++)
-        reconstruct_photo(&o, i, &reps[i]);
+        reconstruct_one(&o, &reps[i]);
 
     int worst = 0, n_ok = 0;
     json_t *all = o.json ? json_array() : NULL;

@@ -51,7 +51,7 @@ static void on_sigint(int sig)
 int cmd_render(int argc, char **argv)
 {
     const char *scene_path = NULL, *out = NULL;
-    scene_build_options bo = scene_build_defaults();
+    scene_options bo = scene_options_default();
     render_options ro = {0, 0, 1};
     scene_define defs[MAX_DEFINES];
     int ndefs = 0;
@@ -137,7 +137,7 @@ int cmd_render(int argc, char **argv)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, &old);
     char err[2048];
-    scene_t *scene = scene_load(scene_path, defs, ndefs, &bo, err, sizeof err);
+    scene_t *scene = scene_create_from_file(scene_path, defs, ndefs, &bo, err, sizeof err);
     for (int i = 0; i < ndefs; i++)
         free((char *)defs[i].name);
     if (!scene) {
@@ -148,7 +148,7 @@ int cmd_render(int argc, char **argv)
     render_stats st;
     rc = render_scene(scene, &ro, &film, &st, err, sizeof err) == 0 ? 0 : 1;
     sigaction(SIGINT, &old, NULL);
-    scene_free(scene);
+    scene_destroy(scene);
     if (rc != 0) {
         fprintf(stderr, "celadon: %s\n", err);
         return rc;

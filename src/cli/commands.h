@@ -13,5 +13,6 @@ int cmd_mesh(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_crosscheck(int argc, char **argv);
 int cmd_reconstruct(int argc, char **argv);
+int cmd_museum(int argc, char **argv);
 
 #endif

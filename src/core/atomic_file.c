@@ -1,4 +1,4 @@
-#include "celadon/atomic_file.h"
+#include "core/atomic_file.h"
 
 #include <stdatomic.h>
 #include <stdio.h>

@@ -1,10 +1,11 @@
-#include "celadon/json_file.h"
+#include "core/json_file.h"
 
 #include <errno.h>
+#include <jansson.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "celadon/atomic_file.h"
+#include "core/atomic_file.h"
 
 int json_write_file_atomic(const char *path, const json_t *root, size_t flags, char *err, size_t errlen)
 {

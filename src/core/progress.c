@@ -1,4 +1,4 @@
-#include "celadon/progress.h"
+#include "core/progress.h"
 
 #include <stdio.h>
 #include <time.h>

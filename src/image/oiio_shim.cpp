@@ -1,7 +1,7 @@
 // The one C++ file: OpenImageIO behind the extern "C" API of celadon/image.h.
 extern "C" {
 #include "celadon/image.h"
-#include "celadon/atomic_file.h"
+#include "core/core.h"
 }
 
 #include <OpenImageIO/imagebuf.h>

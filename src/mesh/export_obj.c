@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "celadon/atomic_file.h"
+#include "core/core.h"
 #include "celadon/mesh.h"
 #include "mesh/format_float.h"
 

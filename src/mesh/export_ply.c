@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "celadon/atomic_file.h"
+#include "core/core.h"
 #include "celadon/mesh.h"
 
 static unsigned char *put_u32le(unsigned char *o, uint32_t v)

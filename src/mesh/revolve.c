@@ -33,7 +33,7 @@ static vec2 profile_normal(const bspline_t *c, double u, vec2 d1)
     return v2(d1.y / len, -d1.x / len);
 }
 
-/* Texture u of DESIGN.md: 1 - phi/pi on [0, pi], phi/pi - 1 on [pi, 2 pi]. */
+/* Texture u (docs/conventions.md): 1 - phi/pi on [0, pi], phi/pi - 1 on [pi, 2 pi]. */
 static double texture_u(double phi) { return phi <= M_PI ? 1.0 - phi / M_PI : phi / M_PI - 1.0; }
 
 static int rings_valid(const bspline_t *c, const double *u, int n)

@@ -1,5 +1,6 @@
-/* profile.json (DESIGN.md contract) through jansson: writing, and reading
- * with a one-line reason for anything malformed. */
+/* profile.json (its fields: docs/user-guide.md#profilejson; its frames:
+ * docs/conventions.md) through jansson: writing, and reading with a one-line
+ * reason for anything malformed. */
 #include "celadon/profile.h"
 
 #include <errno.h>
@@ -10,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "celadon/json_file.h"
+#include "core/core.h"
 
 enum { PROFILE_VERSION = 1 };
 

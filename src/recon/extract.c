@@ -8,7 +8,7 @@
 
 #include <gsl/gsl_statistics_double.h>
 
-#include "celadon/progress.h"
+#include "core/core.h"
 #include "recon/recon_internal.h"
 
 static const char *CORNER_NAME[CORNER_COUNT] = {"rim left", "rim right", "base left", "base right"};

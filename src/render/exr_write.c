@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "celadon/atomic_file.h"
+#include "core/core.h"
 #include "celadon/film.h"
 
 /* The library reports details through a callback; keep the last one. */

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "celadon/color.h"
 #include "celadon/image.h"
 
 static char *dup_name(const char *prefix, const char *suffix)
@@ -96,8 +97,7 @@ uint8_t film_srgb8(double v)
         return 0;
     if (v >= 1)
         return 255;
-    double e = v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
-    return (uint8_t)lrint(e * 255.0);
+    return (uint8_t)lrint(linear_to_srgb(v) * 255.0);
 }
 
 void film_develop_srgb8(const film_t *f, uint8_t *out)

@@ -1,15 +1,16 @@
 /* The render loop: passes of samples over 16x16 tiles shared out to OpenMP
- * threads, each pixel sample with its own RNG stream, a progress bar, and a
- * stop request (SIGINT) honoured after the sample in progress. */
+ * threads, each pixel sample with its own stream of the sampler, a progress
+ * bar, and a stop request (SIGINT) honoured after the sample in progress. */
 #include <omp.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "celadon/progress.h"
 #include "celadon/render.h"
+#include "core/core.h"
+#include "render/scene_impl.h"
 
-enum { TILE = 16, AOV_MAX = 7 };
+enum { TILE = 16 };
 
 static volatile sig_atomic_t stop_requested;
 
@@ -42,11 +43,11 @@ static int pack_values(rgb L, const double *aov, unsigned mask, double *out)
     int n = 0;
     out[n++] = L.r, out[n++] = L.g, out[n++] = L.b;
     if (mask & RENDER_AOV_DEPTH)
-        out[n++] = aov[0];
-    if (mask & RENDER_AOV_NORMAL)
-        out[n++] = aov[1], out[n++] = aov[2], out[n++] = aov[3];
-    if (mask & RENDER_AOV_ALBEDO)
-        out[n++] = aov[4], out[n++] = aov[5], out[n++] = aov[6];
+        out[n++] = aov[INTEGRATOR_AOV_DEPTH];
+    for (int i = 0; i < 3 && (mask & RENDER_AOV_NORMAL); i++)
+        out[n++] = aov[INTEGRATOR_AOV_NORMAL + i];
+    for (int i = 0; i < 3 && (mask & RENDER_AOV_ALBEDO); i++)
+        out[n++] = aov[INTEGRATOR_AOV_ALBEDO + i];
     return n;
 }
 
@@ -54,18 +55,21 @@ static int pack_values(rgb L, const double *aov, unsigned mask, double *out)
  * the sample in progress. Returns the number of samples taken. */
 static uint64_t render_tile(const scene_t *s, film_t *film, unsigned aovs, int tx, int ty, int s0, int s1)
 {
-    const camera_t *cam = scene_camera(s);
-    uint64_t seed = scene_seed(s), n = 0;
-    double aov[AOV_MAX], vals[3 + AOV_MAX];
+    const camera_t *cam = &s->camera;
+    integrator_scene sc = {&s->shapes, &s->emitters};
+    uint64_t n = 0;
+    double aov[INTEGRATOR_AOV_COUNT], vals[3 + INTEGRATOR_AOV_COUNT];
     for (int y = ty; y < ty + TILE && y < cam->height; y++)
         for (int x = tx; x < tx + TILE && x < cam->width; x++)
             for (int k = s0; k < s1; k++) {
                 if (stop_requested)
                     return n;
-                rng_t rng = rng_for_sample(seed, (uint32_t)x, (uint32_t)y, (uint32_t)k);
-                double sx = rng_next_double(&rng), sy = rng_next_double(&rng);
+                sampler_stream smp;
+                sampler_start(&s->sampler, &smp, (uint32_t)x, (uint32_t)y, (uint32_t)k);
+                /* The film position: two 1D numbers, x first. */
+                double sx = sampler_next_1d(&smp), sy = sampler_next_1d(&smp);
                 camera_ray_t cr = camera_ray(cam, x, y, sx, sy);
-                rgb L = integrator_path_li(s, &cr.ray, cr.tmin, cr.tmax, &rng, aovs ? aov : NULL);
+                rgb L = integrator_li(s->integrator, &sc, &cr.ray, cr.tmin, cr.tmax, &smp, aovs ? aov : NULL);
                 pack_values(L, aov, aovs, vals);
                 film_add(film, x, y, vals, 1.0);
                 n++;
@@ -76,7 +80,7 @@ static uint64_t render_tile(const scene_t *s, film_t *film, unsigned aovs, int t
 int render_scene(const scene_t *s, const render_options *opt, film_t *film, render_stats *stats, char *err,
                  size_t errlen)
 {
-    const camera_t *cam = scene_camera(s);
+    const camera_t *cam = &s->camera;
     film_aov list[3];
     int naov = 0;
     if (opt->aovs & RENDER_AOV_DEPTH)

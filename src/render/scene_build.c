@@ -1,427 +1,214 @@
-/* The description tree (scene_xml.h) turned into a renderable scene:
- * sensor, film size, sampler and integrator settings, shapes with their BSDFs
- * and area emitters, and the other emitters. Every defect is reported as
- * "file:line: problem" of the object it concerns. */
+/* The description tree (scene_xml.h) turned into a renderable scene through
+ * the kinds' registration tables: integrator, sensor with its film and
+ * sampler, textures and BSDFs, shapes with their area emitters, and the
+ * other emitters. Every defect is reported as "file:line: problem" of the
+ * object it concerns. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "render/scene_impl.h"
 
-#define FAIL(o, ...)                                                         \
-    do {                                                                     \
-        char msg_[1024];                                                      \
-        snprintf(msg_, sizeof msg_, __VA_ARGS__);                            \
-        snprintf(err, errlen, "%s:%d: %s", (o)->file, (o)->line, msg_);      \
-        return -1;                                                           \
-    } while (0)
-
-scene_build_options scene_build_defaults(void)
+scene_options scene_options_default(void)
 {
-    return (scene_build_options){0, 0, 0, -1, 0};
+    return (scene_options){0, 0, 0, -1, 0};
 }
 
-static rgb to_rgb(scene_rgb c) { return rgb_make(c.r, c.g, c.b); }
-
-static int build_sensor(struct scene *s, scene_obj *root, const scene_build_options *opt, char *err, size_t errlen)
+/* An object of class cls and plugin type with no parameters, located at at:
+ * what the scene gets where it names none (Mitsuba's defaults). */
+static scene_obj implicit_object(scene_class cls, const char *type, const scene_obj *at)
 {
-    scene_obj *sensor = scene_obj_child(root, SCENE_SENSOR);
-    if (!sensor)
-        FAIL(root, "the scene has no <sensor>");
-    scene_obj *film = scene_obj_child(sensor, SCENE_FILM);
-    int w = 768, h = 576;
-    if (film) {
-        w = (int)scene_obj_int(film, "width", w);
-        h = (int)scene_obj_int(film, "height", h);
-        /* Accepted for compatibility, no effect (docs/scene-format.md). */
-        static const char *const inert[] = {"pixel_format", "component_format", "file_format", "sample_border"};
-        for (size_t i = 0; i < sizeof inert / sizeof inert[0]; i++)
-            scene_obj_prop(film, inert[i]);
-        scene_obj *rf = scene_obj_child(film, SCENE_RFILTER);
-        if (rf)
-            scene_obj_prop(rf, "stddev");
-    }
-    if (opt->width > 0)
-        w = opt->width;
-    if (opt->height > 0)
-        h = opt->height;
-    if (w < 1 || h < 1 || w > 65536 || h > 65536)
-        FAIL(film ? film : sensor, "film size %dx%d is out of range", w, h);
-    scene_obj_prop(sensor, "focus_distance");
-    char why[512];
-    if (camera_from_sensor(&s->camera, sensor, w, h, why, sizeof why) != 0) {
-        snprintf(err, errlen, "%s", why);
-        return -1;
-    }
-    scene_obj *sampler = scene_obj_child(sensor, SCENE_SAMPLER);
-    long long spp = sampler ? scene_obj_int(sampler, "sample_count", 4) : 4;
-    long long seed = sampler ? scene_obj_int(sampler, "seed", 0) : 0;
-    if (opt->spp > 0)
-        spp = opt->spp;
-    if (opt->seed >= 0)
-        seed = opt->seed;
-    if (spp < 1 || spp > (1ll << 24))
-        FAIL(sampler ? sampler : sensor, "sample_count %lld is out of range", spp);
-    s->spp = (int)spp;
-    s->seed = (uint64_t)seed;
-    return 0;
+    return (scene_obj){.cls = cls, .type = (char *)type, .file = at->file, .line = at->line};
 }
 
 static int build_integrator(struct scene *s, scene_obj *root, char *err, size_t errlen)
 {
-    scene_obj *in = scene_obj_child(root, SCENE_INTEGRATOR);
-    s->max_depth = -1, s->rr_depth = 5, s->hide_emitters = false;
-    if (!in)
-        return 0;
-    long long md = scene_obj_int(in, "max_depth", -1), rr = scene_obj_int(in, "rr_depth", 5);
-    if (md < -1 || md > 1000000 || rr < 1 || rr > 1000000)
-        FAIL(in, "max_depth must be -1 or >= 0 and rr_depth >= 1");
-    s->max_depth = (int)md;
-    s->rr_depth = (int)rr;
-    s->hide_emitters = scene_obj_bool(in, "hide_emitters", false);
+    scene_obj implicit = implicit_object(SCENE_INTEGRATOR, "path", root);
+    scene_obj *o = scene_obj_child(root, SCENE_INTEGRATOR);
+    if (!o)
+        o = &implicit;
+    s->integrator = integrator_plugin_find(o->type)->create(o, err, errlen);
+    return s->integrator ? 0 : -1;
+}
+
+/* The film's size, overridden by the options, within limits. */
+static int build_film(scene_obj *sensor, const scene_options *opt, film_settings *fs, char *err, size_t errlen)
+{
+    scene_obj implicit = implicit_object(SCENE_FILM, "hdrfilm", sensor);
+    scene_obj *film = scene_obj_child(sensor, SCENE_FILM);
+    if (!film)
+        film = &implicit;
+    if (film_plugin_find(film->type)->create(film, fs, err, errlen) != 0)
+        return -1;
+    if (opt->width > 0)
+        fs->width = opt->width;
+    if (opt->height > 0)
+        fs->height = opt->height;
+    if (fs->width < 1 || fs->height < 1 || fs->width > 65536 || fs->height > 65536)
+        return scene_obj_error(film, err, errlen, "film size %dx%d is out of range", fs->width, fs->height);
     return 0;
 }
 
-/* Object-to-world of Mitsuba's parametrised analytic shapes. */
-static int analytic_placement(scene_obj *o, const transform4 *to_world, transform4 *out, char *err, size_t errlen)
+/* The sampler, its sample count and seed overridden by the options. */
+static int build_sampler(struct scene *s, scene_obj *sensor, const scene_options *opt, char *err, size_t errlen)
 {
-    transform4 local = transform_identity();
-    if (!strcmp(o->type, "sphere")) {
-        double r = scene_obj_float(o, "radius", 1.0);
-        if (!(r > 0.0))
-            FAIL(o, "sphere radius must be > 0");
-        transform4 t = transform_translate(scene_obj_point(o, "center", v3(0, 0, 0)));
-        transform4 sc = transform_scale(v3(r, r, r));
-        local = transform_compose(&t, &sc);
-    } else if (!strcmp(o->type, "cylinder")) {
-        vec3 p0 = scene_obj_point(o, "p0", v3(0, 0, 0)), p1 = scene_obj_point(o, "p1", v3(0, 0, 1));
-        double r = scene_obj_float(o, "radius", 1.0), len = v3_len(v3_sub(p1, p0));
-        if (!(r > 0.0) || !(len > 0.0))
-            FAIL(o, "cylinder needs radius > 0 and p0 != p1");
-        frame3 f = frame3_from_normal(v3_scale(v3_sub(p1, p0), 1.0 / len));
-        const double rows[16] = {r * f.s.x, r * f.t.x, len * f.n.x, p0.x, r * f.s.y, r * f.t.y, len * f.n.y, p0.y,
-                                 r * f.s.z, r * f.t.z, len * f.n.z, p0.z, 0, 0, 0, 1};
-        if (transform_from_rows(rows, &local) != 0)
-            FAIL(o, "degenerate cylinder");
-    }
-    *out = transform_compose(to_world, &local);
+    scene_obj implicit = implicit_object(SCENE_SAMPLER, "independent", sensor);
+    scene_obj *o = scene_obj_child(sensor, SCENE_SAMPLER);
+    if (!o)
+        o = &implicit;
+    if (sampler_plugin_find(o->type)->create(o, &s->sampler, err, errlen) != 0)
+        return -1;
+    if (opt->spp > 0)
+        s->sampler.sample_count = opt->spp;
+    if (opt->seed >= 0)
+        s->sampler.seed = (uint64_t)opt->seed;
+    if (s->sampler.sample_count < 1 || s->sampler.sample_count > (1ll << 24))
+        return scene_obj_error(o, err, errlen, "sample_count %lld is out of range", s->sampler.sample_count);
     return 0;
 }
 
-static double det3(const transform4 *t)
+static int build_sensor(struct scene *s, scene_obj *root, const scene_options *opt, char *err, size_t errlen)
 {
-    const double(*m)[4] = t->m;
-    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    scene_obj *sensor = scene_obj_child(root, SCENE_SENSOR);
+    if (!sensor)
+        return scene_obj_error(root, err, errlen, "the scene has no <sensor>");
+    film_settings fs;
+    if (build_film(sensor, opt, &fs, err, errlen) != 0 ||
+        sensor_plugin_find(sensor->type)->create(sensor, fs.width, fs.height, &s->camera, err, errlen) != 0)
+        return -1;
+    return build_sampler(s, sensor, opt, err, errlen);
 }
 
-/* The geometry of one shape; sh->mesh or sh->ops/data filled. */
-static int build_geometry(scene_obj *o, shape_t *sh, const scene_build_options *opt, char *err, size_t errlen)
+/* Textures and BSDFs at the top level are built even when unreferenced, so
+ * their parameters are checked as Mitsuba would. */
+static int build_shared(struct scene *s, scene_obj *root, char *err, size_t errlen)
 {
-    transform4 to_world = scene_obj_transform(o, "to_world");
-    char why[600] = "";
-    int rc = 0;
-    sh->is_mesh = true;
-    if (!strcmp(o->type, "obj") || !strcmp(o->type, "ply")) {
-        const char *file = scene_obj_string(o, "filename", NULL);
-        bool face_normals = scene_obj_bool(o, "face_normals", false);
-        rc = o->type[0] == 'o' ? shape_obj_read(file, scene_obj_bool(o, "flip_tex_coords", true), &sh->mesh, why,
-                                                sizeof why)
-                               : shape_ply_read(file, &sh->mesh, why, sizeof why);
-        if (rc == 0 && face_normals) {
-            free(sh->mesh.nrm);
-            sh->mesh.nrm = NULL;
-        } else if (rc == 0 && !sh->mesh.nrm && shape_mesh_smooth_normals(&sh->mesh) != 0) {
-            rc = -1, snprintf(why, sizeof why, "out of memory");
-        }
-    } else if (!strcmp(o->type, "rectangle") || !strcmp(o->type, "cube")) {
-        rc = o->type[0] == 'r' ? shape_rectangle_mesh(&sh->mesh) : shape_cube_mesh(&sh->mesh);
-        if (rc != 0)
-            snprintf(why, sizeof why, "out of memory");
-    } else if (!strcmp(o->type, "sor")) {
-        const char *file = scene_obj_string(o, "filename", NULL);
-        double height = scene_obj_float(o, "height", 1.0);
-        bool caps = scene_obj_bool(o, "caps", true);
-        if (!(height > 0.0))
-            FAIL(o, "sor height must be > 0");
-        if (opt->mesh_segments > 0) {
-            rc = shape_sor_mesh(file, height, caps, opt->mesh_segments, &sh->mesh, why, sizeof why);
-        } else {
-            sh->is_mesh = false;
-            sh->ops = &shape_sor_ops;
-            sh->data = shape_sor_create(file, height, caps, why, sizeof why);
-            rc = sh->data ? 0 : -1;
-        }
-    } else {
-        sh->is_mesh = false;
-        sh->ops = !strcmp(o->type, "sphere") ? &shape_sphere_ops
-                  : !strcmp(o->type, "disk") ? &shape_disk_ops
-                  : !strcmp(o->type, "cylinder") ? &shape_cylinder_ops
-                                                 : NULL;
-        if (!sh->ops)
-            FAIL(o, "unsupported shape '%s'", o->type);
-        if (analytic_placement(o, &to_world, &to_world, err, errlen) != 0)
+    for (int i = 0; i < root->nchildren; i++) {
+        scene_obj *o = root->children[i];
+        if (o->cls == SCENE_TEXTURE && !texture_set_get(&s->textures, o, err, errlen))
             return -1;
     }
-    if (rc != 0)
-        FAIL(o, "<shape type=\"%s\">: %s", o->type, why);
-    if (sh->is_mesh) {
-        shape_mesh_transform(&sh->mesh, &to_world);
-    } else {
-        sh->to_world = to_world;
-        sh->det = fabs(det3(&to_world));
+    for (int i = 0; i < root->nchildren; i++) {
+        scene_obj *o = root->children[i];
+        if (o->cls == SCENE_BSDF && !bsdf_set_get(&s->bsdfs, o, err, errlen))
+            return -1;
     }
     return 0;
 }
 
-static int add_emitter(struct scene *s, emitter_t e)
+static int add_emitter(struct scene *s, scene_obj *o, emitter_t *e, char *err, size_t errlen)
 {
-    emitter_t *a = realloc(s->emitters, sizeof *a * (size_t)(s->nemitters + 1));
-    if (!a)
-        return -1;
-    s->emitters = a;
-    a[s->nemitters++] = e;
+    if (emitter_list_add(&s->emitters, e) != 0) {
+        emitter_destroy(e);
+        return scene_obj_error(o, err, errlen, "out of memory");
+    }
     return 0;
 }
 
-static int build_shape(struct scene *s, scene_obj *o, const scene_build_options *opt, const bsdf_t **default_bsdf,
-                       char *err, size_t errlen)
+/* The shape of o, its BSDF (Mitsuba's default when it names none) and its
+ * area emitter. */
+static int build_shape(struct scene *s, scene_obj *o, const scene_options *opt, char *err, size_t errlen)
 {
-    shape_t *sh = &s->shapes[s->nshapes];
-    memset(sh, 0, sizeof *sh);
-    sh->emitter = -1;
-    sh->file = o->file;
-    sh->line = o->line;
-    sh->flip_normals = scene_obj_bool(o, "flip_normals", false);
-    if (build_geometry(o, sh, opt, err, errlen) != 0) {
-        shape_free(sh);
+    shape_t *sh = &s->shapes.items[s->shapes.count];
+    shape_options so = {opt->mesh_segments};
+    if (shape_create(o, &so, sh, err, errlen) != 0)
         return -1;
-    }
-    s->nshapes++;
+    s->shapes.count++;
     scene_obj *bo = scene_obj_child(o, SCENE_BSDF);
-    if (bo) {
-        sh->bsdf = scene_build_bsdf(s, bo, err, errlen);
-    } else {
-        if (!*default_bsdf) {
-            bsdf_diffuse_params p = bsdf_diffuse_defaults();
-            char why[256];
-            bsdf_t *b = bsdf_create_diffuse(&p, why, sizeof why);
-            bsdf_t **a = b ? realloc(s->bsdfs, sizeof *a * (size_t)(s->nbsdfs + 1)) : NULL;
-            const scene_obj **k = a ? realloc(s->bsdf_keys, sizeof *k * (size_t)(s->nbsdfs + 1)) : NULL;
-            if (a)
-                s->bsdfs = a;
-            if (!k) {
-                bsdf_free(b);
-                FAIL(o, "out of memory");
-            }
-            s->bsdf_keys = k;
-            k[s->nbsdfs] = NULL;
-            a[s->nbsdfs++] = b;
-            *default_bsdf = b;
-        }
-        sh->bsdf = *default_bsdf;
-    }
+    sh->bsdf = bo ? bsdf_set_get(&s->bsdfs, bo, err, errlen) : bsdf_set_default(&s->bsdfs, o, err, errlen);
     if (!sh->bsdf)
         return -1;
     scene_obj *eo = scene_obj_child(o, SCENE_EMITTER);
-    if (eo) {
-        if (strcmp(eo->type, "area") != 0)
-            FAIL(eo, "only an area emitter can be attached to a shape");
-        emitter_t e = {.kind = EMITTER_AREA, .shape = s->nshapes - 1};
-        scene_obj *tex = scene_obj_texture(eo, "radiance");
-        if (tex && !(e.texture = scene_build_texture(s, tex, err, errlen)))
-            return -1;
-        e.value = to_rgb(scene_obj_rgb(eo, "radiance", (scene_rgb){1, 1, 1}));
-        if (shape_prepare_sampling(sh) != 0)
-            FAIL(o, "an emitting shape must have a nonzero area");
-        sh->emitter = s->nemitters;
-        if (add_emitter(s, e) != 0)
-            FAIL(eo, "out of memory");
-    }
+    if (!eo)
+        return 0;
+    emitter_t *e = emitter_plugin_find(eo->type)->create(eo, sh, &s->textures, err, errlen);
+    if (!e || add_emitter(s, eo, e, err, errlen) != 0)
+        return -1;
+    sh->emitter = e;
     return 0;
 }
 
+/* An emitter outside any shape; at most one environment. */
 static int build_emitter(struct scene *s, scene_obj *o, char *err, size_t errlen)
 {
-    emitter_t e = {.shape = -1};
-    if (!strcmp(o->type, "constant") || !strcmp(o->type, "envmap")) {
-        if (s->env >= 0)
-            FAIL(o, "only one environment emitter (constant or envmap) is supported");
-        if (o->type[0] == 'c') {
-            e.kind = EMITTER_CONSTANT;
-            if (scene_obj_texture(o, "radiance"))
-                FAIL(o, "a textured constant emitter is not supported (use envmap)");
-            e.value = to_rgb(scene_obj_rgb(o, "radiance", (scene_rgb){1, 1, 1}));
-        } else {
-            e.kind = EMITTER_ENVMAP;
-            e.env = calloc(1, sizeof *e.env);
-            if (!e.env)
-                FAIL(o, "out of memory");
-            e.env->scale = scene_obj_float(o, "scale", 1.0);
-            e.env->to_world = scene_obj_transform(o, "to_world");
-            e.env->to_local = transform_inverse(&e.env->to_world);
-            char why[600];
-            if (emitter_envmap_load(e.env, scene_obj_string(o, "filename", NULL), why, sizeof why) != 0) {
-                emitter_free(&e);
-                FAIL(o, "%s", why);
-            }
-        }
-        s->env = s->nemitters;
-    } else if (!strcmp(o->type, "point")) {
-        e.kind = EMITTER_POINT;
-        e.value = to_rgb(scene_obj_rgb(o, "intensity", (scene_rgb){1, 1, 1}));
-        transform4 t = scene_obj_transform(o, "to_world");
-        e.position = scene_obj_point(o, "position", transform_point(&t, v3(0, 0, 0)));
-    } else if (!strcmp(o->type, "directional")) {
-        e.kind = EMITTER_DIRECTIONAL;
-        e.value = to_rgb(scene_obj_rgb(o, "irradiance", (scene_rgb){1, 1, 1}));
-        transform4 t = scene_obj_transform(o, "to_world");
-        e.direction = v3_norm(scene_obj_vector(o, "direction", transform_vector(&t, v3(0, 0, 1))));
-        if (!(v3_len(e.direction) > 0.0))
-            FAIL(o, "directional emitter needs a nonzero direction");
-    } else {
-        FAIL(o, "emitter '%s' must be attached to a shape or is not supported here", o->type);
-    }
-    if (add_emitter(s, e) != 0) {
-        emitter_free(&e);
-        FAIL(o, "out of memory");
-    }
+    const emitter_plugin *plugin = emitter_plugin_find(o->type);
+    bool env = (plugin->flags & EMITTER_ENVIRONMENT) != 0;
+    if (env && s->emitters.env)
+        return scene_obj_error(o, err, errlen, "only one environment emitter (constant or envmap) is supported");
+    emitter_t *e = plugin->create(o, NULL, &s->textures, err, errlen);
+    if (!e || add_emitter(s, o, e, err, errlen) != 0)
+        return -1;
+    if (env)
+        s->emitters.env = e;
     return 0;
 }
 
-static int build_all(struct scene *s, scene_desc *desc, const scene_build_options *opt, char *err, size_t errlen)
+static int build_all(struct scene *s, scene_desc *desc, const scene_options *opt, char *err, size_t errlen)
 {
     scene_obj *root = scene_desc_root(desc);
-    if (build_integrator(s, root, err, errlen) != 0 || build_sensor(s, root, opt, err, errlen) != 0)
+    if (build_integrator(s, root, err, errlen) != 0 || build_sensor(s, root, opt, err, errlen) != 0 ||
+        build_shared(s, root, err, errlen) != 0)
         return -1;
-    /* Top-level BSDFs and textures are built even when unreferenced, so
-     * their parameters are checked as Mitsuba would. */
-    int n = scene_obj_children(root, SCENE_TEXTURE, NULL, 0);
-    scene_obj **objs = malloc(sizeof *objs * (size_t)(n + 1));
-    if (!objs)
-        FAIL(root, "out of memory");
-    scene_obj_children(root, SCENE_TEXTURE, objs, n);
-    for (int i = 0; i < n; i++)
-        if (!scene_build_texture(s, objs[i], err, errlen)) {
-            free(objs);
+    int n = scene_obj_children(root, SCENE_SHAPE, NULL, 0);
+    s->shapes.items = calloc((size_t)n + 1, sizeof *s->shapes.items);
+    if (!s->shapes.items)
+        return scene_obj_error(root, err, errlen, "out of memory");
+    for (int i = 0; i < root->nchildren; i++)
+        if (root->children[i]->cls == SCENE_SHAPE && build_shape(s, root->children[i], opt, err, errlen) != 0)
             return -1;
-        }
-    free(objs);
-    n = scene_obj_children(root, SCENE_BSDF, NULL, 0);
-    objs = malloc(sizeof *objs * (size_t)(n + 1));
-    if (!objs)
-        FAIL(root, "out of memory");
-    scene_obj_children(root, SCENE_BSDF, objs, n);
-    for (int i = 0; i < n; i++)
-        if (!scene_build_bsdf(s, objs[i], err, errlen)) {
-            free(objs);
+    for (int i = 0; i < root->nchildren; i++)
+        if (root->children[i]->cls == SCENE_EMITTER && build_emitter(s, root->children[i], err, errlen) != 0)
             return -1;
-        }
-    free(objs);
-
-    n = scene_obj_children(root, SCENE_SHAPE, NULL, 0);
-    s->shapes = calloc((size_t)n + 1, sizeof *s->shapes);
-    objs = malloc(sizeof *objs * (size_t)(n + 1));
-    if (!s->shapes || !objs) {
-        free(objs);
-        FAIL(root, "out of memory");
-    }
-    scene_obj_children(root, SCENE_SHAPE, objs, n);
-    const bsdf_t *default_bsdf = NULL;
-    for (int i = 0; i < n; i++)
-        if (build_shape(s, objs[i], opt, &default_bsdf, err, errlen) != 0) {
-            free(objs);
-            return -1;
-        }
-    free(objs);
-
-    n = scene_obj_children(root, SCENE_EMITTER, NULL, 0);
-    objs = malloc(sizeof *objs * (size_t)(n + 1));
-    if (!objs)
-        FAIL(root, "out of memory");
-    scene_obj_children(root, SCENE_EMITTER, objs, n);
-    for (int i = 0; i < n; i++)
-        if (build_emitter(s, objs[i], err, errlen) != 0) {
-            free(objs);
-            return -1;
-        }
-    free(objs);
-
     char msg[600];
     if (scene_obj_unconsumed(root, msg, sizeof msg)) {
         snprintf(err, errlen, "%s", msg);
         return -1;
     }
-    return scene_trace_build(s, err, errlen);
+    return shape_list_commit(&s->shapes, err, errlen);
 }
 
-scene_t *scene_build(scene_desc *desc, const scene_build_options *opt, char *err, size_t errlen)
+scene_t *scene_create(scene_desc *desc, const scene_options *opt, char *err, size_t errlen)
 {
-    scene_build_options defaults = scene_build_defaults();
+    scene_options defaults = scene_options_default();
     if (!opt)
         opt = &defaults;
+    if (opt->mesh_segments != 0 && opt->mesh_segments < 3) {
+        snprintf(err, errlen, "mesh segments must be >= 3");
+        return NULL;
+    }
     struct scene *s = calloc(1, sizeof *s);
     if (!s) {
         snprintf(err, errlen, "out of memory");
         return NULL;
     }
-    s->env = -1;
-    if (opt->mesh_segments != 0 && opt->mesh_segments < 3) {
-        snprintf(err, errlen, "mesh segments must be >= 3");
-        free(s);
-        return NULL;
-    }
+    s->bsdfs.textures = &s->textures;
     if (build_all(s, desc, opt, err, errlen) != 0) {
-        scene_free(s);
+        scene_destroy(s);
         return NULL;
     }
     return s;
 }
 
-scene_t *scene_load(const char *path, const scene_define *defs, int ndefs, const scene_build_options *opt,
-                    char *err, size_t errlen)
+scene_t *scene_create_from_file(const char *path, const scene_define *defs, int ndefs, const scene_options *opt,
+                                char *err, size_t errlen)
 {
-    scene_desc *d = scene_xml_load(path, defs, ndefs, err, errlen);
+    scene_desc *d = scene_desc_create_from_file(path, defs, ndefs, scene_plugin_find, err, errlen);
     if (!d)
         return NULL;
-    scene_t *s = scene_build(d, opt, err, errlen);
-    scene_desc_free(d);
+    scene_t *s = scene_create(d, opt, err, errlen);
+    scene_desc_destroy(d);
     return s;
 }
 
-void scene_free(scene_t *s)
+void scene_destroy(scene_t *s)
 {
     if (!s)
         return;
-    scene_trace_free(s);
-    for (int i = 0; i < s->nshapes; i++)
-        shape_free(&s->shapes[i]);
-    free(s->shapes);
-    for (int i = 0; i < s->nemitters; i++)
-        emitter_free(&s->emitters[i]);
-    free(s->emitters);
-    /* BSDFs borrow textures and nested BSDFs: free BSDFs (outer ones were
-     * built after their nested ones, so go backwards) before textures. */
-    for (int i = s->nbsdfs - 1; i >= 0; i--)
-        bsdf_free(s->bsdfs[i]);
-    free(s->bsdfs);
-    free(s->bsdf_keys);
-    for (int i = 0; i < s->ntextures; i++)
-        texture_free(s->textures[i]);
-    free(s->textures);
-    free(s->texture_keys);
+    shape_list_free(&s->shapes);
+    emitter_list_free(&s->emitters);
+    /* BSDFs borrow textures: free them first. */
+    bsdf_set_free(&s->bsdfs);
+    texture_set_free(&s->textures);
+    integrator_destroy(s->integrator);
     free(s);
-}
-
-const camera_t *scene_camera(const scene_t *s) { return &s->camera; }
-int scene_spp(const scene_t *s) { return s->spp; }
-uint64_t scene_seed(const scene_t *s) { return s->seed; }
-int scene_shape_count(const scene_t *s) { return s->nshapes; }
-int scene_emitter_count(const scene_t *s) { return s->nemitters; }
-
-long long scene_triangle_count(const scene_t *s)
-{
-    long long n = 0;
-    for (int i = 0; i < s->nshapes; i++)
-        n += s->shapes[i].is_mesh ? s->shapes[i].mesh.n_tris : 0;
-    return n;
 }

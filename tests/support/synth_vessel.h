@@ -5,7 +5,7 @@
  * orthographic projection: its image is the set of points
  *     p = base_center + s·n + h·d,   0 <= h <= H,  |s| <= r(h),
  * with d the axis direction (unit, base toward rim) and n = (-d.y, d.x) the
- * right-hand normal of DESIGN.md. The in-plane tilt turns d away from the
+ * right-hand normal of docs/conventions.md. The in-plane tilt turns d away from the
  * image vertical: d = (sin t, -cos t), so a positive tilt leans the rim to
  * the right.
  *

@@ -1,0 +1,77 @@
+/* The photo -> profile -> outputs pipeline: one library call that the CLI
+ * (`celadon reconstruct`), the museum, the benchmarks and the tests share.
+ *
+ *   reconstruct_photo    decode, image stages (recon_extract), B-spline fit,
+ *                        curvature domains, Hausdorff errors, texture
+ *   reconstruct_write    profile.json, texture.png, model.obj/.mtl/.ply and
+ *                        the --lod meshes, overlay.png: all or nothing
+ *
+ * Exit-code semantics of the returned status: 0 ok, 2 bad input (the photo
+ * cannot be reconstructed: err says why in one line, without the file name),
+ * 1 internal failure (out of memory, cannot write). */
+#ifndef CELADON_RECONSTRUCT_H
+#define CELADON_RECONSTRUCT_H
+
+#include <stddef.h>
+
+#include "celadon/bspline.h"
+#include "celadon/image.h"
+#include "celadon/profile.h"
+#include "celadon/recon.h"
+#include "celadon/recon_texture.h"
+
+enum { RECONSTRUCT_MAX_LODS = 8 };
+
+typedef struct {
+    recon_options recon;   /* image stages: threshold, side */
+    double smoothing_px;   /* largest distance of a profile point from the B-spline */
+    int segments;          /* angular segments of model.obj/.ply */
+    int lods[RECONSTRUCT_MAX_LODS], n_lods; /* extra meshes model_N.* */
+    int mouth_cap;         /* close the mouth with a disc (the base is always closed) */
+} reconstruct_options;
+
+/* The defaults of `celadon reconstruct`: automatic threshold and side, 1 px
+ * smoothing, 360 segments, no LODs, open mouth. */
+reconstruct_options reconstruct_options_default(void);
+
+typedef struct {
+    int segments, vertices, faces;
+} reconstruct_mesh_stats;
+
+/* Wall-clock milliseconds per stage (the paper's Table 1 and more). */
+typedef struct {
+    double decode, image, bspline, domains, hausdorff, texture, mesh, overlay, write, total;
+} reconstruct_timings;
+
+typedef struct {
+    image_t photo;          /* the decoded photo */
+    recon_result extract;   /* the image stages (mask, contour, axis, outline, polyline) */
+    bspline_t curve;        /* the profile fitted to extract.polyline, (r, h) px */
+    double *domains;        /* curvature domains: increasing u from 0 to 1 */
+    int n_domains;
+    double err_curve_to_polyline, err_polyline_to_curve; /* one-sided Hausdorff, px */
+    recon_texture_t texture;
+    reconstruct_mesh_stats mesh, lods[RECONSTRUCT_MAX_LODS]; /* filled by reconstruct_write */
+    reconstruct_timings ms;
+} reconstruction;
+
+/* Runs every stage up to the texture on the photo at path. On failure the
+ * result holds no arrays; either way reconstruction_free releases it. */
+int reconstruct_photo(const char *path, const reconstruct_options *opt, reconstruction *r, char *err,
+                      size_t errlen);
+
+/* The profile.json view of a reconstruction (borrows r's arrays: valid while
+ * r is). source is the photo's path as recorded in the file. */
+void reconstruction_profile(const reconstruction *r, const char *source, profile_t *p);
+
+/* Writes every output into the folder dir (created if missing; its parent
+ * must exist). The files are written into a temporary folder and moved into
+ * place only when all are complete, so a failure leaves nothing behind.
+ * Fills r->mesh, r->lods and the overlay/mesh/write timings. Returns 0 or 1
+ * (err: one line). */
+int reconstruct_write(reconstruction *r, const char *source, const char *dir, const reconstruct_options *opt,
+                      char *err, size_t errlen);
+
+void reconstruction_free(reconstruction *r);
+
+#endif

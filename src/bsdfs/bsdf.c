@@ -1,0 +1,85 @@
+/* BSDF dispatch and allocation, and what delta and rough plugins share. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bsdfs/bsdf_impl.h"
+#include "core/core.h"
+
+bsdf_t *bsdf_alloc(const scene_obj *o, const bsdf_ops *ops, unsigned flags, const void *data, size_t data_size,
+                   char *err, size_t errlen)
+{
+    void *at;
+    bsdf_t *b = record_alloc(sizeof *b, data, data_size, &at);
+    if (!b) {
+        bsdf_refuse(o, err, errlen, "out of memory");
+        return NULL;
+    }
+    b->ops = ops;
+    b->flags = flags;
+    b->data = at;
+    return b;
+}
+
+int bsdf_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out)
+{
+    memset(out, 0, sizeof *out);
+    return b->ops->sample(b, q, u1, u2, out);
+}
+
+rgb bsdf_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
+{
+    return b->ops->eval(b, q, wo);
+}
+
+double bsdf_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
+{
+    return b->ops->pdf(b, q, wo);
+}
+
+unsigned bsdf_flags(const bsdf_t *b)
+{
+    return b->flags;
+}
+
+rgb bsdf_albedo(const bsdf_t *b, vec2 uv)
+{
+    return b->ops->albedo(b, uv);
+}
+
+rgb bsdf_straight_transmittance(const bsdf_t *b, const bsdf_query *q)
+{
+    return b->flags & BSDF_STRAIGHT_TRANSMISSION ? b->ops->straight(b, q) : rgb_gray(0.0);
+}
+
+void bsdf_destroy(bsdf_t *b)
+{
+    free(b);
+}
+
+rgb bsdf_eval_delta_only(const bsdf_t *b, const bsdf_query *q, vec3 wo)
+{
+    (void)b;
+    (void)q;
+    (void)wo;
+    return rgb_gray(0.0);
+}
+
+double bsdf_pdf_delta_only(const bsdf_t *b, const bsdf_query *q, vec3 wo)
+{
+    (void)b;
+    (void)q;
+    (void)wo;
+    return 0.0;
+}
+
+int bsdf_finish_sample(const bsdf_t *b, const bsdf_query *q, bsdf_sample_rec *out)
+{
+    double pdf = b->ops->pdf(b, q, out->wo);
+    if (!(pdf > 0.0) || !isfinite(pdf))
+        return 0;
+    rgb f = b->ops->eval(b, q, out->wo);
+    out->pdf = pdf;
+    out->weight = rgb_scale(f, 1.0 / pdf);
+    return 1;
+}

@@ -1,0 +1,81 @@
+/* What every emitter shares: dispatch to its plugin, allocation, and the
+ * list of a scene's emitters. */
+#include <stdlib.h>
+
+#include "core/core.h"
+#include "emitters/emitter_impl.h"
+
+int emitter_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_sample_rec *out)
+{
+    out->eps = 0.0;
+    out->delta = false;
+    out->dist = INFINITY;
+    return e->ops->sample(e, ref, u, out);
+}
+
+rgb emitter_eval_hit(const emitter_t *e, const surface_hit *hit, vec3 dir)
+{
+    return e->ops->eval_hit(e, hit, dir);
+}
+
+double emitter_pdf_hit(const emitter_t *e, vec3 ref, const surface_hit *hit, vec3 dir)
+{
+    return e->ops->pdf_hit(e, ref, hit, dir);
+}
+
+rgb emitter_eval_env(const emitter_t *e, vec3 dir)
+{
+    return e->ops->eval_env(e, dir);
+}
+
+double emitter_pdf_env(const emitter_t *e, vec3 dir)
+{
+    return e->ops->pdf_env(e, dir);
+}
+
+emitter_t *emitter_alloc(const scene_obj *o, const emitter_ops *ops, const void *data, size_t data_size, char *err,
+                         size_t errlen)
+{
+    void *at;
+    emitter_t *e = record_alloc(sizeof *e, data, data_size, &at);
+    if (!e) {
+        scene_obj_error(o, err, errlen, "out of memory");
+        return NULL;
+    }
+    e->ops = ops;
+    e->data = at;
+    return e;
+}
+
+void emitter_destroy(emitter_t *e)
+{
+    if (!e)
+        return;
+    if (e->ops->release)
+        e->ops->release(e->data);
+    free(e);
+}
+
+rgb emitter_rgb_param(scene_obj *o, const char *name, double def)
+{
+    scene_rgb c = scene_obj_rgb(o, name, (scene_rgb){def, def, def});
+    return rgb_make(c.r, c.g, c.b);
+}
+
+int emitter_list_add(emitter_list *l, emitter_t *e)
+{
+    emitter_t **a = realloc(l->items, sizeof *a * (size_t)(l->count + 1));
+    if (!a)
+        return -1;
+    l->items = a;
+    a[l->count++] = e;
+    return 0;
+}
+
+void emitter_list_free(emitter_list *l)
+{
+    for (int i = 0; i < l->count; i++)
+        emitter_destroy(l->items[i]);
+    free(l->items);
+    *l = (emitter_list){0};
+}

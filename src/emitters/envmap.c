@@ -1,0 +1,157 @@
+/* Mitsuba's `envmap`: a latitude-longitude image at infinity (`filename`,
+ * linear when EXR/HDR/PFM, sRGB-decoded otherwise), times `scale`, turned by
+ * `to_world`, with Mitsuba's orientation: local direction
+ * (sin t sin p, cos t, -sin t cos p) for image coordinates
+ * (u, v) = (p / 2pi, t / pi), so the top row looks along +y.
+ * Lookups are nearest-texel (piecewise constant), and importance sampling
+ * draws texels from a 2D piecewise-constant distribution of luminance x
+ * sin(theta), which makes sample and density agree exactly. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "celadon/image.h"
+#include "emitters/emitter_impl.h"
+
+typedef struct {
+    int width, height;
+    rgb *pixels;            /* linear, row 0 = the top (+y, theta = 0) */
+    distribution2d dist;    /* over (u, v) cells, luminance x sin(theta) */
+    transform4 to_world, to_local;
+    double scale;
+} envmap_data;
+
+static int envmap_load(envmap_data *env, const char *path, char *err, size_t errlen)
+{
+    image_t img;
+    char why[512];
+    if (image_read(path, &img, why, sizeof why) != 0) {
+        snprintf(err, errlen, "cannot read '%s': %s", path, why);
+        return -1;
+    }
+    const char *dot = strrchr(path, '.');
+    int linear = dot && (!strcasecmp(dot, ".exr") || !strcasecmp(dot, ".hdr") || !strcasecmp(dot, ".pfm"));
+    int w = img.width, h = img.height, nc = img.channels - (img.has_alpha ? 1 : 0);
+    env->width = w, env->height = h;
+    env->pixels = malloc(sizeof *env->pixels * (size_t)w * (size_t)h);
+    double *f = malloc(sizeof *f * (size_t)w * (size_t)h);
+    if (!env->pixels || !f || nc < 1) {
+        free(f);
+        image_free(&img);
+        snprintf(err, errlen, "cannot load '%s' as an environment map", path);
+        return -1;
+    }
+    for (int y = 0; y < h; y++) {
+        double sin_t = sin(M_PI * (y + 0.5) / h);
+        for (int x = 0; x < w; x++) {
+            const float *px = &img.data[((size_t)y * w + x) * img.channels];
+            rgb c = nc >= 3 ? rgb_make(px[0], px[1], px[2]) : rgb_gray(px[0]);
+            if (!linear)
+                c = rgb_srgb_to_linear(c);
+            c = rgb_make(fmax(c.r, 0.0), fmax(c.g, 0.0), fmax(c.b, 0.0));
+            env->pixels[(size_t)y * w + x] = c;
+            f[(size_t)y * w + x] = rgb_luminance(c) * sin_t;
+        }
+    }
+    image_free(&img);
+    int rc = distribution2d_init(&env->dist, f, w, h);
+    free(f);
+    if (rc != 0) {
+        snprintf(err, errlen, "out of memory for '%s'", path);
+        return -1;
+    }
+    return 0;
+}
+
+/* Image coordinates of a world direction; *sin_t receives sin(theta). */
+static vec2 dir_to_uv(const envmap_data *env, vec3 dir, double *sin_t)
+{
+    vec3 v = v3_norm(transform_vector(&env->to_local, dir));
+    double phi = atan2(v.x, -v.z);
+    phi = phi < 0.0 ? phi + 2.0 * M_PI : phi;
+    double theta = acos(fmax(-1.0, fmin(1.0, v.y)));
+    *sin_t = sin(theta);
+    return v2(fmin(phi / (2.0 * M_PI), 1.0 - 1e-12), fmin(theta / M_PI, 1.0 - 1e-12));
+}
+
+static rgb envmap_lookup(const envmap_data *env, vec2 uv)
+{
+    int x = (int)(uv.x * env->width), y = (int)(uv.y * env->height);
+    x = x < 0 ? 0 : (x >= env->width ? env->width - 1 : x);
+    y = y < 0 ? 0 : (y >= env->height ? env->height - 1 : y);
+    return rgb_scale(env->pixels[(size_t)y * env->width + x], env->scale);
+}
+
+static rgb envmap_eval_env(const emitter_t *e, vec3 dir)
+{
+    const envmap_data *env = e->data;
+    double sin_t;
+    return envmap_lookup(env, dir_to_uv(env, dir, &sin_t));
+}
+
+static double envmap_pdf_env(const emitter_t *e, vec3 dir)
+{
+    const envmap_data *env = e->data;
+    double sin_t;
+    vec2 uv = dir_to_uv(env, dir, &sin_t);
+    return sin_t > 0.0 ? distribution2d_pdf(&env->dist, uv) / (2.0 * M_PI * M_PI * sin_t) : 0.0;
+}
+
+static int envmap_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_sample_rec *out)
+{
+    (void)ref;
+    const envmap_data *env = e->data;
+    double pdf_uv;
+    vec2 uv = distribution2d_sample(&env->dist, v2(u.x, u.y), &pdf_uv);
+    double theta = M_PI * uv.y, phi = 2.0 * M_PI * uv.x, st = sin(theta);
+    if (!(pdf_uv > 0.0) || st <= 0.0)
+        return 0;
+    vec3 local = v3(st * sin(phi), cos(theta), -st * cos(phi));
+    out->wi = v3_norm(transform_vector(&env->to_world, local));
+    out->pdf = pdf_uv / (2.0 * M_PI * M_PI * st);
+    out->value = envmap_lookup(env, uv);
+    return 1;
+}
+
+static void envmap_release(void *data)
+{
+    envmap_data *env = data;
+    free(env->pixels);
+    if (env->dist.conditional)
+        distribution2d_free(&env->dist);
+}
+
+static const emitter_ops envmap_ops = {envmap_sample, NULL, NULL, envmap_eval_env, envmap_pdf_env, envmap_release};
+
+static emitter_t *envmap_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
+{
+    (void)shape, (void)textures;
+    envmap_data env = {0};
+    env.scale = scene_obj_float(o, "scale", 1.0);
+    env.to_world = scene_obj_transform(o, "to_world");
+    env.to_local = transform_inverse(&env.to_world);
+    char why[600];
+    if (envmap_load(&env, scene_obj_string(o, "filename", NULL), why, sizeof why) != 0) {
+        envmap_release(&env);
+        scene_obj_error(o, err, errlen, "%s", why);
+        return NULL;
+    }
+    emitter_t *e = emitter_alloc(o, &envmap_ops, &env, sizeof env, err, errlen);
+    if (!e)
+        envmap_release(&env);
+    return e;
+}
+
+static const scene_param_decl envmap_params[] = {
+    {"filename", PARAM_STRING, PARAM_REQUIRED | PARAM_FILE, NULL},
+    {"scale", PARAM_FLOAT, 0, NULL},
+    {"to_world", PARAM_TRANSFORM, 0, NULL},
+    {NULL, 0, 0, NULL},
+};
+
+const emitter_plugin emitter_envmap = {
+    .decl = {.cls = SCENE_EMITTER, .type = "envmap", .params = envmap_params},
+    .flags = EMITTER_ENVIRONMENT,
+    .create = envmap_create,
+};

@@ -1,0 +1,51 @@
+/* Integrators in the sense of Mitsuba 3: the radiance arriving along a camera
+ * ray, estimated from one pixel sample's numbers. Plugin: `path`.
+ *
+ * This is src/integrators' interface: what the render loop uses; each
+ * plugin is one file plus one line of integrator_table.c (docs/plugins.md). */
+#ifndef CELADON_INTEGRATORS_H
+#define CELADON_INTEGRATORS_H
+
+#include <stddef.h>
+
+#include "celadon/color.h"
+#include "celadon/scene_xml.h"
+#include "celadon/vecmath.h"
+#include "emitters/emitters.h"
+#include "samplers/samplers.h"
+#include "shapes/shapes.h"
+
+typedef struct integrator integrator_t;
+
+/* What an integrator traces against: the scene's shapes (with their BSDFs
+ * and area emitters) and its emitters. */
+typedef struct {
+    const shape_list *shapes;
+    const emitter_list *emitters;
+} integrator_scene;
+
+/* The first hit's values for the AOV channels, in this order: depth (the
+ * distance along the camera ray), the world shading normal, the BSDF's
+ * albedo; zero where the ray escapes. */
+enum { INTEGRATOR_AOV_DEPTH = 0, INTEGRATOR_AOV_NORMAL = 1, INTEGRATOR_AOV_ALBEDO = 4, INTEGRATOR_AOV_COUNT = 7 };
+
+/* Radiance along ray (t in (tmin, tmax)) from the numbers of smp; aov (may
+ * be NULL) receives the INTEGRATOR_AOV_COUNT values above. Thread-safe. */
+rgb integrator_li(const integrator_t *in, const integrator_scene *sc, const ray3 *ray, double tmin, double tmax,
+                  sampler_stream *smp, double *aov);
+void integrator_destroy(integrator_t *in);
+
+/* An integrator plugin: its declaration for the scene reader and its
+ * constructor from an <integrator> object, which returns NULL with
+ * "file:line: problem" in err. */
+typedef struct {
+    scene_plugin_decl decl;
+    integrator_t *(*create)(scene_obj *o, char *err, size_t errlen);
+} integrator_plugin;
+
+/* The registration table: every integrator plugin, NULL-terminated. */
+extern const scene_plugin_decl *const integrator_plugins[];
+/* The plugin named name, or NULL. */
+const integrator_plugin *integrator_plugin_find(const char *name);
+
+#endif

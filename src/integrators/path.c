@@ -1,0 +1,203 @@
+/* The `path` integrator (Mitsuba 3's): unidirectional path tracing with
+ * next-event estimation at every non-delta vertex and multiple importance
+ * sampling (power heuristic) between emitter and BSDF sampling. Shadow rays
+ * cross thin sheets (thindielectric: light passes undeviated) weighted by
+ * their transmittance, where Mitsuba stops them; paths sampled straight
+ * through a sheet are weighted against that estimator (docs/rendering.md). Emitters
+ * are chosen uniformly. max_depth counts path segments (1: emitters seen
+ * directly, 2: direct lighting, -1: unbounded); Russian roulette starts once
+ * depth >= rr_depth with survival probability min(max(beta) eta^2, 0.95). */
+#include <math.h>
+
+#include "integrators/integrator_impl.h"
+
+typedef struct {
+    int max_depth, rr_depth;
+    bool hide_emitters;
+} path_data;
+
+/* A ray leaving hit toward w, lifted off the surface on w's side. */
+static ray3 spawn(const surface_hit *h, vec3 w)
+{
+    double side = v3_dot(h->ng, w) >= 0.0 ? h->eps : -h->eps;
+    return (ray3){v3_add(h->p, v3_scale(h->ng, side)), w};
+}
+
+/* The shadow ray from h toward the emitter sample: to the (lifted) light
+ * point with t in [0, 1), or along its direction for a light at infinity. */
+static ray3 shadow_ray(const surface_hit *h, const emitter_sample_rec *es, vec3 target, bool infinite)
+{
+    ray3 r = spawn(h, es->wi);
+    if (!infinite)
+        r.d = v3_sub(target, r.o);
+    return r;
+}
+
+/* The fraction of the emitter sample's light that reaches h: 0 behind an
+ * opaque surface; crossing thin sheets (BSDF_STRAIGHT_TRANSMISSION), their
+ * straight transmittance each, at most max_sheets of them (-1: any number),
+ * so that the emitter stays within the path's max_depth, as a BSDF-sampled
+ * path through the same sheets would. A scene without sheets asks the
+ * cheaper any-hit question; with sheets, each segment is traced once to its
+ * nearest hit. */
+static rgb transmittance(const shape_list *shapes, const surface_hit *h, const emitter_sample_rec *es, int max_sheets)
+{
+    bool infinite = isinf(es->dist);
+    vec3 target = es->p;
+    if (!infinite && es->eps > 0.0) /* lift the light point toward the receiver */
+        target = v3_add(target, v3_scale(es->n, v3_dot(es->n, es->wi) < 0.0 ? es->eps : -es->eps));
+    double tmax = infinite ? INFINITY : 1.0 - 1e-7;
+    ray3 r = shadow_ray(h, es, target, infinite);
+    if (!shapes->straight_shadows)
+        return rgb_gray(shape_list_occluded(shapes, &r, 0.0, tmax) ? 0.0 : 1.0);
+    rgb tr = rgb_gray(1.0);
+    for (int crossed = 0; max_sheets < 0 || crossed <= max_sheets; crossed++) {
+        surface_hit x;
+        if (!shape_list_intersect(shapes, &r, 0.0, tmax, &x))
+            return tr;
+        const bsdf_t *b = x.shape->bsdf;
+        if (crossed == max_sheets || !(bsdf_flags(b) & BSDF_STRAIGHT_TRANSMISSION))
+            return rgb_gray(0.0);
+        bsdf_query q = {frame3_to_local(x.sh, v3_neg(es->wi)), x.uv, TRANSPORT_RADIANCE};
+        tr = rgb_mul(tr, bsdf_straight_transmittance(b, &q));
+        if (rgb_is_black(tr))
+            return tr;
+        r = shadow_ray(&x, es, target, infinite);
+    }
+    return rgb_gray(0.0);
+}
+
+static rgb next_event(const integrator_scene *sc, const surface_hit *h, const bsdf_t *b, const bsdf_query *q,
+                      sampler_stream *smp, int max_sheets)
+{
+    int n = sc->emitters->count;
+    int k = (int)(sampler_next_1d(smp) * n);
+    k = k < n ? k : n - 1;
+    double uz = sampler_next_1d(smp);
+    vec2 uxy = sampler_next_2d(smp);
+    vec3 u = v3(uxy.x, uxy.y, uz);
+    emitter_sample_rec es;
+    if (!emitter_sample(sc->emitters->items[k], h->p, u, &es) || !(es.pdf > 0.0) || rgb_is_black(es.value))
+        return rgb_gray(0.0);
+    vec3 wo = frame3_to_local(h->sh, es.wi);
+    rgb f = bsdf_eval(b, q, wo);
+    if (rgb_is_black(f))
+        return rgb_gray(0.0);
+    rgb tr = transmittance(sc->shapes, h, &es, max_sheets);
+    if (rgb_is_black(tr))
+        return rgb_gray(0.0);
+    double pdf_l = es.pdf / n;
+    double w = es.delta ? 1.0 : mis_power_heuristic(pdf_l, bsdf_pdf(b, q, wo));
+    return rgb_scale(rgb_mul(rgb_mul(f, tr), es.value), w / pdf_l);
+}
+
+static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray3 *ray0, double tmin, double tmax,
+                   sampler_stream *smp, double *aov)
+{
+    const path_data *pd = in->data;
+    const emitter_list *emitters = sc->emitters;
+    rgb L = rgb_gray(0.0), beta = rgb_gray(1.0);
+    double eta = 1.0, prev_pdf = 1.0, t0 = tmin, t1 = tmax;
+    bool prev_delta = true;
+    ray3 ray = *ray0;
+    vec3 prev_p = ray.o;
+    double sel = emitters->count > 0 ? 1.0 / emitters->count : 0.0;
+    if (aov)
+        for (int i = 0; i < INTEGRATOR_AOV_COUNT; i++)
+            aov[i] = 0.0;
+    for (int depth = 0;; depth++) {
+        surface_hit hit;
+        bool found = shape_list_intersect(sc->shapes, &ray, t0, t1, &hit);
+        bool show = !(depth == 0 && pd->hide_emitters);
+        if (!found) {
+            if (emitters->env && show) {
+                const emitter_t *e = emitters->env;
+                double w = prev_delta ? 1.0 : mis_power_heuristic(prev_pdf, sel * emitter_pdf_env(e, ray.d));
+                L = rgb_add(L, rgb_scale(rgb_mul(beta, emitter_eval_env(e, ray.d)), w));
+            }
+            break;
+        }
+        const shape_t *sh = hit.shape;
+        if (depth == 0 && aov) {
+            aov[INTEGRATOR_AOV_DEPTH] = hit.t;
+            double *n = aov + INTEGRATOR_AOV_NORMAL, *albedo = aov + INTEGRATOR_AOV_ALBEDO;
+            n[0] = hit.sh.n.x, n[1] = hit.sh.n.y, n[2] = hit.sh.n.z;
+            rgb a = bsdf_albedo(sh->bsdf, hit.uv);
+            albedo[0] = a.r, albedo[1] = a.g, albedo[2] = a.b;
+        }
+        if (sh->emitter && show) {
+            const emitter_t *e = sh->emitter;
+            rgb le = emitter_eval_hit(e, &hit, ray.d);
+            if (!rgb_is_black(le)) {
+                double w =
+                    prev_delta ? 1.0 : mis_power_heuristic(prev_pdf, sel * emitter_pdf_hit(e, prev_p, &hit, ray.d));
+                L = rgb_add(L, rgb_scale(rgb_mul(beta, le), w));
+            }
+        }
+        if (pd->max_depth >= 0 && depth + 1 >= pd->max_depth)
+            break;
+
+        bsdf_query q = {frame3_to_local(hit.sh, v3_neg(ray.d)), hit.uv, TRANSPORT_RADIANCE};
+        if ((bsdf_flags(sh->bsdf) & BSDF_SMOOTH) && emitters->count > 0) {
+            /* The emitter at depth + 1 + sheets must not pass max_depth - 1. */
+            int max_sheets = pd->max_depth < 0 ? -1 : pd->max_depth - 2 - depth;
+            L = rgb_add(L, rgb_mul(beta, next_event(sc, &hit, sh->bsdf, &q, smp, max_sheets)));
+        }
+
+        bsdf_sample_rec bs;
+        double u1 = sampler_next_1d(smp);
+        vec2 u2 = sampler_next_2d(smp);
+        if (!bsdf_sample(sh->bsdf, &q, u1, u2, &bs) || rgb_is_black(bs.weight))
+            break;
+        beta = rgb_mul(beta, bs.weight);
+        eta *= bs.eta;
+        /* Straight through a thin sheet, the path keeps the last scattering
+         * vertex's density for MIS: next-event estimation from that vertex
+         * saw the emitter through the sheet too (transmittance above). */
+        if (!((bs.sampled_type & BSDF_DELTA_TRANSMISSION) && (bsdf_flags(sh->bsdf) & BSDF_STRAIGHT_TRANSMISSION))) {
+            prev_delta = (bs.sampled_type & BSDF_DELTA) != 0;
+            prev_pdf = bs.pdf;
+            prev_p = hit.p;
+        }
+        ray = spawn(&hit, v3_norm(frame3_to_world(hit.sh, bs.wo)));
+        t0 = 0.0, t1 = INFINITY;
+
+        double beta_max = rgb_max(beta) * eta * eta;
+        if (depth + 1 >= pd->rr_depth) {
+            double survive = fmin(beta_max, 0.95);
+            if (sampler_next_1d(smp) >= survive)
+                break;
+            beta = rgb_scale(beta, 1.0 / survive);
+        }
+        if (!(beta_max > 0.0))
+            break;
+    }
+    if (!isfinite(L.r) || !isfinite(L.g) || !isfinite(L.b))
+        return rgb_gray(0.0);
+    return L;
+}
+
+static const integrator_ops path_ops = {path_li};
+
+static integrator_t *path_create(scene_obj *o, char *err, size_t errlen)
+{
+    long long md = scene_obj_int(o, "max_depth", -1), rr = scene_obj_int(o, "rr_depth", 5);
+    if (md < -1 || md > 1000000 || rr < 1 || rr > 1000000) {
+        scene_obj_error(o, err, errlen, "max_depth must be -1 or >= 0 and rr_depth >= 1");
+        return NULL;
+    }
+    path_data d = {(int)md, (int)rr, scene_obj_bool(o, "hide_emitters", false)};
+    return integrator_alloc(o, &path_ops, &d, sizeof d, err, errlen);
+}
+
+static const scene_param_decl path_params[] = {
+    {"max_depth", PARAM_INT, 0, NULL},
+    {"rr_depth", PARAM_INT, 0, NULL},
+    {"hide_emitters", PARAM_BOOL, 0, NULL},
+    {NULL, 0, 0, NULL},
+};
+
+const integrator_plugin integrator_path = {
+    .decl = {.cls = SCENE_INTEGRATOR, .type = "path", .params = path_params},
+    .create = path_create,
+};

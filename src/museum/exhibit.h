@@ -1,0 +1,27 @@
+/* One exhibit of the museum as the writers see it: the reconstructed vessel
+ * at its real size, its levels of detail, its texture and label. */
+#ifndef CELADON_MUSEUM_EXHIBIT_H
+#define CELADON_MUSEUM_EXHIBIT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "celadon/bspline.h"
+#include "museum/lod.h"
+
+typedef struct {
+    const char *photo;        /* the photo as given */
+    char slug[96];            /* unique file-name form of the title: vessels/SLUG/, labels/SLUG.png */
+    char *title, *date, *description; /* owned; date and description may be NULL */
+    double height_m;          /* real height, the rim at y = height_m */
+    double radius_m;          /* bound on the largest radius (the control polygon's) */
+    bspline_t curve;          /* the profile, (r, h) px */
+    lod_level lods[LOD_MAX_LEVELS];
+    int n_lods;
+    uint8_t *texture_png, *label_png; /* the files' bytes, owned */
+    size_t texture_len, label_len;
+} museum_exhibit;
+
+void museum_exhibit_free(museum_exhibit *e);
+
+#endif

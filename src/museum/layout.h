@@ -1,0 +1,63 @@
+/* The museum's floor plan, made from the number and sizes of the vessels
+ * alone (docs/museum.md, "Layout").
+ *
+ * World frame: metres, Y up, the floor at y = 0, the room centred on x = 0
+ * and z = 0. The entrance is in the middle of the front wall (z = +depth/2);
+ * the visitor enters looking toward -z. Every vessel faces the entrance: its
+ * photographed side (texture u = 0.5, object +z) looks toward +z.
+ *
+ * Each exhibit is a pedestal with a closed glass case on it, both of the
+ * same square footprint, the vessel standing on the pedestal in the middle of
+ * the case. Exhibits stand on a grid of columns x rows whose cells are all as
+ * large as the largest footprint; between any two footprints, between a
+ * footprint and a wall, and in front of the first row there is at least
+ * LAYOUT_AISLE metres of free floor, and the entrance zone adds
+ * LAYOUT_ENTRANCE in front of that. */
+#ifndef CELADON_MUSEUM_LAYOUT_H
+#define CELADON_MUSEUM_LAYOUT_H
+
+#include "celadon/vecmath.h"
+
+#define LAYOUT_AISLE 1.5        /* m: free width of every aisle (a wheelchair turns in 1.5 m) */
+#define LAYOUT_ENTRANCE 1.5     /* m: free floor between the entrance wall and the first aisle */
+#define LAYOUT_EYE_HEIGHT 1.6   /* m: the entrance camera */
+#define LAYOUT_CEILING_LIGHT_SPACING 4.0 /* m: at most this far apart */
+
+typedef struct {
+    double height, radius; /* m: the vessel's height and its largest radius (a bound) */
+} layout_vessel;
+
+typedef struct {
+    vec3 centre;            /* footprint centre on the floor (y = 0) */
+    double width;           /* side of the square footprint of pedestal and case, m */
+    double pedestal_height; /* the vessel's base stands at centre + (0, pedestal_height, 0) */
+    double case_height;     /* inner height of the glass case above the pedestal */
+    vec3 vessel_base;       /* where the vessel's base centre stands */
+    vec3 light;             /* the case light, under the case's lid */
+    vec3 label_centre;      /* the label, on the pedestal's front face (+z), facing +z */
+    double label_width, label_height;
+} layout_exhibit;
+
+typedef struct {
+    double width, depth, height; /* the room: x in [-width/2, width/2], z in [-depth/2, depth/2] */
+    int columns, rows;
+    double cell;                 /* grid pitch, m: the largest footprint + LAYOUT_AISLE */
+    int n_exhibits;
+    layout_exhibit *exhibits;    /* in the order of the vessels given */
+    int n_ceiling_lights;
+    vec3 *ceiling_lights;
+    vec3 camera_position, camera_target; /* the entrance camera */
+    double camera_yfov_deg, camera_aspect;
+} layout_t;
+
+/* Lays out n >= 1 vessels (positive, finite sizes). Exhibits fill the grid
+ * row by row from the entrance, left to right. Returns 0, or -1 for bad
+ * arguments or out of memory. */
+int layout_make(const layout_vessel *vessels, int n, layout_t *out);
+void layout_free(layout_t *l);
+
+/* The footprint gap every exhibit keeps around its vessel: the glass is
+ * this far from the vessel's widest point and above its top. */
+double layout_clearance(const layout_vessel *v);
+
+#endif

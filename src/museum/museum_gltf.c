@@ -1,0 +1,461 @@
+/* museum.glb: nodes, meshes, materials, lights and camera of the museum.
+ * See museum_gltf.h. */
+#include "museum/museum_gltf.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "museum/glb.h"
+
+enum { SAMPLER_CLAMP = 33071, FILTER_LINEAR = 9729, FILTER_LINEAR_MIPMAP_LINEAR = 9987 };
+
+typedef struct {
+    float *pos, *nrm, *uv;
+    uint32_t *idx;
+    int n_verts, n_tris;
+} geometry;
+
+/* Accessors of one uploaded geometry. */
+typedef struct {
+    int position, normal, texcoord, indices;
+} geometry_accessors;
+
+typedef struct {
+    glb_t g;
+    int mat_floor, mat_wall, mat_ceiling, mat_pedestal, mat_glass;
+    geometry_accessors box, quad;
+    int mesh_pedestal, mesh_glass;
+    long long static_tris; /* per frame, besides the vessels */
+    int static_calls;
+} builder;
+
+double museum_case_light(const layout_exhibit *e)
+{
+    return MUSEUM_CASE_LIGHT_PER_M2 * e->case_height * e->case_height;
+}
+
+/* ------------------------------------------------------------------ geometry */
+
+static int upload(builder *b, const geometry *geo, geometry_accessors *acc)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < geo->n_verts; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], geo->pos[3 * i + k]);
+            hi[k] = fmax(hi[k], geo->pos[3 * i + k]);
+        }
+    size_t nv = (size_t)geo->n_verts;
+    int vp = glb_add_view(&b->g, geo->pos, nv * 3 * sizeof(float), GLB_ARRAY_BUFFER);
+    int vn = glb_add_view(&b->g, geo->nrm, nv * 3 * sizeof(float), GLB_ARRAY_BUFFER);
+    int vt = glb_add_view(&b->g, geo->uv, nv * 2 * sizeof(float), GLB_ARRAY_BUFFER);
+    int vi = glb_add_view(&b->g, geo->idx, (size_t)geo->n_tris * 3 * sizeof(uint32_t), GLB_ELEMENT_ARRAY_BUFFER);
+    if (vp < 0 || vn < 0 || vt < 0 || vi < 0)
+        return -1;
+    acc->position = glb_add_accessor(&b->g, vp, GLB_FLOAT, geo->n_verts, "VEC3", lo, hi);
+    acc->normal = glb_add_accessor(&b->g, vn, GLB_FLOAT, geo->n_verts, "VEC3", NULL, NULL);
+    acc->texcoord = glb_add_accessor(&b->g, vt, GLB_FLOAT, geo->n_verts, "VEC2", NULL, NULL);
+    acc->indices = glb_add_accessor(&b->g, vi, GLB_UNSIGNED_INT, geo->n_tris * 3, "SCALAR", NULL, NULL);
+    return acc->position < 0 || acc->normal < 0 || acc->texcoord < 0 || acc->indices < 0 ? -1 : 0;
+}
+
+static int add_mesh(builder *b, const char *name, const geometry_accessors *acc, int material)
+{
+    json_t *prim = json_pack("{s:{s:i, s:i, s:i}, s:i, s:i}", "attributes", "POSITION", acc->position, "NORMAL",
+                             acc->normal, "TEXCOORD_0", acc->texcoord, "indices", acc->indices, "material", material);
+    return glb_append(&b->g, "meshes", json_pack("{s:s, s:[o]}", "name", name, "primitives", prim));
+}
+
+/* Axis-aligned quads, each given by a corner and two edge vectors whose
+ * cross product is its normal; UVs span [0,1]^2 per quad (v down the image). */
+typedef struct {
+    vec3 corner, du, dv;
+} quad_spec;
+
+static int quads_geometry(const quad_spec *q, int n, geometry *geo)
+{
+    geo->n_verts = 4 * n;
+    geo->n_tris = 2 * n;
+    geo->pos = malloc((size_t)geo->n_verts * 3 * sizeof(float));
+    geo->nrm = malloc((size_t)geo->n_verts * 3 * sizeof(float));
+    geo->uv = malloc((size_t)geo->n_verts * 2 * sizeof(float));
+    geo->idx = malloc((size_t)geo->n_tris * 3 * sizeof(uint32_t));
+    if (!geo->pos || !geo->nrm || !geo->uv || !geo->idx)
+        return -1;
+    static const double su[4] = {0, 1, 1, 0}, sv[4] = {0, 0, 1, 1};
+    for (int k = 0; k < n; k++) {
+        vec3 nrm = v3_norm(v3_cross(q[k].du, q[k].dv));
+        for (int c = 0; c < 4; c++) {
+            vec3 p = v3_add(q[k].corner, v3_add(v3_scale(q[k].du, su[c]), v3_scale(q[k].dv, sv[c])));
+            float *pp = geo->pos + 3 * (4 * k + c), *nn = geo->nrm + 3 * (4 * k + c), *tt = geo->uv + 2 * (4 * k + c);
+            pp[0] = (float)p.x, pp[1] = (float)p.y, pp[2] = (float)p.z;
+            nn[0] = (float)nrm.x, nn[1] = (float)nrm.y, nn[2] = (float)nrm.z;
+            tt[0] = (float)su[c], tt[1] = (float)(1.0 - sv[c]);
+        }
+        static const uint32_t tri[6] = {0, 1, 2, 0, 2, 3};
+        for (int t = 0; t < 6; t++)
+            geo->idx[6 * k + t] = (uint32_t)(4 * k) + tri[t];
+    }
+    return 0;
+}
+
+static void geometry_free(geometry *geo)
+{
+    free(geo->pos), free(geo->nrm), free(geo->uv), free(geo->idx);
+    memset(geo, 0, sizeof *geo);
+}
+
+static int upload_quads(builder *b, const quad_spec *q, int n, geometry_accessors *acc)
+{
+    geometry geo = {0};
+    int rc = quads_geometry(q, n, &geo) == 0 ? upload(b, &geo, acc) : -1;
+    geometry_free(&geo);
+    return rc;
+}
+
+/* The unit box x, z in [-0.5, 0.5], y in [0, 1] without its bottom face,
+ * normals outward: pedestals and glass cases, scaled by their nodes. */
+static int upload_box(builder *b)
+{
+    const quad_spec box[5] = {
+        {{-0.5, 0, 0.5}, {1, 0, 0}, {0, 1, 0}},   /* front, +z */
+        {{0.5, 0, -0.5}, {-1, 0, 0}, {0, 1, 0}},  /* back, -z */
+        {{0.5, 0, 0.5}, {0, 0, -1}, {0, 1, 0}},   /* right, +x */
+        {{-0.5, 0, -0.5}, {0, 0, 1}, {0, 1, 0}},  /* left, -x */
+        {{-0.5, 1, 0.5}, {1, 0, 0}, {0, 0, -1}},  /* top, +y */
+    };
+    return upload_quads(b, box, 5, &b->box);
+}
+
+/* The unit quad [-0.5, 0.5]^2 in z = 0 facing +z: labels. */
+static int upload_label_quad(builder *b)
+{
+    const quad_spec q = {{-0.5, -0.5, 0}, {1, 0, 0}, {0, 1, 0}};
+    return upload_quads(b, &q, 1, &b->quad);
+}
+
+/* ------------------------------------------------------------------ materials */
+
+static json_t *pbr(double r, double g, double bl, double roughness)
+{
+    return json_pack("{s:[f,f,f,f], s:f, s:f}", "baseColorFactor", r, g, bl, 1.0, "metallicFactor", 0.0,
+                     "roughnessFactor", roughness);
+}
+
+static int add_plain_material(builder *b, const char *name, double r, double g, double bl, double roughness)
+{
+    return glb_append(&b->g, "materials", json_pack("{s:s, s:o}", "name", name, "pbrMetallicRoughness",
+                                                    pbr(r, g, bl, roughness)));
+}
+
+/* An embedded image (PNG bytes) as a texture; returns the texture index. */
+static int add_texture(builder *b, const char *name, const uint8_t *png, size_t len)
+{
+    if (!json_object_get(b->g.doc, "samplers"))
+        glb_append(&b->g, "samplers", json_pack("{s:i, s:i, s:i, s:i}", "magFilter", FILTER_LINEAR, "minFilter",
+                                                FILTER_LINEAR_MIPMAP_LINEAR, "wrapS", SAMPLER_CLAMP, "wrapT",
+                                                SAMPLER_CLAMP));
+    int view = glb_add_view(&b->g, png, len, 0);
+    if (view < 0)
+        return -1;
+    int image = glb_append(&b->g, "images", json_pack("{s:s, s:i, s:s}", "name", name, "bufferView", view,
+                                                      "mimeType", "image/png"));
+    return glb_append(&b->g, "textures", json_pack("{s:s, s:i, s:i}", "name", name, "sampler", 0, "source", image));
+}
+
+static int add_textured_material(builder *b, const char *name, int texture, double roughness, int clearcoat)
+{
+    json_t *m = json_pack("{s:s, s:{s:{s:i}, s:f, s:f}}", "name", name, "pbrMetallicRoughness", "baseColorTexture",
+                          "index", texture, "metallicFactor", 0.0, "roughnessFactor", roughness);
+    if (m && clearcoat)
+        json_object_set_new(m, "extensions",
+                            json_pack("{s:{s:f, s:f}}", "KHR_materials_clearcoat", "clearcoatFactor", 1.0,
+                                      "clearcoatRoughnessFactor", 0.05));
+    return glb_append(&b->g, "materials", m);
+}
+
+static int add_materials(builder *b)
+{
+    b->mat_floor = add_plain_material(b, "Floor", 0.42, 0.38, 0.34, 0.7);
+    b->mat_wall = add_plain_material(b, "Wall", 0.78, 0.77, 0.74, 0.9);
+    b->mat_ceiling = add_plain_material(b, "Ceiling", 0.85, 0.85, 0.85, 0.95);
+    b->mat_pedestal = add_plain_material(b, "Pedestal", 0.9, 0.89, 0.86, 0.6);
+    json_t *glass = json_pack("{s:s, s:o, s:{s:{s:f}, s:{s:f}}}", "name", "Glass", "pbrMetallicRoughness",
+                              pbr(1, 1, 1, 0.0), "extensions", "KHR_materials_transmission", "transmissionFactor",
+                              1.0, "KHR_materials_ior", "ior", 1.5);
+    b->mat_glass = glb_append(&b->g, "materials", glass);
+    return b->mat_floor < 0 || b->mat_wall < 0 || b->mat_ceiling < 0 || b->mat_pedestal < 0 || b->mat_glass < 0
+               ? -1
+               : 0;
+}
+
+/* ------------------------------------------------------------------ nodes */
+
+static json_t *vec_json(vec3 v) { return json_pack("[f,f,f]", v.x, v.y, v.z); }
+
+static json_t *node(const char *name, vec3 translation)
+{
+    return json_pack("{s:s, s:o}", "name", name, "translation", vec_json(translation));
+}
+
+static int add_child(json_t *parent, int child)
+{
+    if (child < 0)
+        return -1;
+    json_t *children = json_object_get(parent, "children");
+    if (!children) {
+        children = json_array();
+        json_object_set_new(parent, "children", children);
+    }
+    return json_array_append_new(children, json_integer(child));
+}
+
+static int add_light(builder *b, const char *name, double intensity)
+{
+    json_t *ext = json_object_get(b->g.doc, "extensions");
+    if (!ext) {
+        ext = json_pack("{s:{s:[]}}", "KHR_lights_punctual", "lights");
+        json_object_set_new(b->g.doc, "extensions", ext);
+    }
+    json_t *lights = json_object_get(json_object_get(ext, "KHR_lights_punctual"), "lights");
+    json_array_append_new(lights, json_pack("{s:s, s:s, s:[f,f,f], s:f}", "name", name, "type", "point", "color",
+                                            MUSEUM_LIGHT_COLOR_R, MUSEUM_LIGHT_COLOR_G, MUSEUM_LIGHT_COLOR_B,
+                                            "intensity", intensity));
+    return (int)json_array_size(lights) - 1;
+}
+
+static int light_node(builder *b, const char *name, vec3 at, double intensity)
+{
+    int light = add_light(b, name, intensity);
+    json_t *n = node(name, at);
+    json_object_set_new(n, "extensions", json_pack("{s:{s:i}}", "KHR_lights_punctual", "light", light));
+    return glb_append(&b->g, "nodes", n);
+}
+
+/* A unit-quaternion [x, y, z, w] of the rotation whose columns are the
+ * camera's right, up and back (glTF cameras look down -z). */
+static json_t *look_rotation(vec3 from, vec3 to)
+{
+    vec3 back = v3_norm(v3_sub(from, to));
+    vec3 right = v3_norm(v3_cross(v3(0, 1, 0), back));
+    vec3 up = v3_cross(back, right);
+    double m[3][3] = {{right.x, up.x, back.x}, {right.y, up.y, back.y}, {right.z, up.z, back.z}};
+    double q[4], tr = m[0][0] + m[1][1] + m[2][2];
+    if (tr > 0) {
+        double s = 2.0 * sqrt(tr + 1.0);
+        q[3] = 0.25 * s, q[0] = (m[2][1] - m[1][2]) / s, q[1] = (m[0][2] - m[2][0]) / s, q[2] = (m[1][0] - m[0][1]) / s;
+    } else if (m[0][0] > m[1][1] && m[0][0] > m[2][2]) {
+        double s = 2.0 * sqrt(1.0 + m[0][0] - m[1][1] - m[2][2]);
+        q[3] = (m[2][1] - m[1][2]) / s, q[0] = 0.25 * s, q[1] = (m[0][1] + m[1][0]) / s, q[2] = (m[0][2] + m[2][0]) / s;
+    } else if (m[1][1] > m[2][2]) {
+        double s = 2.0 * sqrt(1.0 + m[1][1] - m[0][0] - m[2][2]);
+        q[3] = (m[0][2] - m[2][0]) / s, q[0] = (m[0][1] + m[1][0]) / s, q[1] = 0.25 * s, q[2] = (m[1][2] + m[2][1]) / s;
+    } else {
+        double s = 2.0 * sqrt(1.0 + m[2][2] - m[0][0] - m[1][1]);
+        q[3] = (m[1][0] - m[0][1]) / s, q[0] = (m[0][2] + m[2][0]) / s, q[1] = (m[1][2] + m[2][1]) / s, q[2] = 0.25 * s;
+    }
+    double len = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    return json_pack("[f,f,f,f]", q[0] / len, q[1] / len, q[2] / len, q[3] / len);
+}
+
+static int camera_node(builder *b, const layout_t *l)
+{
+    int cam = glb_append(&b->g, "cameras",
+                         json_pack("{s:s, s:s, s:{s:f, s:f, s:f, s:f}}", "name", "Entrance camera", "type",
+                                   "perspective", "perspective", "yfov", l->camera_yfov_deg * M_PI / 180.0,
+                                   "aspectRatio", l->camera_aspect, "znear", 0.05, "zfar", 500.0));
+    json_t *n = node("Entrance camera", l->camera_position);
+    json_object_set_new(n, "rotation", look_rotation(l->camera_position, l->camera_target));
+    json_object_set_new(n, "camera", json_integer(cam));
+    return glb_append(&b->g, "nodes", n);
+}
+
+static int mesh_node(builder *b, const char *name, int mesh, vec3 at, vec3 scale)
+{
+    json_t *n = node(name, at);
+    json_object_set_new(n, "mesh", json_integer(mesh));
+    json_object_set_new(n, "scale", vec_json(scale));
+    return glb_append(&b->g, "nodes", n);
+}
+
+/* Floor, walls and ceiling as three meshes; returns -1 or 0 and adds their
+ * nodes to the root. */
+static int room_nodes(builder *b, const layout_t *l, json_t *root)
+{
+    double w = l->width / 2, d = l->depth / 2, h = l->height;
+    const quad_spec floor_q = {{-w, 0, d}, {2 * w, 0, 0}, {0, 0, -2 * d}};
+    const quad_spec ceiling_q = {{-w, h, -d}, {2 * w, 0, 0}, {0, 0, 2 * d}};
+    const quad_spec walls[4] = {
+        {{-w, 0, -d}, {2 * w, 0, 0}, {0, h, 0}}, /* back wall, facing +z */
+        {{w, 0, d}, {-2 * w, 0, 0}, {0, h, 0}},  /* entrance wall, facing -z */
+        {{-w, 0, d}, {0, 0, -2 * d}, {0, h, 0}}, /* left, facing +x */
+        {{w, 0, -d}, {0, 0, 2 * d}, {0, h, 0}},  /* right, facing -x */
+    };
+    const quad_spec *parts[3] = {&floor_q, walls, &ceiling_q};
+    const int counts[3] = {1, 4, 1}, materials[3] = {b->mat_floor, b->mat_wall, b->mat_ceiling};
+    const char *names[3] = {"Floor", "Walls", "Ceiling"};
+    for (int k = 0; k < 3; k++) {
+        geometry_accessors acc;
+        if (upload_quads(b, parts[k], counts[k], &acc) != 0)
+            return -1;
+        int mesh = add_mesh(b, names[k], &acc, materials[k]);
+        if (mesh < 0 || add_child(root, mesh_node(b, names[k], mesh, v3(0, 0, 0), v3(1, 1, 1))) != 0)
+            return -1;
+        b->static_tris += 2 * counts[k];
+        b->static_calls++;
+    }
+    return 0;
+}
+
+/* The vessel node and one child per level; returns the vessel node. */
+static int vessel_node(builder *b, const museum_exhibit *e, vec3 at, int material)
+{
+    char name[400];
+    json_t *lods = json_array();
+    json_t *vn = node("", at);
+    snprintf(name, sizeof name, "Vessel: %s", e->title);
+    json_object_set_new(vn, "name", json_string(name));
+    for (int k = 0; k < e->n_lods; k++) {
+        const lod_level *l = &e->lods[k];
+        geometry geo = {l->mesh.pos, l->mesh.nrm, NULL, l->mesh.tri, l->mesh.n_verts, l->mesh.n_tris};
+        /* glTF's v runs down the image; the mesh's v runs up from the base. */
+        float *uv = malloc((size_t)l->mesh.n_verts * 2 * sizeof(float));
+        if (!uv)
+            return -1;
+        for (int i = 0; i < l->mesh.n_verts; i++)
+            uv[2 * i] = l->mesh.uv[2 * i], uv[2 * i + 1] = 1.0f - l->mesh.uv[2 * i + 1];
+        geo.uv = uv;
+        geometry_accessors acc;
+        int rc = upload(b, &geo, &acc);
+        free(uv);
+        snprintf(name, sizeof name, "%s, LOD %d (%d segments)", e->title, k, l->segments);
+        int mesh = rc == 0 ? add_mesh(b, name, &acc, material) : -1;
+        json_t *child = json_pack("{s:s, s:i, s:{s:f, s:i, s:f}}", "name", name, "mesh", mesh, "extras",
+                                  "lod_distance", l->distance, "segments", l->segments, "error_m", l->error);
+        if (mesh < 0 || add_child(vn, glb_append(&b->g, "nodes", child)) != 0)
+            return -1;
+        json_array_append_new(lods, json_pack("{s:i, s:f, s:i}", "segments", l->segments, "distance", l->distance,
+                                              "triangles", l->mesh.n_tris));
+    }
+    json_object_set_new(vn, "extras", json_pack("{s:o}", "lod", lods));
+    return glb_append(&b->g, "nodes", vn);
+}
+
+static json_t *exhibit_extras(const museum_exhibit *e, int index)
+{
+    char profile[160];
+    snprintf(profile, sizeof profile, "vessels/%s/profile.json", e->slug);
+    json_t *x = json_pack("{s:i, s:s, s:f, s:s, s:s}", "index", index, "title", e->title, "height_cm",
+                          100.0 * e->height_m, "photo", e->photo, "profile", profile);
+    if (e->date)
+        json_object_set_new(x, "date", json_string(e->date));
+    if (e->description)
+        json_object_set_new(x, "description", json_string(e->description));
+    return x;
+}
+
+static int exhibit_node(builder *b, const museum_exhibit *e, const layout_exhibit *le, int index)
+{
+    char name[400];
+    snprintf(name, sizeof name, "Exhibit: %s", e->title);
+    json_t *en = node(name, le->centre);
+    json_object_set_new(en, "extras", exhibit_extras(e, index));
+    vec3 up = v3(0, le->pedestal_height, 0);
+    snprintf(name, sizeof name, "Pedestal: %s", e->title);
+    int rc = add_child(en, mesh_node(b, name, b->mesh_pedestal, v3(0, 0, 0), v3(le->width, le->pedestal_height, le->width)));
+    snprintf(name, sizeof name, "Glass case: %s", e->title);
+    rc |= add_child(en, mesh_node(b, name, b->mesh_glass, up, v3(le->width, le->case_height, le->width)));
+
+    snprintf(name, sizeof name, "Glaze: %s", e->title);
+    int tex = add_texture(b, name, e->texture_png, e->texture_len);
+    int glaze = tex < 0 ? -1 : add_textured_material(b, name, tex, 0.45, 1);
+    rc |= glaze < 0 ? -1 : add_child(en, vessel_node(b, e, up, glaze));
+
+    snprintf(name, sizeof name, "Label: %s", e->title);
+    int ltex = add_texture(b, name, e->label_png, e->label_len);
+    int lmat = ltex < 0 ? -1 : add_textured_material(b, name, ltex, 0.9, 0);
+    int lmesh = lmat < 0 ? -1 : add_mesh(b, name, &b->quad, lmat);
+    rc |= lmesh < 0 ? -1
+                    : add_child(en, mesh_node(b, name, lmesh, v3_sub(le->label_centre, le->centre),
+                                              v3(le->label_width, le->label_height, 1)));
+    snprintf(name, sizeof name, "Case light: %s", e->title);
+    rc |= add_child(en, light_node(b, name, v3_sub(le->light, le->centre), museum_case_light(le)));
+    return rc != 0 ? -1 : glb_append(&b->g, "nodes", en);
+}
+
+/* ------------------------------------------------------------------ figures */
+
+/* The level three.js's LOD shows at distance d: the last one whose distance is not beyond it. */
+static int level_at(const museum_exhibit *e, double d)
+{
+    int k = 0;
+    while (k + 1 < e->n_lods && e->lods[k + 1].distance <= d)
+        k++;
+    return k;
+}
+
+static void figures(const builder *b, const layout_t *l, const museum_exhibit *ex, int n, museum_report *rep)
+{
+    /* Per exhibit: pedestal and case (5 quads each), label (1 quad). */
+    long long per_exhibit = 10 + 10 + 2;
+    rep->triangles_full = rep->triangles_entrance = rep->triangles_coarsest = b->static_tris + n * per_exhibit;
+    for (int i = 0; i < n; i++) {
+        double d = v3_len(v3_sub(l->camera_position, l->exhibits[i].vessel_base));
+        rep->triangles_full += ex[i].lods[0].mesh.n_tris;
+        rep->triangles_entrance += ex[i].lods[level_at(&ex[i], d)].mesh.n_tris;
+        rep->triangles_coarsest += ex[i].lods[ex[i].n_lods - 1].mesh.n_tris;
+    }
+    rep->draw_calls = b->static_calls + 4 * n;
+}
+
+static int build(builder *b, const char *title, const layout_t *l, const museum_exhibit *ex, int n)
+{
+    static const char *const extensions[] = {"KHR_materials_clearcoat", "KHR_materials_transmission",
+                                             "KHR_materials_ior", "KHR_lights_punctual"};
+    for (size_t k = 0; k < sizeof extensions / sizeof *extensions; k++)
+        if (glb_use_extension(&b->g, extensions[k]) != 0)
+            return -1;
+    if (add_materials(b) != 0 || upload_box(b) != 0 || upload_label_quad(b) != 0)
+        return -1;
+    b->mesh_pedestal = add_mesh(b, "Pedestal", &b->box, b->mat_pedestal);
+    b->mesh_glass = add_mesh(b, "Glass case", &b->box, b->mat_glass);
+    char name[400];
+    snprintf(name, sizeof name, "Museum: %s", title);
+    json_t *root = node(name, v3(0, 0, 0));
+    json_object_set_new(root, "extras",
+                        json_pack("{s:{s:s, s:i, s:[f,f,f], s:f}}", "celadon_museum", "title", title, "vessels", n,
+                                  "room", l->width, l->depth, l->height, "aisle", LAYOUT_AISLE));
+    int rc = room_nodes(b, l, root);
+    rc |= add_child(root, camera_node(b, l));
+    for (int k = 0; k < l->n_ceiling_lights && rc == 0; k++) {
+        snprintf(name, sizeof name, "Ceiling light %d", k + 1);
+        rc |= add_child(root, light_node(b, name, l->ceiling_lights[k], MUSEUM_CEILING_LIGHT));
+    }
+    for (int i = 0; i < n && rc == 0; i++)
+        rc |= add_child(root, exhibit_node(b, &ex[i], &l->exhibits[i], i));
+    int root_index = rc == 0 ? glb_append(&b->g, "nodes", root) : -1;
+    if (root_index < 0)
+        return -1;
+    json_object_set_new(b->g.doc, "scene", json_integer(0));
+    return glb_append(&b->g, "scenes", json_pack("{s:s, s:[i]}", "name", title, "nodes", root_index)) < 0 ? -1 : 0;
+}
+
+int museum_gltf_write(const char *path, const char *title, const layout_t *layout, const museum_exhibit *ex,
+                      int n, museum_report *rep, char *err, size_t errlen)
+{
+    builder b = {0};
+    if (glb_init(&b.g, "celadon museum") != 0 || build(&b, title, layout, ex, n) != 0) {
+        glb_free(&b.g);
+        snprintf(err, errlen, "cannot build museum.glb (out of memory?)");
+        return -1;
+    }
+    figures(&b, layout, ex, n, rep);
+    int rc = glb_write(&b.g, path, err, errlen);
+    glb_free(&b.g);
+    struct stat st;
+    if (rc == 0 && stat(path, &st) == 0)
+        rep->glb_bytes = (long long)st.st_size;
+    return rc;
+}

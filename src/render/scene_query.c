@@ -1,0 +1,52 @@
+/* What the public API lets a caller read of a built scene (scene.h): its
+ * render settings, and probes of its camera and geometry. */
+#include <string.h>
+
+#include "render/scene_impl.h"
+
+void scene_film_size(const scene_t *s, int *width, int *height)
+{
+    *width = s->camera.width;
+    *height = s->camera.height;
+}
+
+int scene_spp(const scene_t *s) { return (int)s->sampler.sample_count; }
+uint64_t scene_seed(const scene_t *s) { return s->sampler.seed; }
+
+long long scene_triangle_count(const scene_t *s)
+{
+    long long n = 0;
+    for (int i = 0; i < s->shapes.count; i++)
+        n += s->shapes.items[i].is_mesh ? s->shapes.items[i].mesh.n_tris : 0;
+    return n;
+}
+
+int scene_shapes_of_type(const scene_t *s, const char *type)
+{
+    int n = 0;
+    for (int i = 0; i < s->shapes.count; i++)
+        n += strcmp(s->shapes.items[i].type, type) == 0;
+    return n;
+}
+
+ray3 scene_camera_ray(const scene_t *s, int px, int py, double sx, double sy, double *tmin, double *tmax)
+{
+    camera_ray_t cr = camera_ray(&s->camera, px, py, sx, sy);
+    *tmin = cr.tmin;
+    *tmax = cr.tmax;
+    return cr.ray;
+}
+
+bool scene_first_hit(const scene_t *s, const ray3 *r, double tmin, double tmax, scene_hit *hit)
+{
+    surface_hit h;
+    if (!shape_list_intersect(&s->shapes, r, tmin, tmax, &h))
+        return false;
+    hit->t = h.t;
+    hit->n = h.sh.n;
+    hit->eps = h.eps;
+    hit->shape = (int)(h.shape - s->shapes.items);
+    hit->shape_type = h.shape->type;
+    hit->sheet = (bsdf_flags(h.shape->bsdf) & BSDF_STRAIGHT_TRANSMISSION) != 0;
+    return true;
+}

@@ -1,0 +1,84 @@
+/* Parser state and declaration helpers shared by the scene_xml*.c files. */
+#ifndef CELADON_SCENE_XML_INTERNAL_H
+#define CELADON_SCENE_XML_INTERNAL_H
+
+#include <libxml/tree.h>
+
+#include "celadon/scene_xml.h"
+
+#define SCENE_MAX_INCLUDE_DEPTH 32
+
+struct scene_desc {
+    scene_obj *root;
+    scene_obj **objs; /* every object, owned */
+    int nobjs, capobjs;
+    char **files;     /* interned file names the objects point to */
+    int nfiles;
+};
+
+typedef struct {
+    char *name, *value;
+    int from_cli; /* given as -D (wins over <default>) */
+    int used;     /* substituted somewhere */
+    int declared; /* named by a <default> */
+} scene_param;
+
+typedef struct {
+    scene_obj *parent;
+    char *id, *name;
+    const char *file;
+    int line;
+} scene_pending_ref;
+
+typedef struct {
+    scene_desc *d;
+    scene_plugin_lookup plugins;
+    scene_param *params;
+    int nparams;
+    scene_pending_ref *refs;
+    int nrefs;
+    char *stack[SCENE_MAX_INCLUDE_DEPTH]; /* canonical paths of the files being read */
+    int depth;
+    const char *file; /* the file being read (interned) */
+    char *err;
+    size_t errlen;
+    int failed;
+} scene_ctx;
+
+/* Records "file:line: message" (line <= 0: "file: message") unless an error
+ * is already recorded; returns -1. */
+int scene_fail(scene_ctx *c, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+int scene_line(const xmlNode *n);
+
+/* The attribute with $name parameters substituted, malloc'd, in *out; NULL
+ * when absent. Returns 0 or -1 (undefined parameter). */
+int scene_attr(scene_ctx *c, const xmlNode *n, const char *name, char **out);
+/* Like scene_attr but absence is an error. */
+int scene_attr_req(scene_ctx *c, const xmlNode *n, const char *name, char **out);
+/* Fails on an attribute not in the '|'-separated list. */
+int scene_check_attrs(scene_ctx *c, const xmlNode *n, const char *allowed);
+
+/* Strict numbers: the whole text must parse, finite. */
+int scene_parse_double(const char *s, double *out);
+/* Up to max numbers separated by commas and/or white space; returns the
+ * count, or -1 on a bad token or more than max. */
+int scene_parse_list(const char *s, double *out, int max);
+
+/* Parses a property element (<float>, <rgb>, <transform>, ...) into p
+ * (name, type, value, file, line). Returns 0 or -1. */
+int scene_parse_property(scene_ctx *c, const xmlNode *n, scene_prop *p);
+/* Whether tag names a property element. */
+int scene_is_property_tag(const char *tag);
+void scene_prop_clear(scene_prop *p);
+
+/* ------------------------------------------------ reading the declarations */
+const scene_param_decl *schema_param_find(const scene_plugin_decl *p, const char *name);
+const scene_child_decl *schema_child_find(const scene_plugin_decl *p, scene_class cls);
+/* Whether word is one of the '|'-separated choices. */
+int schema_choice_ok(const char *choices, const char *word);
+/* "float, rgb or texture": the allowed types as words. */
+void schema_types_text(unsigned types, char *buf, size_t len);
+/* The XML tag of a property type: "float", "rgb", ...; "texture" for OBJECT. */
+const char *schema_type_tag(scene_prop_type t);
+
+#endif

@@ -1,0 +1,27 @@
+/* Mitsuba's `cube`: [-1,1]^3 with flat faces and outward normals, as a mesh
+ * of twelve triangles. */
+#include "shapes/shape_impl.h"
+
+static int cube_create(scene_obj *o, const shape_options *opt, const transform4 *to_world, shape_t *sh, char *err,
+                       size_t errlen)
+{
+    (void)opt, (void)to_world;
+    if (shape_mesh_alloc(&sh->mesh, 24, 12) != 0)
+        return scene_obj_error(o, err, errlen, "<shape type=\"%s\">: out of memory", o->type);
+    /* (a, b, c): a x b = +c keeps the winding counter-clockwise from outside;
+     * the negative face mirrors b. */
+    shape_mesh_square_face(&sh->mesh, 0, 0, 1, 2, 1.0);
+    shape_mesh_square_face(&sh->mesh, 1, 0, 1, 2, -1.0);
+    shape_mesh_square_face(&sh->mesh, 2, 1, 2, 0, 1.0);
+    shape_mesh_square_face(&sh->mesh, 3, 1, 2, 0, -1.0);
+    shape_mesh_square_face(&sh->mesh, 4, 2, 0, 1, 1.0);
+    shape_mesh_square_face(&sh->mesh, 5, 2, 0, 1, -1.0);
+    return 0;
+}
+
+static const scene_param_decl cube_params[] = {SHAPE_PARAMS_COMMON, SHAPE_PARAMS_END};
+
+const shape_plugin shape_cube = {
+    .decl = {.cls = SCENE_SHAPE, .type = "cube", .params = cube_params, .children = shape_children},
+    .create = cube_create,
+};

@@ -1,0 +1,247 @@
+/* Stanford PLY reader for the `ply` shape: ascii and binary_little_endian,
+ * vertex x y z, optional nx ny nz and u v (or s t, texture_u texture_v),
+ * faces as a list property vertex_indices (or vertex_index), fanned into
+ * triangles. Other elements and properties are read and skipped. */
+#include <errno.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "shapes/shape_impl.h"
+
+enum { PLY_MAX_PROPS = 32, PLY_MAX_ELEMS = 8 };
+
+typedef struct {
+    char name[64];
+    int type, count_type; /* byte sizes tagged by kind; count_type 0 when not a list */
+} ply_prop;
+
+typedef struct {
+    char name[64];
+    long count;
+    int nprops;
+    ply_prop props[PLY_MAX_PROPS];
+} ply_elem;
+
+/* Types: index into this table. */
+static const struct { const char *name, *alt; int size, is_float, is_signed; } ply_types[] = {
+    {"char", "int8", 1, 0, 1},   {"uchar", "uint8", 1, 0, 0},   {"short", "int16", 2, 0, 1},
+    {"ushort", "uint16", 2, 0, 0}, {"int", "int32", 4, 0, 1},   {"uint", "uint32", 4, 0, 0},
+    {"float", "float32", 4, 1, 1}, {"double", "float64", 8, 1, 1},
+};
+
+static int ply_type(const char *s)
+{
+    for (int i = 0; i < (int)(sizeof ply_types / sizeof ply_types[0]); i++)
+        if (!strcmp(s, ply_types[i].name) || !strcmp(s, ply_types[i].alt))
+            return i;
+    return -1;
+}
+
+/* Reads one value; returns 0 or -1 at end of file or on a bad number. */
+static int ply_value(FILE *fp, int binary, int type, double *out)
+{
+    if (!binary)
+        return fscanf(fp, "%lf", out) == 1 && isfinite(*out) ? 0 : -1;
+    unsigned char b[8];
+    int size = ply_types[type].size;
+    if (fread(b, 1, (size_t)size, fp) != (size_t)size)
+        return -1;
+    uint64_t u = 0;
+    for (int i = size - 1; i >= 0; i--)
+        u = (u << 8) | b[i];
+    if (ply_types[type].is_float) {
+        if (size == 4) {
+            uint32_t w = (uint32_t)u;
+            float f;
+            memcpy(&f, &w, 4);
+            *out = f;
+        } else {
+            memcpy(out, &u, 8);
+        }
+        return isfinite(*out) ? 0 : -1;
+    }
+    if (ply_types[type].is_signed && size < 8 && (u >> (8 * size - 1)) & 1u)
+        *out = (double)(int64_t)(u - (1ull << (8 * size)));
+    else
+        *out = (double)u;
+    return 0;
+}
+
+static int ply_header(FILE *fp, int *binary, ply_elem *elems, int *nelems)
+{
+    char line[512], a[64], b[64], c[64], d[64];
+    if (!fgets(line, sizeof line, fp) || strncmp(line, "ply", 3))
+        return -1;
+    *nelems = 0;
+    int have_format = 0;
+    while (fgets(line, sizeof line, fp)) {
+        if (!strncmp(line, "end_header", 10))
+            return have_format ? 0 : -1;
+        int n = sscanf(line, "%63s %63s %63s %63s %63s", a, b, c, d, d);
+        if (n < 1 || !strcmp(a, "comment") || !strcmp(a, "obj_info"))
+            continue;
+        if (!strcmp(a, "format") && n >= 2) {
+            if (strcmp(b, "ascii") && strcmp(b, "binary_little_endian"))
+                return -1;
+            *binary = strcmp(b, "ascii") != 0;
+            have_format = 1;
+        } else if (!strcmp(a, "element") && n >= 3 && *nelems < PLY_MAX_ELEMS) {
+            ply_elem *e = &elems[(*nelems)++];
+            memset(e, 0, sizeof *e);
+            snprintf(e->name, sizeof e->name, "%s", b);
+            char *end;
+            e->count = strtol(c, &end, 10);
+            if (*end || e->count < 0)
+                return -1;
+        } else if (!strcmp(a, "property") && *nelems > 0 && elems[*nelems - 1].nprops < PLY_MAX_PROPS) {
+            ply_elem *e = &elems[*nelems - 1];
+            ply_prop *p = &e->props[e->nprops++];
+            if (!strcmp(b, "list") && n >= 5) {
+                sscanf(line, "%*s %*s %63s %63s %63s", b, c, d);
+                p->count_type = ply_type(b) + 1;
+                p->type = ply_type(c);
+                snprintf(p->name, sizeof p->name, "%s", d);
+                if (p->count_type <= 0)
+                    return -1;
+            } else {
+                p->type = ply_type(b);
+                snprintf(p->name, sizeof p->name, "%s", c);
+            }
+            if (p->type < 0)
+                return -1;
+        } else {
+            return -1;
+        }
+    }
+    return -1;
+}
+
+static int vertex_slot(const char *name)
+{
+    static const char *names[][3] = {{"x", NULL, NULL},     {"y", NULL, NULL},     {"z", NULL, NULL},
+                                     {"nx", NULL, NULL},    {"ny", NULL, NULL},    {"nz", NULL, NULL},
+                                     {"u", "s", "texture_u"}, {"v", "t", "texture_v"}};
+    for (int i = 0; i < 8; i++)
+        for (int k = 0; k < 3; k++)
+            if (names[i][k] && !strcmp(name, names[i][k]))
+                return i;
+    return -1;
+}
+
+static int read_elements(FILE *fp, int binary, const ply_elem *elems, int nelems, shape_mesh_data *m,
+                         size_t *tri_cap)
+{
+    for (int ei = 0; ei < nelems; ei++) {
+        const ply_elem *e = &elems[ei];
+        int is_vertex = !strcmp(e->name, "vertex"), is_face = !strcmp(e->name, "face");
+        int slot[PLY_MAX_PROPS], has[8] = {0};
+        for (int k = 0; k < e->nprops; k++) {
+            slot[k] = is_vertex && !e->props[k].count_type ? vertex_slot(e->props[k].name) : -1;
+            if (slot[k] >= 0)
+                has[slot[k]] = 1;
+        }
+        if (is_vertex) {
+            if (!has[0] || !has[1] || !has[2] || e->count > INT32_MAX / 4)
+                return -1;
+            m->n_verts = (int)e->count;
+            m->pos = calloc((size_t)m->n_verts * 3 + 1, sizeof(float));
+            m->nrm = has[3] && has[4] && has[5] ? calloc((size_t)m->n_verts * 3, sizeof(float)) : NULL;
+            m->uv = has[6] && has[7] ? calloc((size_t)m->n_verts * 2, sizeof(float)) : NULL;
+            if (!m->pos)
+                return -1;
+        }
+        for (long i = 0; i < e->count; i++) {
+            for (int k = 0; k < e->nprops; k++) {
+                const ply_prop *p = &e->props[k];
+                double x;
+                if (!p->count_type) {
+                    if (ply_value(fp, binary, p->type, &x) != 0)
+                        return -1;
+                    int s = slot[k];
+                    if (s >= 0 && s < 3)
+                        m->pos[3 * i + s] = (float)x;
+                    else if (s >= 3 && s < 6 && m->nrm)
+                        m->nrm[3 * i + s - 3] = (float)x;
+                    else if (s >= 6 && m->uv)
+                        m->uv[2 * i + s - 6] = (float)(s == 7 ? 1.0 - x : x); /* PLY v is up, bitmap rows go down */
+                    continue;
+                }
+                double cnt;
+                if (ply_value(fp, binary, p->count_type - 1, &cnt) != 0 || cnt < 0 || cnt > 1024)
+                    return -1;
+                int face_list = is_face && (!strcmp(p->name, "vertex_indices") || !strcmp(p->name, "vertex_index"));
+                unsigned first = 0, prev = 0;
+                for (int j = 0; j < (int)cnt; j++) {
+                    if (ply_value(fp, binary, p->type, &x) != 0)
+                        return -1;
+                    if (!face_list)
+                        continue;
+                    if (x < 0 || x >= m->n_verts)
+                        return -1;
+                    unsigned vi = (unsigned)x;
+                    if (j == 0)
+                        first = vi;
+                    if (j >= 2) {
+                        if ((size_t)m->n_tris + 1 > *tri_cap) {
+                            *tri_cap = *tri_cap ? 2 * *tri_cap : 1024;
+                            unsigned *t = realloc(m->tri, *tri_cap * 3 * sizeof *t);
+                            if (!t)
+                                return -1;
+                            m->tri = t;
+                        }
+                        unsigned *t = &m->tri[3 * m->n_tris++];
+                        t[0] = first, t[1] = prev, t[2] = vi;
+                    }
+                    prev = vi;
+                }
+            }
+        }
+    }
+    return m->n_verts > 0 && m->n_tris > 0 ? 0 : -1;
+}
+
+static int ply_read(const char *path, shape_mesh_data *m, char *err, size_t errlen)
+{
+    memset(m, 0, sizeof *m);
+    FILE *fp = fopen(path, "rb");
+    if (!fp) {
+        snprintf(err, errlen, "cannot open '%s': %s", path, strerror(errno));
+        return -1;
+    }
+    ply_elem elems[PLY_MAX_ELEMS];
+    int nelems = 0, binary = 0;
+    size_t tri_cap = 0;
+    int rc = ply_header(fp, &binary, elems, &nelems);
+    if (rc != 0)
+        snprintf(err, errlen, "'%s' is not a PLY file this reader knows (ascii or binary_little_endian)", path);
+    else if ((rc = read_elements(fp, binary, elems, nelems, m, &tri_cap)) != 0)
+        snprintf(err, errlen, "'%s': truncated or malformed PLY data (needs vertex x y z and face vertex_indices)",
+                 path);
+    fclose(fp);
+    if (rc != 0)
+        shape_mesh_data_free(m);
+    return rc;
+}
+
+static int ply_create(scene_obj *o, const shape_options *opt, const transform4 *to_world, shape_t *sh, char *err,
+                      size_t errlen)
+{
+    (void)opt, (void)to_world;
+    char why[600] = "";
+    int rc = ply_read(scene_obj_string(o, "filename", NULL), &sh->mesh, why, sizeof why);
+    return shape_mesh_from_file(o, rc, why, sh, err, errlen);
+}
+
+static const scene_param_decl ply_params[] = {
+    SHAPE_PARAMS_COMMON,
+    {"filename", PARAM_STRING, PARAM_REQUIRED | PARAM_FILE, NULL},
+    {"face_normals", PARAM_BOOL, 0, NULL},
+    SHAPE_PARAMS_END,
+};
+
+const shape_plugin shape_ply = {
+    .decl = {.cls = SCENE_SHAPE, .type = "ply", .params = ply_params, .children = shape_children},
+    .create = ply_create,
+};

@@ -1,0 +1,67 @@
+/* What the shape plugins share: analytic shapes traced in object space,
+ * triangle meshes and their builders, the parameters every shape takes.
+ * Private to src/shapes/. */
+#ifndef CELADON_SHAPE_IMPL_H
+#define CELADON_SHAPE_IMPL_H
+
+#include "shapes/shapes.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* ------------------------------------------------------- analytic shapes */
+
+/* An analytic shape in its object space (sphere.c, ...), traced by accel as
+ * an Embree user geometry. */
+struct shape_analytic_ops {
+    /* Adds the shape to acc placed by to_world: the geometry id, or ACCEL_INVALID_ID with err. */
+    unsigned (*add)(const void *data, accel_t *acc, const transform4 *to_world, char *err, size_t errlen);
+    /* The object-space hit of an accel hit on the shape. */
+    void (*local_hit)(const void *data, const accel_hit *ah, shape_local_hit *h);
+    /* A point drawn from u with its density per unit object-space area. */
+    void (*sample)(const void *data, vec3 u, shape_local_hit *h, double *pdf);
+    double (*pdf)(const void *data, const shape_local_hit *h);
+    void (*destroy)(void *data);
+};
+
+/* World-space hit from an analytic object-space hit. */
+void shape_analytic_finish(const shape_t *sh, const shape_local_hit *lh, surface_hit *hit);
+/* Density per unit world area of an analytic object-space hit. */
+double shape_analytic_pdf_area(const shape_t *sh, const shape_local_hit *lh);
+/* The object-space hit of accel as it reports it (the quadrics' local_hit). */
+void shape_analytic_local_hit(const void *data, const accel_hit *ah, shape_local_hit *h);
+
+/* ------------------------------------------------------- triangle meshes */
+
+/* Adds a mesh, already in world space, to acc. */
+unsigned shape_mesh_add(const shape_t *sh, accel_t *acc, char *err, size_t errlen);
+/* World hit on triangle tri at barycentrics (b1, b2). */
+void shape_mesh_finish(const shape_t *sh, int tri, double b1, double b2, double t, surface_hit *hit);
+int shape_mesh_prepare_sampling(shape_mesh_data *m);
+void shape_mesh_sample(const shape_t *sh, vec3 u, surface_hit *hit, double *pdf_area);
+void shape_mesh_transform(shape_mesh_data *m, const transform4 *to_world);
+void shape_mesh_data_free(shape_mesh_data *m);
+
+/* A mesh just read from file (rc: the reader's result, why its reason) made
+ * ready: vertex normals dropped for `face_normals`, or area-weighted smooth
+ * ones made when the file has none (Mitsuba does the same). Returns 0, or -1
+ * with "file:line: <shape type="T">: why" in err. */
+int shape_mesh_from_file(scene_obj *o, int rc, const char *why, shape_t *sh, char *err, size_t errlen);
+
+/* n_verts vertices with positions, normals and uvs and n_tris triangles,
+ * zeroed; 0 or -1 when out of memory. */
+int shape_mesh_alloc(shape_mesh_data *m, int nv, int nt);
+/* Writes face f of a canonical shape: the square [-1,1]^2 spanned by axes a,
+ * b at +-1 along axis c (sign s), counter-clockwise seen from outside, with
+ * uv = ((x+1)/2, (y+1)/2) over the square. */
+void shape_mesh_square_face(shape_mesh_data *m, int f, int a, int b, int c, double s);
+
+/* -------------------------------------------------------------- plugins */
+
+/* The parameters every shape takes, and what every shape may hold. */
+#define SHAPE_PARAMS_COMMON {"to_world", PARAM_TRANSFORM, 0, NULL}, {"flip_normals", PARAM_BOOL, 0, NULL}
+#define SHAPE_PARAMS_END {NULL, 0, 0, NULL}
+extern const scene_child_decl shape_children[];
+
+#endif

@@ -1,0 +1,178 @@
+/* Triangle meshes in world space: hit completion from Embree's barycentrics
+ * (smooth shading normals and uvs where the file has them), placement by
+ * to_world, sampling by area through a CDF over triangle areas, and what the
+ * mesh plugins share to build theirs. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "shapes/shape_impl.h"
+
+static vec3 mesh_pos(const shape_mesh_data *m, unsigned v)
+{
+    return v3(m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2]);
+}
+
+void shape_mesh_finish(const shape_t *sh, int tri, double b1, double b2, double t, surface_hit *hit)
+{
+    const shape_mesh_data *m = &sh->mesh;
+    const unsigned *v = &m->tri[3 * tri];
+    double b0 = 1.0 - b1 - b2;
+    vec3 p0 = mesh_pos(m, v[0]), p1 = mesh_pos(m, v[1]), p2 = mesh_pos(m, v[2]);
+    hit->t = t;
+    hit->p = v3_add(v3_add(v3_scale(p0, b0), v3_scale(p1, b1)), v3_scale(p2, b2));
+    vec3 ng = v3_norm(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)));
+    vec3 ns = ng;
+    if (m->nrm) {
+        vec3 n = v3(0, 0, 0);
+        const double b[3] = {b0, b1, b2};
+        for (int k = 0; k < 3; k++)
+            n = v3_add(n, v3_scale(v3(m->nrm[3 * v[k]], m->nrm[3 * v[k] + 1], m->nrm[3 * v[k] + 2]), b[k]));
+        if (v3_len(n) > 1e-12)
+            ns = v3_norm(n);
+    }
+    if (m->uv)
+        hit->uv = v2(b0 * m->uv[2 * v[0]] + b1 * m->uv[2 * v[1]] + b2 * m->uv[2 * v[2]],
+                     b0 * m->uv[2 * v[0] + 1] + b1 * m->uv[2 * v[1] + 1] + b2 * m->uv[2 * v[2] + 1]);
+    else
+        hit->uv = v2(b1, b2);
+    if (sh->flip_normals) {
+        ng = v3_neg(ng);
+        ns = v3_neg(ns);
+    }
+    hit->ng = ng;
+    hit->sh = frame3_from_normal(ns);
+    hit->eps = surface_hit_eps(hit->p);
+    hit->prim = tri;
+}
+
+unsigned shape_mesh_add(const shape_t *sh, accel_t *acc, char *err, size_t errlen)
+{
+    const shape_mesh_data *m = &sh->mesh;
+    mesh_t view = {m->n_verts, m->n_tris, m->pos, m->nrm, m->uv, m->tri};
+    return accel_add_mesh(acc, &view, NULL, err, errlen);
+}
+
+void shape_mesh_transform(shape_mesh_data *m, const transform4 *to_world)
+{
+    for (int i = 0; i < m->n_verts; i++) {
+        vec3 p = transform_point(to_world, mesh_pos(m, (unsigned)i));
+        m->pos[3 * i] = (float)p.x, m->pos[3 * i + 1] = (float)p.y, m->pos[3 * i + 2] = (float)p.z;
+        if (m->nrm) {
+            vec3 n = v3_norm(transform_normal(to_world, v3(m->nrm[3 * i], m->nrm[3 * i + 1], m->nrm[3 * i + 2])));
+            m->nrm[3 * i] = (float)n.x, m->nrm[3 * i + 1] = (float)n.y, m->nrm[3 * i + 2] = (float)n.z;
+        }
+    }
+}
+
+static double tri_area(const shape_mesh_data *m, int t)
+{
+    const unsigned *v = &m->tri[3 * t];
+    vec3 p0 = mesh_pos(m, v[0]);
+    return 0.5 * v3_len(v3_cross(v3_sub(mesh_pos(m, v[1]), p0), v3_sub(mesh_pos(m, v[2]), p0)));
+}
+
+int shape_mesh_prepare_sampling(shape_mesh_data *m)
+{
+    double *a = malloc(sizeof *a * (size_t)(m->n_tris > 0 ? m->n_tris : 1));
+    if (!a)
+        return -1;
+    m->area = 0.0;
+    for (int t = 0; t < m->n_tris; t++)
+        m->area += a[t] = tri_area(m, t);
+    int rc = distribution1d_init(&m->area_cdf, a, m->n_tris);
+    free(a);
+    return rc != 0 || !(m->area > 0.0) ? -1 : 0;
+}
+
+void shape_mesh_sample(const shape_t *sh, vec3 u, surface_hit *hit, double *pdf_area)
+{
+    const shape_mesh_data *m = &sh->mesh;
+    double reuse;
+    int t = distribution1d_sample_discrete(&m->area_cdf, u.z, NULL, &reuse);
+    vec2 b = warp_square_to_uniform_triangle(v2(u.x, u.y));
+    shape_mesh_finish(sh, t, b.x, b.y, 0.0, hit);
+    *pdf_area = 1.0 / m->area;
+}
+
+void shape_mesh_data_free(shape_mesh_data *m)
+{
+    free(m->pos);
+    free(m->nrm);
+    free(m->uv);
+    free(m->tri);
+    if (m->area_cdf.cdf)
+        distribution1d_free(&m->area_cdf);
+    memset(m, 0, sizeof *m);
+}
+
+/* Area-weighted vertex normals from the faces. */
+static int smooth_normals(shape_mesh_data *m)
+{
+    free(m->nrm);
+    m->nrm = calloc((size_t)m->n_verts * 3 + 1, sizeof *m->nrm);
+    if (!m->nrm)
+        return -1;
+    double *acc = calloc((size_t)m->n_verts * 3 + 1, sizeof *acc);
+    if (!acc)
+        return -1;
+    for (int t = 0; t < m->n_tris; t++) {
+        const unsigned *v = &m->tri[3 * t];
+        vec3 p0 = mesh_pos(m, v[0]);
+        vec3 n = v3_cross(v3_sub(mesh_pos(m, v[1]), p0), v3_sub(mesh_pos(m, v[2]), p0)); /* area-weighted */
+        for (int k = 0; k < 3; k++)
+            acc[3 * v[k]] += n.x, acc[3 * v[k] + 1] += n.y, acc[3 * v[k] + 2] += n.z;
+    }
+    for (int i = 0; i < m->n_verts; i++) {
+        vec3 n = v3_norm(v3(acc[3 * i], acc[3 * i + 1], acc[3 * i + 2]));
+        m->nrm[3 * i] = (float)n.x, m->nrm[3 * i + 1] = (float)n.y, m->nrm[3 * i + 2] = (float)n.z;
+    }
+    free(acc);
+    return 0;
+}
+
+int shape_mesh_from_file(scene_obj *o, int rc, const char *why, shape_t *sh, char *err, size_t errlen)
+{
+    if (rc == 0 && scene_obj_bool(o, "face_normals", false)) {
+        free(sh->mesh.nrm);
+        sh->mesh.nrm = NULL;
+    } else if (rc == 0 && !sh->mesh.nrm && smooth_normals(&sh->mesh) != 0) {
+        rc = -1, why = "out of memory";
+    }
+    if (rc != 0)
+        return scene_obj_error(o, err, errlen, "<shape type=\"%s\">: %s", o->type, why);
+    return 0;
+}
+
+int shape_mesh_alloc(shape_mesh_data *m, int nv, int nt)
+{
+    memset(m, 0, sizeof *m);
+    m->n_verts = nv, m->n_tris = nt;
+    m->pos = calloc((size_t)nv * 3 + 1, sizeof(float));
+    m->nrm = calloc((size_t)nv * 3, sizeof(float));
+    m->uv = calloc((size_t)nv * 2, sizeof(float));
+    m->tri = calloc((size_t)nt * 3, sizeof(unsigned));
+    if (m->pos && m->nrm && m->uv && m->tri)
+        return 0;
+    shape_mesh_data_free(m);
+    return -1;
+}
+
+void shape_mesh_square_face(shape_mesh_data *m, int f, int a, int b, int c, double s)
+{
+    static const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (int k = 0; k < 4; k++) {
+        int v = 4 * f + k;
+        double p[3];
+        p[a] = corner[k][0], p[b] = s * corner[k][1], p[c] = s;
+        for (int i = 0; i < 3; i++) {
+            m->pos[3 * v + i] = (float)p[i];
+            m->nrm[3 * v + i] = i == c ? (float)s : 0.0f;
+        }
+        m->uv[2 * v] = (float)(0.5 * (corner[k][0] + 1.0));
+        m->uv[2 * v + 1] = (float)(0.5 * (corner[k][1] + 1.0));
+    }
+    unsigned base = 4u * (unsigned)f;
+    const unsigned idx[6] = {0, 1, 2, 0, 2, 3};
+    for (int i = 0; i < 6; i++)
+        m->tri[6 * f + i] = base + idx[i];
+}

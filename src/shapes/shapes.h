@@ -1,0 +1,142 @@
+/* Shapes in the sense of Mitsuba 3, and the ray queries over all of a
+ * scene's shapes. Every shape is traced through one Embree scene (accel.h):
+ * triangle meshes (obj, ply, rectangle, cube, and `sor` under --geometry
+ * mesh:N) as triangles; analytic shapes (sphere, disk, cylinder, and `sor` by
+ * default) as user geometries intersected exactly in double precision in
+ * their object space.
+ *
+ * This is src/shapes' interface: what emitters, integrators and the scene
+ * build use. The plugins' own helpers are in shape_impl.h; each plugin is one
+ * file plus one line of shape_table.c (docs/plugins.md). */
+#ifndef CELADON_SHAPES_H
+#define CELADON_SHAPES_H
+
+#include <math.h>
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "bsdfs/bsdfs.h"
+#include "celadon/accel.h"
+#include "celadon/sampling.h"
+#include "celadon/scene_xml.h"
+#include "celadon/transform.h"
+#include "celadon/vecmath.h"
+
+typedef struct shape shape_t;
+struct emitter;
+
+/* ------------------------------------------------------------- hits */
+
+/* What an analytic shape reports in its object space. */
+typedef struct {
+    double t;
+    vec3 p, n;        /* point, unit outward normal */
+    vec2 uv;
+    int part;         /* shape-specific (SOR: wall, base, mouth) */
+    double param[2];  /* shape-specific surface parameters (SOR: u, phi) */
+} shape_local_hit;
+
+typedef struct {
+    double t;
+    vec3 p, ng;       /* world point, unit geometric normal (outside, after flip_normals) */
+    frame3 sh;        /* shading frame, sh.n the shading normal */
+    vec2 uv;
+    double eps;       /* offset that lifts spawned rays off the surface */
+    const shape_t *shape;
+    int prim;         /* triangle of a mesh */
+    shape_local_hit local; /* analytic shapes: the object-space hit */
+} surface_hit;
+
+/* The offset that lifts rays spawned at a world point p off its surface:
+ * Embree's float triangle hits are good to a few ulps of the coordinates,
+ * and analytic shapes use the same offset so that a shape's secondary rays do
+ * not depend on its form (the crosscheck compares an SOR analytic and meshed;
+ * a form-dependent offset would leave a difference no segment count removes). */
+static inline double surface_hit_eps(vec3 p)
+{
+    return 2e-5 * (1.0 + fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
+}
+
+/* ------------------------------------------------------------- shapes */
+
+typedef struct shape_analytic_ops shape_analytic_ops;
+
+typedef struct {
+    int n_verts, n_tris;
+    float *pos;       /* world, 3 per vertex + 1 float of padding (Embree reads 16 bytes) */
+    float *nrm;       /* world, unit, or NULL */
+    float *uv;        /* or NULL */
+    unsigned *tri;    /* 3 per triangle */
+    distribution1d area_cdf; /* over triangles by area; built only for emitters */
+    double area;      /* world, total */
+} shape_mesh_data;
+
+struct shape {
+    const char *type;     /* the plugin name */
+    bool is_mesh;
+    bool flip_normals;
+    const bsdf_t *bsdf;   /* never NULL once the scene is built */
+    const struct emitter *emitter; /* its area emitter, or NULL */
+    const char *file;     /* where it was declared, for messages */
+    int line;
+    /* meshes */
+    shape_mesh_data mesh;
+    /* analytic shapes */
+    const shape_analytic_ops *ops;
+    void *data;
+    transform4 to_world;
+    double det;           /* |det| of to_world's 3x3 part */
+};
+
+/* How shapes are built: options of the whole render. */
+typedef struct {
+    int mesh_segments; /* 0: SORs analytic; N >= 3: revolved into N angular segments */
+} shape_options;
+
+/* Builds the geometry of a <shape> object into sh (its bsdf and emitter are
+ * the scene build's): 0, or -1 with "file:line: problem" in err. */
+int shape_create(scene_obj *o, const shape_options *opt, shape_t *sh, char *err, size_t errlen);
+/* Frees what shape_create allocated. */
+void shape_free(shape_t *sh);
+
+/* Prepares sampling by area (a mesh's triangle CDF): 0, or -1 when the
+ * shape has no area or memory ran out. */
+int shape_prepare_sampling(shape_t *sh);
+/* A point on the shape by area (emitters): world hit and density per area. */
+void shape_sample_area(const shape_t *sh, vec3 u, surface_hit *hit, double *pdf_area);
+double shape_pdf_area(const shape_t *sh, const surface_hit *hit);
+
+/* A shape plugin: its declaration for the scene reader and the constructor
+ * of its geometry. create fills sh->mesh in object space (shape_create then
+ * places it by to_world) or, for an analytic shape, sh->ops, sh->data and
+ * sh->to_world; it returns 0, or -1 with "file:line: problem" in err. */
+typedef struct {
+    scene_plugin_decl decl;
+    int (*create)(scene_obj *o, const shape_options *opt, const transform4 *to_world, shape_t *sh, char *err,
+                  size_t errlen);
+} shape_plugin;
+
+/* The registration table: every shape plugin, NULL-terminated. */
+extern const scene_plugin_decl *const shape_plugins[];
+/* The plugin named name, or NULL. */
+const shape_plugin *shape_plugin_find(const char *name);
+
+/* ------------------------------------------------------- the scene's shapes */
+
+/* A scene's shapes in one acceleration structure. */
+typedef struct {
+    shape_t *items;
+    int count;
+    accel_t *accel;        /* every shape, geometry id = index */
+    bool straight_shadows; /* some shape's BSDF has BSDF_STRAIGHT_TRANSMISSION */
+} shape_list;
+
+/* Builds the acceleration structure once all shapes are in: 0, or -1 with err. */
+int shape_list_commit(shape_list *l, char *err, size_t errlen);
+/* Nearest hit along r with t in (tmin, tmax). Thread-safe after commit. */
+bool shape_list_intersect(const shape_list *l, const ray3 *r, double tmin, double tmax, surface_hit *hit);
+bool shape_list_occluded(const shape_list *l, const ray3 *r, double tmin, double tmax);
+/* Frees the shapes and the acceleration structure. */
+void shape_list_free(shape_list *l);
+
+#endif

@@ -1,0 +1,51 @@
+/* Textures in the sense of Mitsuba 3: functions of the surface uv returning
+ * linear RGB. Plugins (texture_table.c): `bitmap` (image file, sRGB-decoded
+ * unless raw, bilinear or nearest lookups, repeat/mirror/clamp wrapping) and
+ * `checkerboard`; both accept an affine `to_uv` transform applied to uv
+ * first. Pixel lookup follows Mitsuba: texel (i, j) has its centre at
+ * uv = ((i + 0.5) / width, (j + 0.5) / height) with row j = 0 the top row of
+ * the file, i.e. v grows downwards in the image (docs/conventions.md).
+ *
+ * This is src/textures' interface: what the other kinds and the scene build
+ * use. A plugin's own helpers are in texture_impl.h. */
+#ifndef CELADON_TEXTURES_H
+#define CELADON_TEXTURES_H
+
+#include <stddef.h>
+
+#include "celadon/color.h"
+#include "celadon/scene_xml.h"
+#include "celadon/vecmath.h"
+
+typedef struct texture texture_t;
+
+rgb texture_eval(const texture_t *t, vec2 uv);
+/* Mean value over the uv unit square (Mitsuba's Texture::mean). */
+rgb texture_mean(const texture_t *t);
+void texture_destroy(texture_t *t);
+
+/* A texture plugin: its declaration for the scene reader and its constructor
+ * from a <texture> object, which returns NULL with "file:line: problem" in
+ * err. */
+typedef struct {
+    scene_plugin_decl decl;
+    texture_t *(*create)(scene_obj *o, char *err, size_t errlen);
+} texture_plugin;
+
+/* The registration table: every texture plugin, NULL-terminated. */
+extern const scene_plugin_decl *const texture_plugins[];
+/* The plugin named name, or NULL. */
+const texture_plugin *texture_plugin_find(const char *name);
+
+/* The textures of a scene: one per <texture> object, however often it is
+ * referenced, destroyed together by texture_set_free. Zero-initialise. */
+typedef struct {
+    scene_obj_map built;
+} texture_set;
+
+/* The texture of object o, built on first use. NULL with "file:line:
+ * problem" in err. */
+const texture_t *texture_set_get(texture_set *set, scene_obj *o, char *err, size_t errlen);
+void texture_set_free(texture_set *set);
+
+#endif

@@ -1,0 +1,107 @@
+/* The museum's floor plan (src/museum/layout.c) for 1, 8 and 50 vessels of
+ * mixed sizes: every vessel fits its case, no footprint overlaps another or
+ * a wall, every aisle is at least LAYOUT_AISLE wide, and the room grows with
+ * the collection. */
+#include <criterion/criterion.h>
+#include <math.h>
+
+#include "museum/layout.h"
+
+/* Sizes from a 10 cm cup to a 60 cm jar, radii from a slender bottle to a bowl. */
+static layout_vessel vessel(int i)
+{
+    return (layout_vessel){0.10 + 0.05 * (i % 11), 0.04 + 0.03 * ((i * 7) % 9)};
+}
+
+/* Free distance between two axis-aligned squares on the floor (0 when they
+ * touch or overlap): the larger of the gaps along x and z. */
+static double gap(const layout_exhibit *a, const layout_exhibit *b)
+{
+    double gx = fabs(a->centre.x - b->centre.x) - (a->width + b->width) / 2;
+    double gz = fabs(a->centre.z - b->centre.z) - (a->width + b->width) / 2;
+    return fmax(fmax(gx, gz), 0.0);
+}
+
+static void check(int n, layout_t *l)
+{
+    layout_vessel v[64];
+    for (int i = 0; i < n; i++)
+        v[i] = vessel(i);
+    cr_assert_eq(layout_make(v, n, l), 0);
+    cr_assert_eq(l->n_exhibits, n);
+    const double eps = 1e-9;
+    for (int i = 0; i < n; i++) {
+        const layout_exhibit *e = &l->exhibits[i];
+        /* The vessel fits its case: its widest circle inside the footprint, its top under the lid. */
+        cr_expect_leq(v[i].radius + layout_clearance(&v[i]), e->width / 2 + eps);
+        cr_expect_leq(v[i].height, e->case_height - layout_clearance(&v[i]) + eps);
+        cr_expect(fabs(e->vessel_base.y - e->pedestal_height) < eps && fabs(e->vessel_base.x - e->centre.x) < eps &&
+                      fabs(e->vessel_base.z - e->centre.z) < eps,
+                  "the vessel stands on its pedestal, in the middle");
+        /* The case light is inside the case, above the vessel. */
+        cr_expect(e->light.y < e->pedestal_height + e->case_height && e->light.y > e->vessel_base.y + v[i].height);
+        /* The label is on the pedestal's front face, within it. */
+        cr_expect_leq(e->label_width, e->width);
+        cr_expect(e->label_centre.y + e->label_height / 2 < e->pedestal_height);
+        cr_expect(e->label_centre.y - e->label_height / 2 > 0);
+        /* Aisles along the walls: LAYOUT_AISLE from the side and back walls,
+         * LAYOUT_AISLE + LAYOUT_ENTRANCE from the entrance wall. */
+        cr_expect_geq(l->width / 2 - (fabs(e->centre.x) + e->width / 2), LAYOUT_AISLE - eps, "side wall aisle");
+        cr_expect_geq(e->centre.z - e->width / 2 + l->depth / 2, LAYOUT_AISLE - eps, "back wall aisle");
+        cr_expect_geq(l->depth / 2 - (e->centre.z + e->width / 2), LAYOUT_AISLE + LAYOUT_ENTRANCE - eps,
+                      "entrance zone");
+        cr_expect_gt(l->height, e->pedestal_height + e->case_height, "the ceiling clears the case");
+        for (int j = 0; j < i; j++)
+            cr_expect_geq(gap(e, &l->exhibits[j]), LAYOUT_AISLE - eps, "aisle between exhibits %d and %d", i, j);
+    }
+    /* The camera stands in the entrance zone at eye height, inside the room,
+     * looking into it. */
+    cr_expect(fabs(l->camera_position.x) < l->width / 2 && l->camera_position.z < l->depth / 2 &&
+              l->camera_position.z > l->depth / 2 - LAYOUT_ENTRANCE);
+    cr_expect(fabs(l->camera_position.y - LAYOUT_EYE_HEIGHT) < eps);
+    cr_expect_lt(l->camera_target.z, l->camera_position.z);
+    /* Ceiling lights under the ceiling, at most LAYOUT_CEILING_LIGHT_SPACING apart in a grid covering the room. */
+    cr_expect_geq(l->n_ceiling_lights, 1);
+    for (int k = 0; k < l->n_ceiling_lights; k++)
+        cr_expect(fabs(l->ceiling_lights[k].x) < l->width / 2 && fabs(l->ceiling_lights[k].z) < l->depth / 2 &&
+                  l->ceiling_lights[k].y < l->height);
+}
+
+Test(museum_layout, one_vessel)
+{
+    layout_t l;
+    check(1, &l);
+    cr_expect_eq(l.columns, 1);
+    cr_expect_eq(l.rows, 1);
+    cr_expect(fabs(l.exhibits[0].centre.x) < 1e-12, "a single exhibit is centred");
+    layout_free(&l);
+}
+
+Test(museum_layout, eight_and_fifty_vessels_grow_the_room)
+{
+    layout_t one, eight, fifty;
+    check(1, &one);
+    check(8, &eight);
+    check(50, &fifty);
+    cr_expect_eq(eight.columns * eight.rows >= 8 && fifty.columns * fifty.rows >= 50, 1);
+    cr_expect_gt(eight.width * eight.depth, one.width * one.depth);
+    cr_expect_gt(fifty.width * fifty.depth, eight.width * eight.depth);
+    /* Near-square: the grid never has more rows than columns, nor an empty row. */
+    cr_expect_leq(fifty.rows, fifty.columns);
+    cr_expect_gt(50, (fifty.rows - 1) * fifty.columns);
+    /* Floor area per vessel stays bounded: the room grows with the count, not faster. */
+    cr_expect_lt(fifty.width * fifty.depth / 50, one.width * one.depth);
+    layout_free(&one);
+    layout_free(&eight);
+    layout_free(&fifty);
+}
+
+Test(museum_layout, refuses_bad_sizes)
+{
+    layout_t l;
+    layout_vessel bad[2] = {{0.3, 0.1}, {NAN, 0.1}};
+    cr_expect_eq(layout_make(bad, 2, &l), -1);
+    bad[1] = (layout_vessel){0.3, 0};
+    cr_expect_eq(layout_make(bad, 2, &l), -1);
+    cr_expect_eq(layout_make(bad, 0, &l), -1);
+}

@@ -1,0 +1,182 @@
+/* The museum in a browser: tests/web/museum_page.mjs validates museum.glb
+ * with the Khronos glTF validator, serves the folder with `celadon museum
+ * --serve`, and loads index.html in headless Chromium; this test judges what
+ * it reports: no validator error, no console error, every vessel loaded and
+ * pickable, and a screenshot from the entrance that shows each vessel where
+ * the glb's camera and nodes put it (against a screenshot without vessels).
+ * Skips, saying why, when Node.js, the npm packages (make deps), Chromium or
+ * the built page are missing. */
+#include <criterion/criterion.h>
+#include <criterion/logging.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "celadon/image.h"
+#include "support/museum_fixture.h"
+
+enum { N_PHOTOS = 3, SHOT_W = 640, SHOT_H = 360 };
+
+static char workdir[256];
+
+static void teardown(void)
+{
+    museum_fixture_remove_tree(workdir);
+}
+
+TestSuite(museum_web, .fini = teardown);
+
+static int exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+static void skip_unless_tools(void)
+{
+    if (!getenv("CELADON_BIN"))
+        cr_skip_test("CELADON_BIN is not set (run through make test)");
+    if (system("command -v node >/dev/null 2>&1") != 0)
+        cr_skip_test("node is not installed (make deps installs it): the page is not tested");
+    if (!exists("web/node_modules/playwright-core") || !exists("web/node_modules/gltf-validator"))
+        cr_skip_test("web/node_modules is missing (make deps runs npm ci): the page is not tested");
+    if (!exists("/usr/bin/chromium"))
+        cr_skip_test("/usr/bin/chromium is missing (make deps installs Debian's chromium): the page is not tested");
+    if (!exists("build/web/museum.js"))
+        cr_skip_test("build/web/museum.js is missing (make web bundles it): the page is not tested");
+}
+
+/* Runs the driver and parses the JSON line it prints. */
+static json_t *drive(const char *museum)
+{
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "node tests/web/museum_page.mjs '%s' '%s' '%s' %d %d", getenv("CELADON_BIN"), museum,
+             workdir, SHOT_W, SHOT_H);
+    FILE *p = popen(cmd, "r");
+    cr_assert_not_null(p);
+    static char line[1 << 16];
+    size_t n = fread(line, 1, sizeof line - 1, p);
+    line[n] = 0;
+    int status = pclose(p);
+    cr_assert_eq(status, 0, "the driver failed (status %d): %s", status, line);
+    json_error_t je;
+    json_t *r = json_loads(line, 0, &je);
+    cr_assert_not_null(r, "driver output is not JSON (%s): %s", je.text, line);
+    return r;
+}
+
+static double mean_diff(const image_t *a, const image_t *b, double cx, double cy, int half)
+{
+    double sum = 0;
+    int count = 0;
+    for (int y = (int)cy - half; y <= (int)cy + half; y++)
+        for (int x = (int)cx - half; x <= (int)cx + half; x++) {
+            if (x < 0 || y < 0 || x >= a->width || y >= a->height)
+                continue;
+            for (int c = 0; c < 3; c++)
+                sum += fabs(a->data[(y * a->width + x) * a->channels + c] - b->data[(y * b->width + x) * b->channels + c]);
+            count += 3;
+        }
+    return count ? sum / count : 0;
+}
+
+static double luminance_stddev(const image_t *im)
+{
+    double s = 0, s2 = 0;
+    int n = im->width * im->height;
+    for (int i = 0; i < n; i++) {
+        double l = 0.3 * im->data[i * im->channels] + 0.59 * im->data[i * im->channels + 1] +
+                   0.11 * im->data[i * im->channels + 2];
+        s += l, s2 += l * l;
+    }
+    return sqrt(fmax(s2 / n - (s / n) * (s / n), 0));
+}
+
+Test(museum_web, the_page_loads_and_shows_every_vessel, .timeout = 300)
+{
+    skip_unless_tools();
+    snprintf(workdir, sizeof workdir, "/tmp/celadon-museum-web-XXXXXX");
+    cr_assert_not_null(mkdtemp(workdir));
+    char photos[N_PHOTOS][512], csv[512], out[512];
+    museum_fixture_photos(workdir, N_PHOTOS, photos);
+    snprintf(csv, sizeof csv, "%s/catalogue.csv", workdir);
+    snprintf(out, sizeof out, "%s/museum", workdir);
+    const char *args[] = {"--catalogue", csv, "-o", out, "--preview-spp", "0", NULL};
+    cli_result r = museum_fixture_run(workdir, args);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cli_result_free(&r);
+
+    json_t *res = drive(out);
+    json_t *val = json_object_get(res, "validator");
+    cr_expect_eq(json_integer_value(json_object_get(val, "errors")), 0, "glTF validator: %s",
+                 json_dumps(json_object_get(val, "messages"), 0));
+    cr_expect_eq(json_integer_value(json_object_get(val, "warnings")), 0);
+    cr_assert_null(json_object_get(res, "failure"), "%s", json_string_value(json_object_get(res, "failure")));
+    cr_expect_eq(json_integer_value(json_object_get(res, "serverExit")), 0, "the server stops cleanly on SIGTERM");
+    json_t *served = json_object_get(res, "server");
+    static const char *const paths[] = {"/", "museum.glb", "..%2f..%2fetc%2fpasswd",
+                                        "vessels%2f..%2f..%2fmuseum.json", ".hidden",
+                                        "no-such-file"};
+    static const int codes[] = {200, 200, 404, 404, 404, 404};
+    for (int k = 0; k < 6; k++)
+        cr_expect_eq(json_integer_value(json_object_get(json_object_get(served, paths[k]), "status")), codes[k],
+                     "GET %s", paths[k]);
+    cr_expect_str_eq(json_string_value(json_object_get(json_object_get(served, "museum.glb"), "type")),
+                     "model/gltf-binary");
+    json_t *page = json_object_get(res, "page");
+    cr_expect(json_is_null(json_object_get(page, "error")), "page error: %s",
+              json_string_value(json_object_get(page, "error")));
+    json_t *errors = json_object_get(page, "consoleErrors");
+    cr_expect_eq(json_array_size(errors), 0, "console errors: %s", json_dumps(errors, 0));
+    cr_expect_eq(json_integer_value(json_object_get(page, "vessels")), N_PHOTOS);
+    long long tris = json_integer_value(json_object_get(page, "triangles"));
+    long long calls = json_integer_value(json_object_get(page, "drawCalls"));
+    cr_expect_gt(tris, 0);
+    cr_expect_gt(calls, 0);
+    cr_log_info("museum page: %lld triangles, %lld draw calls per frame, loaded in %lld ms", tris, calls,
+                json_integer_value(json_object_get(page, "loadMs")));
+
+    char path[600], err[256];
+    image_t with, without;
+    snprintf(path, sizeof path, "%s/page.png", workdir);
+    cr_assert_eq(image_read(path, &with, err, sizeof err), 0, "%s", err);
+    snprintf(path, sizeof path, "%s/page-without-vessels.png", workdir);
+    cr_assert_eq(image_read(path, &without, err, sizeof err), 0, "%s", err);
+    cr_assert(with.width == SHOT_W && with.height == SHOT_H);
+    cr_expect_gt(luminance_stddev(&with), 0.03, "the screenshot is not blank");
+
+    snprintf(path, sizeof path, "%s/museum.glb", out);
+    glb_file g;
+    glb_read(path, &g);
+    int exhibit[8], vessel[8];
+    cr_assert_eq(glb_exhibits(&g, exhibit, vessel, 8), N_PHOTOS);
+    json_t *positions = json_object_get(page, "positions"), *picked = json_object_get(page, "picked");
+    for (int k = 0; k < N_PHOTOS; k++) {
+        json_t *x = json_object_get(json_array_get(json_object_get(g.doc, "nodes"), (size_t)exhibit[k]), "extras");
+        double height_m = json_number_value(json_object_get(x, "height_cm")) / 100;
+        const char *title = json_string_value(json_object_get(x, "title"));
+        double px, py;
+        vec3 centre = v3_add(glb_node_world_translation(&g, vessel[k]), v3(0, height_m / 2, 0));
+        cr_assert_eq(glb_project(&g, centre, SHOT_W, SHOT_H, &px, &py), 0);
+        /* three.js puts the vessel where our own projection of the glb does ... */
+        json_t *pos = json_array_get(positions, (size_t)k);
+        cr_expect(fabs(json_number_value(json_object_get(pos, "x")) - px) < 1.0 &&
+                      fabs(json_number_value(json_object_get(pos, "y")) - py) < 1.0,
+                  "%s: page (%.1f, %.1f), glb (%.1f, %.1f)", title, json_number_value(json_object_get(pos, "x")),
+                  json_number_value(json_object_get(pos, "y")), px, py);
+        /* ... the screenshot shows it there ... */
+        double d = mean_diff(&with, &without, px, py, 3);
+        cr_expect_gt(d, 0.05, "%s: the screenshot changes by %.3f around (%.0f, %.0f) without it", title, d, px, py);
+        /* ... and clicking there names it. */
+        cr_expect_str_eq(json_string_value(json_array_get(picked, (size_t)k)), title);
+    }
+    /* Away from the vessels (the floor at the bottom corners) nothing changes. */
+    cr_expect_lt(mean_diff(&with, &without, 20, SHOT_H - 20, 8), 0.01);
+    glb_close(&g);
+    image_free(&with);
+    image_free(&without);
+    json_decref(res);
+}
