@@ -7,7 +7,7 @@ CXX     ?= c++
 PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
-            libmicrohttpd-dev libcsv-dev chromium
+            libmicrohttpd-dev libcsv-dev chromium libigraph-dev
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
@@ -222,6 +222,13 @@ PYTHON_CV ?= /usr/bin/python3
 build/bench/bench_recon: bench/bench_recon.c $(SYNTH_C) build/opt/libceladon.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_recon.c $(SYNTH_C) build/opt/libceladon.a $(LDLIBS)
+
+# The min-cut benchmark compares with igraph's max-flow (libigraph-dev); only
+# the benchmark links igraph.
+build/bench/bench_maxflow: bench/bench_maxflow.c build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(shell pkg-config --cflags igraph 2>/dev/null) -O3 -o $@ $< build/opt/libceladon.a \
+	  $(LDLIBS) $(shell pkg-config --libs igraph 2>/dev/null)
 
 bench: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon $(BENCH_BIN)

@@ -9,14 +9,18 @@
  *
  * Layout: the n-links are kept as added (edges[]) and laid out at solve time
  * as arcs sorted by their tail (first[i] .. first[i+1]), each arc with the
- * index of its reverse arc; a node's links are contiguous in memory. A t-link
- * pair is held as one signed residual (tr_cap > 0: source -> node, < 0:
- * node -> sink) after pushing min(cap_source, cap_sink) straight through.
+ * index of its reverse arc; a node's links are contiguous in memory. The
+ * layout costs about as much as a search on an easy graph, so a round that
+ * changes only the t-links keeps it and restores the arcs' capacities from
+ * cap0[] instead. A t-link pair is held as one signed residual (tr_cap > 0:
+ * source -> node, < 0: node -> sink) after pushing min(cap_source, cap_sink)
+ * straight through.
  *
- * Capacities are doubles, not floats: an arc costs 16 bytes either way
- * (head and reverse index are 8, float would pad to 12 with 4 saved), the
- * flow value sums ~1e5 t-link terms (float's 24 bits would lose units of
- * it), and a bottleneck subtracted from itself gives an exact zero, so a
+ * Capacities are doubles, not floats: float arcs (12 bytes instead of 16)
+ * were no faster on the benchmark's graphs (the search waits on scattered
+ * nodes, not on arc bytes), and doubles keep integer capacities exact up to
+ * 2^53 and the flow, a sum of ~1e5 terms, to ~1e-16 instead of ~1e-8. A
+ * bottleneck subtracted from itself leaves an exact zero either way, so a
  * saturated link is recognised exactly. */
 #include "segment/maxflow.h"
 
@@ -61,6 +65,8 @@ struct maxflow_graph {
     mf_edge *edges;
     int *first; /* n + 1 */
     mf_arc *arcs;
+    double *cap0;  /* each arc's capacity as added */
+    int laid_out;  /* first, arcs and cap0 hold the layout of edges[] */
     mf_queue active, orphans;
     double flow;
     int time;
@@ -84,6 +90,8 @@ static int queue_pop(mf_queue *q)
 maxflow_graph *maxflow_create(int n_nodes, int max_edges)
 {
     assert(n_nodes >= 0 && max_edges >= 0);
+    if (max_edges > INT_MAX / 2) /* arcs are indexed by int */
+        return NULL;
     maxflow_graph *g = calloc(1, sizeof *g);
     if (!g)
         return NULL;
@@ -94,9 +102,10 @@ maxflow_graph *maxflow_create(int n_nodes, int max_edges)
     g->edges = malloc(((size_t)max_edges + 1) * sizeof *g->edges);
     g->first = malloc(((size_t)n_nodes + 1) * sizeof *g->first);
     g->arcs = malloc((2 * (size_t)max_edges + 1) * sizeof *g->arcs);
+    g->cap0 = malloc((2 * (size_t)max_edges + 1) * sizeof *g->cap0);
     g->active.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
     g->orphans.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
-    if (!g->nodes || !g->edges || !g->first || !g->arcs || !g->active.slot || !g->orphans.slot) {
+    if (!g->nodes || !g->edges || !g->first || !g->arcs || !g->cap0 || !g->active.slot || !g->orphans.slot) {
         maxflow_destroy(g);
         return NULL;
     }
@@ -113,6 +122,7 @@ void maxflow_destroy(maxflow_graph *g)
     free(g->edges);
     free(g->first);
     free(g->arcs);
+    free(g->cap0);
     free(g->active.slot);
     free(g->orphans.slot);
     free(g);
@@ -130,6 +140,7 @@ void maxflow_reset(maxflow_graph *g)
 {
     maxflow_reset_terminals(g);
     g->n_edges = 0;
+    g->laid_out = 0;
 }
 
 void maxflow_add_terminals(maxflow_graph *g, int node, double cap_source, double cap_sink)
@@ -155,6 +166,7 @@ void maxflow_add_edge(maxflow_graph *g, int i, int j, double cap_ij, double cap_
         return;
     assert(g->n_edges < g->max_edges);
     g->edges[g->n_edges++] = (mf_edge){i, j, cap_ij, cap_ji};
+    g->laid_out = 0;
 }
 
 /* Lays the edges out as arcs grouped by tail (a counting sort). */
@@ -174,7 +186,17 @@ static void build_arcs(maxflow_graph *g)
         int a = --first[ed->i], b = --first[ed->j];
         g->arcs[a] = (mf_arc){ed->j, b, ed->cap_ij};
         g->arcs[b] = (mf_arc){ed->i, a, ed->cap_ji};
+        g->cap0[a] = ed->cap_ij;
+        g->cap0[b] = ed->cap_ji;
     }
+    g->laid_out = 1;
+}
+
+/* The layout as built, with the flow of the last solve removed. */
+static void restore_arcs(maxflow_graph *g)
+{
+    for (int a = 0; a < 2 * g->n_edges; a++)
+        g->arcs[a].rcap = g->cap0[a];
 }
 
 /* Every node with a t-link residual is a child of its terminal and active;
@@ -264,6 +286,11 @@ static int grow(maxflow_graph *g, int i)
     return -1;
 }
 
+static double min2(double a, double b)
+{
+    return a < b ? a : b; /* fmin is a library call (NaN rules); capacities are never NaN */
+}
+
 /* Augmentation along source -> S .. u -> v .. T -> sink, `mid` the arc u -> v.
  * Nodes whose parent link saturates become orphans. */
 static void augment(maxflow_graph *g, int mid)
@@ -274,11 +301,11 @@ static void augment(maxflow_graph *g, int mid)
     double b = arcs[mid].rcap;
     int i;
     for (i = u; nodes[i].parent != PARENT_TERMINAL; i = arcs[nodes[i].parent].head)
-        b = fmin(b, arcs[arcs[nodes[i].parent].sister].rcap);
-    b = fmin(b, nodes[i].tr_cap);
+        b = min2(b, arcs[arcs[nodes[i].parent].sister].rcap);
+    b = min2(b, nodes[i].tr_cap);
     for (i = v; nodes[i].parent != PARENT_TERMINAL; i = arcs[nodes[i].parent].head)
-        b = fmin(b, arcs[nodes[i].parent].rcap);
-    b = fmin(b, -nodes[i].tr_cap);
+        b = min2(b, arcs[nodes[i].parent].rcap);
+    b = min2(b, -nodes[i].tr_cap);
 
     arcs[mid].rcap -= b;
     arcs[arcs[mid].sister].rcap += b;
@@ -390,7 +417,10 @@ double maxflow_solve(maxflow_graph *g)
 {
     if (g->solved)
         return g->flow;
-    build_arcs(g);
+    if (g->laid_out)
+        restore_arcs(g);
+    else
+        build_arcs(g);
     init_trees(g);
     /* A node that found a path stays current: it may touch the other tree
      * through more of its arcs. */
