@@ -45,7 +45,7 @@ static scene_t *load(const crosscheck_params *p, int segments, char *err, size_t
 static float *render_and_write(const scene_t *s, const crosscheck_params *p, const char *outdir, const char *stem,
                                double *seconds, char *err, size_t errlen)
 {
-    render_options ro = {p->threads, 0, 0};
+    render_options ro = {.threads = p->threads};
     film_t film;
     render_stats st;
     if (render_scene(s, &ro, &film, &st, err, errlen) != 0)
