@@ -3,6 +3,8 @@
  * truth is the one-process render of the same seed. */
 #include <criterion/criterion.h>
 
+#include <jansson.h>
+
 #include "celadon/parts.h"
 #include "test_distribute_support.h"
 
@@ -224,5 +226,52 @@ Test(parts, frames_render_each_frame, .timeout = 300)
     const char *c[] = {"render", scene, "-o", one, "--frames", "0:2", NULL};
     cr_expect_eq(run_celadon(&f, c, err, sizeof err), 2, "%s", err);
     cr_expect_not_null(strstr(err, "run of #"), "%s", err);
+    render_fixture_close(&f);
+}
+
+/* The crosscheck's renders as two parts each, merged, measure what one
+ * crosscheck run measures (within float rounding). */
+Test(parts, crosscheck_from_parts_measures_the_same, .timeout = 300)
+{
+    render_fixture f;
+    char scene[256], d1[256], d2[256], whole[256], merged[256], path[512], err[8192];
+    render_fixture_with_scene(&f, "plum", orbit_xml, scene, sizeof scene);
+    const char *common[] = {"--segments", "8,16", "-D", "spp=6", "--threads", "2", "--grid", "2"};
+    const char *dirs[] = {fixture_path(&f, "p1", d1, sizeof d1), fixture_path(&f, "p2", d2, sizeof d2),
+                          fixture_path(&f, "whole", whole, sizeof whole), fixture_path(&f, "merged", merged, sizeof merged)};
+    for (int run = 0; run < 4; run++) {
+        const char *args[24] = {"crosscheck", scene, "-o", dirs[run]};
+        int n = 4;
+        for (int i = 0; i < 8; i++)
+            args[n++] = common[i];
+        if (run < 2)
+            args[n++] = "--part", args[n++] = run == 0 ? "1/2" : "2/2";
+        if (run == 3)
+            args[n++] = "--merge", args[n++] = d1, args[n++] = d2;
+        args[n] = NULL;
+        cr_assert_eq(run_celadon(&f, args, err, sizeof err), 0, "%s", err);
+    }
+    json_error_t je;
+    snprintf(path, sizeof path, "%s/report.json", whole);
+    json_t *a = json_load_file(path, 0, &je);
+    snprintf(path, sizeof path, "%s/report.json", merged);
+    json_t *b = json_load_file(path, 0, &je);
+    cr_assert(a && b, "%s", je.text);
+    json_t *ra = json_object_get(a, "segments"), *rb = json_object_get(b, "segments");
+    cr_assert_eq(json_array_size(ra), 2);
+    cr_assert_eq(json_array_size(rb), 2);
+    static const char *const metrics[] = {"rel_mse", "mean_abs_diff", "coverage_area", "depth_rel_err",
+                                          "normal_err_deg"};
+    for (size_t i = 0; i < 2; i++)
+        for (int m = 0; m < 5; m++) {
+            double x = json_number_value(json_object_get(json_array_get(ra, i), metrics[m]));
+            double y = json_number_value(json_object_get(json_array_get(rb, i), metrics[m]));
+            cr_expect(fabs(x - y) <= 1e-5 * fabs(x), "%s of row %zu: %g whole, %g from parts", metrics[m], i, x, y);
+        }
+    json_decref(a), json_decref(b);
+    /* One part's folder alone is refused: the other part is missing. */
+    const char *lone[] = {"crosscheck", scene, "-o", merged, "--segments", "8,16", "-D", "spp=6", "--merge", d1, NULL};
+    cr_expect_eq(run_celadon(&f, lone, err, sizeof err), 2, "%s", err);
+    cr_expect_not_null(strstr(err, "missing: 2/2"), "%s", err);
     render_fixture_close(&f);
 }

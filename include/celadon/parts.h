@@ -43,12 +43,13 @@ int render_part_write(const film_t *film, const scene_t *s, render_part p, int c
                       size_t errlen);
 
 /* Reads the n part files, checks that they are parts of one render (same
- * scene digest, seed, spp, number of parts, size and channels), complete,
- * each share once and none missing, and sums them (in share order) into
- * film, which is film_init'ed here (film_free it). Returns 0; -2 when the set
- * is refused (a file that is no part, a part of another render, an
- * incomplete, duplicated or missing part), with one line in err naming the
- * file or the missing shares; -1 on other failures. */
-int render_parts_merge(const char *const *paths, int n, film_t *film, char *err, size_t errlen);
+ * scene digest, seed, spp, number of parts, size and channels) and, when
+ * `of` is not NULL, of a render of that scene (its digest and seed),
+ * complete, each share once and none missing, and sums them (in share
+ * order) into film, which is film_init'ed here (film_free it). Returns 0;
+ * -2 when the set is refused (a file that is no part, a part of another
+ * render, an incomplete, duplicated or missing part), with one line in err
+ * naming the file or the missing shares; -1 on other failures. */
+int render_parts_merge(const char *const *paths, int n, const scene_t *of, film_t *film, char *err, size_t errlen);
 
 #endif

@@ -61,7 +61,7 @@ int cmd_merge(int argc, char **argv)
     if (rc < 0) {
         film_t film;
         char err[2048];
-        int m = render_parts_merge(parts, n, &film, err, sizeof err);
+        int m = render_parts_merge(parts, n, NULL, &film, err, sizeof err);
         if (m == 0) {
             rc = film_write(&film, out, err, sizeof err) == 0 ? 0 : 1;
             film_free(&film);

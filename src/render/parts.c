@@ -126,7 +126,7 @@ static int read_info(const char *path, part_info *pi, char *err, size_t errlen)
 /* -2 with the reason when b is not of the render a is of. */
 static int same_render(const part_info *a, const part_info *b, char *err, size_t errlen)
 {
-    char what[ATTR_LEN + 64] = "";
+    char what[2 * ATTR_LEN + 64] = "";
     if (strcmp(a->scene, b->scene))
         snprintf(what, sizeof what, "its scene digest is %s, not %s (another scene, or other files or options)",
                  b->scene, a->scene);
@@ -225,7 +225,20 @@ static void list_missing(const int *given, int n, char *out, size_t outlen)
     }
 }
 
-int render_parts_merge(const char *const *paths, int n, film_t *film, char *err, size_t errlen)
+/* -2 with the reason when the part is not of a render of s. */
+static int of_scene(const part_info *pi, const scene_t *s, char *err, size_t errlen)
+{
+    char digest[32], seed[32];
+    snprintf(digest, sizeof digest, "%016" PRIx64, scene_digest(s));
+    snprintf(seed, sizeof seed, "%" PRIu64, scene_seed(s));
+    if (!strcmp(digest, pi->scene) && !strcmp(seed, pi->seed))
+        return 0;
+    snprintf(err, errlen, "%s: a part of another render (scene digest %s, seed %s) than this one's (%s, %s)",
+             pi->path, pi->scene, pi->seed, digest, seed);
+    return -2;
+}
+
+int render_parts_merge(const char *const *paths, int n, const scene_t *of, film_t *film, char *err, size_t errlen)
 {
     memset(film, 0, sizeof *film);
     if (n < 1) {
@@ -240,6 +253,8 @@ int render_parts_merge(const char *const *paths, int n, film_t *film, char *err,
         rc = read_info(paths[i], &pi[i], err, errlen);
         if (rc == 0 && i > 0)
             rc = same_render(&pi[0], &pi[i], err, errlen);
+        if (rc == 0 && i == 0 && of)
+            rc = of_scene(&pi[0], of, err, errlen);
     }
     int nparts = pi[0].part.n;
     if (rc == 0) {
