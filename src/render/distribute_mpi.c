@@ -411,7 +411,7 @@ int distribute_render(const scene_t *s, const render_options *opt, film_t *film,
             if (!st.interrupted)
                 progress_end(&c.bar);
             char who[64];
-            snprintf(who, sizeof who, "%d ranks (rank 0: %d threads)", size, w.threads);
+            snprintf(who, sizeof who, "%d ranks (rank 0: %d thread%s)", size, w.threads, w.threads > 1 ? "s" : "");
             render_print_summary(s, opt, &st, who);
             print_balance(&c, t_end - t_reduce);
         }
