@@ -241,11 +241,14 @@ static int render_one(render_args *a, const distribute_job *job, const char *out
         if (err[0])
             fprintf(stderr, "celadon: %s\n", err);
         rc = 1;
-    } else if (job->rank == 0) {
-        rc = write_result(a, scene, &film, &st, out);
-        film_free(&film);
     } else {
-        rc = st.interrupted ? 130 : 0;
+        if (job->rank == 0) {
+            rc = write_result(a, scene, &film, &st, out);
+            film_free(&film);
+        }
+        /* Every rank ends (or goes on to the next frame) with rank 0. */
+        if (distribute_first_failure(job->rank != 0 || rc == 0) >= 0 && job->rank != 0)
+            rc = st.interrupted ? 130 : 1;
     }
     scene_destroy(scene);
     return rc;

@@ -384,8 +384,8 @@ int distribute_render(const scene_t *s, const render_options *opt, film_t *film,
         if (!c.told_none || !c.told_stop || !c.units || !c.taken)
             abort();
         if (opt->progress) {
-            fprintf(stderr, "distribute: %d ranks share %d units of %d spp x %d rows\n", size, plan.units,
-                    plan.pass_spp, plan.band_rows);
+            fprintf(stderr, "distribute: %d ranks share %d unit%s of %d spp x %d rows\n", size, plan.units,
+                    plan.units > 1 ? "s" : "", plan.pass_spp, plan.band_rows);
             progress_begin_lines(&c.bar, "render", (uint64_t)(s1 - s0) * (uint64_t)width * (uint64_t)height);
         }
         coordinate(&c, &w, &plan, opt);
@@ -404,8 +404,10 @@ int distribute_render(const scene_t *s, const render_options *opt, film_t *film,
     reduce_to_root(film->sum, npix * (size_t)film->nchannels, rank);
     reduce_to_root(film->weight, npix, rank);
     double t_end = now_seconds();
-    render_stats st = {t_end - w.tally.t_start, rank == 0 ? all : taken, 0};
-    st.interrupted = rank == 0 ? all < (uint64_t)(s1 - s0) * npix : render_stop_requested();
+    /* Interrupted: fewer samples than asked for. Every rank learns it from
+     * rank 0, so that they all stop or go on (--frames) together. */
+    render_stats st = {t_end - w.tally.t_start, rank == 0 ? all : taken, all < (uint64_t)(s1 - s0) * npix};
+    MPI_Bcast(&st.interrupted, 1, MPI_INT, 0, MPI_COMM_WORLD);
     if (rank == 0) {
         if (opt->progress) {
             if (!st.interrupted)

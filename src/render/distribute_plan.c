@@ -41,6 +41,8 @@ distribute_plan distribute_plan_make(int s0, int s1, int width, int height, int 
     if (bands < 1)
         bands = 1;
     p.band_rows = (int)(ceil_div(ceil_div(height, bands), ROW_ALIGN) * ROW_ALIGN);
+    if (p.band_rows > height)
+        p.band_rows = height;
     p.bands = (int)ceil_div(height, p.band_rows);
     p.units = p.passes * p.bands;
     return p;

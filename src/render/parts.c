@@ -12,6 +12,33 @@
 
 enum { MAX_CHANNELS = 64, ATTR_LEN = 1024 };
 
+/* A part's pixels as its EXR holds them: the film's channels, then the
+ * weight, interleaved. */
+typedef struct {
+    int nch;
+    float *px;
+    const char **names;
+} part_pixels;
+
+static part_pixels part_pixels_alloc(const film_t *film)
+{
+    part_pixels pp = {film->nchannels + 1, NULL, NULL};
+    pp.px = malloc(sizeof *pp.px * (size_t)film->width * (size_t)film->height * (size_t)pp.nch);
+    pp.names = malloc(sizeof *pp.names * (size_t)pp.nch);
+    if (!pp.px || !pp.names)
+        abort();
+    for (int c = 0; c < film->nchannels; c++)
+        pp.names[c] = film->names[c];
+    pp.names[pp.nch - 1] = WEIGHT_CHANNEL;
+    return pp;
+}
+
+static void part_pixels_free(part_pixels *pp)
+{
+    free(pp->px);
+    free(pp->names);
+}
+
 int render_part_parse(const char *text, render_part *out)
 {
     int k, n, len = 0;
@@ -50,25 +77,18 @@ int render_part_write(const film_t *film, const scene_t *s, render_part p, int c
         {"celadon.seed", seed},         {"celadon.scene", digest},       {"celadon.channels", channels},
         {"celadon.complete", complete ? "yes" : "no"},
     };
-    int nch = film->nchannels + 1;
+    part_pixels pp = part_pixels_alloc(film);
+    int nch = pp.nch;
     size_t npix = (size_t)film->width * film->height;
-    float *px = malloc(sizeof *px * npix * (size_t)nch);
-    const char **names = malloc(sizeof *names * (size_t)nch);
-    if (!px || !names)
-        abort();
     for (size_t i = 0; i < npix; i++) {
         double w = film->weight[i];
         for (int c = 0; c < film->nchannels; c++)
-            px[i * nch + c] = w > 0 ? (float)(film->sum[i * film->nchannels + c] / w) : 0.0f;
-        px[i * nch + nch - 1] = (float)w;
+            pp.px[i * nch + c] = w > 0 ? (float)(film->sum[i * film->nchannels + c] / w) : 0.0f;
+        pp.px[i * nch + nch - 1] = (float)w;
     }
-    for (int c = 0; c < film->nchannels; c++)
-        names[c] = film->names[c];
-    names[nch - 1] = WEIGHT_CHANNEL;
-    int rc = exr_write_float_attrs(path, film->width, film->height, nch, names, px, attrs,
+    int rc = exr_write_float_attrs(path, film->width, film->height, nch, pp.names, pp.px, attrs,
                                    (int)(sizeof attrs / sizeof attrs[0]), err, errlen);
-    free(px);
-    free(names);
+    part_pixels_free(&pp);
     return rc;
 }
 
@@ -185,24 +205,17 @@ static int add_part(const part_info *pi, film_t *film, char *err, size_t errlen)
     exr_in *e = exr_in_open(pi->path, err, errlen);
     if (!e)
         return -1;
-    int nch = film->nchannels + 1;
+    part_pixels pp = part_pixels_alloc(film);
+    int nch = pp.nch;
     size_t npix = (size_t)film->width * film->height;
-    float *px = malloc(sizeof *px * npix * (size_t)nch);
-    const char **names = malloc(sizeof *names * (size_t)nch);
-    if (!px || !names)
-        abort();
-    for (int c = 0; c < film->nchannels; c++)
-        names[c] = film->names[c];
-    names[nch - 1] = WEIGHT_CHANNEL;
-    int rc = exr_in_read(e, nch, names, px, err, errlen);
+    int rc = exr_in_read(e, nch, pp.names, pp.px, err, errlen);
     for (size_t i = 0; rc == 0 && i < npix; i++) {
-        double w = px[i * nch + nch - 1];
+        double w = pp.px[i * nch + nch - 1];
         for (int c = 0; c < film->nchannels; c++)
-            film->sum[i * film->nchannels + c] += w * px[i * nch + c];
+            film->sum[i * film->nchannels + c] += w * pp.px[i * nch + c];
         film->weight[i] += w;
     }
-    free(px);
-    free(names);
+    part_pixels_free(&pp);
     exr_in_close(e);
     return rc;
 }
