@@ -27,7 +27,8 @@ typedef struct {
 
 /* Joins the MPI job when mpirun or srun started this process (MPI's
  * environment variables say so); otherwise *job is {0, 1} and MPI is not
- * touched. Returns 0, or -1 with one line in err. */
+ * touched. Returns 0, or -1 with one line in err (empty on the ranks other
+ * than 0 when they all fail alike). */
 int distribute_begin(distribute_job *job, char *err, size_t errlen);
 
 /* Leaves the MPI job (MPI_Finalize); nothing outside one. */

@@ -279,7 +279,8 @@ int cmd_render(int argc, char **argv)
     distribute_job job;
     char err[1024];
     if (distribute_begin(&job, err, sizeof err) != 0) {
-        fprintf(stderr, "celadon: %s\n", err);
+        if (err[0])
+            fprintf(stderr, "celadon: %s\n", err);
         distribute_end();
         return 2;
     }

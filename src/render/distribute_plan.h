@@ -38,5 +38,7 @@ void distribute_plan_unit(const distribute_plan *p, int u, int *s0, int *s1, int
  * has: 0 when no launcher started this process, -1 when one did without
  * saying how many. */
 int distribute_launched_size(void);
+/* This process's rank as the launcher says it (0 when none does). */
+int distribute_launched_rank(void);
 
 #endif

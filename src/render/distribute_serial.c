@@ -2,6 +2,7 @@
  * launcher started as one of several ranks is refused, since it would render
  * the whole image again beside the others. */
 #include <stdio.h>
+#include <unistd.h>
 
 #include "celadon/distribute.h"
 #include "render/distribute_plan.h"
@@ -11,9 +12,15 @@ int distribute_begin(distribute_job *job, char *err, size_t errlen)
     *job = (distribute_job){0, 1};
     int size = distribute_launched_size();
     if (size > 1 || size < 0) {
-        snprintf(err, errlen,
-                 "this celadon was built without MPI, so each of the job's processes would render the whole image "
-                 "(install Open MPI's libopenmpi-dev, e.g. make deps, and rebuild; docs/distributed.md)");
+        /* Rank 0 alone says why; the others wait a moment first, since the
+         * launcher ends the job when the first process fails. */
+        err[0] = '\0';
+        if (distribute_launched_rank() == 0)
+            snprintf(err, errlen,
+                     "this celadon was built without MPI, so each of the job's processes would render the whole "
+                     "image (install Open MPI's libopenmpi-dev, e.g. make deps, and rebuild; docs/distributed.md)");
+        else
+            sleep(2);
         return -1;
     }
     return 0;

@@ -171,7 +171,7 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
         else if (bar.enabled)
             fputc('\n', stderr);
         char who[32];
-        snprintf(who, sizeof who, "%d threads", threads);
+        snprintf(who, sizeof who, "%d thread%s", threads, threads > 1 ? "s" : "");
         render_print_summary(s, opt, &st, who);
     }
     if (stats)
