@@ -4,10 +4,10 @@
 
 CC      ?= cc
 CXX     ?= c++
-PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd
+PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd libxxhash
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
-            libmicrohttpd-dev libcsv-dev chromium libigraph-dev
+            libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
@@ -16,12 +16,28 @@ PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lembree3 -lcsv
 WARN     := -Wall -Wextra -Werror
 CFLAGS   ?= -O2 -g
 CXXFLAGS ?= -O2 -g
-ALL_CFLAGS   = -std=c11 -D_GNU_SOURCE $(WARN) -fopenmp -Iinclude -Isrc $(PKG_CFLAGS) $(CFLAGS)
+ALL_CFLAGS   = -std=c11 -D_GNU_SOURCE $(WARN) -fopenmp -Iinclude -Isrc $(PKG_CFLAGS) $(MPI_CFLAGS) $(CFLAGS)
 ALL_CXXFLAGS = -std=c++17 $(WARN) -Iinclude -Isrc $(PKG_CFLAGS) $(CXXFLAGS)
-LDLIBS   = $(PKG_LIBS) -fopenmp -lstdc++ -lm
+LDLIBS   = $(PKG_LIBS) $(MPI_LIBS) -fopenmp -lstdc++ -lm
 SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
 LIB_C    := $(shell find src -name '*.c' ! -path 'src/cli/*' | sort)
+
+# MPI is optional (docs/distributed.md): with Open MPI's development files
+# (`make deps` installs them) `celadon render` under mpirun shares its work
+# among the ranks (src/render/distribute_mpi.c); without them it builds
+# src/render/distribute_serial.c and refuses to run as several ranks.
+# `make HAVE_MPI=0` builds without MPI where it is installed.
+ifndef HAVE_MPI
+HAVE_MPI := $(shell pkg-config --exists ompi-c 2>/dev/null && echo 1 || echo 0)
+endif
+ifeq ($(HAVE_MPI),1)
+MPI_CFLAGS := -DCELADON_HAVE_MPI $(shell pkg-config --cflags ompi-c)
+MPI_LIBS   := $(shell pkg-config --libs ompi-c)
+LIB_C      := $(filter-out src/render/distribute_serial.c,$(LIB_C))
+else
+LIB_C      := $(filter-out src/render/distribute_mpi.c,$(LIB_C))
+endif
 LIB_CXX  := $(shell find src -name '*.cpp' | sort)
 CLI_C    := $(shell find src/cli -name '*.c' | sort)
 TEST_C   := $(shell find tests -name '*.c' ! -path 'tests/tools/*' | sort)

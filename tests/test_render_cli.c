@@ -137,7 +137,10 @@ Test(render_cli, sigint_writes_the_partial_image)
     pid_t pid;
     cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, argv, environ), 0);
     posix_spawn_file_actions_destroy(&fa);
-    usleep(1500000);
+    /* Once it catches SIGINT (it may take seconds to start on a busy machine),
+     * let it render a moment. */
+    cr_assert(cli_wait_for_handler(pid, SIGINT, 60), "celadon never caught SIGINT");
+    usleep(500000);
     kill(pid, SIGINT);
     int status;
     cr_assert_eq(waitpid(pid, &status, 0), pid);
