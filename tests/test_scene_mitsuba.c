@@ -289,7 +289,7 @@ static float *render_text(const char *name, const char *text)
     so.width = 24, so.height = 16, so.spp = 4, so.seed = 3;
     scene_t *s = scene_create_from_file(path, NULL, 0, &so, err, sizeof err);
     cr_assert_not_null(s, "%s", err);
-    render_options ro = {1, 0, 0};
+    render_options ro = {.threads = 1};
     film_t film;
     render_stats st;
     cr_assert_eq(render_scene(s, &ro, &film, &st, err, sizeof err), 0, "%s", err);

@@ -63,4 +63,13 @@ uint8_t film_srgb8(double linear);
 int exr_write_float(const char *path, int width, int height, int nch, const char *const *names,
                     const float *pixels, char *err, size_t errlen);
 
+/* A string attribute of an EXR header, e.g. {"celadon.part", "2/4"}. */
+typedef struct {
+    const char *name, *value;
+} film_attr;
+
+/* exr_write_float with nattrs string attributes added to the header. */
+int exr_write_float_attrs(const char *path, int width, int height, int nch, const char *const *names,
+                          const float *pixels, const film_attr *attrs, int nattrs, char *err, size_t errlen);
+
 #endif

@@ -26,6 +26,23 @@ typedef struct {
     double err_curve_to_polyline, err_polyline_to_curve; /* one-sided Hausdorff, px */
     int contour_points;
     double ms_image_processing, ms_bspline, ms_texture, ms_mesh;
+    /* What the reconstruction left out of the surface of revolution (written
+     * by `reconstruct`, ignored by readers): a stand, a shadow, a handle...,
+     * the image rows it spans, its side (-1 left, +1 right, 0 both) and what
+     * the profile takes there ("none", "left", "right", "bridged"). */
+    int n_excluded;
+    struct {
+        char what[16];
+        int rows[2];
+        int side;
+        char profile[12];
+    } excluded[16];
+    /* The quality gate's figures (present = 0: none recorded). */
+    struct {
+        int present, passed;
+        double hausdorff_px, lr_disagreement, excluded_fraction;
+        unsigned border_contact; /* bits: 1 top, 2 bottom, 4 left, 8 right */
+    } quality;
 } profile_t;
 
 /* The curvature domains of a profile (docs/user-guide.md#profilejson): each

@@ -55,6 +55,34 @@ static json_t *corners_json(const profile_t *p)
     return o;
 }
 
+/* "excluded" (always, possibly empty) and "quality" (when recorded). */
+static int add_reconstruction_notes(json_t *root, const profile_t *p)
+{
+    json_t *ex = json_array();
+    for (int i = 0; ex && i < p->n_excluded; i++) {
+        const char *side = p->excluded[i].side < 0 ? "left" : (p->excluded[i].side > 0 ? "right" : "both");
+        if (json_array_append_new(ex, json_pack("{s:s, s:[i, i], s:s, s:s}", "what", p->excluded[i].what, "rows",
+                                                p->excluded[i].rows[0], p->excluded[i].rows[1], "side", side,
+                                                "profile", p->excluded[i].profile)) != 0) {
+            json_decref(ex);
+            ex = NULL;
+        }
+    }
+    if (!ex || json_object_set_new(root, "excluded", ex) != 0)
+        return -1;
+    if (!p->quality.present)
+        return 0;
+    json_t *border = json_array();
+    static const char *edge[4] = {"top", "bottom", "left", "right"};
+    for (int k = 0; border && k < 4; k++)
+        if (p->quality.border_contact & (1u << k))
+            json_array_append_new(border, json_string(edge[k]));
+    json_t *q = json_pack("{s:b, s:f, s:f, s:f, s:o}", "passed", p->quality.passed, "hausdorff_px",
+                          p->quality.hausdorff_px, "lr_disagreement", p->quality.lr_disagreement,
+                          "excluded_fraction", p->quality.excluded_fraction, "border_contact", border);
+    return q && json_object_set_new(root, "quality", q) == 0 ? 0 : -1;
+}
+
 int profile_write_json(const char *path, const profile_t *p, char *err, size_t errlen)
 {
     const char *bad = bspline_validate(&p->curve);
@@ -80,6 +108,10 @@ int profile_write_json(const char *path, const profile_t *p, char *err, size_t e
         "stats", "contour_points", p->contour_points, "control_points", p->curve.n_ctrl, "domains", p->n_domains,
         "timings_ms", "image_processing", p->ms_image_processing, "bspline", p->ms_bspline, "texture",
         p->ms_texture, "mesh", p->ms_mesh);
+    if (root && add_reconstruction_notes(root, p) != 0) {
+        json_decref(root);
+        root = NULL;
+    }
     if (!root) {
         snprintf(err, errlen, "cannot write %s: a value is not finite or a string is not UTF-8", path);
         return -1;

@@ -205,6 +205,7 @@ scene_t *scene_create(scene_desc *desc, const scene_options *opt, char *err, siz
         scene_destroy(s);
         return NULL;
     }
+    s->digest = scene_digest_compute(desc, s, opt->mesh_segments);
     return s;
 }
 
