@@ -52,6 +52,10 @@ static void run_case(const char *name, void (*edit)(synth_scene_params *), int f
     opt.force = force;
     out->status = reconstruct_photo(path, &opt, &out->r, out->err, sizeof out->err);
     unlink(path);
+    /* Whatever is written must revolve: r >= 0 at every control point (a
+     * knob or a mouth closing on the axis may not undershoot it). */
+    for (int i = 0; out->status == 0 && i < out->r.curve.n_ctrl; i++)
+        cr_expect_geq(out->r.curve.ctrl[i].x, 0, "%s: control point %d at r = %g", name, i, out->r.curve.ctrl[i].x);
 }
 
 /* r of the fitted curve at height h (px along the image axis), by
