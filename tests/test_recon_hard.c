@@ -152,6 +152,15 @@ Test(recon_hard, maebyeong_and_ewer_shapes_reconstruct, .timeout = 120)
     expect_profile("ewer_neck", 0.3, 1.0);
 }
 
+/* A line as light as the backdrop painted round the neck cuts the vessel in
+ * two across its whole width; it is still one vessel (the neck and mouth
+ * joined across the line, docs/algorithms-recon.md section 3), not "two
+ * objects" or a vessel without its mouth. */
+Test(recon_hard, a_line_in_the_backdrop_colour_does_not_cut_the_vessel, .timeout = 60)
+{
+    expect_profile("vase_backdrop_line", 0.3, 1.5);
+}
+
 /* ---- cut at the foot */
 
 static void expect_foot_cut(const char *name, recon_part_kind kind)

@@ -238,7 +238,10 @@ static recon_status segment_vessel(const image_t *img, recon_result *res, vec2 *
         st = fail(RECON_ERR_NO_OBJECT, err, errlen, "no object found: the object is too small");
         goto out;
     }
-    if (recon_refine_mask(img, &seg, seg.object, res->mask) != 0) {
+    /* The band's refinement at full resolution can open again a band that the
+     * low resolution joined across. */
+    if (recon_refine_mask(img, &seg, seg.object, res->mask) != 0 ||
+        recon_mask_join_bands(res->mask, img->width, img->height, RECON_BAND_MAX_ROWS * seg.factor) != 0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
