@@ -43,13 +43,20 @@ enum {
     BSDF_BACK_SIDE = 1u << 6,  /* ... and on the back */
     /* Its delta transmission continues the ray undeviated (wo = -wi: a thin
      * sheet), so a shadow ray may cross it, weighted by
-     * bsdf_straight_transmittance, instead of being blocked. */
+     * bsdf_straight_transmittance, instead of being blocked. A sample that
+     * went straight through carries this bit in its sampled_type too. */
     BSDF_STRAIGHT_TRANSMISSION = 1u << 7,
+    /* Mitsuba's null lobe: the light goes on as if the surface were not
+     * there (`null`, the transparent part of `mask`); such a surface does
+     * not count as covering the pixel (alpha). */
+    BSDF_NULL = 1u << 8,
+    BSDF_DIFFUSE_TRANSMISSION = 1u << 9,
 };
-#define BSDF_DELTA (BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION)
+#define BSDF_DELTA (BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION | BSDF_NULL)
 /* Lobes that bsdf_eval can see: next-event estimation is useful for them. */
-#define BSDF_SMOOTH (BSDF_DIFFUSE_REFLECTION | BSDF_GLOSSY_REFLECTION | BSDF_GLOSSY_TRANSMISSION)
-#define BSDF_TRANSMISSION (BSDF_GLOSSY_TRANSMISSION | BSDF_DELTA_TRANSMISSION)
+#define BSDF_SMOOTH                                                                                                \
+    (BSDF_DIFFUSE_REFLECTION | BSDF_GLOSSY_REFLECTION | BSDF_GLOSSY_TRANSMISSION | BSDF_DIFFUSE_TRANSMISSION)
+#define BSDF_TRANSMISSION (BSDF_GLOSSY_TRANSMISSION | BSDF_DELTA_TRANSMISSION | BSDF_NULL | BSDF_DIFFUSE_TRANSMISSION)
 
 typedef enum { TRANSPORT_RADIANCE, TRANSPORT_IMPORTANCE } transport_mode;
 
@@ -64,7 +71,7 @@ typedef struct {
     rgb weight;            /* f |cos theta_o| / pdf */
     double pdf;            /* solid-angle density; selection probability for delta lobes */
     double eta;            /* n_o / n_i of the crossing: 1 for reflection (Russian roulette uses it) */
-    unsigned sampled_type; /* one of the lobe flags above */
+    unsigned sampled_type; /* one of the lobe flags above (and BSDF_STRAIGHT_TRANSMISSION when straight on) */
 } bsdf_sample_rec;
 
 /* u1 picks the lobe, u2 the direction; returns 1 with *out filled, or 0 when

@@ -35,7 +35,7 @@ static int thindielectric_sample(const bsdf_t *b, const bsdf_query *q, double u1
     } else {
         out->wo = v3_neg(q->wi);
         out->pdf = 1.0 - r;
-        out->sampled_type = BSDF_DELTA_TRANSMISSION;
+        out->sampled_type = BSDF_DELTA_TRANSMISSION | BSDF_STRAIGHT_TRANSMISSION;
         out->weight = spectrum_eval(&d->specular_transmittance, q->uv);
     }
     return out->pdf > 0.0;

@@ -7,16 +7,30 @@
 typedef struct {
     rgb (*li)(const integrator_t *in, const integrator_scene *sc, const ray3 *ray, double tmin, double tmax,
               sampler_stream *smp, double *aov);
+    /* Frees what data points to (not data itself); may be NULL. */
+    void (*release)(void *data);
 } integrator_ops;
 
 struct integrator {
     const integrator_ops *ops;
-    void *data; /* the plugin's, allocated with the integrator */
+    const char *type; /* the plugin's name */
+    void *data;       /* the plugin's, allocated with the integrator */
+    char **channels;  /* its own output channels' names, owned */
+    int nchannels;
 };
 
 /* One allocation holding the integrator and a copy of the data_size bytes at
  * data; NULL when out of memory, with err naming o. */
 integrator_t *integrator_alloc(const scene_obj *o, const integrator_ops *ops, const void *data, size_t data_size,
                                char *err, size_t errlen);
+/* Appends an output channel named prefix.suffix (or whichever is not
+ * empty); 0, or -1 when out of memory. */
+int integrator_add_channel(integrator_t *in, const char *prefix, const char *suffix);
+/* The integrators nested in o, built in order into out (at most max): their
+ * number, or -1 with err. */
+int integrator_nested(scene_obj *o, integrator_t **out, int max, char *err, size_t errlen);
+/* The name Mitsuba gives a nested object: its name attribute, or "_arg_i"
+ * for the i-th unnamed one. */
+void integrator_nested_name(const scene_obj *o, int i, char *buf, size_t len);
 
 #endif

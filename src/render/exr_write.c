@@ -61,8 +61,36 @@ static exr_result_t write_chunks(exr_context_t ctx, int part, int width, int hei
     return rv;
 }
 
+/* The header attributes of meta (film.h). worldToCamera is the standard
+ * attribute, an Imath matrix (row vectors, so the transpose of ours) into
+ * OpenEXR's camera frame (x right, y up, looking down -z), which is
+ * Mitsuba's camera frame (x left, y up, looking down +z) turned half a
+ * turn about y. */
+static exr_result_t write_metadata(exr_context_t ctx, int part, const film_metadata *meta)
+{
+    char seed[32];
+    snprintf(seed, sizeof seed, "%llu", (unsigned long long)meta->seed);
+    exr_attr_m44f_t w2c;
+    static const double flip[3] = {-1.0, 1.0, -1.0};
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++)
+            w2c.m[4 * c + r] = (float)(meta->world_to_camera[r][c] * (r < 3 ? flip[r] : 1.0));
+    exr_result_t rv = exr_attr_set_int(ctx, part, "spp", meta->spp);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_attr_set_string(ctx, part, "seed", seed);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_attr_set_string(ctx, part, "renderer", "celadon");
+    if (rv == EXR_ERR_SUCCESS && meta->integrator[0])
+        rv = exr_attr_set_string(ctx, part, "integrator", meta->integrator);
+    if (rv == EXR_ERR_SUCCESS && meta->camera[0])
+        rv = exr_attr_set_string(ctx, part, "camera", meta->camera);
+    if (rv == EXR_ERR_SUCCESS && meta->camera[0])
+        rv = exr_attr_set_m44f(ctx, part, "worldToCamera", &w2c);
+    return rv;
+}
+
 int exr_write_float(const char *path, int width, int height, int nch, const char *const *names,
-                    const float *pixels, char *err, size_t errlen)
+                    const float *pixels, const film_metadata *meta, char *err, size_t errlen)
 {
     char tmp[4200];
     atomic_temp_name(path, tmp, sizeof tmp);
@@ -78,6 +106,8 @@ int exr_write_float(const char *path, int width, int height, int nch, const char
         rv = exr_initialize_required_attr_simple(ctx, part, width, height, EXR_COMPRESSION_ZIP);
     for (int c = 0; c < nch && rv == EXR_ERR_SUCCESS; c++)
         rv = exr_add_channel(ctx, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+    if (rv == EXR_ERR_SUCCESS && meta && meta->spp > 0)
+        rv = write_metadata(ctx, part, meta);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_write_header(ctx);
     if (rv == EXR_ERR_SUCCESS)
