@@ -346,7 +346,7 @@ Test(bsdf_models, extreme_inputs_stay_finite)
                 plugin_xml_open(&fx);
                 const bsdf_t *b = bsdf_of(xml);
                 for (int w = 0; w < 6; w++) {
-                    bsdf_query q = {v3_norm(wis[w]), v2(0, 0), TRANSPORT_RADIANCE};
+                    bsdf_query q = {.wi = v3_norm(wis[w]), .uv = v2(0, 0), .mode = TRANSPORT_RADIANCE};
                     for (int k = 0; k < 200; k++) {
                         bsdf_sample_rec s;
                         double u1 = k == 0 ? 0.0 : rng_next_double(&rng);

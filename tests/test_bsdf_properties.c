@@ -155,7 +155,8 @@ Test(bsdf_props, reciprocity)
                 a.z = -a.z;
                 b.z = -b.z;
             }
-            bsdf_query qa = {a, v2(0.3, 0.6), TRANSPORT_RADIANCE}, qb = {b, v2(0.3, 0.6), TRANSPORT_RADIANCE};
+            bsdf_query qa = {.wi = a, .uv = v2(0.3, 0.6), .mode = TRANSPORT_RADIANCE};
+            bsdf_query qb = {.wi = b, .uv = v2(0.3, 0.6), .mode = TRANSPORT_RADIANCE};
             rgb fab = rgb_scale(bsdf_eval(cases[ci].bsdf, &qa, b), 1.0 / fabs(b.z));
             rgb fba = rgb_scale(bsdf_eval(cases[ci].bsdf, &qb, a), 1.0 / fabs(a.z));
             double tol = 1e-9 * (1.0 + rgb_max(fab));
@@ -183,12 +184,12 @@ Test(bsdf_props, roughdielectric_adjoint)
         for (int k = 0; k < 400; k++) {
             /* Pairs (a, b) with b sampled from a, so most are transmissions with f > 0. */
             vec3 a = warp_square_to_uniform_sphere(v2(rng_next_double(&rng), rng_next_double(&rng)));
-            bsdf_query qa = {a, v2(0, 0), TRANSPORT_IMPORTANCE};
+            bsdf_query qa = {.wi = a, .uv = v2(0, 0), .mode = TRANSPORT_IMPORTANCE};
             bsdf_sample_rec s;
             if (!bsdf_sample(cases[ci].bsdf, &qa, 0.999, v2(rng_next_double(&rng), rng_next_double(&rng)), &s))
                 continue;
             vec3 b = s.wo;
-            bsdf_query qb = {b, v2(0, 0), TRANSPORT_RADIANCE};
+            bsdf_query qb = {.wi = b, .uv = v2(0, 0), .mode = TRANSPORT_RADIANCE};
             double f_imp = bsdf_eval(cases[ci].bsdf, &qa, b).r / fabs(b.z);
             double f_rad = bsdf_eval(cases[ci].bsdf, &qb, a).r / fabs(a.z);
             cr_assert_float_eq(f_imp, f_rad, 1e-9 * (1.0 + f_imp), "%s: %g vs %g", cases[ci].name, f_imp, f_rad);

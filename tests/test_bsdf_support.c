@@ -121,7 +121,7 @@ double chi2_sphere(const sphere_sampler *s, int n_cos, int n_phi, long n_samples
 bsdf_query query_at(double theta_deg, double phi_deg, transport_mode mode)
 {
     double t = theta_deg * M_PI / 180.0, p = phi_deg * M_PI / 180.0;
-    bsdf_query q = {v3(sin(t) * cos(p), sin(t) * sin(p), cos(t)), v2(0.3, 0.6), mode};
+    bsdf_query q = {.wi = v3(sin(t) * cos(p), sin(t) * sin(p), cos(t)), .uv = v2(0.3, 0.6), .mode = mode};
     return q;
 }
 

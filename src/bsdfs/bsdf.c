@@ -52,6 +52,11 @@ rgb bsdf_straight_transmittance(const bsdf_t *b, const bsdf_query *q)
     return b->flags & BSDF_STRAIGHT_TRANSMISSION ? b->ops->straight(b, q) : rgb_gray(0.0);
 }
 
+vec3 bsdf_shading_normal(const bsdf_t *b, const bsdf_query *q)
+{
+    return b->ops->shading_normal ? b->ops->shading_normal(b, q) : v3(0.0, 0.0, 1.0);
+}
+
 void bsdf_destroy(bsdf_t *b)
 {
     free(b);

@@ -19,6 +19,7 @@ typedef struct {
     double (*pdf)(const bsdf_t *b, const bsdf_query *q, vec3 wo);
     rgb (*albedo)(const bsdf_t *b, vec2 uv);
     rgb (*straight)(const bsdf_t *b, const bsdf_query *q); /* NULL unless BSDF_STRAIGHT_TRANSMISSION */
+    vec3 (*shading_normal)(const bsdf_t *b, const bsdf_query *q); /* NULL: the frame's own, +z */
 } bsdf_ops;
 
 struct bsdf {

@@ -64,6 +64,12 @@ typedef struct {
     vec3 wi;             /* local frame, unit */
     vec2 uv;             /* surface texture coordinates */
     transport_mode mode;
+    /* The surface in the local frame, for the BSDFs that perturb the
+     * shading frame (normalmap, bumpmap) or orient it (anisotropy): the
+     * derivatives dp/du, dp/dv of the point by the texture coordinates and
+     * the geometric normal. Zero when unknown: the tangent is then local
+     * +x and the geometric normal +z. */
+    vec3 dpdu, dpdv, ng;
 } bsdf_query;
 
 typedef struct {
@@ -88,6 +94,9 @@ rgb bsdf_albedo(const bsdf_t *b, vec2 uv);
  * along q->wi's opposite side undeviated: f / pdf * selection probability of
  * the straight delta transmission lobe. Black unless BSDF_STRAIGHT_TRANSMISSION. */
 rgb bsdf_straight_transmittance(const bsdf_t *b, const bsdf_query *q);
+/* The shading normal the BSDF works with, in the local frame: +z, or the
+ * normal a normalmap or bumpmap perturbs it to (Mitsuba's sh_frame). */
+vec3 bsdf_shading_normal(const bsdf_t *b, const bsdf_query *q);
 void bsdf_destroy(bsdf_t *b);
 
 /* ---------------------------------------------------------- the plugins */

@@ -55,7 +55,7 @@ static rgb roughconductor_albedo(const bsdf_t *b, vec2 uv)
 
 static const bsdf_ops roughconductor_ops = {"roughconductor",
                                             roughconductor_sample, roughconductor_eval, roughconductor_pdf,
-                                            roughconductor_albedo, NULL};
+                                            roughconductor_albedo, NULL, NULL};
 
 static bsdf_t *roughconductor_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {

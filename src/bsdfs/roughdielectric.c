@@ -108,7 +108,7 @@ static rgb roughdielectric_albedo(const bsdf_t *b, vec2 uv)
 
 static const bsdf_ops roughdielectric_ops = {"roughdielectric",
                                              roughdielectric_sample, roughdielectric_eval, roughdielectric_pdf,
-                                             roughdielectric_albedo, NULL};
+                                             roughdielectric_albedo, NULL, NULL};
 
 static bsdf_t *roughdielectric_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {

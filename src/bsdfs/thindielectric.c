@@ -58,7 +58,7 @@ static rgb thindielectric_albedo(const bsdf_t *b, vec2 uv)
 
 static const bsdf_ops thindielectric_ops = {"thindielectric",
                                             thindielectric_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only,
-                                            thindielectric_albedo, thindielectric_straight};
+                                            thindielectric_albedo, thindielectric_straight, NULL};
 
 static bsdf_t *thindielectric_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {

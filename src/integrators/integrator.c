@@ -34,6 +34,56 @@ integrator_t *integrator_alloc(const scene_obj *o, const integrator_ops *ops, co
     return in;
 }
 
+void integrator_first_hit_aovs(double *aov, const surface_hit *hit)
+{
+    aov[INTEGRATOR_AOV_DEPTH] = hit->t;
+    double *n = aov + INTEGRATOR_AOV_NORMAL, *albedo = aov + INTEGRATOR_AOV_ALBEDO;
+    n[0] = hit->sh.n.x, n[1] = hit->sh.n.y, n[2] = hit->sh.n.z;
+    rgb a = bsdf_albedo(hit->shape->bsdf, hit->uv);
+    albedo[0] = a.r, albedo[1] = a.g, albedo[2] = a.b;
+}
+
+void integrator_clear_aovs(double *aov, bool covered)
+{
+    for (int i = 0; i < INTEGRATOR_AOV_COUNT; i++)
+        aov[i] = 0.0;
+    aov[INTEGRATOR_AOV_ALPHA] = covered;
+}
+
+ray3 integrator_spawn(const surface_hit *hit, vec3 w)
+{
+    double side = v3_dot(hit->ng, w) >= 0.0 ? hit->eps : -hit->eps;
+    return (ray3){v3_add(hit->p, v3_scale(hit->ng, side)), w};
+}
+
+bool integrator_unoccluded(const shape_list *shapes, const surface_hit *hit, const emitter_sample_rec *es)
+{
+    ray3 r = integrator_spawn(hit, es->wi);
+    if (isinf(es->dist))
+        return !shape_list_occluded(shapes, &r, 0.0, INFINITY);
+    vec3 target = es->p;
+    if (es->eps > 0.0) /* lift the light point toward the receiver */
+        target = v3_add(target, v3_scale(es->n, v3_dot(es->n, es->wi) < 0.0 ? es->eps : -es->eps));
+    r.d = v3_sub(target, r.o);
+    return !shape_list_occluded(shapes, &r, 0.0, 1.0 - 1e-7);
+}
+
+rgb integrator_nested_li(const integrator_t *nested, const integrator_scene *sc, const ray3 *ray, double tmin,
+                         double tmax, sampler_stream *smp, double *fixed, double *own)
+{
+    int k = nested->nchannels;
+    double local[64], *buf = INTEGRATOR_AOV_COUNT + k <= 64 ? local : malloc(sizeof(double) * (size_t)(INTEGRATOR_AOV_COUNT + k));
+    if (!buf)
+        abort();
+    rgb L = nested->ops->li(nested, sc, ray, tmin, tmax, smp, buf);
+    if (fixed)
+        memcpy(fixed, buf, sizeof(double) * INTEGRATOR_AOV_COUNT);
+    memcpy(own, buf + INTEGRATOR_AOV_COUNT, sizeof(double) * (size_t)k);
+    if (buf != local)
+        free(buf);
+    return L;
+}
+
 int integrator_add_channel(integrator_t *in, const char *prefix, const char *suffix)
 {
     char **a = realloc(in->channels, sizeof *a * (size_t)(in->nchannels + 1));

@@ -58,7 +58,7 @@ static rgb transmittance(const shape_list *shapes, const surface_hit *h, const e
         const bsdf_t *b = x.shape->bsdf;
         if (crossed == max_sheets || !(bsdf_flags(b) & BSDF_STRAIGHT_TRANSMISSION))
             return rgb_gray(0.0);
-        bsdf_query q = {frame3_to_local(x.sh, v3_neg(es->wi)), x.uv, TRANSPORT_RADIANCE};
+        bsdf_query q = shape_bsdf_query(&x, es->wi, TRANSPORT_RADIANCE);
         tr = rgb_mul(tr, bsdf_straight_transmittance(b, &q));
         if (rgb_is_black(tr))
             return tr;
@@ -120,13 +120,8 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             break;
         }
         const shape_t *sh = hit.shape;
-        if (depth == 0 && aov) {
-            aov[INTEGRATOR_AOV_DEPTH] = hit.t;
-            double *n = aov + INTEGRATOR_AOV_NORMAL, *albedo = aov + INTEGRATOR_AOV_ALBEDO;
-            n[0] = hit.sh.n.x, n[1] = hit.sh.n.y, n[2] = hit.sh.n.z;
-            rgb a = bsdf_albedo(sh->bsdf, hit.uv);
-            albedo[0] = a.r, albedo[1] = a.g, albedo[2] = a.b;
-        }
+        if (depth == 0 && aov)
+            integrator_first_hit_aovs(aov, &hit);
         if (sh->emitter && show) {
             const emitter_t *e = sh->emitter;
             rgb le = emitter_eval_hit(e, &hit, ray.d);
@@ -142,7 +137,7 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             break;
         }
 
-        bsdf_query q = {frame3_to_local(hit.sh, v3_neg(ray.d)), hit.uv, TRANSPORT_RADIANCE};
+        bsdf_query q = shape_bsdf_query(&hit, ray.d, TRANSPORT_RADIANCE);
         if ((bsdf_flags(sh->bsdf) & BSDF_SMOOTH) && emitters->count > 0) {
             /* The emitter at depth + 1 + sheets must not pass max_depth - 1. */
             int max_sheets = pd->max_depth < 0 ? -1 : pd->max_depth - 2 - depth;
