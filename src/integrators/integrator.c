@@ -27,7 +27,7 @@ integrator_t *integrator_alloc(const scene_obj *o, const integrator_ops *ops, co
         return NULL;
     }
     in->ops = ops;
-    in->type = o->type;
+    in->type = integrator_plugin_find(o->type)->decl.type; /* static: o goes with the description */
     in->data = at;
     in->channels = NULL;
     in->nchannels = 0;
