@@ -68,6 +68,13 @@ typedef struct {
     int sample_visible;
 } bsdf_roughness;
 
+/* Whether the roughness differs along u and v (or may): BSDF_ANISOTROPIC. */
+static inline unsigned bsdf_roughness_flags(const bsdf_roughness *r)
+{
+    bool same = r->alpha_u.texture == r->alpha_v.texture && r->alpha_u.value == r->alpha_v.value;
+    return same ? 0u : BSDF_ANISOTROPIC;
+}
+
 static inline microfacet bsdf_roughness_at(const bsdf_roughness *r, vec2 uv)
 {
     return microfacet_make(r->type, scalar_eval(&r->alpha_u, uv), scalar_eval(&r->alpha_v, uv), r->sample_visible);

@@ -51,6 +51,10 @@ enum {
      * not count as covering the pixel (alpha). */
     BSDF_NULL = 1u << 8,
     BSDF_DIFFUSE_TRANSMISSION = 1u << 9,
+    /* Its lobes are oriented around the normal: the BSDF works in Mitsuba's
+     * shading frame, whose x axis is dp/du made perpendicular to the
+     * normal (bsdf_query's dpdu); the dispatch turns the query into it. */
+    BSDF_ANISOTROPIC = 1u << 10,
 };
 #define BSDF_DELTA (BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION | BSDF_NULL)
 /* Lobes that bsdf_eval can see: next-event estimation is useful for them. */

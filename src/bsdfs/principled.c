@@ -287,7 +287,7 @@ static bsdf_t *principled_create(scene_obj *o, bsdf_set *set, char *err, size_t 
         return NULL;
     }
     unsigned flags = BSDF_DIFFUSE_REFLECTION | BSDF_GLOSSY_REFLECTION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE |
-                     (d.spec_trans.on ? BSDF_GLOSSY_TRANSMISSION : 0u);
+                     (d.spec_trans.on ? BSDF_GLOSSY_TRANSMISSION : 0u) | (d.anisotropic.on ? BSDF_ANISOTROPIC : 0u);
     return bsdf_alloc(o, &principled_ops, flags, &d, sizeof d, err, errlen);
 }
 

@@ -205,7 +205,8 @@ static bsdf_t *thin_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen
         return NULL;
     }
     unsigned flags = BSDF_DIFFUSE_REFLECTION | BSDF_DIFFUSE_TRANSMISSION | BSDF_GLOSSY_REFLECTION |
-                     (d.spec_trans.on ? BSDF_GLOSSY_TRANSMISSION : 0u) | BSDF_FRONT_SIDE | BSDF_BACK_SIDE;
+                     (d.spec_trans.on ? BSDF_GLOSSY_TRANSMISSION : 0u) | BSDF_FRONT_SIDE | BSDF_BACK_SIDE |
+                     (d.anisotropic.on ? BSDF_ANISOTROPIC : 0u);
     return bsdf_alloc(o, &thin_ops, flags, &d, sizeof d, err, errlen);
 }
 

@@ -71,7 +71,9 @@ static bsdf_t *roughconductor_create(scene_obj *o, bsdf_set *set, char *err, siz
     if (bsdf_check_spectrum(o, "eta", &eta, err, errlen) || bsdf_check_spectrum(o, "k", &k, err, errlen) ||
         bsdf_check_spectrum(o, "specular_reflectance", &d.specular_reflectance, err, errlen))
         return NULL;
-    return bsdf_alloc(o, &roughconductor_ops, BSDF_GLOSSY_REFLECTION | BSDF_FRONT_SIDE, &d, sizeof d, err, errlen);
+    return bsdf_alloc(o, &roughconductor_ops,
+                      BSDF_GLOSSY_REFLECTION | BSDF_FRONT_SIDE | bsdf_roughness_flags(&d.roughness), &d, sizeof d, err,
+                      errlen);
 }
 
 static const scene_param_decl roughconductor_params[] = {BSDF_PARAMS_CONDUCTOR, BSDF_PARAMS_ROUGHNESS, BSDF_PARAMS_END};

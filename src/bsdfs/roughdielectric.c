@@ -125,7 +125,8 @@ static bsdf_t *roughdielectric_create(scene_obj *o, bsdf_set *set, char *err, si
         bsdf_check_spectrum(o, "specular_transmittance", &d.specular_transmittance, err, errlen))
         return NULL;
     d.eta = int_ior / ext_ior;
-    unsigned flags = BSDF_GLOSSY_REFLECTION | BSDF_GLOSSY_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE;
+    unsigned flags = BSDF_GLOSSY_REFLECTION | BSDF_GLOSSY_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE |
+                     bsdf_roughness_flags(&d.roughness);
     return bsdf_alloc(o, &roughdielectric_ops, flags, &d, sizeof d, err, errlen);
 }
 
