@@ -11,7 +11,7 @@ static double box_eval(const rfilter_t *f, double x)
 static int box_create(scene_obj *o, rfilter_t *out, char *err, size_t errlen)
 {
     (void)o, (void)err, (void)errlen;
-    *out = (rfilter_t){"box", 0.5, 0.0, box_eval};
+    *out = (rfilter_t){"box", 0.5, {0.0, 0.0}, box_eval};
     return 0;
 }
 

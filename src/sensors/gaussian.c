@@ -9,8 +9,7 @@
 
 static double gaussian_eval(const rfilter_t *f, double x)
 {
-    double a = -0.5 / (f->param * f->param);
-    return fmax(0.0, exp(a * x * x) - exp(a * f->radius * f->radius));
+    return fmax(0.0, exp(f->p[0] * x * x) - f->p[1]);
 }
 
 static int gaussian_create(scene_obj *o, rfilter_t *out, char *err, size_t errlen)
@@ -18,7 +17,8 @@ static int gaussian_create(scene_obj *o, rfilter_t *out, char *err, size_t errle
     double stddev = scene_obj_float(o, "stddev", 0.5);
     if (!(stddev > 0.0) || stddev > 16.0)
         return scene_obj_error(o, err, errlen, "<rfilter type=\"gaussian\">: stddev %g is not in (0, 16]", stddev);
-    *out = (rfilter_t){"gaussian", 4.0 * stddev, stddev, gaussian_eval};
+    double a = -0.5 / (stddev * stddev), r = 4.0 * stddev;
+    *out = (rfilter_t){"gaussian", r, {a, exp(a * r * r)}, gaussian_eval};
     return 0;
 }
 

@@ -77,7 +77,7 @@ typedef struct rfilter rfilter_t;
 struct rfilter {
     const char *type; /* the plugin's name */
     double radius;
-    double param;     /* the plugin's: tent 1 / radius, gaussian stddev */
+    double p[2];      /* the plugin's: tent 1 / radius; gaussian -1 / (2 stddev^2) and its value at radius */
     double (*eval)(const rfilter_t *f, double x);
 };
 

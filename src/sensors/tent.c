@@ -6,7 +6,7 @@
 
 static double tent_eval(const rfilter_t *f, double x)
 {
-    return fmax(0.0, 1.0 - fabs(x) * f->param);
+    return fmax(0.0, 1.0 - fabs(x) * f->p[0]);
 }
 
 static int tent_create(scene_obj *o, rfilter_t *out, char *err, size_t errlen)
@@ -14,7 +14,7 @@ static int tent_create(scene_obj *o, rfilter_t *out, char *err, size_t errlen)
     double radius = scene_obj_float(o, "radius", 1.0);
     if (!(radius > 0.0) || radius > 64.0)
         return scene_obj_error(o, err, errlen, "<rfilter type=\"tent\">: radius %g is not in (0, 64]", radius);
-    *out = (rfilter_t){"tent", radius, 1.0 / radius, tent_eval};
+    *out = (rfilter_t){"tent", radius, {1.0 / radius, 0.0}, tent_eval};
     return 0;
 }
 
