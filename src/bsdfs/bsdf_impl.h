@@ -89,27 +89,38 @@ double bsdf_pdf_delta_only(const bsdf_t *b, const bsdf_query *q, vec3 wo);
 int bsdf_finish_sample(const bsdf_t *b, const bsdf_query *q, bsdf_sample_rec *out);
 
 /* ------------------------------ perturbed shading frames (perturbed_frame.c) */
-/* normalmap and bumpmap: a nested BSDF evaluated in a shading frame f
- * given in the local frame (its n the perturbed normal). Directions whose
- * sides differ between the two frames are refused (zero), as in Mitsuba;
- * with `shadowing`, values are multiplied by the microfacet shadowing term
- * of Estevez et al. 2019 that Mitsuba applies (use_shadowing_function). */
-typedef struct {
-    frame3 f;
-    bool shadowing;
-} bsdf_perturbed;
+/* normalmap and bumpmap: a nested BSDF evaluated in a shading frame given
+ * in the local frame (its n the perturbed normal). With flip_invalid, a
+ * normal that wi sees from behind has its tangential part mirrored
+ * (Mitsuba's flip_invalid_normals). Directions whose sides differ between
+ * the two frames are refused (zero), as in Mitsuba; with shadowing, values
+ * are multiplied by the microfacet shadowing term of Estevez et al. 2019
+ * that Mitsuba applies (use_shadowing_function). */
 
-/* The frame of the perturbed normal n (local frame, unit): the tangent is
- * Gram-Schmidt of tangent against n. flip_invalid: mirror n's tangential
- * part when wi sees it from behind (Mitsuba's flip_invalid_normals). */
-frame3 bsdf_perturbed_frame(vec3 n, vec3 tangent, const bsdf_query *q, bool flip_invalid);
 /* Mitsuba's tangent at a hit, local +x or along dp/du: the x axis of its
  * shading frame, in the local frame. */
 vec3 bsdf_query_tangent(const bsdf_query *q);
-int bsdf_perturbed_sample(const bsdf_t *nested, const bsdf_perturbed *p, const bsdf_query *q, double u1, vec2 u2,
-                          bsdf_sample_rec *out);
-rgb bsdf_perturbed_eval(const bsdf_t *nested, const bsdf_perturbed *p, const bsdf_query *q, vec3 wo);
-double bsdf_perturbed_pdf(const bsdf_t *nested, const bsdf_perturbed *p, const bsdf_query *q, vec3 wo);
+/* The data of a perturbing BSDF begins with this: its nested BSDF, its
+ * options, and the function that gives its frame at a query. The
+ * bsdf_perturbing_* functions are then its ops. */
+typedef struct {
+    const bsdf_t *nested;
+    bool flip_invalid, shadowing;
+    /* The perturbed normal at q (any length) and the tangent it is made
+     * perpendicular to, in the local frame. */
+    void (*normal)(const void *data, const bsdf_query *q, vec3 *n, vec3 *tangent);
+} bsdf_perturbing;
+
+int bsdf_perturbing_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out);
+rgb bsdf_perturbing_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo);
+double bsdf_perturbing_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo);
+rgb bsdf_perturbing_albedo(const bsdf_t *b, vec2 uv);
+vec3 bsdf_perturbing_shading_normal(const bsdf_t *b, const bsdf_query *q);
+#define BSDF_PERTURBING_OPS(name)                                                                                 \
+    {name, bsdf_perturbing_sample, bsdf_perturbing_eval, bsdf_perturbing_pdf, bsdf_perturbing_albedo, NULL,         \
+     bsdf_perturbing_shading_normal}
+/* Reads the nested BSDF and the two options into d. 0, or -1 with err. */
+int bsdf_perturbing_param(bsdf_set *set, scene_obj *o, bsdf_perturbing *d, char *err, size_t errlen);
 
 /* Mitsuba's named indices of refraction ("bk7", "air", "water", ...), as
  * the '|'-separated choices of int_ior and ext_ior (ior.c). */

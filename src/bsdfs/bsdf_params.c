@@ -123,18 +123,12 @@ int bsdf_conductor_param(scene_obj *o, rgb *eta, rgb *k, char *err, size_t errle
 int bsdf_scalar_param(bsdf_set *set, scene_obj *o, const char *name, double def, bsdf_scalar *out, char *err,
                       size_t errlen)
 {
-    scene_obj *tex = scene_obj_texture(o, name);
-    if (tex) {
-        const texture_t *t = texture_set_get(set->textures, tex, err, errlen);
-        if (!t)
-            return -1;
-        *out = (bsdf_scalar){0.0, t};
-        return 0;
-    }
+    bsdf_spectrum s;
+    if (bsdf_spectrum_param(set, o, name, def, &s, err, errlen) != 0)
+        return -1;
     /* A color (where the declaration allows one) is read as its luminance. */
-    scene_rgb c = scene_obj_rgb(o, name, (scene_rgb){def, def, def});
-    double v = c.r == c.g && c.g == c.b ? c.r : rgb_luminance(rgb_make(c.r, c.g, c.b));
-    *out = (bsdf_scalar){v, NULL};
+    rgb c = s.value;
+    *out = (bsdf_scalar){c.r == c.g && c.g == c.b ? c.r : rgb_luminance(c), s.texture};
     return 0;
 }
 

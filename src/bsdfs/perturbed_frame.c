@@ -11,9 +11,15 @@ vec3 bsdf_query_tangent(const bsdf_query *q)
     return len > 1e-300 ? v3_scale(t, 1.0 / len) : v3(1.0, 0.0, 0.0);
 }
 
-frame3 bsdf_perturbed_frame(vec3 n, vec3 tangent, const bsdf_query *q, bool flip_invalid)
+/* The plugin's frame at q: its normal, mirrored when wi sees it from
+ * behind, and the tangent made perpendicular to it (Gram-Schmidt). */
+static frame3 frame_at(const bsdf_perturbing *d, const bsdf_query *q)
 {
-    if (flip_invalid && q->wi.z * v3_dot(q->wi, n) <= 0.0)
+    vec3 n, tangent;
+    d->normal(d, q, &n, &tangent);
+    if (!(v3_len(n) > 1e-300)) /* no perturbation to speak of */
+        n = v3(0.0, 0.0, 1.0);
+    if (d->flip_invalid && q->wi.z * v3_dot(q->wi, n) <= 0.0)
         n = v3(-n.x, -n.y, n.z);
     frame3 f;
     f.n = v3_norm(n);
@@ -26,13 +32,13 @@ frame3 bsdf_perturbed_frame(vec3 n, vec3 tangent, const bsdf_query *q, bool flip
 }
 
 /* The query as the nested BSDF sees it in the frame. */
-static bsdf_query moved(const bsdf_perturbed *p, const bsdf_query *q)
+static bsdf_query moved(frame3 f, const bsdf_query *q)
 {
     bsdf_query r = *q;
-    r.wi = frame3_to_local(p->f, q->wi);
-    r.dpdu = frame3_to_local(p->f, q->dpdu);
-    r.dpdv = frame3_to_local(p->f, q->dpdv);
-    r.ng = frame3_to_local(p->f, q->ng);
+    r.wi = frame3_to_local(f, q->wi);
+    r.dpdu = frame3_to_local(f, q->dpdu);
+    r.dpdv = frame3_to_local(f, q->dpdv);
+    r.ng = frame3_to_local(f, q->ng);
     return r;
 }
 
@@ -46,36 +52,61 @@ static double shadow_terminator(vec3 n, vec3 wo)
     return isfinite(g) ? g : 0.0;
 }
 
-int bsdf_perturbed_sample(const bsdf_t *nested, const bsdf_perturbed *p, const bsdf_query *q, double u1, vec2 u2,
-                          bsdf_sample_rec *out)
+int bsdf_perturbing_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out)
 {
-    bsdf_query r = moved(p, q);
-    if (!bsdf_sample(nested, &r, u1, u2, out) || rgb_is_black(out->weight))
+    const bsdf_perturbing *d = b->data;
+    frame3 f = frame_at(d, q);
+    bsdf_query r = moved(f, q);
+    if (!bsdf_sample(d->nested, &r, u1, u2, out) || rgb_is_black(out->weight))
         return 0;
-    vec3 wo = frame3_to_world(p->f, out->wo);
+    vec3 wo = frame3_to_world(f, out->wo);
     if (out->wo.z * wo.z <= 0.0)
         return 0;
     out->wo = wo;
-    if (p->shadowing)
-        out->weight = rgb_scale(out->weight, shadow_terminator(p->f.n, wo));
+    if (d->shadowing)
+        out->weight = rgb_scale(out->weight, shadow_terminator(f.n, wo));
     return 1;
 }
 
-rgb bsdf_perturbed_eval(const bsdf_t *nested, const bsdf_perturbed *p, const bsdf_query *q, vec3 wo)
+rgb bsdf_perturbing_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
 {
-    vec3 local = frame3_to_local(p->f, wo);
+    const bsdf_perturbing *d = b->data;
+    frame3 f = frame_at(d, q);
+    vec3 local = frame3_to_local(f, wo);
     if (local.z * wo.z <= 0.0)
         return rgb_gray(0.0);
-    bsdf_query r = moved(p, q);
-    rgb f = bsdf_eval(nested, &r, local);
-    return p->shadowing ? rgb_scale(f, shadow_terminator(p->f.n, wo)) : f;
+    bsdf_query r = moved(f, q);
+    rgb value = bsdf_eval(d->nested, &r, local);
+    return d->shadowing ? rgb_scale(value, shadow_terminator(f.n, wo)) : value;
 }
 
-double bsdf_perturbed_pdf(const bsdf_t *nested, const bsdf_perturbed *p, const bsdf_query *q, vec3 wo)
+double bsdf_perturbing_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
 {
-    vec3 local = frame3_to_local(p->f, wo);
+    const bsdf_perturbing *d = b->data;
+    frame3 f = frame_at(d, q);
+    vec3 local = frame3_to_local(f, wo);
     if (local.z * wo.z <= 0.0)
         return 0.0;
-    bsdf_query r = moved(p, q);
-    return bsdf_pdf(nested, &r, local);
+    bsdf_query r = moved(f, q);
+    return bsdf_pdf(d->nested, &r, local);
+}
+
+rgb bsdf_perturbing_albedo(const bsdf_t *b, vec2 uv)
+{
+    const bsdf_perturbing *d = b->data;
+    return bsdf_albedo(d->nested, uv);
+}
+
+vec3 bsdf_perturbing_shading_normal(const bsdf_t *b, const bsdf_query *q)
+{
+    return frame_at(b->data, q).n;
+}
+
+int bsdf_perturbing_param(bsdf_set *set, scene_obj *o, bsdf_perturbing *d, char *err, size_t errlen)
+{
+    if (!(d->nested = bsdf_set_get(set, scene_obj_child(o, SCENE_BSDF), err, errlen)))
+        return -1;
+    d->flip_invalid = scene_obj_bool(o, "flip_invalid_normals", true);
+    d->shadowing = scene_obj_bool(o, "use_shadowing_function", true);
+    return 0;
 }

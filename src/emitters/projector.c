@@ -32,16 +32,8 @@ static int projector_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_sample
     vec2 uv = v2(0.5 - 0.5 * local.x / (local.z * s->tan_x), 0.5 - 0.5 * local.y / (local.z * s->tan_y));
     if (!(uv.x >= 0.0 && uv.x <= 1.0 && uv.y >= 0.0 && uv.y <= 1.0))
         return 0;
-    vec3 pos = transform_point(&s->to_world, v3(0, 0, 0));
-    vec3 to = v3_sub(pos, ref);
-    double dist2 = v3_dot(to, to);
-    if (!(dist2 > 0.0))
+    if (!emitter_delta_sample(transform_point(&s->to_world, v3(0, 0, 0)), ref, out))
         return 0;
-    out->dist = sqrt(dist2);
-    out->wi = v3_scale(to, 1.0 / out->dist);
-    out->p = pos;
-    out->pdf = 1.0;
-    out->delta = true;
     vec3 axis = transform_vector(&s->to_world, v3(0, 0, 1));
     double cos_theta = -v3_dot(axis, out->wi);
     if (!(cos_theta > 0.0))

@@ -29,16 +29,8 @@ static int spot_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_sample_rec 
 {
     (void)u;
     const spot_data *s = e->data;
-    vec3 pos = transform_point(&s->to_world, v3(0, 0, 0));
-    vec3 to = v3_sub(pos, ref);
-    double dist2 = v3_dot(to, to);
-    if (!(dist2 > 0.0))
+    if (!emitter_delta_sample(transform_point(&s->to_world, v3(0, 0, 0)), ref, out))
         return 0;
-    out->dist = sqrt(dist2);
-    out->wi = v3_scale(to, 1.0 / out->dist);
-    out->p = pos;
-    out->pdf = 1.0;
-    out->delta = true;
     vec3 local = transform_vector(&s->to_local, v3_neg(out->wi));
     double falloff = spot_falloff(s, local);
     if (falloff <= 0.0)
@@ -48,7 +40,7 @@ static int spot_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_sample_rec 
         vec2 uv = v2(0.5 + 0.5 * local.x / (local.z * s->uv_factor), 0.5 + 0.5 * local.y / (local.z * s->uv_factor));
         value = rgb_mul(value, texture_eval(s->texture, uv));
     }
-    out->value = rgb_scale(value, falloff / dist2);
+    out->value = rgb_scale(value, falloff / (out->dist * out->dist));
     return 1;
 }
 

@@ -166,8 +166,7 @@ static integrator_t *aov_create(scene_obj *o, char *err, size_t errlen)
         integrator_nested_name(o, i, name, sizeof name);
         for (int c = 0; c < 4; c++)
             rc |= integrator_add_channel(in, name, (const char *[]){"R", "G", "B", "A"}[c]);
-        for (int c = 0; c < integrator_channel_count(d.nested[i]); c++)
-            rc |= integrator_add_channel(in, name, integrator_channel_name(d.nested[i], c));
+        rc |= integrator_add_nested_channels(in, name, d.nested[i]);
     }
     for (int i = 0; i < d.ntypes; i++)
         for (const char *s = aov_types[d.types[i]].suffixes; *s; s++)

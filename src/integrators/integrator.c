@@ -99,6 +99,14 @@ int integrator_add_channel(integrator_t *in, const char *prefix, const char *suf
     return 0;
 }
 
+int integrator_add_nested_channels(integrator_t *in, const char *name, const integrator_t *nested)
+{
+    int rc = 0;
+    for (int c = 0; c < nested->nchannels; c++)
+        rc |= integrator_add_channel(in, name, nested->channels[c]);
+    return rc;
+}
+
 void integrator_nested_name(const scene_obj *o, int i, char *buf, size_t len)
 {
     const scene_obj *child = NULL;

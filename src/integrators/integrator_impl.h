@@ -44,6 +44,9 @@ rgb integrator_nested_li(const integrator_t *nested, const integrator_scene *sc,
 /* Appends an output channel named prefix.suffix (or whichever is not
  * empty); 0, or -1 when out of memory. */
 int integrator_add_channel(integrator_t *in, const char *prefix, const char *suffix);
+/* Appends the channels of a nested integrator named name: name.<each of
+ * its own channels>. 0, or -1 when out of memory. */
+int integrator_add_nested_channels(integrator_t *in, const char *name, const integrator_t *nested);
 /* The integrators nested in o, built in order into out (at most max): their
  * number, or -1 with err. */
 int integrator_nested(scene_obj *o, integrator_t **out, int max, char *err, size_t errlen);

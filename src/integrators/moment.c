@@ -63,8 +63,7 @@ static integrator_t *moment_create(scene_obj *o, char *err, size_t errlen)
     for (int i = 0; i < d.nnested; i++) {
         char name[64];
         integrator_nested_name(o, i, name, sizeof name);
-        for (int c = 0; c < integrator_channel_count(d.nested[i]); c++)
-            rc |= integrator_add_channel(in, name, integrator_channel_name(d.nested[i], c));
+        rc |= integrator_add_nested_channels(in, name, d.nested[i]);
         rc |= integrator_add_channel(in, name, "X") | integrator_add_channel(in, name, "Y") |
               integrator_add_channel(in, name, "Z");
     }
