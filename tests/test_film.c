@@ -100,11 +100,12 @@ Test(film, averages_weights_and_merges)
 {
     film_t a, b;
     char err[256];
-    const film_aov aov[] = {{"depth", 1, NULL}};
+    static const char *const t[1] = {"T"};
+    const film_aov aov[] = {{"depth", 1, t}};
     cr_assert_eq(film_init(&a, 4, 3, aov, 1, err, sizeof err), 0, "%s", err);
     cr_assert_eq(film_init(&b, 4, 3, aov, 1, err, sizeof err), 0);
     cr_assert_eq(a.nchannels, 4);
-    cr_assert_str_eq(a.names[3], "depth.Y");
+    cr_assert_str_eq(a.names[3], "depth.T", "Mitsuba's name, not .Y (which EXR readers take for luminance)");
     const double s1[4] = {1, 2, 3, 10}, s2[4] = {4, 0, 0, 20};
     film_add(&a, 2, 1, s1, 1.0);
     film_add(&b, 2, 1, s2, 3.0); /* weighted 3:1 */
@@ -258,7 +259,7 @@ static void render_environment(const char *format, const char *name, char *path,
     scene_t *s = scene_create_from_file(scene, NULL, 0, NULL, err, sizeof err);
     cr_assert_not_null(s, "%s", err);
     film_t film;
-    render_options ro = {1, 0, 0};
+    render_options ro = {.threads = 1};
     cr_assert_eq(render_scene(s, &ro, &film, NULL, err, sizeof err), 0, "%s", err);
     snprintf(path, len, "%s/%s.exr", dir, name);
     cr_assert_eq(film_write(&film, path, err, sizeof err), 0, "%s", err);

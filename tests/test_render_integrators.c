@@ -25,7 +25,7 @@ static void render_xml(const char *xml, long long seed, int threads, rendered *r
     o.seed = seed;
     scene_t *s = scene_create_from_file(path, NULL, 0, &o, err, sizeof err);
     cr_assert_not_null(s, "%s", err);
-    render_options ro = {threads, 0, 0};
+    render_options ro = {.threads = threads};
     cr_assert_eq(render_scene(s, &ro, &r->film, NULL, err, sizeof err), 0, "%s", err);
     r->px = malloc(sizeof(float) * (size_t)r->film.width * r->film.height * r->film.nchannels);
     cr_assert_not_null(r->px);

@@ -14,9 +14,11 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* An extra output: channels is 1 (written as "<name>.Y") or 3
- * ("<name>.R", "<name>.G", "<name>.B"); or, with suffixes, 1 to 4
- * channels named "<name>.<suffix>" ("<name>" alone for an empty suffix). */
+/* An extra output: channels is 1 or 3, written as "<name>.Y" or
+ * "<name>.R", "<name>.G", "<name>.B"; or, with suffixes, 1 to 4 channels
+ * named "<name>.<suffix>" ("T" for a depth, "X", "Y", "Z" for a vector, as
+ * Mitsuba's `aov` integrator names them; "<name>" alone for an empty
+ * suffix). */
 typedef struct {
     const char *name;
     int channels;
@@ -34,6 +36,11 @@ typedef enum {
     FILM_XYZ,
     FILM_XYZA
 } film_pixel_format;
+
+/* The format's name in hdrfilm's pixel_format ("rgb", "luminance_alpha"...),
+ * and back: 0, or -1 for a name that is none. */
+const char *film_format_name(film_pixel_format f);
+int film_format_parse(const char *name, film_pixel_format *f);
 
 static inline int film_format_has_alpha(film_pixel_format f)
 {
@@ -98,5 +105,15 @@ uint8_t film_srgb8(double linear);
  * attributes of meta (NULL or meta->spp == 0: none). Returns 0 or -1. */
 int exr_write_float(const char *path, int width, int height, int nch, const char *const *names,
                     const float *pixels, const film_metadata *meta, char *err, size_t errlen);
+
+/* A string attribute of an EXR header, e.g. {"celadon.part", "2/4"}. */
+typedef struct {
+    const char *name, *value;
+} film_attr;
+
+/* exr_write_float with nattrs string attributes added to the header. */
+int exr_write_float_attrs(const char *path, int width, int height, int nch, const char *const *names,
+                          const float *pixels, const film_metadata *meta, const film_attr *attrs, int nattrs,
+                          char *err, size_t errlen);
 
 #endif

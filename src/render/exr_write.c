@@ -4,17 +4,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/core.h"
 #include "celadon/film.h"
-
-/* The library reports details through a callback; keep the last one. */
-static _Thread_local char exr_message[256];
-
-static void remember_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
-{
-    (void)ctxt;
-    snprintf(exr_message, sizeof exr_message, "%s", msg ? msg : exr_get_default_error_message(code));
-}
+#include "core/core.h"
+#include "render/exr_error.h"
+#include "render/exr_metadata.h"
 
 /* Encodes every chunk of the part; channel pointers into the interleaved
  * buffer are matched by name since the file stores channels sorted. */
@@ -61,42 +54,21 @@ static exr_result_t write_chunks(exr_context_t ctx, int part, int width, int hei
     return rv;
 }
 
-/* The header attributes of meta (film.h). worldToCamera is the standard
- * attribute, an Imath matrix (row vectors, so the transpose of ours) into
- * OpenEXR's camera frame (x right, y up, looking down -z), which is
- * Mitsuba's camera frame (x left, y up, looking down +z) turned half a
- * turn about y. */
-static exr_result_t write_metadata(exr_context_t ctx, int part, const film_metadata *meta)
-{
-    char seed[32];
-    snprintf(seed, sizeof seed, "%llu", (unsigned long long)meta->seed);
-    exr_attr_m44f_t w2c;
-    static const double flip[3] = {-1.0, 1.0, -1.0};
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++)
-            w2c.m[4 * c + r] = (float)(meta->world_to_camera[r][c] * (r < 3 ? flip[r] : 1.0));
-    exr_result_t rv = exr_attr_set_int(ctx, part, "spp", meta->spp);
-    if (rv == EXR_ERR_SUCCESS)
-        rv = exr_attr_set_string(ctx, part, "seed", seed);
-    if (rv == EXR_ERR_SUCCESS)
-        rv = exr_attr_set_string(ctx, part, "renderer", "celadon");
-    if (rv == EXR_ERR_SUCCESS && meta->integrator[0])
-        rv = exr_attr_set_string(ctx, part, "integrator", meta->integrator);
-    if (rv == EXR_ERR_SUCCESS && meta->camera[0])
-        rv = exr_attr_set_string(ctx, part, "camera", meta->camera);
-    if (rv == EXR_ERR_SUCCESS && meta->camera[0])
-        rv = exr_attr_set_m44f(ctx, part, "worldToCamera", &w2c);
-    return rv;
-}
-
 int exr_write_float(const char *path, int width, int height, int nch, const char *const *names,
                     const float *pixels, const film_metadata *meta, char *err, size_t errlen)
 {
+    return exr_write_float_attrs(path, width, height, nch, names, pixels, meta, NULL, 0, err, errlen);
+}
+
+int exr_write_float_attrs(const char *path, int width, int height, int nch, const char *const *names,
+                          const float *pixels, const film_metadata *meta, const film_attr *attrs, int nattrs,
+                          char *err, size_t errlen)
+{
     char tmp[4200];
     atomic_temp_name(path, tmp, sizeof tmp);
-    exr_message[0] = '\0';
+    exr_error_clear();
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = remember_error;
+    init.error_handler_fn = exr_error_remember;
     exr_context_t ctx = NULL;
     int part = 0;
     exr_result_t rv = exr_start_write(&ctx, tmp, EXR_WRITE_FILE_DIRECTLY, &init);
@@ -107,7 +79,9 @@ int exr_write_float(const char *path, int width, int height, int nch, const char
     for (int c = 0; c < nch && rv == EXR_ERR_SUCCESS; c++)
         rv = exr_add_channel(ctx, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
     if (rv == EXR_ERR_SUCCESS && meta && meta->spp > 0)
-        rv = write_metadata(ctx, part, meta);
+        rv = exr_metadata_write(ctx, part, meta);
+    for (int a = 0; a < nattrs && rv == EXR_ERR_SUCCESS; a++)
+        rv = exr_attr_set_string(ctx, part, attrs[a].name, attrs[a].value);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_write_header(ctx);
     if (rv == EXR_ERR_SUCCESS)
@@ -124,7 +98,6 @@ int exr_write_float(const char *path, int width, int height, int nch, const char
     if (rv == EXR_ERR_SUCCESS)
         snprintf(err, errlen, "%s: cannot rename into place: %s", path, strerror(rename_errno));
     else
-        snprintf(err, errlen, "%s: cannot write EXR: %s", path,
-                 exr_message[0] ? exr_message : exr_get_default_error_message(rv));
+        snprintf(err, errlen, "%s: cannot write EXR: %s", path, exr_error_text(rv));
     return -1;
 }

@@ -23,6 +23,21 @@ static char *dup_name(const char *prefix, const char *suffix)
 
 static const char *const rgb_names[3] = {"R", "G", "B"};
 
+/* In the order of film_pixel_format. */
+static const char *const format_names[] = {"rgb", "rgba", "luminance", "luminance_alpha", "xyz", "xyza"};
+
+const char *film_format_name(film_pixel_format f) { return format_names[f]; }
+
+int film_format_parse(const char *name, film_pixel_format *f)
+{
+    for (int i = 0; i < (int)(sizeof format_names / sizeof format_names[0]); i++)
+        if (strcmp(name, format_names[i]) == 0) {
+            *f = (film_pixel_format)i;
+            return 0;
+        }
+    return -1;
+}
+
 int film_init_format(film_t *f, int width, int height, film_pixel_format format, const film_aov *aovs, int naovs,
                      char *err, size_t errlen)
 {

@@ -10,12 +10,8 @@
 
 static int hdrfilm_create(scene_obj *o, film_settings *out, char *err, size_t errlen)
 {
-    static const char *const formats[] = {"rgb", "rgba", "luminance", "luminance_alpha", "xyz", "xyza"};
-    const char *format = scene_obj_string(o, "pixel_format", "rgb");
     memset(out, 0, sizeof *out);
-    for (int i = 0; i < (int)(sizeof formats / sizeof formats[0]); i++)
-        if (strcmp(format, formats[i]) == 0)
-            out->format = (film_pixel_format)i; /* the order of film.h */
+    film_format_parse(scene_obj_string(o, "pixel_format", "rgb"), &out->format); /* checked by the schema */
     out->width = (int)scene_obj_int(o, "width", 768);
     out->height = (int)scene_obj_int(o, "height", 576);
     out->sample_border = scene_obj_bool(o, "sample_border", false);
