@@ -40,9 +40,10 @@ typedef struct {
     const bsdf_t *bsdf;
     int two_sided_incidence; /* also test wi on the back side */
     int reciprocal;          /* f(wi, wo) = f(wo, wi) for the non-delta part */
+    int energy_bounded;      /* the albedo is at most 1 (not Disney's sheen and clearcoat) */
 } bsdf_case;
 
-enum { BSDF_CASES_MAX = 24 };
+enum { BSDF_CASES_MAX = 32 };
 /* Builds the cases (asserting on failure); returns their number. They live
  * until bsdf_cases_free. */
 int bsdf_cases_make(bsdf_case *cases);

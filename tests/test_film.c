@@ -12,6 +12,8 @@
 
 #include "celadon/film.h"
 #include "celadon/image.h"
+#include "celadon/render.h"
+#include "celadon/scene.h"
 
 static char dir[64];
 
@@ -224,4 +226,99 @@ Test(film, failed_writes_leave_nothing)
     cr_assert_not_null(strstr(err, "unsupported output format"), "%s", err);
     cr_assert_eq(count_entries(), 2);
     film_free(&f);
+}
+
+static int plane_index(const exr_planes *e, const char *name)
+{
+    for (int c = 0; c < e->nch; c++)
+        if (strcmp(e->names[c], name) == 0)
+            return c;
+    cr_assert_fail("no channel %s", name);
+    return -1;
+}
+
+/* Renders a constant environment of radiance (0.2, 0.5, 0.7) through a
+ * film of the given pixel format into dir/name. */
+static void render_environment(const char *format, const char *name, char *path, size_t len)
+{
+    char xml[1024], scene[160], err[1024];
+    snprintf(scene, sizeof scene, "%s/%s.xml", dir, name);
+    snprintf(xml, sizeof xml,
+             "<scene version=\"3.0.0\"><sensor type=\"perspective\"><float name=\"fov\" value=\"30\"/>"
+             "<transform name=\"to_world\"><translate x=\"1\" y=\"2\" z=\"3\"/></transform>"
+             "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"3\"/>"
+             "<integer name=\"seed\" value=\"12345678901\"/></sampler>"
+             "<film type=\"hdrfilm\"><integer name=\"width\" value=\"4\"/><integer name=\"height\" value=\"2\"/>"
+             "<string name=\"pixel_format\" value=\"%s\"/></film></sensor>"
+             "<emitter type=\"constant\"><rgb name=\"radiance\" value=\"0.2, 0.5, 0.7\"/></emitter></scene>",
+             format);
+    FILE *f = fopen(scene, "w");
+    cr_assert_not_null(f);
+    fputs(xml, f);
+    fclose(f);
+    scene_t *s = scene_create_from_file(scene, NULL, 0, NULL, err, sizeof err);
+    cr_assert_not_null(s, "%s", err);
+    film_t film;
+    render_options ro = {.threads = 1};
+    cr_assert_eq(render_scene(s, &ro, &film, NULL, err, sizeof err), 0, "%s", err);
+    snprintf(path, len, "%s/%s.exr", dir, name);
+    cr_assert_eq(film_write(&film, path, err, sizeof err), 0, "%s", err);
+    film_free(&film);
+    scene_destroy(s);
+}
+
+/* hdrfilm's pixel formats as the EXR stores them, against the colour
+ * conversions (Rec. 709 primaries, D65) written out here, and the header's
+ * record of how the image was made. */
+Test(film, pixel_formats_and_metadata)
+{
+    const double r = 0.2, g = 0.5, b = 0.7;
+    char path[256];
+    exr_planes e;
+    render_environment("luminance_alpha", "ya", path, sizeof path);
+    read_exr(path, &e);
+    cr_assert_eq(e.nch, 2, "Y and A");
+    int y = plane_index(&e, "Y"), a = plane_index(&e, "A");
+    for (int p = 0; p < 8; p++) {
+        cr_assert_float_eq(e.planes[y][p], 0.212671 * r + 0.715160 * g + 0.072169 * b, 1e-6);
+        cr_assert_eq(e.planes[a][p], 1.0f, "a visible environment covers the pixel");
+    }
+    for (int c = 0; c < e.nch; c++)
+        free(e.planes[c]);
+    render_environment("xyz", "xyz", path, sizeof path);
+    read_exr(path, &e);
+    cr_assert_eq(e.nch, 3);
+    cr_assert_float_eq(e.planes[plane_index(&e, "X")][5], 0.412453 * r + 0.357580 * g + 0.180423 * b, 1e-6);
+    cr_assert_float_eq(e.planes[plane_index(&e, "Z")][5], 0.019334 * r + 0.119193 * g + 0.950227 * b, 1e-6);
+    for (int c = 0; c < e.nch; c++)
+        free(e.planes[c]);
+    /* The header: spp, the 64-bit seed, renderer, integrator, camera and its pose. */
+    exr_context_t ctx;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    cr_assert_eq(exr_start_read(&ctx, path, &init), EXR_ERR_SUCCESS);
+    int32_t spp, len;
+    const char *str;
+    cr_assert_eq(exr_attr_get_int(ctx, 0, "spp", &spp), EXR_ERR_SUCCESS);
+    cr_assert_eq(spp, 3);
+    cr_assert_eq(exr_attr_get_string(ctx, 0, "seed", &len, &str), EXR_ERR_SUCCESS);
+    cr_assert(len == 11 && strncmp(str, "12345678901", 11) == 0, "seed %.*s", len, str);
+    cr_assert_eq(exr_attr_get_string(ctx, 0, "renderer", &len, &str), EXR_ERR_SUCCESS);
+    cr_assert(strncmp(str, "celadon", 7) == 0);
+    cr_assert_eq(exr_attr_get_string(ctx, 0, "integrator", &len, &str), EXR_ERR_SUCCESS);
+    cr_assert(len == 4 && strncmp(str, "path", 4) == 0, "integrator %.*s", len, str);
+    cr_assert_eq(exr_attr_get_string(ctx, 0, "camera", &len, &str), EXR_ERR_SUCCESS);
+    cr_assert(strncmp(str, "perspective fov_x=30 ", 21) == 0, "camera %.*s", len, str);
+    /* worldToCamera (Imath: row vectors, camera looking down -z) maps the
+     * camera's position to the origin and a point ahead of it (+z for
+     * Mitsuba's camera, whose to_world here is a translation) to -z. */
+    exr_attr_m44f_t m;
+    cr_assert_eq(exr_attr_get_m44f(ctx, 0, "worldToCamera", &m), EXR_ERR_SUCCESS);
+    const double pts[2][3] = {{1, 2, 3}, {1, 2, 5}};
+    double out[2][3];
+    for (int k = 0; k < 2; k++)
+        for (int c = 0; c < 3; c++)
+            out[k][c] = pts[k][0] * m.m[c] + pts[k][1] * m.m[4 + c] + pts[k][2] * m.m[8 + c] + m.m[12 + c];
+    cr_assert(fabs(out[0][0]) + fabs(out[0][1]) + fabs(out[0][2]) < 1e-6, "the camera is the origin");
+    cr_assert(fabs(out[1][0]) + fabs(out[1][1]) < 1e-6 && fabs(out[1][2] + 2.0) < 1e-6, "ahead is -z");
+    exr_finish(&ctx);
 }

@@ -4,6 +4,7 @@
 #include <criterion/criterion.h>
 
 #include <jansson.h>
+#include <openexr.h>
 
 #include "celadon/parts.h"
 #include "test_distribute_support.h"
@@ -84,6 +85,74 @@ Test(parts, four_parts_merged_are_the_single_render, .timeout = 300)
     image_t p1 = read_image(p[0]);
     cr_expect(!same_within_rounding(&s, &p1, &worst));
     image_free(&s), image_free(&m), image_free(&sh), image_free(&p1);
+    render_fixture_close(&f);
+}
+
+/* The orbit with an XYZ + alpha film, a tent filter wider than a pixel and
+ * sample_border, at a height that is no multiple of the tiles. */
+static const char *const xyza_xml =
+    "<scene version=\"3.0.0\">\n"
+    "  <sensor type=\"perspective\">\n"
+    "    <transform name=\"to_world\"><lookat origin=\"0, 0.8, 3\" target=\"0, 0.4, 0\" up=\"0, 1, 0\"/></transform>\n"
+    "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"12\"/></sampler>\n"
+    "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"40\"/><integer name=\"height\" value=\"27\"/>\n"
+    "      <string name=\"pixel_format\" value=\"xyza\"/><boolean name=\"sample_border\" value=\"true\"/>\n"
+    "      <rfilter type=\"tent\"><float name=\"radius\" value=\"1.5\"/></rfilter></film>\n"
+    "  </sensor>\n"
+    "  <shape type=\"sor\"><string name=\"filename\" value=\"profile.json\"/>\n"
+    "    <bsdf type=\"plastic\"><rgb name=\"diffuse_reflectance\" value=\"0.2, 0.5, 0.3\"/></bsdf></shape>\n"
+    "  <emitter type=\"point\"><point name=\"position\" x=\"1\" y=\"2\" z=\"2\"/><rgb name=\"intensity\" value=\"5\"/></emitter>\n"
+    "</scene>\n";
+
+/* The header attributes film_write records, as one string. */
+static void header_summary(const char *path, char *out, size_t outlen)
+{
+    exr_context_t ctx;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    cr_assert_eq(exr_start_read(&ctx, path, &init), EXR_ERR_SUCCESS, "%s", path);
+    int32_t spp = 0, len = 0;
+    const char *seed = "", *integrator = "", *camera = "";
+    exr_attr_m44f_t m;
+    cr_assert_eq(exr_attr_get_int(ctx, 0, "spp", &spp), EXR_ERR_SUCCESS, "%s: no spp", path);
+    cr_assert_eq(exr_attr_get_string(ctx, 0, "seed", &len, &seed), EXR_ERR_SUCCESS);
+    cr_assert_eq(exr_attr_get_string(ctx, 0, "integrator", &len, &integrator), EXR_ERR_SUCCESS);
+    cr_assert_eq(exr_attr_get_string(ctx, 0, "camera", &len, &camera), EXR_ERR_SUCCESS);
+    cr_assert_eq(exr_attr_get_m44f(ctx, 0, "worldToCamera", &m), EXR_ERR_SUCCESS);
+    int n = snprintf(out, outlen, "spp %d seed %s integrator %s camera %s w2c", spp, seed, integrator, camera);
+    for (int i = 0; i < 16 && n > 0 && (size_t)n < outlen; i++)
+        n += snprintf(out + n, outlen - (size_t)n, " %.6g", m.m[i]);
+    exr_finish(&ctx);
+}
+
+/* Merged parts keep the film's pixel format (its A is summed with the colour,
+ * X, Y, Z converted once at the end), its splatting filter across the bands
+ * and the border, and the render's metadata: the file one process writes. */
+Test(parts, merged_parts_keep_the_pixel_format_filter_and_metadata, .timeout = 300)
+{
+    render_fixture f;
+    char scene[256], single[256], merged[256], p[3][256], err[4096];
+    render_fixture_with_scene(&f, "plum", xyza_xml, scene, sizeof scene);
+    const char *a1[] = {"render", scene, "-o", fixture_path(&f, "single.exr", single, sizeof single), NULL};
+    cr_assert_eq(run_celadon(&f, a1, err, sizeof err), 0, "%s", err);
+    for (int k = 1; k <= 3; k++) {
+        char name[32];
+        snprintf(name, sizeof name, "part%d.exr", k);
+        render_part_file(&f, scene, k, 3, name, NULL);
+        fixture_path(&f, name, p[k - 1], sizeof p[k - 1]);
+    }
+    const char *m1[] = {"merge", p[2], p[0], p[1], "-o", fixture_path(&f, "merged.exr", merged, sizeof merged),
+                        NULL};
+    cr_assert_eq(run_celadon(&f, m1, err, sizeof err), 0, "%s", err);
+    image_t s = read_image(single), m = read_image(merged);
+    cr_assert_eq(s.channels, 4, "X, Y, Z, A: %d channels", s.channels);
+    double worst;
+    cr_expect(same_within_rounding(&s, &m, &worst), "merged parts differ from the single render by %g", worst);
+    char hs[1024], hm[1024];
+    header_summary(single, hs, sizeof hs);
+    header_summary(merged, hm, sizeof hm);
+    cr_expect_str_eq(hm, hs);
+    cr_expect_not_null(strstr(hs, "spp 12 "), "%s", hs);
+    image_free(&s), image_free(&m);
     render_fixture_close(&f);
 }
 

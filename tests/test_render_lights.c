@@ -81,7 +81,7 @@ Test(render_lights, envmap_orientation_and_density)
     for (int i = 0; i < 8; i++)
         px[3 * i] = px[3 * i + 1] = px[3 * i + 2] = (float)(i + 1);
     const char *names[] = {"R", "G", "B"};
-    cr_assert_eq(exr_write_float(path, 4, 2, 3, names, px, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(exr_write_float(path, 4, 2, 3, names, px, NULL, err, sizeof err), 0, "%s", err);
     plugin_xml fx;
     plugin_xml_open(&fx);
     char xml[400];

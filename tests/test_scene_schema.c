@@ -81,14 +81,17 @@ static void document(const scene_plugin_decl *pl, const char *prop, char *buf, s
             property_xml(q->types & PARAM_STRING ? SCENE_STRING : SCENE_FLOAT, q->name, q, more, sizeof more);
             strncat(extra, more, sizeof extra - strlen(extra) - 1);
         }
-    if (pl->children && pl->children[0].max > 0 && pl->children[0].min > 0) { /* the nested object it needs */
-        const scene_child_decl *r = &pl->children[0];
-        const char *child = r->cls == SCENE_BSDF ? "<bsdf type=\"diffuse\"/>"
-                            : r->only_type && !strcmp(r->only_type, "shapegroup")
-                                ? "<shape type=\"shapegroup\"><shape type=\"sphere\"/></shape>"
-                                : "<shape type=\"sphere\"/>";
-        strncat(extra, child, sizeof extra - strlen(extra) - 1);
-    }
+    /* The nested objects the plugin needs: that many of a plain plugin of each class. */
+    for (const scene_child_decl *c = pl->children; c && c->max > 0; c++)
+        for (int k = 0; k < c->min; k++) {
+            const char *child = c->cls == SCENE_INTEGRATOR ? "<integrator type=\"path\"/>"
+                                : c->cls == SCENE_TEXTURE  ? "<texture type=\"checkerboard\"/>"
+                                : c->cls == SCENE_BSDF     ? "<bsdf type=\"diffuse\"/>"
+                                : c->only_type && !strcmp(c->only_type, "shapegroup")
+                                    ? "<shape type=\"shapegroup\"><shape type=\"sphere\"/></shape>"
+                                    : "<shape type=\"sphere\"/>";
+            strncat(extra, child, sizeof extra - strlen(extra) - 1);
+        }
     const char *cls = scene_class_name(pl->cls);
     const char *open = "", *close = "";
     *depth = 1;
@@ -193,7 +196,7 @@ Test(scene_schema, docs_list_every_plugin_and_parameter)
 {
     FILE *f = fopen("docs/scene-format.md", "r");
     cr_assert_not_null(f, "run from the repository's top folder");
-    static char doc[1 << 16];
+    static char doc[1 << 18];
     size_t n = fread(doc, 1, sizeof doc - 1, f);
     fclose(f);
     doc[n] = '\0';

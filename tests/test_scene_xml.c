@@ -395,8 +395,8 @@ Test(scene_xml, malformed_xml)
 
 Test(scene_xml, unknown_things)
 {
-    load_fails("a.xml", HEAD "\n  <bsdf type=\"blendbsdf\"/>\n</scene>\n", "a.xml", 4,
-               "unknown plugin 'blendbsdf' for <bsdf>", NULL, 0);
+    load_fails("a.xml", HEAD "\n  <bsdf type=\"hair\"/>\n</scene>\n", "a.xml", 4,
+               "unknown plugin 'hair' for <bsdf>", NULL, 0);
     load_fails("b.xml", HEAD "  <medium type=\"homogeneous\"/>\n</scene>\n", "b.xml", 3, "unknown tag <medium>", NULL,
                0);
     load_fails("c.xml", HEAD "  <bsdf type=\"diffuse\">\n    <rgb name=\"albedo\" value=\"1\"/>\n  </bsdf>\n</scene>\n",

@@ -155,7 +155,7 @@ Test(texture, to_uv_and_grey_images)
     const char *const names[] = {"Y"};
     char exr[160], err[256], xml[512];
     snprintf(exr, sizeof exr, "%s/grey.exr", dir);
-    cr_assert_eq(exr_write_float(exr, 2, 2, 1, names, grey, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(exr_write_float(exr, 2, 2, 1, names, grey, NULL, err, sizeof err), 0, "%s", err);
     snprintf(xml, sizeof xml,
              "<texture type='bitmap'><string name='filename' value='%s'/><string name='filter_type' value='nearest'/>"
              "<transform name='to_uv'><scale x='0.5' y='0.5'/></transform></texture>",

@@ -11,8 +11,11 @@
  * channel celadon.weight, each pixel's sum of sample weights; and the string
  * attributes celadon.part ("K/N"), celadon.spp (the full render's),
  * celadon.samples ("first-last", the share), celadon.seed, celadon.scene
- * (scene_digest in hex), celadon.channels (the film's channels in order) and
- * celadon.complete ("yes", or "no" when the render was interrupted). */
+ * (scene_digest in hex), celadon.channels (the film's channels in order),
+ * celadon.format (hdrfilm's pixel_format: the channels are the film's R, G,
+ * B and A whatever the format, converted when the merge writes it) and
+ * celadon.complete ("yes", or "no" when the render was interrupted); and the
+ * film's metadata (film_metadata), which the merged film gets back. */
 #ifndef CELADON_PARTS_H
 #define CELADON_PARTS_H
 

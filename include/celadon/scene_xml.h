@@ -9,7 +9,7 @@
  * the file and line it came from; it holds typed properties and child
  * objects (nested or referenced with <ref>). Everything the declarations do
  * not allow is a load error naming file, line and feature: "scene.xml:12:
- * unknown plugin 'blendbsdf' for <bsdf>". Once loaded, a consumer reads
+ * unknown plugin 'hair' for <bsdf>". Once loaded, a consumer reads
  * properties through the typed getters below, which mark them consumed; the
  * reader already guaranteed each property's name and type against the
  * declarations, so a getter falls back to its default only when the property

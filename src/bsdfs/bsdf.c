@@ -21,20 +21,45 @@ bsdf_t *bsdf_alloc(const scene_obj *o, const bsdf_ops *ops, unsigned flags, cons
     return b;
 }
 
+/* The rotation about z by the angle of t = (cos, sin, 0), and back. */
+static vec3 turn(vec3 w, vec3 t) { return v3(w.x * t.x + w.y * t.y, w.y * t.x - w.x * t.y, w.z); }
+static vec3 turn_back(vec3 w, vec3 t) { return v3(w.x * t.x - w.y * t.y, w.x * t.y + w.y * t.x, w.z); }
+
+/* An anisotropic BSDF's query in Mitsuba's shading frame (its dpdu then
+ * lies along +x, so turning it again changes nothing); t the rotation. */
+static bsdf_query oriented(const bsdf_t *b, const bsdf_query *q, vec3 *t)
+{
+    *t = v3(1.0, 0.0, 0.0);
+    if (!(b->flags & BSDF_ANISOTROPIC))
+        return *q;
+    *t = bsdf_query_tangent(q);
+    bsdf_query r = *q;
+    r.wi = turn(q->wi, *t), r.dpdu = turn(q->dpdu, *t), r.dpdv = turn(q->dpdv, *t), r.ng = turn(q->ng, *t);
+    return r;
+}
+
 int bsdf_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out)
 {
     memset(out, 0, sizeof *out);
-    return b->ops->sample(b, q, u1, u2, out);
+    vec3 t;
+    bsdf_query r = oriented(b, q, &t);
+    int ok = b->ops->sample(b, &r, u1, u2, out);
+    out->wo = turn_back(out->wo, t);
+    return ok;
 }
 
 rgb bsdf_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
 {
-    return b->ops->eval(b, q, wo);
+    vec3 t;
+    bsdf_query r = oriented(b, q, &t);
+    return b->ops->eval(b, &r, turn(wo, t));
 }
 
 double bsdf_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
 {
-    return b->ops->pdf(b, q, wo);
+    vec3 t;
+    bsdf_query r = oriented(b, q, &t);
+    return b->ops->pdf(b, &r, turn(wo, t));
 }
 
 unsigned bsdf_flags(const bsdf_t *b)
@@ -50,6 +75,13 @@ rgb bsdf_albedo(const bsdf_t *b, vec2 uv)
 rgb bsdf_straight_transmittance(const bsdf_t *b, const bsdf_query *q)
 {
     return b->flags & BSDF_STRAIGHT_TRANSMISSION ? b->ops->straight(b, q) : rgb_gray(0.0);
+}
+
+vec3 bsdf_shading_normal(const bsdf_t *b, const bsdf_query *q)
+{
+    vec3 t;
+    bsdf_query r = oriented(b, q, &t);
+    return b->ops->shading_normal ? turn_back(b->ops->shading_normal(b, &r), t) : v3(0.0, 0.0, 1.0);
 }
 
 void bsdf_destroy(bsdf_t *b)

@@ -19,6 +19,7 @@ typedef struct {
     double (*pdf)(const bsdf_t *b, const bsdf_query *q, vec3 wo);
     rgb (*albedo)(const bsdf_t *b, vec2 uv);
     rgb (*straight)(const bsdf_t *b, const bsdf_query *q); /* NULL unless BSDF_STRAIGHT_TRANSMISSION */
+    vec3 (*shading_normal)(const bsdf_t *b, const bsdf_query *q); /* NULL: the frame's own, +z */
 } bsdf_ops;
 
 struct bsdf {
@@ -47,6 +48,38 @@ static inline double spectrum_mean(const bsdf_spectrum *s)
     return rgb_mean(s->texture ? texture_mean(s->texture) : s->value);
 }
 
+/* A Mitsuba "float or texture" parameter, read as a scalar (eval_1: the
+ * texture's luminance): the texture if non-NULL, else value. */
+typedef struct {
+    double value;
+    const texture_t *texture;
+} bsdf_scalar;
+
+static inline double scalar_eval(const bsdf_scalar *s, vec2 uv)
+{
+    return s->texture ? texture_eval_1(s->texture, uv) : s->value;
+}
+
+/* A microfacet distribution whose roughness may vary over the surface
+ * (textured alpha), and the distribution at a point. */
+typedef struct {
+    microfacet_type type;
+    bsdf_scalar alpha_u, alpha_v;
+    int sample_visible;
+} bsdf_roughness;
+
+/* Whether the roughness differs along u and v (or may): BSDF_ANISOTROPIC. */
+static inline unsigned bsdf_roughness_flags(const bsdf_roughness *r)
+{
+    bool same = r->alpha_u.texture == r->alpha_v.texture && r->alpha_u.value == r->alpha_v.value;
+    return same ? 0u : BSDF_ANISOTROPIC;
+}
+
+static inline microfacet bsdf_roughness_at(const bsdf_roughness *r, vec2 uv)
+{
+    return microfacet_make(r->type, scalar_eval(&r->alpha_u, uv), scalar_eval(&r->alpha_v, uv), r->sample_visible);
+}
+
 /* eval and pdf of BSDFs made only of delta lobes: always zero. */
 rgb bsdf_eval_delta_only(const bsdf_t *b, const bsdf_query *q, vec3 wo);
 double bsdf_pdf_delta_only(const bsdf_t *b, const bsdf_query *q, vec3 wo);
@@ -54,6 +87,40 @@ double bsdf_pdf_delta_only(const bsdf_t *b, const bsdf_query *q, vec3 wo);
 /* Rough-BSDF sampling epilogue: fills weight = eval / pdf from the BSDF's own
  * eval and pdf, rejecting a zero density. */
 int bsdf_finish_sample(const bsdf_t *b, const bsdf_query *q, bsdf_sample_rec *out);
+
+/* ------------------------------ perturbed shading frames (perturbed_frame.c) */
+/* normalmap and bumpmap: a nested BSDF evaluated in a shading frame given
+ * in the local frame (its n the perturbed normal). With flip_invalid, a
+ * normal that wi sees from behind has its tangential part mirrored
+ * (Mitsuba's flip_invalid_normals). Directions whose sides differ between
+ * the two frames are refused (zero), as in Mitsuba; with shadowing, values
+ * are multiplied by the microfacet shadowing term of Estevez et al. 2019
+ * that Mitsuba applies (use_shadowing_function). */
+
+/* Mitsuba's tangent at a hit, local +x or along dp/du: the x axis of its
+ * shading frame, in the local frame. */
+vec3 bsdf_query_tangent(const bsdf_query *q);
+/* The data of a perturbing BSDF begins with this: its nested BSDF, its
+ * options, and the function that gives its frame at a query. The
+ * bsdf_perturbing_* functions are then its ops. */
+typedef struct {
+    const bsdf_t *nested;
+    bool flip_invalid, shadowing;
+    /* The perturbed normal at q (any length) and the tangent it is made
+     * perpendicular to, in the local frame. */
+    void (*normal)(const void *data, const bsdf_query *q, vec3 *n, vec3 *tangent);
+} bsdf_perturbing;
+
+int bsdf_perturbing_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out);
+rgb bsdf_perturbing_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo);
+double bsdf_perturbing_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo);
+rgb bsdf_perturbing_albedo(const bsdf_t *b, vec2 uv);
+vec3 bsdf_perturbing_shading_normal(const bsdf_t *b, const bsdf_query *q);
+#define BSDF_PERTURBING_OPS(name)                                                                                 \
+    {name, bsdf_perturbing_sample, bsdf_perturbing_eval, bsdf_perturbing_pdf, bsdf_perturbing_albedo, NULL,         \
+     bsdf_perturbing_shading_normal}
+/* Reads the nested BSDF and the two options into d. 0, or -1 with err. */
+int bsdf_perturbing_param(bsdf_set *set, scene_obj *o, bsdf_perturbing *d, char *err, size_t errlen);
 
 /* Mitsuba's named indices of refraction ("bk7", "air", "water", ...), as
  * the '|'-separated choices of int_ior and ext_ior (ior.c). */
@@ -115,11 +182,15 @@ double bsdf_specular_sampling_weight(const bsdf_spectrum *diffuse, const bsdf_sp
 /* A conductor's complex IOR: the `material` preset (default "none"),
  * overridden by constant `eta` and `k`. */
 int bsdf_conductor_param(scene_obj *o, rgb *eta, rgb *k, char *err, size_t errlen);
-/* The microfacet parameters of BSDF_PARAMS_ROUGHNESS: `alpha` sets both
- * alphas, `alpha_u`/`alpha_v` each; *au, *av and *visible hold the defaults
- * on entry. Textured roughness is refused. */
-int bsdf_roughness_param(scene_obj *o, microfacet_type *distribution, double *au, double *av, int *visible,
-                         char *err, size_t errlen);
+/* A "float or texture" parameter, def when absent (a color, where one is
+ * allowed, is its luminance); textures are built in set. */
+int bsdf_scalar_param(bsdf_set *set, scene_obj *o, const char *name, double def, bsdf_scalar *out, char *err,
+                      size_t errlen);
+/* The microfacet parameters of BSDF_PARAMS_ROUGHNESS, Mitsuba's defaults
+ * (beckmann, alpha 0.1, visible normals): `alpha` sets both alphas,
+ * `alpha_u`/`alpha_v` each; each may be a texture. Constants are checked
+ * non-negative. */
+int bsdf_roughness_param(bsdf_set *set, scene_obj *o, bsdf_roughness *out, char *err, size_t errlen);
 
 /* Checks of values: 0, or -1 with "file:line: <bsdf type='T'>: reason"
  * naming the parameter. */

@@ -120,16 +120,35 @@ int bsdf_conductor_param(scene_obj *o, rgb *eta, rgb *k, char *err, size_t errle
     return 0;
 }
 
-int bsdf_roughness_param(scene_obj *o, microfacet_type *distribution, double *au, double *av, int *visible,
-                         char *err, size_t errlen)
+int bsdf_scalar_param(bsdf_set *set, scene_obj *o, const char *name, double def, bsdf_scalar *out, char *err,
+                      size_t errlen)
 {
-    if (scene_obj_texture(o, "alpha") || scene_obj_texture(o, "alpha_u") || scene_obj_texture(o, "alpha_v") ||
-        microfacet_type_parse(scene_obj_string(o, "distribution", "beckmann"), distribution) != 0)
-        return scene_obj_error(o, err, errlen, "textured roughness is not supported");
-    double a = scene_obj_float(o, "alpha", *au);
-    *au = scene_obj_float(o, "alpha_u", a);
-    *av = scene_obj_float(o, "alpha_v", a);
-    *visible = scene_obj_bool(o, "sample_visible", *visible != 0);
+    bsdf_spectrum s;
+    if (bsdf_spectrum_param(set, o, name, def, &s, err, errlen) != 0)
+        return -1;
+    /* A color (where the declaration allows one) is read as its luminance. */
+    rgb c = s.value;
+    *out = (bsdf_scalar){c.r == c.g && c.g == c.b ? c.r : rgb_luminance(c), s.texture};
+    return 0;
+}
+
+int bsdf_roughness_param(bsdf_set *set, scene_obj *o, bsdf_roughness *out, char *err, size_t errlen)
+{
+    out->type = MICROFACET_BECKMANN;
+    microfacet_type_parse(scene_obj_string(o, "distribution", "beckmann"), &out->type);
+    bsdf_scalar a;
+    if (bsdf_scalar_param(set, o, "alpha", 0.1, &a, err, errlen) != 0)
+        return -1;
+    if (scene_obj_has(o, "alpha_u") != scene_obj_has(o, "alpha_v"))
+        return bsdf_refuse(o, err, errlen, "give both alpha_u and alpha_v (or alpha)");
+    out->alpha_u = out->alpha_v = a;
+    if ((scene_obj_has(o, "alpha_u") && bsdf_scalar_param(set, o, "alpha_u", 0.1, &out->alpha_u, err, errlen) != 0) ||
+        (scene_obj_has(o, "alpha_v") && bsdf_scalar_param(set, o, "alpha_v", 0.1, &out->alpha_v, err, errlen) != 0))
+        return -1;
+    out->sample_visible = scene_obj_bool(o, "sample_visible", true);
+    if ((!out->alpha_u.texture && bsdf_check_alpha(o, "alpha_u", out->alpha_u.value, err, errlen) != 0) ||
+        (!out->alpha_v.texture && bsdf_check_alpha(o, "alpha_v", out->alpha_v.value, err, errlen) != 0))
+        return -1;
     return 0;
 }
 

@@ -13,6 +13,13 @@
     X(bsdf, plastic)                     \
     X(bsdf, roughplastic)                \
     X(bsdf, twosided)                    \
+    X(bsdf, null)                        \
+    X(bsdf, mask)                        \
+    X(bsdf, blendbsdf)                   \
+    X(bsdf, normalmap)                   \
+    X(bsdf, bumpmap)                     \
+    X(bsdf, principled)                  \
+    X(bsdf, principledthin)              \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(bsdf, BSDF_PLUGINS)

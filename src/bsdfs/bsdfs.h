@@ -43,13 +43,24 @@ enum {
     BSDF_BACK_SIDE = 1u << 6,  /* ... and on the back */
     /* Its delta transmission continues the ray undeviated (wo = -wi: a thin
      * sheet), so a shadow ray may cross it, weighted by
-     * bsdf_straight_transmittance, instead of being blocked. */
+     * bsdf_straight_transmittance, instead of being blocked. A sample that
+     * went straight through carries this bit in its sampled_type too. */
     BSDF_STRAIGHT_TRANSMISSION = 1u << 7,
+    /* Mitsuba's null lobe: the light goes on as if the surface were not
+     * there (`null`, the transparent part of `mask`); such a surface does
+     * not count as covering the pixel (alpha). */
+    BSDF_NULL = 1u << 8,
+    BSDF_DIFFUSE_TRANSMISSION = 1u << 9,
+    /* Its lobes are oriented around the normal: the BSDF works in Mitsuba's
+     * shading frame, whose x axis is dp/du made perpendicular to the
+     * normal (bsdf_query's dpdu); the dispatch turns the query into it. */
+    BSDF_ANISOTROPIC = 1u << 10,
 };
-#define BSDF_DELTA (BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION)
+#define BSDF_DELTA (BSDF_DELTA_REFLECTION | BSDF_DELTA_TRANSMISSION | BSDF_NULL)
 /* Lobes that bsdf_eval can see: next-event estimation is useful for them. */
-#define BSDF_SMOOTH (BSDF_DIFFUSE_REFLECTION | BSDF_GLOSSY_REFLECTION | BSDF_GLOSSY_TRANSMISSION)
-#define BSDF_TRANSMISSION (BSDF_GLOSSY_TRANSMISSION | BSDF_DELTA_TRANSMISSION)
+#define BSDF_SMOOTH                                                                                                \
+    (BSDF_DIFFUSE_REFLECTION | BSDF_GLOSSY_REFLECTION | BSDF_GLOSSY_TRANSMISSION | BSDF_DIFFUSE_TRANSMISSION)
+#define BSDF_TRANSMISSION (BSDF_GLOSSY_TRANSMISSION | BSDF_DELTA_TRANSMISSION | BSDF_NULL | BSDF_DIFFUSE_TRANSMISSION)
 
 typedef enum { TRANSPORT_RADIANCE, TRANSPORT_IMPORTANCE } transport_mode;
 
@@ -57,6 +68,12 @@ typedef struct {
     vec3 wi;             /* local frame, unit */
     vec2 uv;             /* surface texture coordinates */
     transport_mode mode;
+    /* The surface in the local frame, for the BSDFs that perturb the
+     * shading frame (normalmap, bumpmap) or orient it (anisotropy): the
+     * derivatives dp/du, dp/dv of the point by the texture coordinates and
+     * the geometric normal. Zero when unknown: the tangent is then local
+     * +x and the geometric normal +z. */
+    vec3 dpdu, dpdv, ng;
 } bsdf_query;
 
 typedef struct {
@@ -64,7 +81,7 @@ typedef struct {
     rgb weight;            /* f |cos theta_o| / pdf */
     double pdf;            /* solid-angle density; selection probability for delta lobes */
     double eta;            /* n_o / n_i of the crossing: 1 for reflection (Russian roulette uses it) */
-    unsigned sampled_type; /* one of the lobe flags above */
+    unsigned sampled_type; /* one of the lobe flags above (and BSDF_STRAIGHT_TRANSMISSION when straight on) */
 } bsdf_sample_rec;
 
 /* u1 picks the lobe, u2 the direction; returns 1 with *out filled, or 0 when
@@ -81,6 +98,9 @@ rgb bsdf_albedo(const bsdf_t *b, vec2 uv);
  * along q->wi's opposite side undeviated: f / pdf * selection probability of
  * the straight delta transmission lobe. Black unless BSDF_STRAIGHT_TRANSMISSION. */
 rgb bsdf_straight_transmittance(const bsdf_t *b, const bsdf_query *q);
+/* The shading normal the BSDF works with, in the local frame: +z, or the
+ * normal a normalmap or bumpmap perturbs it to (Mitsuba's sh_frame). */
+vec3 bsdf_shading_normal(const bsdf_t *b, const bsdf_query *q);
 void bsdf_destroy(bsdf_t *b);
 
 /* ---------------------------------------------------------- the plugins */

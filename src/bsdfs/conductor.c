@@ -31,7 +31,7 @@ static rgb conductor_albedo(const bsdf_t *b, vec2 uv)
 
 static const bsdf_ops conductor_ops = {"conductor",
                                        conductor_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only, conductor_albedo,
-                                       NULL};
+                                       NULL, NULL};
 
 static bsdf_t *conductor_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {

@@ -41,7 +41,7 @@ static rgb dielectric_albedo(const bsdf_t *b, vec2 uv)
 
 static const bsdf_ops dielectric_ops = {"dielectric",
                                         dielectric_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only, dielectric_albedo,
-                                        NULL};
+                                        NULL, NULL};
 
 static bsdf_t *dielectric_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {

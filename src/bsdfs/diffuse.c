@@ -42,7 +42,7 @@ static rgb diffuse_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->reflectance, uv);
 }
 
-static const bsdf_ops diffuse_ops = {"diffuse", diffuse_sample, diffuse_eval, diffuse_pdf, diffuse_albedo, NULL};
+static const bsdf_ops diffuse_ops = {"diffuse", diffuse_sample, diffuse_eval, diffuse_pdf, diffuse_albedo, NULL, NULL};
 
 static bsdf_t *diffuse_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {

@@ -83,7 +83,7 @@ static rgb plastic_albedo(const bsdf_t *b, vec2 uv)
     return spectrum_eval(&d->diffuse_reflectance, uv);
 }
 
-static const bsdf_ops plastic_ops = {"plastic", plastic_sample, plastic_eval, plastic_pdf, plastic_albedo, NULL};
+static const bsdf_ops plastic_ops = {"plastic", plastic_sample, plastic_eval, plastic_pdf, plastic_albedo, NULL, NULL};
 
 static bsdf_t *plastic_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {

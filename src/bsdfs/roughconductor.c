@@ -5,7 +5,7 @@
 
 typedef struct {
     rgb eta, k;
-    microfacet distr;
+    bsdf_roughness roughness;
     bsdf_spectrum specular_reflectance;
 } roughconductor_data;
 
@@ -16,7 +16,8 @@ static rgb roughconductor_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     if (wi.z <= 0.0 || wo.z <= 0.0)
         return rgb_gray(0.0);
     vec3 m;
-    double dg = microfacet_reflection_dg(&d->distr, wi, wo, &m);
+    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    double dg = microfacet_reflection_dg(&distr, wi, wo, &m);
     if (dg == 0.0)
         return rgb_gray(0.0);
     rgb f = fresnel_conductor_rgb(v3_dot(wi, m), d->eta, d->k);
@@ -29,7 +30,8 @@ static double roughconductor_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     vec3 wi = q->wi;
     if (wi.z <= 0.0 || wo.z <= 0.0)
         return 0.0;
-    return microfacet_reflection_pdf(&d->distr, wi, wo);
+    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    return microfacet_reflection_pdf(&distr, wi, wo);
 }
 
 static int roughconductor_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out)
@@ -38,7 +40,8 @@ static int roughconductor_sample(const bsdf_t *b, const bsdf_query *q, double u1
     const roughconductor_data *d = b->data;
     if (q->wi.z <= 0.0)
         return 0;
-    vec3 m = microfacet_sample(&d->distr, q->wi, u2, NULL);
+    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    vec3 m = microfacet_sample(&distr, q->wi, u2, NULL);
     out->wo = reflect_about(q->wi, m);
     if (out->wo.z <= 0.0)
         return 0;
@@ -55,25 +58,22 @@ static rgb roughconductor_albedo(const bsdf_t *b, vec2 uv)
 
 static const bsdf_ops roughconductor_ops = {"roughconductor",
                                             roughconductor_sample, roughconductor_eval, roughconductor_pdf,
-                                            roughconductor_albedo, NULL};
+                                            roughconductor_albedo, NULL, NULL};
 
 static bsdf_t *roughconductor_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {
     roughconductor_data d;
-    microfacet_type distribution = MICROFACET_BECKMANN;
-    double alpha_u = 0.1, alpha_v = 0.1;
-    int visible = 1;
     if (bsdf_conductor_param(o, &d.eta, &d.k, err, errlen) != 0 ||
         bsdf_spectrum_param(set, o, "specular_reflectance", 1.0, &d.specular_reflectance, err, errlen) != 0 ||
-        bsdf_roughness_param(o, &distribution, &alpha_u, &alpha_v, &visible, err, errlen) != 0)
+        bsdf_roughness_param(set, o, &d.roughness, err, errlen) != 0)
         return NULL;
     bsdf_spectrum eta = {d.eta, NULL}, k = {d.k, NULL};
     if (bsdf_check_spectrum(o, "eta", &eta, err, errlen) || bsdf_check_spectrum(o, "k", &k, err, errlen) ||
-        bsdf_check_spectrum(o, "specular_reflectance", &d.specular_reflectance, err, errlen) ||
-        bsdf_check_alpha(o, "alpha_u", alpha_u, err, errlen) || bsdf_check_alpha(o, "alpha_v", alpha_v, err, errlen))
+        bsdf_check_spectrum(o, "specular_reflectance", &d.specular_reflectance, err, errlen))
         return NULL;
-    d.distr = microfacet_make(distribution, alpha_u, alpha_v, visible);
-    return bsdf_alloc(o, &roughconductor_ops, BSDF_GLOSSY_REFLECTION | BSDF_FRONT_SIDE, &d, sizeof d, err, errlen);
+    return bsdf_alloc(o, &roughconductor_ops,
+                      BSDF_GLOSSY_REFLECTION | BSDF_FRONT_SIDE | bsdf_roughness_flags(&d.roughness), &d, sizeof d, err,
+                      errlen);
 }
 
 static const scene_param_decl roughconductor_params[] = {BSDF_PARAMS_CONDUCTOR, BSDF_PARAMS_ROUGHNESS, BSDF_PARAMS_END};

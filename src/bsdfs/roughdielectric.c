@@ -8,7 +8,7 @@
 
 typedef struct {
     double eta; /* int_ior / ext_ior */
-    microfacet distr;
+    bsdf_roughness roughness;
     bsdf_spectrum specular_reflectance, specular_transmittance;
 } roughdielectric_data;
 
@@ -40,7 +40,8 @@ static rgb roughdielectric_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     double eta;
     if (!half_vector(d, wi, wo, &m, &reflect, &eta))
         return rgb_gray(0.0);
-    double dg = microfacet_D(&d->distr, m) * microfacet_G(&d->distr, wi, wo, m);
+    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    double dg = microfacet_D(&distr, m) * microfacet_G(&distr, wi, wo, m);
     if (dg == 0.0)
         return rgb_gray(0.0);
     double wi_m = v3_dot(wi, m), wo_m = v3_dot(wo, m);
@@ -62,7 +63,8 @@ static double roughdielectric_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     if (!half_vector(d, wi, wo, &m, &reflect, &eta))
         return 0.0;
     vec3 wi_up = wi.z > 0.0 ? wi : v3_neg(wi);
-    double pm = microfacet_pdf(&d->distr, wi_up, m);
+    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    double pm = microfacet_pdf(&distr, wi_up, m);
     double wi_m = v3_dot(wi, m), wo_m = v3_dot(wo, m);
     double f = fresnel_dielectric(wi_m, d->eta, NULL, NULL, NULL);
     if (reflect)
@@ -79,7 +81,8 @@ static int roughdielectric_sample(const bsdf_t *b, const bsdf_query *q, double u
         return 0;
     vec3 wi_up = wi.z > 0.0 ? wi : v3_neg(wi);
     double pm;
-    vec3 m = microfacet_sample(&d->distr, wi_up, u2, &pm);
+    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    vec3 m = microfacet_sample(&distr, wi_up, u2, &pm);
     if (!(pm > 0.0))
         return 0;
     double cos_t, eta_it, eta_ti;
@@ -108,26 +111,22 @@ static rgb roughdielectric_albedo(const bsdf_t *b, vec2 uv)
 
 static const bsdf_ops roughdielectric_ops = {"roughdielectric",
                                              roughdielectric_sample, roughdielectric_eval, roughdielectric_pdf,
-                                             roughdielectric_albedo, NULL};
+                                             roughdielectric_albedo, NULL, NULL};
 
 static bsdf_t *roughdielectric_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {
     roughdielectric_data d;
-    double int_ior, ext_ior, alpha_u = 0.1, alpha_v = 0.1;
-    microfacet_type distribution = MICROFACET_BECKMANN;
-    int visible = 1;
+    double int_ior, ext_ior;
     if (bsdf_dielectric_param(set, o, &int_ior, &ext_ior, &d.specular_reflectance, &d.specular_transmittance, err,
                               errlen) != 0 ||
-        bsdf_roughness_param(o, &distribution, &alpha_u, &alpha_v, &visible, err, errlen) != 0)
+        bsdf_roughness_param(set, o, &d.roughness, err, errlen) != 0)
         return NULL;
-    if (bsdf_check_ior(o, int_ior, ext_ior, err, errlen) || bsdf_check_alpha(o, "alpha_u", alpha_u, err, errlen) ||
-        bsdf_check_alpha(o, "alpha_v", alpha_v, err, errlen) ||
-        bsdf_check_spectrum(o, "specular_reflectance", &d.specular_reflectance, err, errlen) ||
+    if (bsdf_check_ior(o, int_ior, ext_ior, err, errlen) || bsdf_check_spectrum(o, "specular_reflectance", &d.specular_reflectance, err, errlen) ||
         bsdf_check_spectrum(o, "specular_transmittance", &d.specular_transmittance, err, errlen))
         return NULL;
     d.eta = int_ior / ext_ior;
-    d.distr = microfacet_make(distribution, alpha_u, alpha_v, visible);
-    unsigned flags = BSDF_GLOSSY_REFLECTION | BSDF_GLOSSY_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE;
+    unsigned flags = BSDF_GLOSSY_REFLECTION | BSDF_GLOSSY_TRANSMISSION | BSDF_FRONT_SIDE | BSDF_BACK_SIDE |
+                     bsdf_roughness_flags(&d.roughness);
     return bsdf_alloc(o, &roughdielectric_ops, flags, &d, sizeof d, err, errlen);
 }
 

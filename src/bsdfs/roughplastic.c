@@ -125,7 +125,7 @@ static rgb roughplastic_albedo(const bsdf_t *b, vec2 uv)
 
 static const bsdf_ops roughplastic_ops = {"roughplastic",
                                           roughplastic_sample, roughplastic_eval, roughplastic_pdf, roughplastic_albedo,
-                                          NULL};
+                                          NULL, NULL};
 
 /* The coating's energy tables: T(mu) and the internal reflectance. */
 static void roughplastic_tables(roughplastic_data *d)

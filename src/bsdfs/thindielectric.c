@@ -35,7 +35,7 @@ static int thindielectric_sample(const bsdf_t *b, const bsdf_query *q, double u1
     } else {
         out->wo = v3_neg(q->wi);
         out->pdf = 1.0 - r;
-        out->sampled_type = BSDF_DELTA_TRANSMISSION;
+        out->sampled_type = BSDF_DELTA_TRANSMISSION | BSDF_STRAIGHT_TRANSMISSION;
         out->weight = spectrum_eval(&d->specular_transmittance, q->uv);
     }
     return out->pdf > 0.0;
@@ -58,7 +58,7 @@ static rgb thindielectric_albedo(const bsdf_t *b, vec2 uv)
 
 static const bsdf_ops thindielectric_ops = {"thindielectric",
                                             thindielectric_sample, bsdf_eval_delta_only, bsdf_pdf_delta_only,
-                                            thindielectric_albedo, thindielectric_straight};
+                                            thindielectric_albedo, thindielectric_straight, NULL};
 
 static bsdf_t *thindielectric_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)
 {

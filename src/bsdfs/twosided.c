@@ -56,7 +56,7 @@ static rgb twosided_albedo(const bsdf_t *b, vec2 uv)
     return bsdf_albedo(d->front, uv);
 }
 
-static const bsdf_ops twosided_ops = {"twosided", twosided_sample, twosided_eval, twosided_pdf, twosided_albedo, NULL};
+static const bsdf_ops twosided_ops = {"twosided", twosided_sample, twosided_eval, twosided_pdf, twosided_albedo, NULL, NULL};
 
 /* The nested BSDFs (one or two: the reader checked) are built in set first. */
 static bsdf_t *twosided_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen)

@@ -17,7 +17,8 @@ static void usage(FILE *f)
                "Refuses, naming the file or the missing shares, a set that is not all N\n"
                "parts of one render (same scene, files, options and seed), each once and\n"
                "complete (docs/distributed.md).\n\n"
-               "  -o OUT    .exr (float32 RGB + the AOV channels) or .png/.jpg (sRGB 8-bit)\n");
+               "  -o OUT    .exr (float32, the render's pixel format + the AOV channels) or\n"
+               "            .png/.jpg (sRGB 8-bit)\n");
 }
 
 static int output_kind_ok(const char *path)

@@ -56,6 +56,20 @@ void emitter_destroy(emitter_t *e)
     free(e);
 }
 
+int emitter_delta_sample(vec3 pos, vec3 ref, emitter_sample_rec *out)
+{
+    vec3 to = v3_sub(pos, ref);
+    double dist2 = v3_dot(to, to);
+    if (!(dist2 > 0.0))
+        return 0;
+    out->dist = sqrt(dist2);
+    out->wi = v3_scale(to, 1.0 / out->dist);
+    out->p = pos;
+    out->pdf = 1.0;
+    out->delta = true;
+    return 1;
+}
+
 rgb emitter_rgb_param(scene_obj *o, const char *name, double def)
 {
     scene_rgb c = scene_obj_rgb(o, name, (scene_rgb){def, def, def});

@@ -33,6 +33,10 @@ struct emitter {
 emitter_t *emitter_alloc(const scene_obj *o, const emitter_ops *ops, const void *data, size_t data_size, char *err,
                          size_t errlen);
 
+/* The sample of a light at the point pos seen from ref (a delta light):
+ * wi, dist, p, pdf 1, delta; 0 when ref is at pos. */
+int emitter_delta_sample(vec3 pos, vec3 ref, emitter_sample_rec *out);
+
 /* A constant color parameter (def when absent) as rgb. */
 rgb emitter_rgb_param(scene_obj *o, const char *name, double def);
 

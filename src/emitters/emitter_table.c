@@ -9,6 +9,8 @@
     X(emitter, envmap)                   \
     X(emitter, point)                    \
     X(emitter, directional)              \
+    X(emitter, spot)                     \
+    X(emitter, projector)                \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(emitter, EMITTER_PLUGINS)

@@ -5,6 +5,10 @@
 
 #define INTEGRATOR_PLUGINS(X)            \
     X(integrator, path)                  \
+    X(integrator, direct)                \
+    X(integrator, depth)                 \
+    X(integrator, aov)                   \
+    X(integrator, moment)                \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(integrator, INTEGRATOR_PLUGINS)

@@ -1,5 +1,7 @@
 /* Integrators in the sense of Mitsuba 3: the radiance arriving along a camera
- * ray, estimated from one pixel sample's numbers. Plugin: `path`.
+ * ray, estimated from one pixel sample's numbers, and the integrator's own
+ * output channels (Mitsuba's AOVs). Plugins: `path`, `direct`, `depth`,
+ * `aov`, `moment`.
  *
  * This is src/integrators' interface: what the render loop uses; each
  * plugin is one file plus one line of integrator_table.c (docs/plugins.md). */
@@ -26,13 +28,28 @@ typedef struct {
 
 /* The first hit's values for the AOV channels, in this order: depth (the
  * distance along the camera ray), the world shading normal, the BSDF's
- * albedo; zero where the ray escapes. */
-enum { INTEGRATOR_AOV_DEPTH = 0, INTEGRATOR_AOV_NORMAL = 1, INTEGRATOR_AOV_ALBEDO = 4, INTEGRATOR_AOV_COUNT = 7 };
+ * albedo, zero where the ray escapes; and the sample's alpha: 1 when it
+ * counts as covered (Mitsuba's "valid" sample: the ray met a surface other
+ * than a null one, or sees a visible environment), else 0. */
+enum {
+    INTEGRATOR_AOV_DEPTH = 0,
+    INTEGRATOR_AOV_NORMAL = 1,
+    INTEGRATOR_AOV_ALBEDO = 4,
+    INTEGRATOR_AOV_ALPHA = 7,
+    INTEGRATOR_AOV_COUNT = 8
+};
 
 /* Radiance along ray (t in (tmin, tmax)) from the numbers of smp; aov (may
- * be NULL) receives the INTEGRATOR_AOV_COUNT values above. Thread-safe. */
+ * be NULL) receives the INTEGRATOR_AOV_COUNT values above followed by the
+ * integrator's own channels. Thread-safe. */
 rgb integrator_li(const integrator_t *in, const integrator_scene *sc, const ray3 *ray, double tmin, double tmax,
                   sampler_stream *smp, double *aov);
+/* The integrator's own output channels (Mitsuba's aov_names: "dd.T",
+ * "m2_nested.X", ...): how many, and the EXR name of each. */
+int integrator_channel_count(const integrator_t *in);
+const char *integrator_channel_name(const integrator_t *in, int i);
+/* The plugin's name. */
+const char *integrator_type(const integrator_t *in);
 void integrator_destroy(integrator_t *in);
 
 /* An integrator plugin: its declaration for the scene reader and its

@@ -58,7 +58,7 @@ static rgb transmittance(const shape_list *shapes, const surface_hit *h, const e
         const bsdf_t *b = x.shape->bsdf;
         if (crossed == max_sheets || !(bsdf_flags(b) & BSDF_STRAIGHT_TRANSMISSION))
             return rgb_gray(0.0);
-        bsdf_query q = {frame3_to_local(x.sh, v3_neg(es->wi)), x.uv, TRANSPORT_RADIANCE};
+        bsdf_query q = shape_bsdf_query(&x, es->wi, TRANSPORT_RADIANCE);
         tr = rgb_mul(tr, bsdf_straight_transmittance(b, &q));
         if (rgb_is_black(tr))
             return tr;
@@ -102,9 +102,11 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
     ray3 ray = *ray0;
     vec3 prev_p = ray.o;
     double sel = emitters->count > 0 ? 1.0 / emitters->count : 0.0;
-    if (aov)
+    if (aov) {
         for (int i = 0; i < INTEGRATOR_AOV_COUNT; i++)
             aov[i] = 0.0;
+        aov[INTEGRATOR_AOV_ALPHA] = emitters->env && !pd->hide_emitters; /* Mitsuba's valid ray */
+    }
     for (int depth = 0;; depth++) {
         surface_hit hit;
         bool found = shape_list_intersect(sc->shapes, &ray, t0, t1, &hit);
@@ -118,13 +120,8 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             break;
         }
         const shape_t *sh = hit.shape;
-        if (depth == 0 && aov) {
-            aov[INTEGRATOR_AOV_DEPTH] = hit.t;
-            double *n = aov + INTEGRATOR_AOV_NORMAL, *albedo = aov + INTEGRATOR_AOV_ALBEDO;
-            n[0] = hit.sh.n.x, n[1] = hit.sh.n.y, n[2] = hit.sh.n.z;
-            rgb a = bsdf_albedo(sh->bsdf, hit.uv);
-            albedo[0] = a.r, albedo[1] = a.g, albedo[2] = a.b;
-        }
+        if (depth == 0 && aov)
+            integrator_first_hit_aovs(aov, &hit);
         if (sh->emitter && show) {
             const emitter_t *e = sh->emitter;
             rgb le = emitter_eval_hit(e, &hit, ray.d);
@@ -134,10 +131,13 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
                 L = rgb_add(L, rgb_scale(rgb_mul(beta, le), w));
             }
         }
-        if (pd->max_depth >= 0 && depth + 1 >= pd->max_depth)
+        if (pd->max_depth >= 0 && depth + 1 >= pd->max_depth) {
+            if (aov && sh->emitter && !pd->hide_emitters)
+                aov[INTEGRATOR_AOV_ALPHA] = 1.0;
             break;
+        }
 
-        bsdf_query q = {frame3_to_local(hit.sh, v3_neg(ray.d)), hit.uv, TRANSPORT_RADIANCE};
+        bsdf_query q = shape_bsdf_query(&hit, ray.d, TRANSPORT_RADIANCE);
         if ((bsdf_flags(sh->bsdf) & BSDF_SMOOTH) && emitters->count > 0) {
             /* The emitter at depth + 1 + sheets must not pass max_depth - 1. */
             int max_sheets = pd->max_depth < 0 ? -1 : pd->max_depth - 2 - depth;
@@ -147,14 +147,17 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         bsdf_sample_rec bs;
         double u1 = sampler_next_1d(smp);
         vec2 u2 = sampler_next_2d(smp);
-        if (!bsdf_sample(sh->bsdf, &q, u1, u2, &bs) || rgb_is_black(bs.weight))
+        bool sampled = bsdf_sample(sh->bsdf, &q, u1, u2, &bs);
+        if (aov && !(bs.sampled_type & BSDF_NULL)) /* a surface, not a null one: covered */
+            aov[INTEGRATOR_AOV_ALPHA] = 1.0;
+        if (!sampled || rgb_is_black(bs.weight))
             break;
         beta = rgb_mul(beta, bs.weight);
         eta *= bs.eta;
         /* Straight through a thin sheet, the path keeps the last scattering
          * vertex's density for MIS: next-event estimation from that vertex
          * saw the emitter through the sheet too (transmittance above). */
-        if (!((bs.sampled_type & BSDF_DELTA_TRANSMISSION) && (bsdf_flags(sh->bsdf) & BSDF_STRAIGHT_TRANSMISSION))) {
+        if (!(bs.sampled_type & BSDF_STRAIGHT_TRANSMISSION)) {
             prev_delta = (bs.sampled_type & BSDF_DELTA) != 0;
             prev_pdf = bs.pdf;
             prev_p = hit.p;
@@ -177,7 +180,7 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
     return L;
 }
 
-static const integrator_ops path_ops = {path_li};
+static const integrator_ops path_ops = {path_li, NULL};
 
 static integrator_t *path_create(scene_obj *o, char *err, size_t errlen)
 {

@@ -386,7 +386,7 @@ int distribute_render(const scene_t *s, const render_options *opt, film_t *film,
         if (opt->progress) {
             fprintf(stderr, "distribute: %d ranks share %d unit%s of %d spp x %d rows\n", size, plan.units,
                     plan.units > 1 ? "s" : "", plan.pass_spp, plan.band_rows);
-            progress_begin_lines(&c.bar, "render", (uint64_t)(s1 - s0) * (uint64_t)width * (uint64_t)height);
+            progress_begin_lines(&c.bar, "render", render_sample_count(s, s0, s1));
         }
         coordinate(&c, &w, &plan, opt);
     } else {
@@ -406,7 +406,7 @@ int distribute_render(const scene_t *s, const render_options *opt, film_t *film,
     double t_end = now_seconds();
     /* Interrupted: fewer samples than asked for. Every rank learns it from
      * rank 0, so that they all stop or go on (--frames) together. */
-    render_stats st = {t_end - w.tally.t_start, rank == 0 ? all : taken, all < (uint64_t)(s1 - s0) * npix};
+    render_stats st = {t_end - w.tally.t_start, rank == 0 ? all : taken, all < render_sample_count(s, s0, s1)};
     MPI_Bcast(&st.interrupted, 1, MPI_INT, 0, MPI_COMM_WORLD);
     if (rank == 0) {
         if (opt->progress) {

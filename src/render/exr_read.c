@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "render/exr_error.h"
+#include "render/exr_metadata.h"
 
 struct exr_in {
     exr_context_t ctx;
@@ -69,6 +70,8 @@ const char *exr_in_attr(const exr_in *e, const char *name)
     int32_t len = 0;
     return exr_attr_get_string(e->ctx, 0, name, &len, &s) == EXR_ERR_SUCCESS ? s : NULL;
 }
+
+void exr_in_metadata(const exr_in *e, film_metadata *meta) { exr_metadata_read(e->ctx, 0, meta); }
 
 int exr_in_has_channel(const exr_in *e, const char *name)
 {

@@ -7,6 +7,8 @@
 
 #include <stddef.h>
 
+#include "celadon/film.h"
+
 typedef struct exr_in exr_in;
 
 /* Opens path and reads its header; NULL with a one-line reason (naming the
@@ -18,6 +20,8 @@ void exr_in_close(exr_in *e);
 void exr_in_size(const exr_in *e, int *width, int *height);
 /* The string attribute name, or NULL when there is none of that type. */
 const char *exr_in_attr(const exr_in *e, const char *name);
+/* The film metadata of its header (exr_metadata.h). */
+void exr_in_metadata(const exr_in *e, film_metadata *meta);
 /* Whether the file has the channel. */
 int exr_in_has_channel(const exr_in *e, const char *name);
 

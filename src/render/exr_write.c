@@ -7,6 +7,7 @@
 #include "celadon/film.h"
 #include "core/core.h"
 #include "render/exr_error.h"
+#include "render/exr_metadata.h"
 
 /* Encodes every chunk of the part; channel pointers into the interleaved
  * buffer are matched by name since the file stores channels sorted. */
@@ -54,13 +55,14 @@ static exr_result_t write_chunks(exr_context_t ctx, int part, int width, int hei
 }
 
 int exr_write_float(const char *path, int width, int height, int nch, const char *const *names,
-                    const float *pixels, char *err, size_t errlen)
+                    const float *pixels, const film_metadata *meta, char *err, size_t errlen)
 {
-    return exr_write_float_attrs(path, width, height, nch, names, pixels, NULL, 0, err, errlen);
+    return exr_write_float_attrs(path, width, height, nch, names, pixels, meta, NULL, 0, err, errlen);
 }
 
 int exr_write_float_attrs(const char *path, int width, int height, int nch, const char *const *names,
-                          const float *pixels, const film_attr *attrs, int nattrs, char *err, size_t errlen)
+                          const float *pixels, const film_metadata *meta, const film_attr *attrs, int nattrs,
+                          char *err, size_t errlen)
 {
     char tmp[4200];
     atomic_temp_name(path, tmp, sizeof tmp);
@@ -76,6 +78,8 @@ int exr_write_float_attrs(const char *path, int width, int height, int nch, cons
         rv = exr_initialize_required_attr_simple(ctx, part, width, height, EXR_COMPRESSION_ZIP);
     for (int c = 0; c < nch && rv == EXR_ERR_SUCCESS; c++)
         rv = exr_add_channel(ctx, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+    if (rv == EXR_ERR_SUCCESS && meta && meta->spp > 0)
+        rv = exr_metadata_write(ctx, part, meta);
     for (int a = 0; a < nattrs && rv == EXR_ERR_SUCCESS; a++)
         rv = exr_attr_set_string(ctx, part, attrs[a].name, attrs[a].value);
     if (rv == EXR_ERR_SUCCESS)

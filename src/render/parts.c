@@ -76,6 +76,7 @@ int render_part_write(const film_t *film, const scene_t *s, render_part p, int c
         {"celadon.part", part},         {"celadon.spp", spps},           {"celadon.samples", samples},
         {"celadon.seed", seed},         {"celadon.scene", digest},       {"celadon.channels", channels},
         {"celadon.complete", complete ? "yes" : "no"},
+        {"celadon.format", film_format_name(film->format)},
     };
     part_pixels pp = part_pixels_alloc(film);
     int nch = pp.nch;
@@ -86,7 +87,7 @@ int render_part_write(const film_t *film, const scene_t *s, render_part p, int c
             pp.px[i * nch + c] = w > 0 ? (float)(film->sum[i * film->nchannels + c] / w) : 0.0f;
         pp.px[i * nch + nch - 1] = (float)w;
     }
-    int rc = exr_write_float_attrs(path, film->width, film->height, nch, pp.names, pp.px, attrs,
+    int rc = exr_write_float_attrs(path, film->width, film->height, nch, pp.names, pp.px, &film->meta, attrs,
                                    (int)(sizeof attrs / sizeof attrs[0]), err, errlen);
     part_pixels_free(&pp);
     return rc;
@@ -100,6 +101,8 @@ typedef struct {
     render_part part;
     int spp, s0, s1, width, height, complete;
     char seed[32], scene[32], channels[ATTR_LEN];
+    film_pixel_format format;
+    film_metadata meta; /* of the EXR header written by film_write */
 } part_info;
 
 static const char *attr_or_empty(const exr_in *e, const char *name)
@@ -127,9 +130,11 @@ static int read_info(const char *path, part_info *pi, char *err, size_t errlen)
     snprintf(pi->channels, sizeof pi->channels, "%s", attr_or_empty(e, "celadon.channels"));
     pi->spp = atoi(attr_or_empty(e, "celadon.spp"));
     pi->complete = !strcmp(attr_or_empty(e, "celadon.complete"), "yes");
+    int format_ok = film_format_parse(attr_or_empty(e, "celadon.format"), &pi->format) == 0;
+    exr_in_metadata(e, &pi->meta);
     if (!part)
         snprintf(err, errlen, "%s: not a part of a celadon render (its header has no celadon.part)", path);
-    else if (render_part_parse(part, &pi->part) != 0 || pi->spp < 1 || !pi->seed[0] || !pi->scene[0] ||
+    else if (render_part_parse(part, &pi->part) != 0 || pi->spp < 1 || !format_ok || !pi->seed[0] || !pi->scene[0] ||
              !pi->channels[0] || sscanf(samples, "%d-%d%n", &first, &last, &len) != 2 || samples[len] ||
              render_part_samples(pi->part, pi->spp, &pi->s0, &pi->s1) != 0 || first != pi->s0 ||
              last != pi->s1 - 1 || !exr_in_has_channel(e, WEIGHT_CHANNEL))
@@ -159,13 +164,17 @@ static int same_render(const part_info *a, const part_info *b, char *err, size_t
         snprintf(what, sizeof what, "it is %dx%d, not %dx%d", b->width, b->height, a->width, a->height);
     else if (strcmp(a->channels, b->channels))
         snprintf(what, sizeof what, "its channels are %s, not %s", b->channels, a->channels);
+    else if (a->format != b->format)
+        snprintf(what, sizeof what, "its pixel format is %s, not %s", film_format_name(b->format),
+                 film_format_name(a->format));
     else
         return 0;
     snprintf(err, errlen, "%s: not a part of the render %s belongs to: %s", b->path, a->path, what);
     return -2;
 }
 
-/* The film's AOVs from the channel list "R,G,B,depth.T,normal.X,...". */
+/* The film's AOVs from the channel list "R,G,B,depth.T,normal.X,..." (with
+ * an A after B for the alpha formats), its pixel format and metadata. */
 static int film_for(const part_info *pi, film_t *film, char *err, size_t errlen)
 {
     char buf[ATTR_LEN], *names[MAX_CHANNELS], *save;
@@ -176,7 +185,7 @@ static int film_for(const part_info *pi, film_t *film, char *err, size_t errlen)
     film_aov aovs[MAX_CHANNELS];
     const char *suffixes[MAX_CHANNELS]; /* each channel's, so an AOV's are consecutive */
     int naov = 0;
-    for (int c = 3; c < n; c++) {
+    for (int c = 3 + film_format_has_alpha(pi->format); c < n; c++) {
         char *dot = strrchr(names[c], '.');
         if (!dot)
             break;
@@ -187,8 +196,9 @@ static int film_for(const part_info *pi, film_t *film, char *err, size_t errlen)
         else
             aovs[naov++] = (film_aov){names[c], 1, &suffixes[c]};
     }
-    if (film_init(film, pi->width, pi->height, aovs, naov, err, errlen) != 0)
+    if (film_init_format(film, pi->width, pi->height, pi->format, aovs, naov, err, errlen) != 0)
         return -1;
+    film->meta = pi->meta;
     int ok = film->nchannels == n;
     snprintf(buf, sizeof buf, "%s", pi->channels);
     char *t = strtok_r(buf, ",", &save);
@@ -197,7 +207,7 @@ static int film_for(const part_info *pi, film_t *film, char *err, size_t errlen)
     if (ok)
         return 0;
     film_free(film);
-    snprintf(err, errlen, "%s: its channels %s are not a film's (R, G, B, then AOVs)", pi->path, pi->channels);
+    snprintf(err, errlen, "%s: its channels %s are not a film's (R, G, B, A in an alpha format, then AOVs)", pi->path, pi->channels);
     return -2;
 }
 

@@ -1,11 +1,22 @@
 /* The render loop: passes of samples over 16x16 tiles shared out to OpenMP
- * threads, each pixel sample with its own stream of the sampler, a progress
- * bar, and a stop request (SIGINT) honoured after the sample in progress.
+ * threads, each pixel sample with its own stream of the sampler, splatted
+ * into the film through the reconstruction filter, a progress bar, and a
+ * stop request (SIGINT) honoured after the sample in progress.
  * render_scene is the one-process driver; render_loop.h gives the pieces to
- * the others (distribute_mpi.c). */
+ * the others (distribute_mpi.c).
+ *
+ * Determinism with splatting: a sample reaches the pixels within the
+ * filter's radius, so neighbouring tiles write to shared pixels. Tiles are
+ * coloured k x k (k = 2 + floor(2 radius / 16)), so that two tiles of one
+ * colour never reach a common pixel; the colours are rendered one after
+ * the other, the tiles of a colour in parallel. Every pixel then receives
+ * its contributions in an order fixed by the tiles and samples alone,
+ * whatever the threads and their schedule. */
+#include <math.h>
 #include <omp.h>
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "render/render_loop.h"
@@ -38,59 +49,154 @@ int render_aov_parse(const char *list, unsigned *mask)
     return 0;
 }
 
-/* Film values of one sample: RGB, then the requested AOVs in order. */
-static int pack_values(rgb L, const double *aov, unsigned mask, double *out)
+/* What the tiles of a render share. */
+typedef struct {
+    const scene_t *s;
+    film_t *film;
+    unsigned aovs;       /* RENDER_AOV_* */
+    bool alpha;          /* the film has an A channel */
+    int nown;            /* the integrator's own channels */
+    int x0, y0, x1, y1;  /* the sampled pixels: the film, and the border with sample_border */
+} render_job;
+
+/* Film values of one sample: RGB, A, then the requested AOVs and the
+ * integrator's own channels, in that order. */
+static void pack_values(const render_job *j, rgb L, const double *aov, double *out)
 {
     int n = 0;
     out[n++] = L.r, out[n++] = L.g, out[n++] = L.b;
-    if (mask & RENDER_AOV_DEPTH)
+    if (j->alpha)
+        out[n++] = aov[INTEGRATOR_AOV_ALPHA];
+    if (j->aovs & RENDER_AOV_DEPTH)
         out[n++] = aov[INTEGRATOR_AOV_DEPTH];
-    for (int i = 0; i < 3 && (mask & RENDER_AOV_NORMAL); i++)
+    for (int i = 0; i < 3 && (j->aovs & RENDER_AOV_NORMAL); i++)
         out[n++] = aov[INTEGRATOR_AOV_NORMAL + i];
-    for (int i = 0; i < 3 && (mask & RENDER_AOV_ALBEDO); i++)
+    for (int i = 0; i < 3 && (j->aovs & RENDER_AOV_ALBEDO); i++)
         out[n++] = aov[INTEGRATOR_AOV_ALBEDO + i];
-    return n;
+    for (int i = 0; i < j->nown; i++)
+        out[n++] = aov[INTEGRATOR_AOV_COUNT + i];
 }
 
-/* Samples [s0, s1) of every pixel of a tile; a stop request ends it after
- * the sample in progress. Returns the number of samples taken. */
-static uint64_t render_tile(const scene_t *s, film_t *film, unsigned aovs, int tx, int ty, int s0, int s1)
+/* Adds a sample at film position (x, y) to the pixels whose centres lie
+ * within the filter's reach, weighted by it; a box adds it to the pixel it
+ * falls in, with weight 1. */
+static void splat(film_t *film, const rfilter_t *f, int px, int py, double x, double y, const double *vals)
 {
+    if (rfilter_is_box(f)) {
+        if (px >= 0 && py >= 0 && px < film->width && py < film->height)
+            film_add(film, px, py, vals, 1.0);
+        return;
+    }
+    double r = f->radius, wx[160], wy[160];
+    int ax = (int)ceil(x - 0.5 - r), bx = (int)floor(x - 0.5 + r);
+    int ay = (int)ceil(y - 0.5 - r), by = (int)floor(y - 0.5 + r);
+    ax = ax < 0 ? 0 : ax, ay = ay < 0 ? 0 : ay;
+    bx = bx >= film->width ? film->width - 1 : bx, by = by >= film->height ? film->height - 1 : by;
+    for (int i = ax; i <= bx; i++)
+        wx[i - ax] = rfilter_eval(f, i + 0.5 - x);
+    for (int i = ay; i <= by; i++)
+        wy[i - ay] = rfilter_eval(f, i + 0.5 - y);
+    for (int v = ay; v <= by; v++)
+        for (int u = ax; u <= bx; u++) {
+            double w = wx[u - ax] * wy[v - ay];
+            if (w != 0.0)
+                film_add(film, u, v, vals, w);
+        }
+}
+
+/* Samples [s0, s1) of every pixel of the tile at (tx, ty); a stop request
+ * ends it after the sample in progress. Returns the number of samples
+ * taken. */
+static uint64_t render_tile(const render_job *j, int tx, int ty, int s0, int s1)
+{
+    const scene_t *s = j->s;
     const camera_t *cam = &s->camera;
     integrator_scene sc = {&s->shapes, &s->emitters};
+    size_t naov = INTEGRATOR_AOV_COUNT + (size_t)j->nown;
+    double *aov = malloc(sizeof(double) * (naov + j->film->nchannels));
+    if (!aov)
+        abort();
+    double *vals = aov + naov;
+    bool need_aov = j->aovs || j->alpha || j->nown > 0;
     uint64_t n = 0;
-    double aov[INTEGRATOR_AOV_COUNT], vals[3 + INTEGRATOR_AOV_COUNT];
-    for (int y = ty; y < ty + TILE && y < cam->height; y++)
-        for (int x = tx; x < tx + TILE && x < cam->width; x++)
+    for (int y = ty; y < ty + TILE && y < j->y1; y++)
+        for (int x = tx; x < tx + TILE && x < j->x1; x++)
             for (int k = s0; k < s1; k++) {
                 if (stop_requested)
-                    return n;
+                    goto done;
                 sampler_stream smp;
                 sampler_start(&s->sampler, &smp, (uint32_t)x, (uint32_t)y, (uint32_t)k);
-                /* The film position: two 1D numbers, x first. */
+                /* The film position: two 1D numbers, x first; then the lens. */
                 double sx = sampler_next_1d(&smp), sy = sampler_next_1d(&smp);
-                camera_ray_t cr = camera_ray(cam, x, y, sx, sy);
-                rgb L = integrator_li(s->integrator, &sc, &cr.ray, cr.tmin, cr.tmax, &smp, aovs ? aov : NULL);
-                pack_values(L, aov, aovs, vals);
-                film_add(film, x, y, vals, 1.0);
+                vec2 lens = cam->needs_aperture ? sampler_next_2d(&smp) : v2(0.5, 0.5);
+                camera_ray_t cr = camera_ray_at(cam, x + sx, y + sy, lens);
+                rgb L = integrator_li(s->integrator, &sc, &cr.ray, cr.tmin, cr.tmax, &smp, need_aov ? aov : NULL);
+                pack_values(j, L, aov, vals);
+                splat(j->film, &s->film.filter, x, y, x + sx, y + sy, vals);
                 n++;
             }
+done:
+    free(aov);
     return n;
 }
 
+/* The metadata of the EXR header: how the image was made. */
+static void describe(const scene_t *s, film_metadata *m)
+{
+    const camera_t *cam = &s->camera;
+    m->spp = scene_spp(s);
+    m->seed = scene_seed(s);
+    snprintf(m->integrator, sizeof m->integrator, "%s", integrator_type(s->integrator));
+    if (strcmp(cam->type, "orthographic") == 0)
+        snprintf(m->camera, sizeof m->camera, "%s", cam->type);
+    else
+        snprintf(m->camera, sizeof m->camera, "%s fov_x=%.6g fov_y=%.6g", cam->type,
+                 2.0 * atan(cam->tan_x) * (180.0 / M_PI), 2.0 * atan(cam->tan_y) * (180.0 / M_PI));
+    if (strcmp(cam->type, "thinlens") == 0) {
+        size_t used = strlen(m->camera);
+        snprintf(m->camera + used, sizeof m->camera - used, " aperture_radius=%.6g focus_distance=%.6g",
+                 cam->aperture_radius, cam->focus_distance);
+    }
+    transform4 inv = transform_inverse(&cam->to_world);
+    memcpy(m->world_to_camera, inv.m, sizeof m->world_to_camera);
+}
+
+/* The film's channels beyond R, G, B and A: the requested AOVs (named as
+ * Mitsuba's aov integrator names them), then the integrator's own ones. */
 int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, size_t errlen)
 {
-    /* The channels as Mitsuba's aov integrator names them. */
-    static const char *const t[1] = {"T"}, *const xyz[3] = {"X", "Y", "Z"}, *const rgb[3] = {"R", "G", "B"};
-    film_aov list[3];
+    static const char *const t[1] = {"T"}, *const xyz[3] = {"X", "Y", "Z"}, *const rgb_names[3] = {"R", "G", "B"};
+    static const char *const whole[1] = {""};
+    int nown = integrator_channel_count(s->integrator);
+    film_aov *list = malloc(sizeof *list * (size_t)(3 + nown));
+    if (!list)
+        abort();
     int naov = 0;
     if (aovs & RENDER_AOV_DEPTH)
         list[naov++] = (film_aov){"depth", 1, t};
     if (aovs & RENDER_AOV_NORMAL)
         list[naov++] = (film_aov){"normal", 3, xyz};
     if (aovs & RENDER_AOV_ALBEDO)
-        list[naov++] = (film_aov){"albedo", 3, rgb};
-    return film_init(film, s->camera.width, s->camera.height, list, naov, err, errlen);
+        list[naov++] = (film_aov){"albedo", 3, rgb_names};
+    for (int i = 0; i < nown; i++)
+        list[naov++] = (film_aov){integrator_channel_name(s->integrator, i), 1, whole};
+    int rc = film_init_format(film, s->camera.width, s->camera.height, s->film.format, list, naov, err, errlen);
+    free(list);
+    if (rc == 0)
+        describe(s, &film->meta);
+    return rc;
+}
+
+/* The pixels beyond the film's edge that are sampled too (sample_border). */
+static int border_pixels(const scene_t *s)
+{
+    return s->film.sample_border ? (int)ceil(s->film.filter.radius - 0.5) : 0;
+}
+
+uint64_t render_sample_count(const scene_t *s, int s0, int s1)
+{
+    int b = border_pixels(s);
+    return (uint64_t)(s1 - s0) * (uint64_t)(s->camera.width + 2 * b) * (uint64_t)(s->camera.height + 2 * b);
 }
 
 void render_sample_range(const scene_t *s, const render_options *opt, int *s0, int *s1)
@@ -112,20 +218,37 @@ void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, 
                     render_tally *tally)
 {
     const camera_t *cam = &s->camera;
-    int tiles_x = (cam->width + TILE - 1) / TILE, ty0 = y0 / TILE, tiles_y = (y1 + TILE - 1) / TILE - ty0;
-    int ntiles = tiles_x * tiles_y;
+    const rfilter_t *filter = &s->film.filter;
+    int border = border_pixels(s);
+    /* The first and last bands take the border rows too. */
+    render_job job = {s,
+                      film,
+                      aovs,
+                      film_format_has_alpha(s->film.format),
+                      integrator_channel_count(s->integrator),
+                      -border,
+                      y0 == 0 ? -border : y0,
+                      cam->width + border,
+                      y1 == cam->height ? y1 + border : y1};
+    int tiles_x = (job.x1 - job.x0 + TILE - 1) / TILE, tiles_y = (job.y1 - job.y0 + TILE - 1) / TILE;
+    /* Tiles of one colour are k tiles apart: (k - 1) TILE > 2 radius. */
+    int k = rfilter_is_box(filter) ? 1 : 2 + (int)floor(2.0 * filter->radius / TILE);
+    for (int colour = 0; colour < k * k && !stop_requested; colour++) {
+        int cx = colour % k, cy = colour / k;
+        int ncx = (tiles_x - cx + k - 1) / k, ncy = (tiles_y - cy + k - 1) / k, ntiles = ncx * ncy;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (int t = 0; t < ntiles; t++) {
-        if (stop_requested)
-            continue;
-        int tx = (t % tiles_x) * TILE, ty = (ty0 + t / tiles_x) * TILE;
-        uint64_t add = render_tile(s, film, aovs, tx, ty, s0, s1);
-        uint64_t now = atomic_fetch_add(&tally->taken, add) + add;
-        if (tally->bar && omp_get_thread_num() == 0) {
-            char extra[64];
-            double el = now_seconds() - tally->t_start;
-            snprintf(extra, sizeof extra, "%.2f Msamples/s", el > 0 ? 1e-6 * (double)now / el : 0.0);
-            progress_update(tally->bar, now, extra);
+        for (int t = 0; t < ntiles; t++) {
+            if (stop_requested)
+                continue;
+            int tx = job.x0 + (cx + k * (t % ncx)) * TILE, ty = job.y0 + (cy + k * (t / ncx)) * TILE;
+            uint64_t add = render_tile(&job, tx, ty, s0, s1);
+            uint64_t now = atomic_fetch_add(&tally->taken, add) + add;
+            if (tally->bar && omp_get_thread_num() == 0) {
+                char extra[64];
+                double el = now_seconds() - tally->t_start;
+                snprintf(extra, sizeof extra, "%.2f Msamples/s", el > 0 ? 1e-6 * (double)now / el : 0.0);
+                progress_update(tally->bar, now, extra);
+            }
         }
     }
 }
@@ -162,7 +285,7 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
     progress_t bar;
     render_tally tally = {0, opt->progress ? &bar : NULL, now_seconds()};
     if (opt->progress)
-        progress_begin(&bar, "render", (uint64_t)spp * (uint64_t)cam->width * (uint64_t)cam->height);
+        progress_begin(&bar, "render", render_sample_count(s, s0, s1));
     for (int p0 = s0; p0 < s1 && !stop_requested; p0 += pass_spp)
         render_samples(s, threads, opt->aovs, film, p0, p0 + pass_spp < s1 ? p0 + pass_spp : s1, 0, cam->height,
                        &tally);

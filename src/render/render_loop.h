@@ -24,8 +24,14 @@ typedef struct {
     double t_start;  /* for the bar's Msamples/s */
 } render_tally;
 
-/* The film for the scene's size and the requested AOVs (film_init). */
+/* The film for the scene's size, pixel format, the requested AOVs and the
+ * integrator's own channels, with the metadata of its EXR header
+ * (film_init_format). */
 int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, size_t errlen);
+
+/* The camera samples that samples [s0, s1) of every pixel take: the film's
+ * pixels and, with hdrfilm's sample_border, the border's. */
+uint64_t render_sample_count(const scene_t *s, int s0, int s1);
 
 /* The samples [*s0, *s1) of every pixel that opt asks for (all by default). */
 void render_sample_range(const scene_t *s, const render_options *opt, int *s0, int *s1);
@@ -33,7 +39,9 @@ void render_sample_range(const scene_t *s, const render_options *opt, int *s0, i
 /* The OpenMP threads opt asks for. */
 int render_thread_count(const render_options *opt);
 
-/* Samples [s0, s1) of every pixel in rows [y0, y1) into film, the tiles
+/* Samples [s0, s1) of every pixel in rows [y0, y1) into film (splatted
+ * through the filter, so into rows up to its radius beyond; the first and
+ * last bands also sample the border rows with sample_border), the tiles
  * shared among threads; ends early (after the samples in flight) on a stop
  * request. */
 void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, int s0, int s1, int y0, int y1,

@@ -72,9 +72,9 @@ static int build_sensor(struct scene *s, scene_obj *root, const scene_options *o
     scene_obj *sensor = scene_obj_child(root, SCENE_SENSOR);
     if (!sensor)
         return scene_obj_error(root, err, errlen, "the scene has no <sensor>");
-    film_settings fs;
-    if (build_film(sensor, opt, &fs, err, errlen) != 0 ||
-        sensor_plugin_find(sensor->type)->create(sensor, fs.width, fs.height, &s->camera, err, errlen) != 0)
+    film_settings *fs = &s->film;
+    if (build_film(sensor, opt, fs, err, errlen) != 0 ||
+        sensor_plugin_find(sensor->type)->create(sensor, fs->width, fs->height, &s->camera, err, errlen) != 0)
         return -1;
     return build_sampler(s, sensor, opt, err, errlen);
 }

@@ -14,6 +14,7 @@
 
 struct scene {
     camera_t camera;
+    film_settings film; /* its size is the camera's */
     sampler_t sampler;
     integrator_t *integrator;
     shape_list shapes;     /* in document order, each with its BSDF and area emitter */

@@ -201,13 +201,17 @@ static int add_prop(scene_ctx *c, scene_obj *o, scene_prop *p)
 }
 
 /* Puts child under parent: a texture below an object sets the property its
- * name says; anything else joins the children, within the table's limits. */
+ * name says (unless the object takes nested textures whatever their name,
+ * as bumpmap does, and the name is none of its parameters); anything else
+ * joins the children, within the table's limits. */
 static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char *name, int line)
 {
     char pw[160], cw[160];
     describe(parent, pw, sizeof pw);
     describe(child, cw, sizeof cw);
-    if (child->cls == SCENE_TEXTURE && parent->cls != SCENE_SCENE) {
+    const scene_plugin_decl *pd = c->plugins(parent->cls, parent->type);
+    bool any_name = schema_child_find(pd, SCENE_TEXTURE) && !(name && schema_param_find(pd, name));
+    if (child->cls == SCENE_TEXTURE && parent->cls != SCENE_SCENE && !any_name) {
         if (!name)
             return scene_fail(c, line, "%s inside %s needs a name (the parameter it sets)", cw, pw);
         scene_prop p = {0};

@@ -1,32 +1,36 @@
-/* Mitsuba's `hdrfilm`: the image size (768 x 576 by default). The output
- * format follows the output file's extension; pixel_format,
- * component_format, file_format and sample_border are accepted and change
- * nothing (docs/scene-format.md). */
+/* Mitsuba's `hdrfilm`: the image size (768 x 576 by default), its
+ * `pixel_format` (rgb by default; the "a" formats add the alpha channel of
+ * coverage), `sample_border`, and the reconstruction filter of its nested
+ * <rfilter>, Mitsuba's `gaussian` when it names none. The output file's
+ * format follows its extension; `component_format` and `file_format` are
+ * accepted and change nothing (docs/scene-format.md). */
+#include <string.h>
+
 #include "sensors/sensors.h"
 
 static int hdrfilm_create(scene_obj *o, film_settings *out, char *err, size_t errlen)
 {
+    memset(out, 0, sizeof *out);
+    film_format_parse(scene_obj_string(o, "pixel_format", "rgb"), &out->format); /* checked by the schema */
     out->width = (int)scene_obj_int(o, "width", 768);
     out->height = (int)scene_obj_int(o, "height", 576);
-    static const char *const inert[] = {"pixel_format", "component_format", "file_format", "sample_border"};
-    for (size_t i = 0; i < sizeof inert / sizeof inert[0]; i++)
-        scene_obj_prop(o, inert[i]);
+    out->sample_border = scene_obj_bool(o, "sample_border", false);
+    scene_obj_prop(o, "component_format");
+    scene_obj_prop(o, "file_format");
+    scene_obj implicit = {.cls = SCENE_RFILTER, .type = (char *)"gaussian", .file = o->file, .line = o->line};
     scene_obj *rf = scene_obj_child(o, SCENE_RFILTER);
     if (!rf)
-        return 0;
-    const rfilter_plugin *filter = rfilter_plugin_find(rf->type);
-    if (!filter)
-        return scene_obj_error(rf, err, errlen, "unsupported rfilter '%s'", rf->type);
-    return filter->create(rf, out, err, errlen);
+        rf = &implicit;
+    return rfilter_plugin_find(rf->type)->create(rf, &out->filter, err, errlen);
 }
 
 static const scene_param_decl hdrfilm_params[] = {
     {"width", PARAM_INT, 0, NULL},
     {"height", PARAM_INT, 0, NULL},
     {"file_format", PARAM_STRING, 0, "openexr|exr"},
-    {"pixel_format", PARAM_STRING, 0, "luminance|luminance_alpha|rgb|rgba|xyz|xyza"},
+    {"pixel_format", PARAM_STRING, 0, "rgb|rgba|luminance|luminance_alpha|xyz|xyza"},
     {"component_format", PARAM_STRING, 0, "float16|float32|uint32"},
-    {"sample_border", PARAM_BOOL, 0, NULL}, /* no effect with a one-pixel box filter */
+    {"sample_border", PARAM_BOOL, 0, NULL},
     {NULL, 0, 0, NULL},
 };
 

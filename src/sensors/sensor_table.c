@@ -1,11 +1,12 @@
 /* The registration tables of the sensor plugins: cameras, films and
  * reconstruction filters, one line each. The plugin NAME of class C is
- * defined as `const C_plugin C_NAME` in its own file NAME.c (the filters
- * that change nothing share rfilters.c; docs/plugins.md). */
+ * defined as `const C_plugin C_NAME` in its own file NAME.c (docs/plugins.md). */
 #include "sensors/sensors.h"
 
 #define SENSOR_PLUGINS(X) \
     X(sensor, perspective) \
+    X(sensor, thinlens)    \
+    X(sensor, orthographic) \
     /* one line per plugin, in any order */
 #define FILM_PLUGINS(X) \
     X(film, hdrfilm)    \

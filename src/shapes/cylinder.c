@@ -30,8 +30,16 @@ static double cylinder_pdf(const void *data, const shape_local_hit *h)
 
 static void cylinder_destroy(void *data) { (void)data; }
 
+/* uv = (phi / 2 pi, z): dp/du = 2 pi (-y, x, 0), dp/dv = +z. */
+static void cylinder_tangents(const void *data, const shape_local_hit *h, vec3 *dpdu, vec3 *dpdv)
+{
+    (void)data;
+    *dpdu = v3(-2.0 * M_PI * h->p.y, 2.0 * M_PI * h->p.x, 0.0);
+    *dpdv = v3(0.0, 0.0, 1.0);
+}
+
 static const shape_analytic_ops cylinder_ops = {cylinder_add, shape_analytic_local_hit, cylinder_sample, cylinder_pdf,
-                                               cylinder_destroy};
+                                               cylinder_destroy, cylinder_tangents};
 
 static int cylinder_create(scene_obj *o, const shape_options *opt, const transform4 *to_world, shape_t *sh,
                            char *err, size_t errlen)

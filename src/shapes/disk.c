@@ -29,7 +29,17 @@ static double disk_pdf(const void *data, const shape_local_hit *h)
 
 static void disk_destroy(void *data) { (void)data; }
 
-static const shape_analytic_ops disk_ops = {disk_add, shape_analytic_local_hit, disk_sample, disk_pdf, disk_destroy};
+/* uv = (r, phi / 2 pi): dp/du the radial direction, dp/dv = 2 pi (-y, x, 0). */
+static void disk_tangents(const void *data, const shape_local_hit *h, vec3 *dpdu, vec3 *dpdv)
+{
+    (void)data;
+    double phi = h->param[1];
+    *dpdu = v3(cos(phi), sin(phi), 0.0);
+    *dpdv = v3(-2.0 * M_PI * h->p.y, 2.0 * M_PI * h->p.x, 0.0);
+}
+
+static const shape_analytic_ops disk_ops = {disk_add, shape_analytic_local_hit, disk_sample, disk_pdf, disk_destroy,
+                                           disk_tangents};
 
 static int disk_create(scene_obj *o, const shape_options *opt, const transform4 *to_world, shape_t *sh, char *err,
                        size_t errlen)

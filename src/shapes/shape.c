@@ -66,6 +66,15 @@ double shape_pdf_area(const shape_t *sh, const surface_hit *hit)
     return sh->is_mesh ? 1.0 / sh->mesh.area : shape_analytic_pdf_area(sh, &hit->local);
 }
 
+bsdf_query shape_bsdf_query(const surface_hit *hit, vec3 dir, transport_mode mode)
+{
+    bsdf_query q = {.wi = frame3_to_local(hit->sh, v3_neg(dir)), .uv = hit->uv, .mode = mode};
+    q.dpdu = frame3_to_local(hit->sh, hit->dpdu);
+    q.dpdv = frame3_to_local(hit->sh, hit->dpdv);
+    q.ng = frame3_to_local(hit->sh, hit->ng);
+    return q;
+}
+
 void shape_free(shape_t *sh)
 {
     if (sh->is_mesh)

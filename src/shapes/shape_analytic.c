@@ -13,6 +13,10 @@ void shape_analytic_finish(const shape_t *sh, const shape_local_hit *lh, surface
         n = v3_neg(n);
     hit->ng = n;
     hit->sh = frame3_from_normal(n);
+    vec3 du, dv;
+    sh->ops->tangents(sh->data, lh, &du, &dv);
+    hit->dpdu = transform_vector(&sh->to_world, du);
+    hit->dpdv = transform_vector(&sh->to_world, dv);
     hit->uv = lh->uv;
     hit->eps = surface_hit_eps(hit->p);
     hit->prim = lh->part;

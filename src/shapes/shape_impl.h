@@ -23,6 +23,9 @@ struct shape_analytic_ops {
     void (*sample)(const void *data, vec3 u, shape_local_hit *h, double *pdf);
     double (*pdf)(const void *data, const shape_local_hit *h);
     void (*destroy)(void *data);
+    /* The object-space derivatives of the point by the texture
+     * coordinates, dp/du and dp/dv, at a hit (Mitsuba's dp_du, dp_dv). */
+    void (*tangents)(const void *data, const shape_local_hit *h, vec3 *dpdu, vec3 *dpdv);
 };
 
 /* World-space hit from an analytic object-space hit. */

@@ -30,11 +30,21 @@ void shape_mesh_finish(const shape_t *sh, int tri, double b1, double b2, double 
         if (v3_len(n) > 1e-12)
             ns = v3_norm(n);
     }
-    if (m->uv)
-        hit->uv = v2(b0 * m->uv[2 * v[0]] + b1 * m->uv[2 * v[1]] + b2 * m->uv[2 * v[2]],
-                     b0 * m->uv[2 * v[0] + 1] + b1 * m->uv[2 * v[1] + 1] + b2 * m->uv[2 * v[2] + 1]);
-    else
+    /* Without texture coordinates the parametrisation is barycentric, as in
+     * Mitsuba: dp/du = p1 - p0, dp/dv = p2 - p0. */
+    vec3 e1 = v3_sub(p1, p0), e2 = v3_sub(p2, p0);
+    hit->dpdu = e1, hit->dpdv = e2;
+    if (m->uv) {
+        const float *t0 = &m->uv[2 * v[0]], *t1 = &m->uv[2 * v[1]], *t2 = &m->uv[2 * v[2]];
+        hit->uv = v2(b0 * t0[0] + b1 * t1[0] + b2 * t2[0], b0 * t0[1] + b1 * t1[1] + b2 * t2[1]);
+        /* The change of variables from barycentrics to uv. */
+        vec2 d0 = v2(t1[0] - t0[0], t1[1] - t0[1]), d1 = v2(t2[0] - t0[0], t2[1] - t0[1]);
+        double det = d0.x * d1.y - d0.y * d1.x, inv = det != 0.0 ? 1.0 / det : 0.0;
+        hit->dpdu = v3_scale(v3_sub(v3_scale(e1, d1.y), v3_scale(e2, d0.y)), inv);
+        hit->dpdv = v3_scale(v3_sub(v3_scale(e2, d0.x), v3_scale(e1, d1.x)), inv);
+    } else {
         hit->uv = v2(b1, b2);
+    }
     if (sh->flip_normals) {
         ng = v3_neg(ng);
         ns = v3_neg(ns);

@@ -41,6 +41,7 @@ typedef struct {
     vec3 p, ng;       /* world point, unit geometric normal (outside, after flip_normals) */
     frame3 sh;        /* shading frame, sh.n the shading normal */
     vec2 uv;
+    vec3 dpdu, dpdv;  /* world derivatives of p by the texture coordinates (Mitsuba's dp_du, dp_dv) */
     double eps;       /* offset that lifts spawned rays off the surface */
     const shape_t *shape;
     int prim;         /* triangle of a mesh */
@@ -56,6 +57,11 @@ static inline double surface_hit_eps(vec3 p)
 {
     return 2e-5 * (1.0 + fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
 }
+
+/* The BSDF query at a hit for light leaving toward -dir (dir: the world
+ * direction of the ray that arrived): wi, uv, and the surface's
+ * derivatives and geometric normal in the local shading frame. */
+bsdf_query shape_bsdf_query(const surface_hit *hit, vec3 dir, transport_mode mode);
 
 /* ------------------------------------------------------------- shapes */
 

@@ -178,8 +178,30 @@ static void sor_shape_destroy(void *data)
     free(s);
 }
 
+/* Texture u runs with the angle (u = 1 - phi / pi on [0, pi], phi / pi - 1
+ * beyond), so dp/du = -/+ pi dp/dphi; texture v = 1 - y / height, so dp/dv
+ * = -height dp/dy along the meridian, whose direction m is the one
+ * perpendicular to the normal and to dp/dphi (dp/dy = m / m.y, bounded
+ * where the wall turns horizontal). On the caps, v is constant: dp/dv is
+ * taken along the normal x dp/du. */
+static void sor_shape_tangents(const void *data, const shape_local_hit *h, vec3 *dpdu, vec3 *dpdv)
+{
+    const sor_shape *s = data;
+    double phi = h->param[1];
+    vec3 dphi = v3(-h->p.z, 0.0, h->p.x); /* dp/dphi: (-r sin phi, 0, r cos phi) */
+    *dpdu = v3_scale(dphi, phi <= M_PI ? -M_PI : M_PI);
+    vec3 m = v3_norm(v3_cross(dphi, h->n));
+    if (h->part != SOR_PART_WALL || v3_len(dphi) == 0.0) {
+        *dpdv = v3_cross(h->n, *dpdu);
+        return;
+    }
+    if (m.y < 0.0)
+        m = v3_neg(m);
+    *dpdv = v3_scale(m, -s->height / fmax(m.y, 1e-3));
+}
+
 static const shape_analytic_ops sor_ops = {sor_shape_add, sor_shape_local_hit, sor_shape_sample, sor_shape_pdf,
-                                          sor_shape_destroy};
+                                          sor_shape_destroy, sor_shape_tangents};
 
 static int sor_mesh(const char *profile_path, double height, bool caps, int segments, shape_mesh_data *m, char *err,
                     size_t errlen)

@@ -28,8 +28,17 @@ static double sphere_pdf(const void *data, const shape_local_hit *h)
 
 static void sphere_destroy(void *data) { (void)data; }
 
+/* uv = (phi / 2 pi, theta / pi): dp/du = 2 pi (-y, x, 0), dp/dv = pi dp/dtheta. */
+static void sphere_tangents(const void *data, const shape_local_hit *h, vec3 *dpdu, vec3 *dpdv)
+{
+    (void)data;
+    double phi = h->param[1], theta = h->param[0];
+    *dpdu = v3(-2.0 * M_PI * h->p.y, 2.0 * M_PI * h->p.x, 0.0);
+    *dpdv = v3_scale(v3(cos(theta) * cos(phi), cos(theta) * sin(phi), -sin(theta)), M_PI);
+}
+
 static const shape_analytic_ops sphere_ops = {sphere_add, shape_analytic_local_hit, sphere_sample, sphere_pdf,
-                                             sphere_destroy};
+                                             sphere_destroy, sphere_tangents};
 
 static int sphere_create(scene_obj *o, const shape_options *opt, const transform4 *to_world, shape_t *sh, char *err,
                          size_t errlen)

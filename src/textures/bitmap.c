@@ -78,12 +78,30 @@ static rgb bitmap_lookup(const texture_t *t, vec2 uv)
     return rgb_lerp(top, bottom, fy);
 }
 
+/* The bilinear interpolant's gradient, of the texels' luminance: within a
+ * cell f = lerp(lerp(f00, f10, fx), lerp(f01, f11, fx), fy), by texel
+ * units, times the resolution for uv units (Mitsuba's eval_1_grad). */
+static vec2 bitmap_gradient_1(const texture_t *t, vec2 uv)
+{
+    const bitmap *b = t->data;
+    if (b->nearest)
+        return v2(0.0, 0.0);
+    double x = uv.x * b->width - 0.5, y = uv.y * b->height - 0.5;
+    double x0 = floor(x), y0 = floor(y), fx = x - x0, fy = y - y0;
+    if (!isfinite(fx) || !isfinite(fy))
+        return v2(0.0, 0.0);
+    double f00 = rgb_luminance(texel(b, x0, y0)), f10 = rgb_luminance(texel(b, x0 + 1.0, y0));
+    double f01 = rgb_luminance(texel(b, x0, y0 + 1.0)), f11 = rgb_luminance(texel(b, x0 + 1.0, y0 + 1.0));
+    double dx = (1.0 - fy) * (f10 - f00) + fy * (f11 - f01), dy = (1.0 - fx) * (f01 - f00) + fx * (f11 - f10);
+    return v2(dx * b->width, dy * b->height);
+}
+
 static void bitmap_release(void *data)
 {
     free(((bitmap *)data)->pixels);
 }
 
-static const texture_ops bitmap_ops = {bitmap_lookup, bitmap_release};
+static const texture_ops bitmap_ops = {bitmap_lookup, bitmap_release, bitmap_gradient_1};
 
 /* The decoded pixels of img into t, and their mean. */
 static int fill_pixels(texture_t *t, const image_t *img, int decode_srgb)
@@ -93,7 +111,7 @@ static int fill_pixels(texture_t *t, const image_t *img, int decode_srgb)
     b->pixels = malloc(n * sizeof *b->pixels);
     if (!b->pixels)
         return -1;
-    b->width = img->width, b->height = img->height;
+    b->width = t->width = img->width, b->height = t->height = img->height;
     int ch = img->channels;
     rgb sum = rgb_gray(0.0);
     for (size_t i = 0; i < n; i++) {

@@ -20,6 +20,28 @@ rgb texture_mean(const texture_t *t)
     return t->mean;
 }
 
+double texture_eval_1(const texture_t *t, vec2 uv)
+{
+    return rgb_luminance(texture_eval(t, uv));
+}
+
+/* By the chain rule through uv' = A uv + b: the gradient by uv is A^T
+ * times the one by uv'. */
+vec2 texture_eval_1_gradient(const texture_t *t, vec2 uv)
+{
+    if (!t->ops->gradient_1)
+        return v2(0.0, 0.0);
+    vec2 g = t->ops->gradient_1(t, uv_apply(&t->to_uv, uv));
+    const double(*m)[3] = t->to_uv.m;
+    return v2(m[0][0] * g.x + m[1][0] * g.y, m[0][1] * g.x + m[1][1] * g.y);
+}
+
+void texture_resolution(const texture_t *t, int *width, int *height)
+{
+    *width = t->width;
+    *height = t->height;
+}
+
 texture_t *texture_alloc(const texture_ops *ops, size_t data_size)
 {
     void *at;
@@ -28,6 +50,7 @@ texture_t *texture_alloc(const texture_ops *ops, size_t data_size)
         return NULL;
     t->ops = ops;
     t->to_uv = (uv_transform){{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}}};
+    t->width = t->height = 1;
     t->data = at;
     return t;
 }

@@ -16,13 +16,16 @@ typedef struct {
     rgb (*lookup)(const texture_t *t, vec2 uv);
     /* Frees what data points to (not data itself); may be NULL. */
     void (*release)(void *data);
+    /* The gradient of the value's luminance by the (moved) uv; NULL: zero. */
+    vec2 (*gradient_1)(const texture_t *t, vec2 uv);
 } texture_ops;
 
 struct texture {
     const texture_ops *ops;
     uv_transform to_uv;
     rgb mean;
-    void *data; /* the plugin's, allocated with the texture */
+    int width, height; /* resolution: 1 x 1 unless the plugin says */
+    void *data;        /* the plugin's, allocated with the texture */
 };
 
 /* One allocation holding the texture and data_size zeroed bytes of plugin

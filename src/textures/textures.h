@@ -22,6 +22,15 @@ typedef struct texture texture_t;
 rgb texture_eval(const texture_t *t, vec2 uv);
 /* Mean value over the uv unit square (Mitsuba's Texture::mean). */
 rgb texture_mean(const texture_t *t);
+/* Mitsuba's eval_1, a texture read as a scalar (opacity, roughness, a
+ * weight, a height): the luminance of its value at uv. */
+double texture_eval_1(const texture_t *t, vec2 uv);
+/* The gradient of texture_eval_1 by (u, v) (Mitsuba's eval_1_grad): the
+ * bilinear interpolant's for a bilinear bitmap, zero for the piecewise
+ * constant ones. */
+vec2 texture_eval_1_gradient(const texture_t *t, vec2 uv);
+/* Mitsuba's resolution(): a bitmap's size in texels, 1 x 1 otherwise. */
+void texture_resolution(const texture_t *t, int *width, int *height);
 void texture_destroy(texture_t *t);
 
 /* A texture plugin: its declaration for the scene reader and its constructor
