@@ -100,18 +100,8 @@ static int describe(const char *const *photos, int n, const catalogue_t *cat, mu
 
 static uint8_t *read_bytes(const char *path, size_t *len)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    uint8_t *buf = NULL;
-    long n = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
-    if (n > 0 && fseek(f, 0, SEEK_SET) == 0 && (buf = malloc((size_t)n)) && fread(buf, 1, (size_t)n, f) != (size_t)n) {
-        free(buf);
-        buf = NULL;
-    }
-    fclose(f);
-    *len = buf ? (size_t)n : 0;
-    return buf;
+    char *buf, why[256];
+    return input_read_all(path, INPUT_MAX_DATA_BYTES, &buf, len, why, sizeof why) == 0 ? (uint8_t *)buf : NULL;
 }
 
 static int write_bytes(const char *path, const uint8_t *data, size_t len)

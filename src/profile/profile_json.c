@@ -3,7 +3,6 @@
  * reason for anything malformed. */
 #include "celadon/profile.h"
 
-#include <errno.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdarg.h>
@@ -338,12 +337,13 @@ int profile_read_json(const char *path, profile_t *p, char *err, size_t errlen)
 {
     memset(p, 0, sizeof *p);
     reader r = {err, errlen};
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return fail(&r, "cannot open: %s", strerror(errno));
+    char *text;
+    size_t len;
+    if (input_read_all(path, INPUT_MAX_TEXT_BYTES, &text, &len, err, errlen) != 0)
+        return -1;
     json_error_t jerr;
-    json_t *root = json_loadf(f, JSON_REJECT_DUPLICATES, &jerr);
-    fclose(f);
+    json_t *root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &jerr);
+    free(text);
     if (!root)
         return fail(&r, "not valid JSON (line %d): %s", jerr.line, jerr.text);
     int rc = json_is_object(root) ? 0 : fail(&r, "the top level must be an object");

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "core/core.h"
 #include "scene_xml/scene_xml_internal.h"
 
 static const char *class_tags[SCENE_CLASS_COUNT] = {
@@ -281,38 +282,6 @@ static int find_cycle(scene_ctx *c, dfs_t *g, scene_obj *o)
 /* --------------------------------------------------------------- parsing */
 static int parse_document(scene_ctx *c, const char *xml, size_t len, const char *path, scene_obj *parent);
 
-static int read_whole_file(const char *path, char **buf, size_t *len)
-{
-    struct stat st;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-        errno = EISDIR;
-        return -1;
-    }
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return -1;
-    size_t cap = 1 << 16, n = 0;
-    char *b = xrealloc(NULL, cap);
-    for (;;) {
-        size_t got = fread(b + n, 1, cap - n, f);
-        n += got;
-        if (n < cap)
-            break;
-        cap *= 2;
-        b = xrealloc(b, cap);
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(b);
-        errno = EIO;
-        return -1;
-    }
-    *buf = b;
-    *len = n;
-    return 0;
-}
-
 static int parse_include(scene_ctx *c, const xmlNode *n, scene_obj *parent)
 {
     int line = scene_line(n);
@@ -320,12 +289,14 @@ static int parse_include(scene_ctx *c, const xmlNode *n, scene_obj *parent)
     if (scene_check_attrs(c, n, "filename") != 0 || scene_attr_req(c, n, "filename", &name) != 0)
         return -1;
     char *path = resolve_path(c->file, name);
-    char canon[PATH_MAX];
+    char canon[PATH_MAX], why[256];
     char *buf = NULL;
     size_t len = 0;
     int rc = 0;
-    if (!realpath(path, canon) || read_whole_file(path, &buf, &len) != 0)
+    if (!realpath(path, canon))
         rc = scene_fail(c, line, "cannot read included file '%s' (%s: %s)", name, path, strerror(errno));
+    else if (input_read_all(path, INPUT_MAX_TEXT_BYTES, &buf, &len, why, sizeof why) != 0)
+        rc = scene_fail(c, line, "cannot read included file '%s' (%s: %s)", name, path, why);
     for (int i = 0; i < c->depth && rc == 0; i++)
         if (strcmp(c->stack[i], canon) == 0)
             rc = scene_fail(c, line, "include cycle: '%s' is already being included", name);
@@ -606,10 +577,10 @@ scene_desc *scene_desc_create_from_text(const char *xml, size_t len, const char 
 scene_desc *scene_desc_create_from_file(const char *path, const scene_define *defs, int ndefs,
                                         scene_plugin_lookup plugins, char *err, size_t errlen)
 {
-    char *buf;
+    char *buf, why[256];
     size_t len;
-    if (read_whole_file(path, &buf, &len) != 0) {
-        snprintf(err, errlen, "%s: cannot read scene: %s", path, strerror(errno));
+    if (input_read_all(path, INPUT_MAX_TEXT_BYTES, &buf, &len, why, sizeof why) != 0) {
+        snprintf(err, errlen, "%s: %s", path, why);
         return NULL;
     }
     scene_desc *d = load(buf, len, path, defs, ndefs, plugins, err, errlen);

@@ -2,10 +2,12 @@
 
 #include <criterion/criterion.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 extern char **environ;
 
@@ -38,7 +40,26 @@ static char *slurp_and_remove(const char *path)
     return buf;
 }
 
-cli_result cli_run(const char *scratch_dir, const char *const *args)
+/* Waits for pid, killing it after seconds (0: no limit); 0, or -1 when killed. */
+static int wait_within(pid_t pid, double seconds, int *status)
+{
+    for (double waited = 0.0;; waited += 0.01) {
+        pid_t got = waitpid(pid, status, seconds > 0.0 ? WNOHANG : 0);
+        cr_assert_geq(got, 0);
+        if (got == pid)
+            return 0;
+        if (waited >= seconds) {
+            kill(pid, SIGKILL);
+            waitpid(pid, status, 0);
+            return -1;
+        }
+        usleep(10000);
+    }
+}
+
+cli_result cli_run(const char *scratch_dir, const char *const *args) { return cli_run_within(scratch_dir, args, 0.0); }
+
+cli_result cli_run_within(const char *scratch_dir, const char *const *args, double seconds)
 {
     char out_path[512], err_path[512];
     snprintf(out_path, sizeof out_path, "%s/cli-stdout.txt", scratch_dir);
@@ -58,8 +79,9 @@ cli_result cli_run(const char *scratch_dir, const char *const *args)
     cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, argv, environ), 0, "cannot start %s", argv[0]);
     posix_spawn_file_actions_destroy(&fa);
     int status;
-    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    int killed = wait_within(pid, seconds, &status);
     cli_result r = {0, slurp_and_remove(out_path), slurp_and_remove(err_path)};
+    cr_assert(!killed, "celadon %s did not finish within %.0f s", args[0], seconds);
     cr_assert(WIFEXITED(status), "celadon died from signal %d; stderr: %s", WIFSIGNALED(status) ? WTERMSIG(status) : 0,
               r.err);
     r.status = WEXITSTATUS(status);

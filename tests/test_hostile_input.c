@@ -1,0 +1,140 @@
+/* Hostile input (issue 15): a device, a FIFO or a folder where a file is
+ * expected, files over the size limit, and a GIF that makes the image
+ * library throw. Each gets one line on stderr, exit 2 and no output; none
+ * may crash the process or hang it. */
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "celadon/image.h"
+#include "core/core.h"
+#include "support/cli_run.h"
+#include "test_render_util.h"
+
+/* A GIF whose screen is 65535 x 65535: OpenImageIO's reader throws
+ * std::length_error from ImageInput::open (found by hand, issue 15). */
+static const unsigned char huge_screen_gif[36] = {
+    0x47, 0x49, 0x46, 0x38, 0x39, 0x61, 0xff, 0xff, 0xff, 0xff, 0x80, 0x00, 0x00, 0x00, 0x00, 0x00, 0xff, 0xff,
+    0xff, 0x2c, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x01, 0x00, 0x00, 0x02, 0x02, 0x02, 0x44, 0x01, 0x00, 0x3b};
+
+/* Hangs used to take forever (reading /dev/zero): a generous bound. */
+#define HANG_SECONDS 60.0
+
+static render_fixture fx;
+
+static void open_fixture(void) { render_fixture_open(&fx); }
+static void close_fixture(void) { render_fixture_close(&fx); }
+
+TestSuite(hostile_input, .init = open_fixture, .fini = close_fixture);
+
+static void write_bytes(const char *name, const void *data, size_t len, char *path, size_t pathlen)
+{
+    snprintf(path, pathlen, "%s/%s", fx.dir, name);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    cr_assert_eq(fwrite(data, 1, len, f), len);
+    fclose(f);
+}
+
+static int count_lines(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += *s == '\n';
+    return n;
+}
+
+/* Runs celadon with args; expects exit 2, one line containing needle. */
+static void expect_refused(const char *const *args, const char *needle)
+{
+    cli_result r = cli_run_within(fx.dir, args, HANG_SECONDS);
+    cr_expect_eq(r.status, 2, "%s exited %d; stderr: %s", args[0], r.status, r.err);
+    cr_expect_eq(count_lines(r.err), 1, "stderr: %s", r.err);
+    cr_expect_not_null(strstr(r.err, needle), "'%s' not in: %s", needle, r.err);
+    cli_result_free(&r);
+}
+
+static int exists(const char *path) { return access(path, F_OK) == 0; }
+
+Test(hostile_input, a_gif_that_makes_the_image_library_throw)
+{
+    char gif[256], out[256];
+    write_bytes("bad.gif", huge_screen_gif, sizeof huge_screen_gif, gif, sizeof gif);
+    snprintf(out, sizeof out, "%s/out", fx.dir);
+    expect_refused((const char *[]){"reconstruct", gif, "-o", out, NULL}, "image library");
+    cr_expect(!exists(out), "the refused photo left %s", out);
+
+    char why[512];
+    image_t img;
+    cr_expect_neq(image_read(gif, &img, why, sizeof why), 0);
+    cr_expect_null(img.data);
+    int w, h, c;
+    cr_expect_neq(image_probe(gif, &w, &h, &c, why, sizeof why), 0);
+}
+
+Test(hostile_input, a_gif_texture_is_refused_by_render)
+{
+    char gif[256], scene[256], out[256];
+    write_bytes("bad.gif", huge_screen_gif, sizeof huge_screen_gif, gif, sizeof gif);
+    render_write_file(&fx, "scene.xml",
+                      "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">"
+                      "<integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/></film></sensor>"
+                      "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\">"
+                      "<string name=\"filename\" value=\"bad.gif\"/></texture></bsdf></shape></scene>",
+                      scene, sizeof scene);
+    snprintf(out, sizeof out, "%s/out.png", fx.dir);
+    expect_refused((const char *[]){"render", scene, "-o", out, NULL}, "image library");
+    cr_expect(!exists(out));
+}
+
+Test(hostile_input, devices_are_refused_without_reading_them)
+{
+    char scene[256], out[256];
+    snprintf(out, sizeof out, "%s/out.png", fx.dir);
+    expect_refused((const char *[]){"render", "/dev/zero", "-o", out, NULL}, "not a regular file");
+    render_write_file(&fx, "inc.xml", "<scene version=\"3.0.0\"><include filename=\"/dev/zero\"/></scene>", scene,
+                      sizeof scene);
+    expect_refused((const char *[]){"render", scene, "-o", out, NULL}, "not a regular file");
+    snprintf(out, sizeof out, "%s/out.obj", fx.dir);
+    expect_refused((const char *[]){"mesh", "/dev/zero", "-o", out, NULL}, "not a regular file");
+    snprintf(out, sizeof out, "%s/out", fx.dir);
+    expect_refused((const char *[]){"reconstruct", "/dev/zero", "-o", out, NULL}, "not a regular file");
+    cr_expect(!exists(out));
+}
+
+Test(hostile_input, a_fifo_does_not_block_the_reader)
+{
+    char fifo[256], out[256];
+    snprintf(fifo, sizeof fifo, "%s/scene.xml", fx.dir);
+    cr_assert_eq(mkfifo(fifo, 0600), 0);
+    snprintf(out, sizeof out, "%s/out.png", fx.dir);
+    expect_refused((const char *[]){"render", fifo, "-o", out, NULL}, "not a regular file");
+    snprintf(out, sizeof out, "%s/out.obj", fx.dir);
+    expect_refused((const char *[]){"mesh", fifo, "-o", out, NULL}, "not a regular file");
+}
+
+Test(hostile_input, a_folder_is_named_as_a_folder)
+{
+    char out[256];
+    snprintf(out, sizeof out, "%s/out.obj", fx.dir);
+    expect_refused((const char *[]){"mesh", fx.dir, "-o", out, NULL}, "is a folder");
+    snprintf(out, sizeof out, "%s/out.png", fx.dir);
+    expect_refused((const char *[]){"render", fx.dir, "-o", out, NULL}, "is a folder");
+}
+
+Test(hostile_input, files_over_the_limit_are_refused_before_reading)
+{
+    char path[256], why[256], *buf = NULL;
+    size_t len = 0;
+    write_bytes("big.txt", "0123456789", 10, path, sizeof path);
+    cr_expect_eq(input_read_all(path, 9, &buf, &len, why, sizeof why), -1);
+    cr_expect_not_null(strstr(why, "too large"), "%s", why);
+    cr_assert_eq(input_read_all(path, 10, &buf, &len, why, sizeof why), 0, "%s", why);
+    cr_expect(len == 10 && !strcmp(buf, "0123456789"));
+    free(buf);
+    cr_expect_null(input_open("/dev/null", 10, NULL, why, sizeof why));
+    cr_expect_not_null(strstr(why, "not a regular file"), "%s", why);
+}
