@@ -91,6 +91,7 @@ void scene_desc_destroy(scene_desc *d)
         free(d->files[i]);
     free(d->objs);
     free(d->files);
+    xmlHashFree(d->ids, NULL);
     free(d);
 }
 
@@ -204,7 +205,8 @@ static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char 
     scene_class host = c->plugins(child->cls, child->type)->host;
     if (host != SCENE_SCENE && parent->cls != host)
         return scene_fail(c, line, "%s must be nested in a <%s>", cw, scene_class_name(host));
-    if (scene_obj_children(parent, child->cls, NULL, 0) >= rule->max)
+    /* Counted only when the limit is within reach: linear in the children. */
+    if (parent->nchildren >= rule->max && scene_obj_children(parent, child->cls, NULL, 0) >= rule->max)
         return scene_fail(c, line, "%s takes at most %d <%s>", pw, rule->max, scene_class_name(child->cls));
     parent->children = xrealloc(parent->children, sizeof(scene_obj *) * (size_t)(parent->nchildren + 1));
     parent->children[parent->nchildren++] = child;
@@ -213,10 +215,7 @@ static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char 
 
 static scene_obj *find_id(const scene_desc *d, const char *id)
 {
-    for (int i = 0; i < d->nobjs; i++)
-        if (d->objs[i]->id && strcmp(d->objs[i]->id, id) == 0)
-            return d->objs[i];
-    return NULL;
+    return xmlHashLookup(d->ids, BAD_CAST id);
 }
 
 /* Required parameters, minimum child counts, exclusive pairs. */
@@ -251,32 +250,45 @@ static int cmp_ptr(const void *a, const void *b)
 
 typedef struct {
     scene_obj **sorted; /* the objects by address */
-    char *state;        /* per sorted slot: 0 new, 1 on the path, 2 done */
+    int *height;        /* per sorted slot: 0 new, -1 on the path, else the longest chain from it */
     int n;
 } dfs_t;
 
-/* Depth-first search for a cycle made by references. */
-static int find_cycle(scene_ctx *c, dfs_t *g, scene_obj *o)
+/* Depth-first search for a cycle made by references, and for a chain of
+ * objects (nested or referenced) longer than SCENE_MAX_NESTING, which every
+ * later walk of the tree would follow as deep. depth: the objects above o on
+ * the way down. Returns the object's height, or -1. */
+static int find_cycle(scene_ctx *c, dfs_t *g, scene_obj *o, int depth)
 {
     scene_obj **slot = bsearch(&o, g->sorted, (size_t)g->n, sizeof(scene_obj *), cmp_ptr);
-    char *st = &g->state[slot - g->sorted];
-    if (*st == 2)
-        return 0;
-    if (*st == 1) {
-        char what[160];
-        describe(o, what, sizeof what);
-        c->file = o->file;
+    int *h = &g->height[slot - g->sorted];
+    if (*h > 0)
+        return *h;
+    char what[160];
+    describe(o, what, sizeof what);
+    c->file = o->file;
+    if (*h < 0)
         return scene_fail(c, o->line, "reference cycle: %s (id '%s') contains itself", what, o->id ? o->id : "");
+    if (depth > SCENE_MAX_NESTING) /* the way down is as long: stop before the stack runs out */
+        return scene_fail(c, o->line, "%s lies in a chain of nested or referenced objects more than %d deep", what,
+                          SCENE_MAX_NESTING);
+    *h = -1;
+    int below = 0;
+    for (int i = 0; i < o->nchildren + o->nprops && below >= 0; i++) {
+        scene_obj *next = i < o->nchildren ? o->children[i]
+                          : o->props[i - o->nchildren].type == SCENE_OBJECT ? o->props[i - o->nchildren].value.obj
+                                                                             : NULL;
+        int hn = next ? find_cycle(c, g, next, depth + 1) : 0;
+        below = hn < 0 ? -1 : below > hn ? below : hn;
     }
-    *st = 1;
-    for (int i = 0; i < o->nchildren; i++)
-        if (find_cycle(c, g, o->children[i]) != 0)
-            return -1;
-    for (int i = 0; i < o->nprops; i++)
-        if (o->props[i].type == SCENE_OBJECT && find_cycle(c, g, o->props[i].value.obj) != 0)
-            return -1;
-    *st = 2;
-    return 0;
+    if (below < 0)
+        return -1;
+    if (below + 1 > SCENE_MAX_NESTING) {
+        c->file = o->file;
+        return scene_fail(c, o->line, "%s holds a chain of nested or referenced objects more than %d deep", what,
+                          SCENE_MAX_NESTING);
+    }
+    return *h = below + 1;
 }
 
 /* --------------------------------------------------------------- parsing */
@@ -375,6 +387,8 @@ static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_o
         }
     }
     scene_obj *o = new_obj(c, cls, type, line);
+    if (id && xmlHashAddEntry(c->d->ids, BAD_CAST id, o) != 0)
+        abort(); /* out of memory: a duplicate was refused above */
     o->id = id;
     o->name = name;
     id = name = NULL;
@@ -505,15 +519,15 @@ static int finish(scene_ctx *c)
     for (int i = 0; i < c->d->nobjs; i++)
         if (validate_obj(c, c->d->objs[i]) != 0)
             return -1;
-    dfs_t g = {xrealloc(NULL, sizeof(scene_obj *) * (size_t)c->d->nobjs), calloc((size_t)c->d->nobjs, 1),
-               c->d->nobjs};
-    if (!g.state)
+    dfs_t g = {xrealloc(NULL, sizeof(scene_obj *) * (size_t)c->d->nobjs),
+               calloc((size_t)c->d->nobjs, sizeof(int)), c->d->nobjs};
+    if (!g.height)
         abort();
     memcpy(g.sorted, c->d->objs, sizeof(scene_obj *) * (size_t)g.n);
     qsort(g.sorted, (size_t)g.n, sizeof(scene_obj *), cmp_ptr);
-    int rc = find_cycle(c, &g, c->d->root);
+    int rc = find_cycle(c, &g, c->d->root, 0) < 0 ? -1 : 0;
     free(g.sorted);
-    free(g.state);
+    free(g.height);
     return rc;
 }
 
@@ -524,7 +538,7 @@ static scene_desc *load(const char *xml, size_t len, const char *path, const sce
     scene_ctx c = {0};
     c.plugins = plugins;
     c.d = calloc(1, sizeof *c.d);
-    if (!c.d)
+    if (!c.d || !(c.d->ids = xmlHashCreate(0)))
         abort();
     c.err = err;
     c.errlen = errlen;
