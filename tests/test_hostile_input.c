@@ -3,6 +3,7 @@
  * library throw. Each gets one line on stderr, exit 2 and no output; none
  * may crash the process or hang it. */
 #include <criterion/criterion.h>
+#include <jansson.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -137,4 +138,47 @@ Test(hostile_input, files_over_the_limit_are_refused_before_reading)
     free(buf);
     cr_expect_null(input_open("/dev/null", 10, NULL, why, sizeof why));
     cr_expect_not_null(strstr(why, "not a regular file"), "%s", why);
+}
+
+/* dir/name: the plum profile with every control point's (r, h) mapped. */
+static void write_mapped_profile(const char *name, double fr, double fh, char *path, size_t len)
+{
+    render_write_profile(&fx, name, "plum");
+    snprintf(path, len, "%s/%s", fx.dir, name);
+    json_t *root = json_load_file(path, 0, NULL);
+    cr_assert_not_null(root);
+    json_t *ctrl = json_object_get(json_object_get(root, "bspline"), "control_points");
+    for (size_t i = 0; i < json_array_size(ctrl); i++) {
+        json_t *pt = json_array_get(ctrl, i);
+        json_array_set_new(pt, 0, json_real(json_number_value(json_array_get(pt, 0)) * fr));
+        json_array_set_new(pt, 1, json_real(json_number_value(json_array_get(pt, 1)) * fh));
+    }
+    cr_assert_eq(json_dump_file(root, path, 0), 0);
+    json_decref(root);
+}
+
+/* A profile the SOR cannot revolve is refused alike by mesh, by the exact
+ * render and by the meshed render (issue 15: the meshed render and mesh
+ * used to take negative radii and coordinates times 1e300). */
+Test(hostile_input, unrevolvable_profiles_are_refused_by_every_command)
+{
+    static const struct { const char *name; double fr, fh; const char *why; } cases[] = {
+        {"negative.json", -1.0, 1.0, "r < 0"},
+        {"huge.json", 1e300, 1e300, "beyond 1e9 px"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        char profile[256], scene[256], out[256], xml[512];
+        write_mapped_profile(cases[k].name, cases[k].fr, cases[k].fh, profile, sizeof profile);
+        snprintf(xml, sizeof xml,
+                 "<scene version=\"3.0.0\"><sensor type=\"perspective\"/><shape type=\"sor\">"
+                 "<string name=\"filename\" value=\"%s\"/></shape></scene>", cases[k].name);
+        render_write_file(&fx, "scene.xml", xml, scene, sizeof scene);
+        snprintf(out, sizeof out, "%s/out.obj", fx.dir);
+        expect_refused((const char *[]){"mesh", profile, "-o", out, NULL}, cases[k].why);
+        snprintf(out, sizeof out, "%s/out.png", fx.dir);
+        expect_refused((const char *[]){"render", scene, "-o", out, "--res", "8x8", NULL}, cases[k].why);
+        expect_refused((const char *[]){"render", scene, "-o", out, "--res", "8x8", "--geometry", "mesh:16", NULL},
+                       cases[k].why);
+        cr_expect(!exists(out));
+    }
 }

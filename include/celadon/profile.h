@@ -28,10 +28,17 @@ typedef struct {
     double ms_image_processing, ms_bspline, ms_texture, ms_mesh;
 } profile_t;
 
+/* The most elements an array of profile.json may hold (control points,
+ * polyline, domains): far more than any photo gives (tens of control
+ * points), and the SOR of this many builds in seconds. */
+#define PROFILE_MAX_POINTS 100000
+
 /* Writes atomically. Returns 0, or -1 with a one-line reason. */
 int profile_write_json(const char *path, const profile_t *p, char *err, size_t errlen);
-/* Reads and validates (version, finite numbers, a valid clamped cubic B-spline,
- * increasing domains in [0,1]). Returns 0, or -1 with a one-line reason. */
+/* Reads and validates (version, finite numbers, a valid clamped cubic B-spline
+ * that sor_profile_check accepts, increasing domains in [0,1], at most
+ * PROFILE_MAX_POINTS elements per array). Returns 0, or -1 with a one-line
+ * reason. */
 int profile_read_json(const char *path, profile_t *p, char *err, size_t errlen);
 void profile_free(profile_t *p);
 

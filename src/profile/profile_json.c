@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "celadon/sor.h"
 #include "core/core.h"
 
 enum { PROFILE_VERSION = 1 };
@@ -164,8 +165,9 @@ static json_t *get_object(reader *r, json_t *obj, const char *key)
     return v;
 }
 
-/* An array of at least min_n elements; *n receives its size. */
-static json_t *get_array(reader *r, json_t *obj, const char *key, const char *path, size_t min_n, int *n)
+/* An array of min_n to max_n elements; *n receives its size. */
+static json_t *get_array(reader *r, json_t *obj, const char *key, const char *path, size_t min_n, size_t max_n,
+                         int *n)
 {
     json_t *v = member(r, obj, key, path);
     if (!v)
@@ -174,8 +176,12 @@ static json_t *get_array(reader *r, json_t *obj, const char *key, const char *pa
         fail(r, "'%s' must be an array", path);
         return NULL;
     }
-    if (json_array_size(v) < min_n || json_array_size(v) > 100000000) {
+    if (json_array_size(v) < min_n) {
         fail(r, "'%s' must have at least %zu elements", path, min_n);
+        return NULL;
+    }
+    if (json_array_size(v) > max_n) {
+        fail(r, "'%s' has %zu elements, more than the %zu a profile may have", path, json_array_size(v), max_n);
         return NULL;
     }
     *n = (int)json_array_size(v);
@@ -255,7 +261,7 @@ static int read_header(reader *r, json_t *root, profile_t *p)
 static int read_curve(reader *r, json_t *root, profile_t *p)
 {
     int n;
-    json_t *poly = get_array(r, root, "polyline", "polyline", 2, &n);
+    json_t *poly = get_array(r, root, "polyline", "polyline", 2, PROFILE_MAX_POINTS, &n);
     if (!poly)
         return -1;
     p->polyline = malloc((size_t)n * sizeof *p->polyline);
@@ -274,9 +280,9 @@ static int read_curve(reader *r, json_t *root, profile_t *p)
     if (!json_is_integer(deg) || json_integer_value(deg) != 3)
         return fail(r, "'bspline.degree' must be 3");
     int nk, nc;
-    json_t *knots = get_array(r, bs, "knots", "bspline.knots", 8, &nk);
-    json_t *ctrl = knots ? get_array(r, bs, "control_points", "bspline.control_points", 4, &nc) : NULL;
-    if (!ctrl)
+    json_t *ctrl = get_array(r, bs, "control_points", "bspline.control_points", 4, PROFILE_MAX_POINTS, &nc);
+    json_t *knots = ctrl ? get_array(r, bs, "knots", "bspline.knots", 8, PROFILE_MAX_POINTS + 4, &nk) : NULL;
+    if (!knots)
         return -1;
     if (nk != nc + 4)
         return fail(r, "'bspline.knots' has %d values; %d control points need %d", nk, nc, nc + 4);
@@ -290,8 +296,11 @@ static int read_curve(reader *r, json_t *root, profile_t *p)
         return fail(r, "invalid B-spline: %s", bad);
     if (p->curve.knots[0] != 0.0 || p->curve.knots[nk - 1] != 1.0)
         return fail(r, "invalid B-spline: the parameter must run from 0 to 1");
+    bad = sor_profile_check(&p->curve);
+    if (bad)
+        return fail(r, "the profile cannot be revolved: %s", bad);
 
-    json_t *dom = get_array(r, root, "domains", "domains", 2, &n);
+    json_t *dom = get_array(r, root, "domains", "domains", 2, PROFILE_MAX_POINTS, &n);
     if (!dom)
         return -1;
     p->domains = malloc((size_t)n * sizeof *p->domains);
