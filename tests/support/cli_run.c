@@ -57,40 +57,79 @@ static int wait_within(pid_t pid, double seconds, int *status)
     }
 }
 
-cli_result cli_run(const char *scratch_dir, const char *const *args) { return cli_run_within(scratch_dir, args, 0.0); }
-
-cli_result cli_run_within(const char *scratch_dir, const char *const *args, double seconds)
+/* cli_run_argv, failing the test when the program has not finished after
+ * seconds (0: no limit). */
+static cli_result run_argv_within(const char *scratch_dir, const char *const *argv, double seconds)
 {
     char out_path[512], err_path[512];
     snprintf(out_path, sizeof out_path, "%s/cli-stdout.txt", scratch_dir);
     snprintf(err_path, sizeof err_path, "%s/cli-stderr.txt", scratch_dir);
-    char *argv[64];
-    int n = 0;
-    argv[n++] = (char *)cli_bin();
-    for (; *args && n < 63; args++)
-        argv[n++] = (char *)*args;
-    argv[n] = NULL;
-
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
     posix_spawn_file_actions_addopen(&fa, 1, out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_addopen(&fa, 2, err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     pid_t pid;
-    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, argv, environ), 0, "cannot start %s", argv[0]);
+    cr_assert_eq(posix_spawnp(&pid, argv[0], &fa, NULL, (char *const *)argv, environ), 0, "cannot start %s",
+                 argv[0]);
     posix_spawn_file_actions_destroy(&fa);
     int status;
     int killed = wait_within(pid, seconds, &status);
     cli_result r = {0, slurp_and_remove(out_path), slurp_and_remove(err_path)};
-    cr_assert(!killed, "celadon %s did not finish within %.0f s", args[0], seconds);
-    cr_assert(WIFEXITED(status), "celadon died from signal %d; stderr: %s", WIFSIGNALED(status) ? WTERMSIG(status) : 0,
-              r.err);
+    cr_assert(!killed, "%s did not finish within %.0f s", argv[0], seconds);
+    cr_assert(WIFEXITED(status), "%s died from signal %d; stderr: %s", argv[0],
+              WIFSIGNALED(status) ? WTERMSIG(status) : 0, r.err);
     r.status = WEXITSTATUS(status);
     return r;
 }
+
+cli_result cli_run_argv(const char *scratch_dir, const char *const *argv)
+{
+    return run_argv_within(scratch_dir, argv, 0.0);
+}
+
+cli_result cli_run_within(const char *scratch_dir, const char *const *args, double seconds)
+{
+    const char *argv[64];
+    int n = 0;
+    argv[n++] = cli_bin();
+    for (; *args && n < 63; args++)
+        argv[n++] = *args;
+    argv[n] = NULL;
+    return run_argv_within(scratch_dir, argv, seconds);
+}
+
+cli_result cli_run(const char *scratch_dir, const char *const *args) { return cli_run_within(scratch_dir, args, 0.0); }
 
 void cli_result_free(cli_result *r)
 {
     free(r->out);
     free(r->err);
     r->out = r->err = NULL;
+}
+
+int cli_count_lines(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += *s == '\n';
+    return n;
+}
+
+int cli_wait_for_handler(int pid, int sig, double limit)
+{
+    char path[64], line[256];
+    snprintf(path, sizeof path, "/proc/%d/status", pid);
+    for (double t = 0; t < limit; t += 0.02) {
+        FILE *f = fopen(path, "r");
+        unsigned long long caught = 0;
+        while (f && fgets(line, sizeof line, f))
+            if (sscanf(line, "SigCgt: %llx", &caught) == 1)
+                break;
+        if (f)
+            fclose(f);
+        if (caught & (1ull << (sig - 1)))
+            return 1;
+        usleep(20000);
+    }
+    return 0;
 }

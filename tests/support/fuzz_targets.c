@@ -119,7 +119,7 @@ int fuzz_scene(const uint8_t *data, size_t size)
     scene_desc_destroy(d);
     if (!s)
         return 1;
-    render_options ro = {1, 0, 0};
+    render_options ro = {.threads = 1};
     film_t film;
     render_stats st;
     int rc = render_scene(s, &ro, &film, &st, err, sizeof err);
