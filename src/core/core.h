@@ -1,7 +1,8 @@
 /* The plumbing the tools share, not part of the product's API: output files
  * and folders that appear whole or not at all, JSON documents written that
  * way, input files read only when regular and of a bounded size, the
- * progress bar, and the records plugins allocate. This is src/core's
+ * progress bar, the records plugins allocate, and the temporaries a signal
+ * removes (temp_files.h). This is src/core's
  * interface: other folders include this header, not the ones it gathers
  * (one per concept). */
 #ifndef CELADON_CORE_H
@@ -13,5 +14,6 @@
 #include "core/json_file.h"
 #include "core/progress.h"
 #include "core/record.h"
+#include "core/temp_files.h"
 
 #endif

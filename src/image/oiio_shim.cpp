@@ -229,6 +229,7 @@ static int write_atomically(const char *path, int w, int h, int ch, TypeDesc typ
     int rc = guarded(err, errlen, [&] { return write_pixels(path, tmp, w, h, ch, type, pixels, err, errlen); });
     if (rc != 0)
         std::remove(tmp);
+    atomic_temp_done(tmp);
     return rc;
 }
 
