@@ -276,7 +276,7 @@ FUZZ_TARGETS := profile scene image catalogue
 FUZZ_SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 # clang's warnings are not gcc's: the gcc builds keep -Werror (and clang
 # cannot vectorise every `omp simd` loop under the sanitizers).
-FUZZ_CFLAGS   = -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wno-pass-failed -fopenmp -Iinclude -Isrc -Itests \
+FUZZ_CFLAGS   = -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wno-pass-failed -fopenmp -Iinclude -Isrc -Itests $(MPI_CFLAGS) \
                 $(PKG_CFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 FUZZ_CXXFLAGS = -std=c++17 -Wall -Wextra -Iinclude -Isrc $(PKG_CFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 # Per target: the largest input libFuzzer makes (images stay small, so an
