@@ -177,6 +177,8 @@ int cmd_museum(int argc, char **argv)
     int n = argc - optind;
     if (n == 0 && !o.museum.catalogue)
         return serve(o.museum.out_dir, o.port);
+    if (cli_check_output(o.museum.out_dir, 1) != 0)
+        return CLI_CANNOT_WRITE;
     const char *web = getenv("CELADON_WEB_DIR");
     o.museum.web_dir = web && *web ? web : CELADON_WEB_DIR;
     o.museum.progress = 1;

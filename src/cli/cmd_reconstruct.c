@@ -319,10 +319,14 @@ int cmd_reconstruct(int argc, char **argv)
         free(reps);
         return 2;
     }
+    if (cli_check_output(o.out_dir, 1) != 0) {
+        free(reps);
+        return CLI_CANNOT_WRITE;
+    }
     if (folder_make(o.out_dir, made, 16, &n_made) != 0) {
         fprintf(stderr, "celadon: %s: cannot create the output folder: %s\n", o.out_dir, strerror(errno));
         free(reps);
-        return 2;
+        return CLI_CANNOT_WRITE;
     }
 
     /* One photo per thread; nested regions inside the stages stay serial. */

@@ -12,6 +12,7 @@
 #include "core/folder.h"
 #include "core/input_file.h"
 #include "core/json_file.h"
+#include "core/output_check.h"
 #include "core/progress.h"
 #include "core/record.h"
 #include "core/temp_files.h"
