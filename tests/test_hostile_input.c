@@ -182,3 +182,36 @@ Test(hostile_input, unrevolvable_profiles_are_refused_by_every_command)
         cr_expect(!exists(out));
     }
 }
+
+/* One 50 KB entity named 20,000 times in an attribute: 110 KB of scene
+ * that libxml2 spent minutes expanding (issue 15). Every entity
+ * declaration is refused at its line, before any expansion; a DOCTYPE
+ * without entities is still read. */
+Test(hostile_input, entity_declarations_are_refused_before_expansion, .timeout = 120)
+{
+    size_t cap = 200000, len = 0;
+    char *xml = malloc(cap);
+    cr_assert_not_null(xml);
+    len += (size_t)snprintf(xml, cap, "<?xml version=\"1.0\"?>\n<!DOCTYPE scene [\n<!ENTITY e \"");
+    for (int i = 0; i < 50000; i++)
+        xml[len++] = 'x';
+    len += (size_t)snprintf(xml + len, cap - len, "\">\n]>\n<scene version=\"3.0.0\"><integer name=\"a\" value=\"");
+    for (int i = 0; i < 20000; i++)
+        len += (size_t)snprintf(xml + len, cap - len, "&e;");
+    snprintf(xml + len, cap - len, "\"/></scene>\n");
+    char scene[256], out[256];
+    render_write_file(&fx, "entities.xml", xml, scene, sizeof scene);
+    free(xml);
+    snprintf(out, sizeof out, "%s/out.png", fx.dir);
+    expect_refused((const char *[]){"render", scene, "-o", out, "--res", "8x8", NULL},
+                   "entities.xml:3: the document declares an entity ('e')");
+    cr_expect(!exists(out));
+
+    render_write_file(&fx, "doctype.xml",
+                      "<!DOCTYPE scene>\n<scene version=\"3.0.0\"><sensor type=\"perspective\"/></scene>\n", scene,
+                      sizeof scene);
+    cli_result r = cli_run_within(fx.dir, (const char *[]){"render", scene, "-o", out, "--res", "8x8", NULL},
+                                  HANG_SECONDS);
+    cr_expect_eq(r.status, 0, "%s", r.err);
+    cli_result_free(&r);
+}

@@ -2,6 +2,7 @@
  * validation against the plugin declarations the caller's lookup gives. */
 #include <errno.h>
 #include <libgen.h>
+#include <libxml/SAX2.h>
 #include <libxml/parser.h>
 #include <limits.h>
 #include <stdio.h>
@@ -533,6 +534,29 @@ static int check_version(scene_ctx *c, xmlNode *root)
     return rc;
 }
 
+/* The first entity a document declares (its line; 0: none). */
+typedef struct {
+    int line;
+    char name[64];
+} entity_seen;
+
+/* libxml2's SAX hook for <!ENTITY ...>: the parse stops there. Mitsuba
+ * scenes need no entities (Mitsuba's own reader expands none), and
+ * expanding them is where a small file becomes gigabytes or hours
+ * (billion laughs; one 50 KB entity named 20,000 times in an attribute). */
+static void stop_at_entity(void *ctx, const xmlChar *name, int type, const xmlChar *public_id,
+                           const xmlChar *system_id, xmlChar *content)
+{
+    (void)type, (void)public_id, (void)system_id, (void)content;
+    xmlParserCtxtPtr px = ctx;
+    entity_seen *seen = px->_private;
+    if (!seen->line) {
+        seen->line = xmlSAX2GetLineNumber(ctx);
+        snprintf(seen->name, sizeof seen->name, "%s", (const char *)name);
+    }
+    xmlStopParser(px);
+}
+
 static int parse_document(scene_ctx *c, const char *xml, size_t len, const char *path, scene_obj *parent)
 {
     c->file = intern_file(c->d, path);
@@ -541,10 +565,17 @@ static int parse_document(scene_ctx *c, const char *xml, size_t len, const char 
     xmlParserCtxtPtr px = xmlNewParserCtxt();
     if (!px)
         abort();
+    entity_seen seen = {0};
+    px->_private = &seen;
+    px->sax->entityDecl = stop_at_entity;
     int opts = XML_PARSE_NONET | XML_PARSE_BIG_LINES | XML_PARSE_NOERROR | XML_PARSE_NOWARNING;
     xmlDocPtr doc = xmlCtxtReadMemory(px, xml, (int)len, path, NULL, opts);
     int rc = 0;
-    if (!doc) {
+    if (seen.line) {
+        rc = scene_fail(c, seen.line, "the document declares an entity ('%s'): scene files may not (Mitsuba "
+                        "scenes need none)", seen.name);
+        xmlFreeDoc(doc);
+    } else if (!doc) {
         const xmlError *e = xmlCtxtGetLastError(px);
         char msg[512];
         snprintf(msg, sizeof msg, "%s", e && e->message ? e->message : "unreadable document");
