@@ -13,6 +13,7 @@
 #include "celadon/image.h"
 #include "core/core.h"
 #include "support/cli_run.h"
+#include "support/synth_vessel.h"
 #include "test_render_util.h"
 
 /* A GIF whose screen is 65535 x 65535: OpenImageIO's reader throws
@@ -214,4 +215,61 @@ Test(hostile_input, entity_declarations_are_refused_before_expansion, .timeout =
                                   HANG_SECONDS);
     cr_expect_eq(r.status, 0, "%s", r.err);
     cli_result_free(&r);
+}
+
+/* Names are bytes: a photo named in Latin-1 ("caf\xe9.png") is
+ * reconstructed and listed by --json like any other, its name shown with
+ * U+FFFD where a byte is not UTF-8 (issue 15: it failed with exit 1 and was
+ * missing from the array). */
+Test(hostile_input, photos_with_names_that_are_not_utf8, .timeout = 240)
+{
+    synth_params sp = synth_defaults(SYNTH_VASE, 300, 400);
+    sp.subrows = 2;
+    image_t img;
+    cr_assert_eq(synth_draw(&sp, &img), 0);
+    char latin1[256], plain[256], out[256], err[256];
+    snprintf(latin1, sizeof latin1, "%s/caf\xe9.png", fx.dir);
+    snprintf(plain, sizeof plain, "%s/plain.png", fx.dir);
+    cr_assert_eq(synth_write(latin1, &img, 8, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(synth_write(plain, &img, 8, err, sizeof err), 0, "%s", err);
+    image_free(&img);
+    snprintf(out, sizeof out, "%s/out", fx.dir);
+    cli_result r = cli_run(fx.dir, (const char *[]){"reconstruct", latin1, plain, "-o", out, "--json", NULL});
+    cr_expect_eq(r.status, 0, "%s", r.err);
+    json_error_t je;
+    json_t *list = json_loads(r.out, 0, &je);
+    cr_assert_not_null(list, "--json printed no JSON: %s", je.text);
+    cr_expect_eq(json_array_size(list), 2);
+    const char *shown = json_string_value(json_object_get(json_array_get(list, 0), "photo"));
+    cr_expect(shown && strstr(shown, "caf\xef\xbf\xbd.png"), "photo shown as %s", shown ? shown : "(none)");
+    for (size_t i = 0; i < json_array_size(list); i++)
+        cr_expect(json_is_true(json_object_get(json_array_get(list, i), "ok")));
+    json_decref(list);
+    cli_result_free(&r);
+    char folder[300];
+    snprintf(folder, sizeof folder, "%s/caf\xe9/profile.json", out);
+    cr_expect(exists(folder), "%s is missing", folder);
+}
+
+Test(hostile_input, json_text_keeps_utf8_and_replaces_the_rest)
+{
+    char buf[64];
+    static const struct { const char *in, *out; } cases[] = {
+        {"plain.png", "plain.png"},
+        {"caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8f\xba", "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8f\xba"},
+        {"caf\xe9.png", "caf\xef\xbf\xbd.png"},
+        {"\xc0\xaf", "\xef\xbf\xbd\xef\xbf\xbd"},         /* overlong '/' */
+        {"\xed\xa0\x80", "\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd"}, /* a surrogate */
+        {"\xf4\x90\x80\x80", "\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd"}, /* above U+10FFFF */
+        {"end\xe2\x82", "end\xef\xbf\xbd\xef\xbf\xbd"},   /* cut short */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        const char *t = json_text(cases[i].in, buf, sizeof buf);
+        cr_expect_str_eq(t, cases[i].out, "case %zu", i);
+        json_t *s = json_string(t);
+        cr_expect_not_null(s, "case %zu is not UTF-8 for jansson", i);
+        json_decref(s);
+    }
+    char small[8];
+    cr_expect_str_eq(json_text("\xff\xff\xff\xff", small, sizeof small), "\xef\xbf\xbd\xef\xbf\xbd");
 }

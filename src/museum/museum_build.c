@@ -234,8 +234,10 @@ static json_t *manifest(const build_ctx *b, const char *title, const museum_exhi
             json_array_append_new(lods, json_pack("{s:i, s:f, s:f, s:i}", "segments", ex[i].lods[k].segments,
                                                   "distance_m", ex[i].lods[k].distance, "error_m",
                                                   ex[i].lods[k].error, "triangles", ex[i].lods[k].mesh.n_tris));
-        json_array_append_new(vessels, json_pack("{s:s, s:s, s:s, s:f, s:f, s:o}", "title", ex[i].title, "photo",
-                                                 ex[i].photo, "folder", ex[i].slug, "height_cm",
+        char title[4 * 512], photo[4 * 4096];
+        json_array_append_new(vessels, json_pack("{s:s, s:s, s:s, s:f, s:f, s:o}", "title",
+                                                 json_text(ex[i].title, title, sizeof title), "photo",
+                                                 json_text(ex[i].photo, photo, sizeof photo), "folder", ex[i].slug, "height_cm",
                                                  100.0 * ex[i].height_m, "radius_cm", 100.0 * ex[i].radius_m,
                                                  "lods", lods));
     }

@@ -92,11 +92,12 @@ int profile_write_json(const char *path, const profile_t *p, char *err, size_t e
     }
     /* "o" steals a reference and fails on NULL: a non-finite number anywhere
      * (json_real refuses them) makes the whole pack fail. */
+    char source[4 * 4096];
     json_t *root = json_pack(
         "{s:i, s:{s:s, s:i, s:i}, s:{s:o, s:o, s:f}, s:o, s:s, s:o, s:{s:i, s:o, s:o}, s:o, s:{s:f, s:f},"
         " s:{s:i, s:i, s:i}, s:{s:f, s:f, s:f, s:f}}",
         "version", PROFILE_VERSION,
-        "source", "path", p->source_path, "width", p->source_width, "height", p->source_height,
+        "source", "path", json_text(p->source_path, source, sizeof source), "width", p->source_width, "height", p->source_height,
         "axis", "origin", pair(p->axis_origin), "direction", pair(p->axis_direction), "tilt_deg", p->tilt_deg,
         "corners", corners_json(p),
         "side", p->side,
