@@ -10,7 +10,7 @@
 #include <string.h>
 #include <xxhash.h>
 
-#include "core/input_file.h"
+#include "core/core.h"
 #include "render/scene_impl.h"
 
 static void add(XXH3_state_t *h, const void *p, size_t n) { XXH3_64bits_update(h, p, n); }

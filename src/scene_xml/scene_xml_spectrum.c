@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/input_file.h"
+#include "core/core.h"
 #include "scene_xml/scene_xml_internal.h"
 #include "scene_xml/spectrum.h"
 

@@ -15,7 +15,7 @@
 #include <string.h>
 #include <zlib.h>
 
-#include "core/input_file.h"
+#include "core/core.h"
 #include "shapes/shape_impl.h"
 
 enum {
