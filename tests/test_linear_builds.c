@@ -64,8 +64,19 @@ static double time_sor_build(int n)
     return t;
 }
 
+/* Timings under ASan measure its allocator and shadow memory as much as
+ * the build (a linear build measured 13x for 4n there): the scaling is
+ * checked in the optimised build; the sanitized one still runs the builds. */
+static int timings_are_meaningful(void)
+{
+    const char *build = getenv("CELADON_BUILD");
+    return !(build && !strcmp(build, "asan"));
+}
+
 static void expect_scaling(const char *what, double t1, double t4)
 {
+    if (!timings_are_meaningful())
+        return;
     cr_expect_lt(t4, MAX_RATIO * t1 + SLACK_SECONDS, "%s: %.3f s at n, %.3f s at 4n", what, t1, t4);
 }
 
