@@ -144,6 +144,8 @@ ASAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:halt_on_error=1 \
             UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 test: check-deps-stamp check-layout
 	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon build/asan/celadon-tests build/asan/celadon web
+	@[ -d "$${CELADON_SHARED:-../shared}/data/synth-dev" ] || echo "celadon: $${CELADON_SHARED:-../shared}/data/synth-dev is missing:" \
+	  "the tests on its photos are skipped (they fail under CELADON_REQUIRE_DATA=1, as in CI)"
 	@echo "== optimised build"
 	CELADON_BIN=$(CURDIR)/build/celadon CELADON_BUILD=opt ./build/opt/celadon-tests --jobs 2
 	@echo "== ASan+UBSan build"
@@ -268,3 +270,66 @@ bench: check-deps-stamp
 	  $(PYTHON_CV) bench/opencv_recon.py out/bench/bench_recon_photo.png out/bench/bench_recon_mask.png | tee out/bench/opencv_recon.txt; \
 	fi
 	@echo "celadon: benchmark results in out/bench/*.txt (docs/BENCHMARKS.md explains them)"
+
+# ---------------------------------------------------------------- fuzzing
+# libFuzzer harnesses (docs/faults.md): the library built again with clang
+# under ASan+UBSan and libFuzzer's coverage, one binary per target of
+# tests/support/fuzz_targets.h, each run for FUZZ_SECONDS on its seeds
+# (fuzz/seeds/TARGET/) and its growing corpus (build/fuzz/corpus/TARGET/).
+# A crash or a hang (> 10 s) stops `make fuzz` with the input in
+# build/fuzz/crashes/TARGET/; once fixed, the input joins
+# tests/data/fuzz-regressions/TARGET/, which `make test` runs.
+FUZZ_DEB_PKGS := clang libomp-14-dev
+FUZZ_CC      ?= clang
+FUZZ_CXX     ?= clang++
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS := profile scene image catalogue
+FUZZ_SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+# clang's warnings are not gcc's: the gcc builds keep -Werror (and clang
+# cannot vectorise every `omp simd` loop under the sanitizers).
+FUZZ_CFLAGS   = -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wno-pass-failed -fopenmp -Iinclude -Isrc -Itests $(MPI_CFLAGS) \
+                $(PKG_CFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
+FUZZ_CXXFLAGS = -std=c++17 -Wall -Wextra -Iinclude -Isrc $(PKG_CFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
+# Per target: the largest input libFuzzer makes (images stay small, so an
+# execution takes milliseconds), and a dictionary of the format's words.
+FUZZ_OPTS_profile   := -max_len=16384 -dict=fuzz/json.dict
+FUZZ_OPTS_scene     := -max_len=16384 -dict=fuzz/xml.dict
+FUZZ_OPTS_image     := -max_len=8192
+FUZZ_OPTS_catalogue := -max_len=4096
+FUZZ_ENV := OMP_NUM_THREADS=1 ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
+            LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 UBSAN_OPTIONS=print_stacktrace=1
+
+.PHONY: fuzz fuzz-build deps-fuzz
+deps-fuzz:
+	@missing=""; for p in $(FUZZ_DEB_PKGS); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "celadon: installing Debian packages:$$missing"; \
+	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; \
+	fi
+
+build/fuzz/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@
+build/fuzz/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -MMD -MP -c $< -o $@
+build/fuzz/libceladon.a: $(call objs,fuzz,$(LIB_C) $(LIB_CXX) tests/support/fuzz_targets.c)
+	@rm -f $@; ar rcs $@ $^
+# Linked by clang++: UBSan's C++ checks (vptr) live in its C++ runtime.
+build/fuzz/fuzz_%: fuzz/harness.c build/fuzz/libceladon.a
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -DFUZZ_TARGET=fuzz_$* -c fuzz/harness.c -o build/fuzz/harness_$*.o
+	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ build/fuzz/harness_$*.o build/fuzz/libceladon.a $(LDLIBS)
+
+fuzz-build: check-deps-stamp deps-fuzz
+	@$(MAKE) --no-print-directory -j2 $(patsubst %,build/fuzz/fuzz_%,$(FUZZ_TARGETS))
+
+fuzz: fuzz-build
+	@$(MAKE) --no-print-directory -j1 $(patsubst %,fuzz-run-%,$(FUZZ_TARGETS))
+fuzz-run-%:
+	@mkdir -p build/fuzz/corpus/$* build/fuzz/crashes/$*
+	@echo "== fuzz_$* for $(FUZZ_SECONDS) s"
+	$(FUZZ_ENV) build/fuzz/fuzz_$* -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2560 \
+	  -print_final_stats=1 -artifact_prefix=build/fuzz/crashes/$*/ $(FUZZ_OPTS_$*) build/fuzz/corpus/$* fuzz/seeds/$*

@@ -117,6 +117,26 @@ static const char *row_key(const char *metric)
     return strcmp(metric, "coverage_area") ? metric : "coverage_area_px";
 }
 
+/* The stall's span and slopes recomputed from the report's rows: from the
+ * largest N at most a quarter of the last (else the first) to the last,
+ * each slope the chord log(e_to / e_from) / log(N_to / N_from). */
+static void expect_stall_from_rows(json_t *stall, json_t *rows)
+{
+    size_t n = json_array_size(rows);
+    cr_assert_geq(n, 2);
+    json_t *last = json_array_get(rows, n - 1), *first = json_array_get(rows, 0);
+    for (size_t i = 0; i < n - 1; i++)
+        if (4 * number(json_array_get(rows, i), "n") <= number(last, "n"))
+            first = json_array_get(rows, i);
+    cr_expect_eq(number(stall, "from"), number(first, "n"));
+    cr_expect_eq(number(stall, "to"), number(last, "n"));
+    double span = log(number(last, "n") / number(first, "n"));
+    double image = log(number(last, "mean_abs_diff") / number(first, "mean_abs_diff")) / span;
+    double depth = log(number(last, "depth_rel_err") / number(first, "depth_rel_err")) / span;
+    cr_expect_float_eq(number(stall, "image_slope"), image, 1e-6 * (1.0 + fabs(image)));
+    cr_expect_float_eq(number(stall, "depth_slope"), depth, 1e-6 * (1.0 + fabs(depth)));
+}
+
 /* Each fit's local_slopes are the slopes between successive rows. */
 static void check_local_slopes(json_t *fits, json_t *rows)
 {
@@ -307,6 +327,7 @@ Test(crosscheck, coincident_surfaces_stall_the_image_error, .timeout = 120)
             cr_assert_eq(number(stall, "to"), 128);
             cr_assert_gt(number(stall, "image_slope"), -1.0);
             cr_assert_lt(number(stall, "depth_slope"), -1.5);
+            expect_stall_from_rows(stall, json_object_get(rep, "segments"));
         } else {
             cr_assert(json_is_null(stall), "a stall reported with the plate lifted off the cap");
         }

@@ -16,6 +16,7 @@
 #include "celadon/image.h"
 #include "celadon/profile.h"
 #include "support/museum_fixture.h"
+#include "support/shared_data.h"
 
 enum { N_PHOTOS = 3, PREVIEW_W = 160, PREVIEW_H = 90 };
 
@@ -387,12 +388,11 @@ Test(museum_cli, a_refused_photo_is_left_out_and_the_rest_make_the_museum)
 /* The synth-dev catalogue photographs (../shared) make a museum too. */
 Test(museum_cli, synth_dev_photos)
 {
-    const char *shared = getenv("CELADON_SHARED");
     char a[600], b[600], out[512];
-    snprintf(a, sizeof a, "%s/data/synth-dev/pear_bottle_e3/photo.png", shared && *shared ? shared : "../shared");
-    snprintf(b, sizeof b, "%s/data/synth-dev/squat_jar_crane/photo.png", shared && *shared ? shared : "../shared");
-    if (!exists(a) || !exists(b))
-        cr_skip_test("synth-dev data not found (%s)", a);
+    shared_data_path(a, sizeof a, "data/synth-dev/pear_bottle_e3/photo.png");
+    shared_data_path(b, sizeof b, "data/synth-dev/squat_jar_crane/photo.png");
+    shared_data_require(a);
+    shared_data_require(b);
     in_work(out, sizeof out, "synth");
     const char *args[] = {a, b, "-o", out, "--preview-spp", "0", NULL};
     cli_result r = museum_fixture_run(workdir, args);

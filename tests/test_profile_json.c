@@ -148,8 +148,41 @@ static void error_negative(json_t *r)
 static void timings_partial(json_t *r) { json_object_del(json_object_get(r, "timings_ms"), "mesh"); }
 static void width_real(json_t *r) { json_object_set_new(json_object_get(r, "source"), "width", json_real(9.5)); }
 
+/* Every control point's coordinates times f (r too when r_too). */
+static void scale_ctrl(json_t *r, double f, int r_too)
+{
+    json_t *ctrl = json_object_get(bs(r), "control_points");
+    for (size_t i = 0; i < json_array_size(ctrl); i++) {
+        json_t *pt = json_array_get(ctrl, i);
+        for (size_t k = r_too ? 0 : 1; k < 2; k++)
+            json_array_set_new(pt, k, json_real(json_number_value(json_array_get(pt, k)) * f));
+    }
+}
+static void ctrl_negative_r(json_t *r)
+{
+    json_t *ctrl = json_object_get(bs(r), "control_points");
+    for (size_t i = 0; i < json_array_size(ctrl); i++) {
+        json_t *pt = json_array_get(ctrl, i);
+        json_array_set_new(pt, 0, json_real(-json_number_value(json_array_get(pt, 0))));
+    }
+}
+static void ctrl_huge(json_t *r) { scale_ctrl(r, 1e300, 1); }
+static void ctrl_tiny(json_t *r) { scale_ctrl(r, 1e-300, 1); }
+static void ctrl_over_the_cap(json_t *r)
+{
+    json_t *ctrl = json_array();
+    for (int i = 0; i <= PROFILE_MAX_POINTS; i++)
+        json_array_append_new(ctrl, json_pack("[f, f]", 10.0, (double)i));
+    json_object_set_new(bs(r), "control_points", ctrl);
+}
+
 Test(profile_json, malformed_files_are_refused_with_a_reason, .init = setup, .fini = teardown)
 {
+    /* What the SOR cannot revolve (sor_profile_check), and the size cap. */
+    expect_refused(ctrl_negative_r, "the profile cannot be revolved: r < 0");
+    expect_refused(ctrl_huge, "the profile cannot be revolved: a control point lies beyond 1e9 px");
+    expect_refused(ctrl_tiny, "the profile cannot be revolved: the profile is less than 1e-6 px high");
+    expect_refused(ctrl_over_the_cap, "'bspline.control_points' has 100001 elements, more than the 100000");
     expect_refused(no_version, "missing field 'version'");
     expect_refused(version_2, "unsupported version");
     expect_refused(no_bspline, "missing field 'bspline'");

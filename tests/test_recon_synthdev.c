@@ -1,8 +1,9 @@
 /* recon_extract on the rendered synth-dev photographs (perspective POV-Ray
  * renders with exactly known outlines): the sub-pixel outline of the chosen
  * side against silhouette_<side>.csv, the axis against camera.json. Skips when
- * the data set is absent. Data: $CELADON_SHARED/data/synth-dev, else
- * ../shared/data/synth-dev relative to the repository root. */
+ * the data set is absent, fails then under $CELADON_REQUIRE_DATA (CI). Data:
+ * $CELADON_SHARED/data/synth-dev, else ../shared/data/synth-dev relative to
+ * the repository root (support/shared_data.h). */
 #include <criterion/criterion.h>
 #include <jansson.h>
 #include <math.h>
@@ -12,6 +13,7 @@
 #include <sys/stat.h>
 
 #include "celadon/recon.h"
+#include "support/shared_data.h"
 
 /* Targets: outline mean <= 0.25 px and max <= 1.5 px on the chosen side, 5 px
  * or more from the corners; axis direction within 0.1 deg; all four corners
@@ -41,13 +43,6 @@ static const expectation CASES[] = {
 };
 enum { NCASES = sizeof CASES / sizeof CASES[0] };
 
-static int data_dir(char *out, size_t len)
-{
-    const char *shared = getenv("CELADON_SHARED");
-    snprintf(out, len, "%s/data/synth-dev", shared && *shared ? shared : "../shared");
-    struct stat st;
-    return stat(out, &st) == 0 && S_ISDIR(st.st_mode);
-}
 
 /* silhouette csv: y_px,x_px,z_source per row; returns the row count. */
 static int read_outline(const char *path, double **ys, double **xs)
@@ -162,8 +157,8 @@ static int evaluate(const char *dir, const char *name, const char *file, outcome
 static void run_all(const char *file)
 {
     char dir[900];
-    if (!data_dir(dir, sizeof dir))
-        cr_skip_test("synth-dev data not found at %s (set CELADON_SHARED)", dir);
+    shared_data_path(dir, sizeof dir, "data/synth-dev");
+    shared_data_require(dir);
     for (int c = 0; c < NCASES; c++) {
         const expectation *x = &CASES[c];
         outcome o;

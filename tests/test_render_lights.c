@@ -67,6 +67,79 @@ Test(render_lights, disk_and_sphere_area_lights)
     cr_expect_float_eq(lsph, rho / M_PI * e_sph, 0.02 * lsph, "sphere: %g, want %g", lsph, rho / M_PI * e_sph);
 }
 
+/* Brute-force direct light, independent of the emitters' sampling: the
+ * irradiance at the origin (normal +y) from a planar emitter of radiance L,
+ * summed over a fine grid of the hemisphere's directions (midpoint rule in
+ * theta and phi, d(omega) = sin(theta) d(theta) d(phi)), each direction
+ * intersected with the emitter. The emitter: the unit square (or disk) of
+ * the z = 0 plane, scaled by (sx, sy), rotated about x by ax degrees, then
+ * about y by ay, then moved by t; it emits on the side its +z faces. */
+typedef struct {
+    double sx, sy, ax, ay;
+    vec3 t;
+    int disk;
+} planar_emitter;
+
+static vec3 rotate_xy(vec3 v, double ax, double ay)
+{
+    double a = ax * M_PI / 180.0, b = ay * M_PI / 180.0;
+    vec3 r = v3(v.x, v.y * cos(a) - v.z * sin(a), v.y * sin(a) + v.z * cos(a));
+    return v3(r.x * cos(b) + r.z * sin(b), r.y, -r.x * sin(b) + r.z * cos(b));
+}
+
+static double brute_force_irradiance(const planar_emitter *e, double radiance)
+{
+    vec3 e1 = rotate_xy(v3(e->sx, 0, 0), e->ax, e->ay), e2 = rotate_xy(v3(0, e->sy, 0), e->ax, e->ay);
+    vec3 n = rotate_xy(v3(0, 0, 1), e->ax, e->ay);
+    enum { NT = 1500, NP = 3000 };
+    double sum = 0.0, dt = 0.5 * M_PI / NT, dp = 2.0 * M_PI / NP;
+    for (int i = 0; i < NT; i++) {
+        double th = (i + 0.5) * dt;
+        for (int j = 0; j < NP; j++) {
+            double ph = (j + 0.5) * dp;
+            vec3 d = v3(sin(th) * cos(ph), cos(th), sin(th) * sin(ph));
+            double dn = v3_dot(d, n);
+            if (dn >= 0.0) /* parallel, or the emitter's back */
+                continue;
+            double t = v3_dot(e->t, n) / dn;
+            if (t <= 0.0)
+                continue;
+            vec3 q = v3_sub(v3_scale(d, t), e->t);
+            double u = v3_dot(q, e1) / v3_dot(e1, e1), v = v3_dot(q, e2) / v3_dot(e2, e2);
+            if (e->disk ? u * u + v * v <= 1.0 : fabs(u) <= 1.0 && fabs(v) <= 1.0)
+                sum += cos(th) * sin(th);
+        }
+    }
+    return radiance * sum * dt * dp;
+}
+
+/* A tilted rectangle and a tilted disk, off the axis: the light sampled
+ * by area (its pdf converted to solid angle, the cosine at the light)
+ * against the hemisphere's brute force. */
+Test(render_lights, tilted_area_lights_against_a_brute_force_hemisphere, .timeout = 120)
+{
+    const double rho = 0.8, radiance = 3.0;
+    static const planar_emitter lights[] = {
+        {0.6, 0.3, 115.0, 30.0, {0.5, 1.0, 0.3}, 0},
+        {0.4, 0.4, 70.0, -40.0, {-0.6, 0.8, -0.2}, 1},
+    };
+    for (size_t k = 0; k < sizeof lights / sizeof *lights; k++) {
+        const planar_emitter *e = &lights[k];
+        char xml[1024];
+        snprintf(xml, sizeof xml,
+                 "<shape type=\"%s\"><transform name=\"to_world\"><scale x=\"%g\" y=\"%g\"/>"
+                 "<rotate x=\"1\" angle=\"%g\"/><rotate y=\"1\" angle=\"%g\"/>"
+                 "<translate x=\"%g\" y=\"%g\" z=\"%g\"/></transform>"
+                 "<emitter type=\"area\"><rgb name=\"radiance\" value=\"%g\"/></emitter></shape>",
+                 e->disk ? "disk" : "rectangle", e->sx, e->sy, e->ax, e->ay, e->t.x, e->t.y, e->t.z, radiance);
+        double got = plane_radiance(xml), want = rho / M_PI * brute_force_irradiance(e, radiance);
+        cr_log_info("%s: rendered %g, brute force %g", e->disk ? "disk" : "rectangle", got, want);
+        cr_expect_gt(want, 0.01, "the emitter does not light the origin");
+        cr_expect_float_eq(got, want, 0.02 * want, "%s: rendered %g, brute force %g", e->disk ? "disk" : "rectangle",
+                           got, want);
+    }
+}
+
 /* A 4x2 envmap with a distinct value per texel: Mitsuba's convention puts
  * the top row around +y, u = 0 at -z, u = 0.25 at +x, u = 0.5 at +z. The
  * direction of (u, v) is (sin t sin p, cos t, -sin t cos p), p = 2 pi u,

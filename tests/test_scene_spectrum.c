@@ -129,7 +129,7 @@ Test(spectrum, files_plugins_and_bad_lists)
         {"<spectrum name=\"reflectance\" value=\"500:0.1\"/>", "at least two"},
         {"<spectrum name=\"reflectance\" type=\"blackbody\"/>", "needs <float name=\"temperature\">"},
         {"<spectrum name=\"reflectance\" type=\"d66\"/>", "unknown spectrum type 'd66'"},
-        {"<spectrum name=\"reflectance\" filename=\"/nonexistent.spd\"/>", "spectrum file '/nonexistent.spd' not found"},
+        {"<spectrum name=\"reflectance\" filename=\"/nonexistent.spd\"/>", "cannot read spectrum file '/nonexistent.spd'"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         char xml[1024], err[512] = "";

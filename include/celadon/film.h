@@ -68,6 +68,11 @@ typedef struct {
     film_metadata meta;
 } film_t;
 
+/* The largest film: each side, and the pixels (10^9 pixels of RGB sums
+ * and weights are 32 GB). */
+#define FILM_MAX_SIDE 65536
+#define FILM_MAX_PIXELS 1e9
+
 /* An RGB film. Returns 0, or -1 with a reason (bad size, bad AOV). */
 int film_init(film_t *f, int width, int height, const film_aov *aovs, int naovs, char *err, size_t errlen);
 /* A film of the given pixel format: R, G, B, then A for the alpha formats,

@@ -45,6 +45,11 @@ typedef struct {
     } quality;
 } profile_t;
 
+/* The most elements an array of profile.json may hold (control points,
+ * polyline, domains): far more than any photo gives (tens of control
+ * points), and the SOR of this many builds in seconds. */
+#define PROFILE_MAX_POINTS 100000
+
 /* The curvature domains of a profile (docs/user-guide.md#profilejson): each
  * piece within this many pixels of its chord and its tangent within this many
  * degrees of turning at a constant rate (curve_domains.h). */
@@ -53,12 +58,13 @@ typedef struct {
 
 /* Writes atomically. Returns 0, or -1 with a one-line reason. */
 int profile_write_json(const char *path, const profile_t *p, char *err, size_t errlen);
-/* Reads and validates (version, finite numbers, a valid clamped cubic B-spline,
- * increasing domains in [0,1]). Only `version` and `bspline` are required:
- * every other field is checked when present; absent `domains` are computed
- * from the B-spline (PROFILE_DOMAIN_TOL_*), an absent `side` is "right", an
- * absent `axis.direction` (0, -1), the rest zero. Returns 0, or -1 with a
- * one-line reason. */
+/* Reads and validates (version, finite numbers, a valid clamped cubic B-spline
+ * that sor_profile_check accepts, increasing domains in [0,1], at most
+ * PROFILE_MAX_POINTS elements per array). Only `version` and `bspline` are
+ * required: every other field is checked when present; absent `domains` are
+ * computed from the B-spline (PROFILE_DOMAIN_TOL_*), an absent `side` is
+ * "right", an absent `axis.direction` (0, -1), the rest zero. Returns 0, or
+ * -1 with a one-line reason. */
 int profile_read_json(const char *path, profile_t *p, char *err, size_t errlen);
 void profile_free(profile_t *p);
 

@@ -216,16 +216,18 @@ int scene_obj_error(const scene_obj *o, char *err, size_t errlen, const char *fm
 /* ------------------------------------------------------ built objects */
 /* What was built from the tree's objects, each object built once however
  * often it is referenced (a shared BSDF, a texture), in the order built. The
- * map owns its arrays, not the values. */
+ * map owns its arrays and its index, not the values. Zero-initialise it. */
 typedef struct {
     void **values;
     const scene_obj **keys;
-    int count;
+    int count, cap;
+    void *index; /* the keys in a search tree (tsearch): finding one takes log time */
 } scene_obj_map;
 
 /* The value built for key, or NULL. */
 void *scene_obj_map_find(const scene_obj_map *m, const scene_obj *key);
-/* Appends (key, value); returns 0, or -1 when out of memory. */
+/* Appends (key, value) for a key not in the map yet; returns 0, or -1 when
+ * out of memory (or the key is there already). */
 int scene_obj_map_add(scene_obj_map *m, const scene_obj *key, void *value);
 void scene_obj_map_free(scene_obj_map *m);
 

@@ -32,10 +32,25 @@ typedef struct {
     int prim;        /* primitive index (see sor_prim_count) */
 } sor_hit;
 
-/* Builds the SOR. The profile must be a valid clamped cubic with r >= 0,
- * h(0) = 0 < h(1); height > 0. caps is a mask of SOR_CAP_*. Returns NULL with a
- * one-line reason in err on invalid input. Control points with r or h(0) off
- * by rounding (within 1e-9 of the largest control coordinate) are snapped. */
+/* Profile coordinates (pixels) beyond this magnitude are refused: squares
+ * of them stay far from overflow, and no photo is that large. */
+#define SOR_PROFILE_MAX_COORD 1e9
+/* The least profile height h(1), pixels: below it the scale to object
+ * space would overflow. */
+#define SOR_PROFILE_MIN_HEIGHT 1e-6
+
+/* Why the profile cannot be revolved, or NULL when it can: it must be a
+ * valid clamped cubic B-spline, its control points within
+ * SOR_PROFILE_MAX_COORD, h(0) = 0 < SOR_PROFILE_MIN_HEIGHT <= h(1) and r >= 0
+ * on every Bezier control point (so on the whole curve), both up to rounding
+ * (1e-9 of the largest control coordinate). The reason is a static string
+ * without the file name. Every reader of a profile applies this, so a
+ * profile is accepted or refused alike by the exact and the meshed SOR. */
+const char *sor_profile_check(const bspline_t *profile);
+
+/* Builds the SOR of a profile that sor_profile_check accepts; height > 0.
+ * caps is a mask of SOR_CAP_*. Returns NULL with a one-line reason in err on
+ * invalid input. Control points with r or h(0) off by rounding are snapped. */
 sor_t *sor_create(const bspline_t *profile, double height, unsigned caps, char *err, size_t errlen);
 void sor_destroy(sor_t *s);
 

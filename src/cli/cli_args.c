@@ -5,9 +5,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/core.h"
+
 static int quiet;
 
 void cli_set_quiet(int q) { quiet = q; }
+
+int cli_check_output(const char *path, int is_folder)
+{
+    char why[256];
+    if (output_check(path, is_folder, why, sizeof why) == 0)
+        return 0;
+    if (!quiet)
+        fprintf(stderr, "celadon: %s: cannot write there: %s\n", path, why);
+    return CLI_CANNOT_WRITE;
+}
 
 int cli_usage_error(const char *cmd, const char *fmt, const char *arg)
 {

@@ -10,6 +10,16 @@ int cli_usage_error(const char *cmd, const char *fmt, const char *arg);
  * MPI job other than 0, where every rank would print the same line). */
 void cli_set_quiet(int quiet);
 
+/* The exit codes of every command (docs/faults.md): 0 done, 1 the outputs
+ * could not be written (or another failure at run time), 2 bad input or
+ * usage, 130 interrupted by Ctrl-C (render: the image so far was written). */
+enum { CLI_OK = 0, CLI_CANNOT_WRITE = 1, CLI_BAD_INPUT = 2, CLI_INTERRUPTED = 130 };
+
+/* Before the work: whether the output path (a file, or with is_folder a
+ * folder) can be written (output_check). 0, or CLI_CANNOT_WRITE after one
+ * line "celadon: PATH: cannot write there: REASON" (unless quiet). */
+int cli_check_output(const char *path, int is_folder);
+
 /* A whole decimal integer in [lo, hi]: 0, or -1 when s is anything else. */
 int cli_parse_int(const char *s, long long lo, long long hi, long long *out);
 

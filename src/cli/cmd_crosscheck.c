@@ -126,6 +126,8 @@ static int install(const char staging[4200], const char *dir, int state)
 
 static int run(crosscheck_params *p, render_part part, const char *dir)
 {
+    if (cli_check_output(dir, 1) != 0)
+        return CLI_CANNOT_WRITE;
     int state = out_dir_state(dir);
     if (state < 0) {
         fprintf(stderr, "celadon crosscheck: %s exists and is not empty nor an earlier crosscheck's folder\n", dir);
@@ -134,7 +136,7 @@ static int run(crosscheck_params *p, render_part part, const char *dir)
     char staging[4200], err[2048], path[4400];
     if (make_staging(dir, staging, sizeof staging) != 0) {
         fprintf(stderr, "celadon crosscheck: cannot create a folder next to %s: %s\n", dir, strerror(errno));
-        return 2;
+        return CLI_CANNOT_WRITE;
     }
     crosscheck_result res = {0};
     int rc = part.n ? crosscheck_render_part(p, part, staging, err, sizeof err)

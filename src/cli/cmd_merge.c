@@ -59,6 +59,8 @@ int cmd_merge(int argc, char **argv)
         rc = cli_usage_error("merge", "output '%s' must end in .exr, .png, .jpg or .jpeg", out);
     else if (rc < 0 && n == 0)
         rc = cli_usage_error("merge", "%s", "no PART.exr given");
+    else if (rc < 0 && cli_check_output(out, 0) != 0)
+        rc = CLI_CANNOT_WRITE;
     if (rc < 0) {
         film_t film;
         char err[2048];

@@ -150,6 +150,8 @@ int cmd_mesh(int argc, char **argv)
         return 2;
     }
 
+    if (cli_check_output(out, 0) != 0)
+        return CLI_CANNOT_WRITE;
     profile_t p;
     char err[4400];
     if (profile_read_json(profile_path, &p, err, sizeof err) != 0) {
@@ -174,13 +176,13 @@ int cmd_mesh(int argc, char **argv)
         rc = mesh_write_ply(out, &m, err, sizeof err);
     else if (write_material(profile_path, out, mtl_name, mtl_path, sizeof mtl_path) != 0) {
         mesh_free(&m);
-        return 2;
+        return CLI_CANNOT_WRITE;
     } else if ((rc = mesh_write_obj(out, &m, mtl_name[0] ? mtl_name : NULL, err, sizeof err)) != 0 && mtl_path[0])
         remove(mtl_path); /* nothing half-written stays behind */
     if (rc != 0) {
         fprintf(stderr, "celadon: %s\n", err);
         mesh_free(&m);
-        return 2;
+        return CLI_CANNOT_WRITE;
     }
     printf("%s: %d vertices, %d triangles%s%s\n", out, m.n_verts, m.n_tris, !ply && mtl_name[0] ? ", material " : "",
            !ply && mtl_name[0] ? mtl_path : "");

@@ -177,10 +177,12 @@ int cmd_museum(int argc, char **argv)
     int n = argc - optind;
     if (n == 0 && !o.museum.catalogue)
         return serve(o.museum.out_dir, o.port);
+    if (cli_check_output(o.museum.out_dir, 1) != 0)
+        return CLI_CANNOT_WRITE;
     const char *web = getenv("CELADON_WEB_DIR");
     o.museum.web_dir = web && *web ? web : CELADON_WEB_DIR;
     o.museum.progress = 1;
-    signal(SIGINT, on_sigint);
+    void (*previous)(int) = signal(SIGINT, on_sigint);
     museum_report rep;
     char err[1024] = "";
     rc = museum_build((const char *const *)argv + optind, n, &o.museum, &rep, err, sizeof err);
@@ -195,7 +197,7 @@ int cmd_museum(int argc, char **argv)
     else if (!(built == 0 && refused == rep.n_photos && refused > 0)) /* those lines said it all */
         fprintf(stderr, "celadon: %s\n", err);
     museum_report_free(&rep);
-    signal(SIGINT, SIG_DFL);
+    signal(SIGINT, previous);
     if (o.serve && rc != 1 && built > 0) {
         int src = serve(o.museum.out_dir, o.port);
         return src ? src : rc;

@@ -243,9 +243,11 @@ static json_t *mesh_json(const reconstruct_mesh_stats *m)
  * contour points, control points, domains, vertices, faces, errors). */
 static json_t *report_json(const options *o, const report *r)
 {
+    /* File names are any bytes; JSON text is UTF-8 (json_text). */
+    char photo[4 * 4096], out[4 * 4096], error[4 * 2048];
     if (r->exit_code != 0)
-        return json_pack("{s:s, s:b, s:i, s:s}", "photo", r->photo, "ok", 0, "exit_code", r->exit_code, "error",
-                         r->error);
+        return json_pack("{s:s, s:b, s:i, s:s}", "photo", json_text(r->photo, photo, sizeof photo), "ok", 0,
+                         "exit_code", r->exit_code, "error", json_text(r->error, error, sizeof error));
     json_t *lods = json_array();
     for (int k = 0; k < o->pipeline.n_lods; k++)
         json_array_append_new(lods, mesh_json(&r->lods[k]));
@@ -261,7 +263,8 @@ static json_t *report_json(const options *o, const report *r)
                                 (int)r->quality.border_contact, "failed", r->quality.failed);
     return json_pack("{s:s, s:b, s:s, s:i, s:i, s:f, s:s, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, "
                      "s:o, s:o, s:o, s:o}",
-                     "photo", r->photo, "ok", 1, "output", r->out, "width", r->width, "height", r->height,
+                     "photo", json_text(r->photo, photo, sizeof photo), "ok", 1, "output",
+                     json_text(r->out, out, sizeof out), "width", r->width, "height", r->height,
                      "tilt_deg", r->tilt_deg, "side", r->side, "threshold", r->threshold_used, "dropped_objects",
                      r->dropped_objects, "holes_filled", r->holes_filled, "excluded_parts", r->excluded,
                      "contour_points", r->contour_points, "polyline_points", r->polyline_points, "control_points",
@@ -319,10 +322,14 @@ int cmd_reconstruct(int argc, char **argv)
         free(reps);
         return 2;
     }
+    if (cli_check_output(o.out_dir, 1) != 0) {
+        free(reps);
+        return CLI_CANNOT_WRITE;
+    }
     if (folder_make(o.out_dir, made, 16, &n_made) != 0) {
         fprintf(stderr, "celadon: %s: cannot create the output folder: %s\n", o.out_dir, strerror(errno));
         free(reps);
-        return 2;
+        return CLI_CANNOT_WRITE;
     }
 
     /* One photo per thread; nested regions inside the stages stay serial. */

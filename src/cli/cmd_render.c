@@ -32,7 +32,7 @@ static void usage(FILE *f)
                "                  .png/.jpg (sRGB 8-bit)\n"
                "  --spp N         samples per pixel (default: the scene's sampler); also the\n"
                "                  value of $spp where the scene has no <default> for it\n"
-               "  --res WxH       film size (default: the scene's film)\n"
+               "  --res WxH       film size (default: the scene's film; at most 65536 on a side, 1e9 pixels)\n"
                "  --geometry G    analytic (default) or mesh:N, N >= 3\n"
                "  --threads N     OpenMP threads (default: all cores; per rank under mpirun)\n"
                "  --seed S        sampler seed (default: the scene's)\n"
@@ -298,6 +298,8 @@ int cmd_render(int argc, char **argv)
     cli_set_quiet(job.rank != 0); /* every rank would print the same usage error */
     a.ro.progress = job.rank == 0;
     int rc = parse_args(argc, argv, &a);
+    if (rc < 0 && cli_check_output(a.out, 0) != 0)
+        rc = CLI_CANNOT_WRITE; /* every rank checks: they all stop */
     if (rc < 0) {
         /* From here Ctrl-C asks for the image so far (an empty one while
          * loading); under mpirun, which turns Ctrl-C into SIGTERM to every

@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "cli/commands.h"
+#include "core/core.h"
 
 #define CELADON_VERSION "0.1.0"
 
@@ -25,6 +26,7 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
+    temp_files_install(); /* a signal leaves no temporary behind */
     if (argc < 2) {
         usage(stderr);
         return 2;

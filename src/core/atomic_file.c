@@ -1,5 +1,7 @@
 #include "core/atomic_file.h"
 
+#include "core/temp_files.h"
+
 #include <stdatomic.h>
 #include <stdio.h>
 #include <string.h>
@@ -16,7 +18,10 @@ void atomic_temp_name(const char *final_path, char *tmp, size_t tmplen)
     int stemlen = dot ? (int)(dot - base) : (int)strlen(base);
     snprintf(tmp, tmplen, "%.*s.%.*s.tmp-%ld-%u%s", dirlen, final_path, stemlen, base,
              (long)getpid(), atomic_fetch_add(&temp_counter, 1u), dot ? dot : "");
+    temp_files_track(tmp);
 }
+
+void atomic_temp_done(const char *tmp) { temp_files_forget(tmp); }
 
 int atomic_file_open(atomic_file *af, const char *final_path)
 {
@@ -31,9 +36,12 @@ int atomic_file_commit(atomic_file *af)
     int bad = ferror(af->fp) != 0;
     bad |= fclose(af->fp) != 0;
     af->fp = NULL;
-    if (!bad && rename(af->temp_path, af->final_path) == 0)
+    if (!bad && rename(af->temp_path, af->final_path) == 0) {
+        atomic_temp_done(af->temp_path);
         return 0;
+    }
     remove(af->temp_path);
+    atomic_temp_done(af->temp_path);
     return -1;
 }
 
@@ -43,4 +51,5 @@ void atomic_file_abort(atomic_file *af)
         fclose(af->fp);
     af->fp = NULL;
     remove(af->temp_path);
+    atomic_temp_done(af->temp_path);
 }

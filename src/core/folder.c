@@ -1,5 +1,7 @@
 #include "core/folder.h"
 
+#include "core/temp_files.h"
+
 #include <dirent.h>
 #include <errno.h>
 #include <stdatomic.h>
@@ -58,7 +60,11 @@ int folder_make_temp(const char *final, char *tmp, size_t len)
         errno = ENAMETOOLONG;
         return -1;
     }
-    return mkdir(tmp, 0777);
+    temp_files_track(tmp); /* before it exists: no moment without it */
+    if (mkdir(tmp, 0777) == 0)
+        return 0;
+    temp_files_forget(tmp);
+    return -1;
 }
 
 void folder_remove(const char *dir)
@@ -75,9 +81,11 @@ void folder_remove(const char *dir)
         closedir(d);
     }
     rmdir(dir);
+    temp_files_forget(dir);
 }
 
-int folder_publish(const char *tmp, const char *final, const char *const *files, int n)
+/* Moves the files, each rename, or none: a signal waits for the end. */
+static int publish_files(const char *tmp, const char *final, const char *const *files, int n)
 {
     struct stat st;
     if (stat(final, &st) != 0)
@@ -98,4 +106,14 @@ int folder_publish(const char *tmp, const char *final, const char *const *files,
     }
     rmdir(tmp);
     return 0;
+}
+
+int folder_publish(const char *tmp, const char *final, const char *const *files, int n)
+{
+    temp_files_hold();
+    int rc = publish_files(tmp, final, files, n);
+    if (rc == 0)
+        temp_files_forget(tmp);
+    temp_files_release();
+    return rc;
 }

@@ -234,9 +234,11 @@ int plot_loglog_write_png(const plot_loglog *p, const char *path, char *err, siz
     if (st != CAIRO_STATUS_SUCCESS || rename(tmp, path) != 0) {
         int e = errno;
         unlink(tmp);
+        atomic_temp_done(tmp);
         snprintf(err, errlen, "cannot write %s: %s", path,
                  st != CAIRO_STATUS_SUCCESS ? cairo_status_to_string(st) : strerror(e));
         return -1;
     }
+    atomic_temp_done(tmp);
     return 0;
 }

@@ -178,68 +178,60 @@ double bspline_curvature(const bspline_t *c, double u)
     return sp > 0.0 ? v2_cross(d[1], d[2]) / (sp * sp * sp) : 0.0;
 }
 
-/* Inserts knot value u once (Boehm; Piegl & Tiller A5.1 with r = 1). k is the
- * span with U[k] <= u < U[k+1] and s the multiplicity of u already present. */
-static void knot_insert_once(double *U, int *n_u, vec2 *P, int *n_pts, int p, double u, int k, int s)
+/* The number of non-empty knot spans: the Bezier pieces of the curve. */
+static int count_spans(const bspline_t *c)
 {
-    vec2 Q[MAX_DEGREE + 1];
-    for (int i = k - p + 1; i <= k - s; i++) {
-        double alpha = (u - U[i]) / (U[i + p] - U[i]);
-        Q[i - (k - p + 1)] = v2_lerp(P[i - 1], P[i], alpha);
-    }
-    /* P[i] for i >= k-s moves up by one; the blended points replace k-p+1..k-s. */
-    memmove(P + k - s + 1, P + k - s, (size_t)(*n_pts - (k - s)) * sizeof *P);
-    for (int i = k - p + 1; i <= k - s; i++)
-        P[i] = Q[i - (k - p + 1)];
-    memmove(U + k + 2, U + k + 1, (size_t)(*n_u - k - 1) * sizeof *U);
-    U[k + 1] = u;
-    (*n_pts)++;
-    (*n_u)++;
+    int n = 0, m = bspline_n_knots(c) - 1;
+    for (int i = c->degree; i < m - c->degree; i++)
+        n += c->knots[i + 1] > c->knots[i];
+    return n;
 }
 
+/* Piegl & Tiller's DecomposeCurve (A5.6): each interior knot is raised to
+ * multiplicity p by Boehm insertion within the current piece only, so the
+ * cost is O(p^2) per piece, linear in the control points. */
 int bspline_to_bezier(const bspline_t *c, bezier3_t **out)
 {
     *out = NULL;
     if (c->degree != 3 || bspline_validate(c))
         return -1;
-    const int p = 3;
-    int nk = bspline_n_knots(c);
-    /* Every interior knot raised to multiplicity p: at most p extra per knot. */
-    double *U = malloc((size_t)(nk * (p + 1)) * sizeof *U);
-    vec2 *P = malloc((size_t)(c->n_ctrl + nk * p) * sizeof *P);
-    if (!U || !P) {
-        free(U);
-        free(P);
-        return -1;
-    }
-    memcpy(U, c->knots, (size_t)nk * sizeof *U);
-    memcpy(P, c->ctrl, (size_t)c->n_ctrl * sizeof *P);
-    int n_u = nk, n_pts = c->n_ctrl;
-    for (int i = p + 1; i < n_u - p - 1;) {
-        double u = U[i];
-        int s = 1;
-        while (i + s < n_u - p - 1 && U[i + s] == u)
-            s++;
-        for (; s < p; s++)
-            knot_insert_once(U, &n_u, P, &n_pts, p, u, i + s - 1, s);
-        i += s;
-    }
-    /* Now the knots are u0 (x4), u1 (x3), ..., un (x4): piece j spans U[3j+3]..U[3j+4]. */
-    int n_pieces = (n_pts - 1) / p;
+    const int p = 3, m = bspline_n_knots(c) - 1;
+    const double *U = c->knots;
+    const vec2 *P = c->ctrl;
+    int n_pieces = count_spans(c);
     bezier3_t *b = malloc((size_t)n_pieces * sizeof *b);
-    if (!b) {
-        free(U);
-        free(P);
+    if (!b)
         return -1;
+    for (int i = 0; i <= p; i++)
+        b[0].p[i] = P[i];
+    int a = p, k = p + 1, nb = 0;
+    while (k < m) {
+        int i = k;
+        while (k < m && U[k + 1] == U[k])
+            k++;
+        int mult = k - i + 1;
+        b[nb].u0 = U[a], b[nb].u1 = U[k];
+        if (mult < p) {
+            double alphas[3], numer = U[k] - U[a];
+            for (int j = p; j > mult; j--)
+                alphas[j - mult - 1] = numer / (U[a + j] - U[a]);
+            int r = p - mult;
+            for (int j = 1; j <= r; j++) {
+                int save = r - j, s = mult + j;
+                for (int q = p; q >= s; q--)
+                    b[nb].p[q] = v2_lerp(b[nb].p[q - 1], b[nb].p[q], alphas[q - s]);
+                if (k < m)
+                    b[nb + 1].p[save] = b[nb].p[p];
+            }
+        }
+        nb++;
+        if (k < m) {
+            for (int q = p - mult; q <= p; q++)
+                b[nb].p[q] = P[k - p + q];
+            a = k;
+            k++;
+        }
     }
-    for (int j = 0; j < n_pieces; j++) {
-        for (int q = 0; q < 4; q++)
-            b[j].p[q] = P[3 * j + q];
-        b[j].u0 = U[3 * j + 3];
-        b[j].u1 = U[3 * j + 4];
-    }
-    free(U);
-    free(P);
     *out = b;
     return n_pieces;
 }

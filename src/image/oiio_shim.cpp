@@ -11,6 +11,8 @@ extern "C" {
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
+#include <memory>
 #include <string>
 
 using namespace OIIO;
@@ -29,8 +31,35 @@ static void set_err(char *err, size_t errlen, const std::string &msg)
     std::snprintf(err, errlen, "%s", line.c_str());
 }
 
-extern "C" int image_probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen)
+// Every entry point runs its body through this: OpenImageIO and the format
+// libraries under it may throw (a 36-byte GIF makes its reader throw
+// std::length_error from ImageInput::open), and no exception may cross into C.
+template <typename Body> static int guarded(char *err, size_t errlen, Body body)
 {
+    try {
+        return body();
+    } catch (const std::exception &e) {
+        set_err(err, errlen, std::string("the image library failed on this file: ") + e.what());
+    } catch (...) {
+        set_err(err, errlen, "the image library failed on this file");
+    }
+    return -1;
+}
+
+// Files the image library opens itself pass the checks every input passes.
+static int check_input(const char *path, char *err, size_t errlen)
+{
+    char why[256];
+    if (input_check(path, INPUT_MAX_DATA_BYTES, nullptr, why, sizeof why) == 0)
+        return 0;
+    set_err(err, errlen, why);
+    return -1;
+}
+
+static int probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen)
+{
+    if (check_input(path, err, errlen) != 0)
+        return -1;
     auto in = ImageInput::open(path);
     if (!in) {
         set_err(err, errlen, geterror());
@@ -44,6 +73,11 @@ extern "C" int image_probe(const char *path, int *width, int *height, int *chann
     return 0;
 }
 
+extern "C" int image_probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen)
+{
+    return guarded(err, errlen, [&] { return probe(path, width, height, channels, err, errlen); });
+}
+
 // Decodes all pixels of the open file as floats into dst and closes it.
 // read_image converts any format; 8-bit files without alpha are decoded as
 // bytes and scaled here instead (v * (1/255), the very float OpenImageIO's
@@ -53,7 +87,10 @@ static int decode_floats(ImageInput *in, const ImageSpec &spec, float *dst, char
 {
     const size_t n = (size_t)spec.width * spec.height * spec.nchannels;
     const bool bytes = spec.format == TypeDesc::UINT8 && spec.alpha_channel < 0;
-    unsigned char *u = bytes ? (unsigned char *)std::malloc(n) : nullptr;
+    // Freed however the decoder returns, by a throw too.
+    std::unique_ptr<unsigned char, decltype(&std::free)> owner(bytes ? (unsigned char *)std::malloc(n) : nullptr,
+                                                               std::free);
+    unsigned char *u = owner.get();
     if (bytes && !u) {
         set_err(err, errlen, "out of memory");
         return -1;
@@ -61,7 +98,6 @@ static int decode_floats(ImageInput *in, const ImageSpec &spec, float *dst, char
     bool ok = bytes ? in->read_image(0, 0, 0, spec.nchannels, TypeDesc::UINT8, u)
                     : in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, dst);
     if (!ok || in->has_error()) {
-        std::free(u);
         set_err(err, errlen, in->has_error() ? in->geterror() : std::string("cannot decode pixels (truncated or corrupt)"));
         return -1;
     }
@@ -71,7 +107,6 @@ static int decode_floats(ImageInput *in, const ImageSpec &spec, float *dst, char
             dst[i + k] = u[i + k] * (1.0f / 255);
     for (; bytes && i < n; i++)
         dst[i] = u[i] * (1.0f / 255);
-    std::free(u);
     in->close();
     return 0;
 }
@@ -101,9 +136,10 @@ static int finish_read(image_t *img, const ImageSpec &spec, int width, int heigh
     return 0;
 }
 
-extern "C" int image_read(const char *path, image_t *img, char *err, size_t errlen)
+static int read_image(const char *path, image_t *img, char *err, size_t errlen)
 {
-    std::memset(img, 0, sizeof *img);
+    if (check_input(path, err, errlen) != 0)
+        return -1;
     auto in = ImageInput::open(path);
     if (!in) {
         set_err(err, errlen, geterror());
@@ -153,11 +189,18 @@ extern "C" int image_read(const char *path, image_t *img, char *err, size_t errl
     return finish_read(img, spec, out.width, out.height, out.nchannels);
 }
 
-static int write_pixels(const char *path, int w, int h, int ch, TypeDesc type, const void *pixels, char *err,
-                        size_t errlen)
+extern "C" int image_read(const char *path, image_t *img, char *err, size_t errlen)
 {
-    char tmp[4200];
-    atomic_temp_name(path, tmp, sizeof tmp);
+    std::memset(img, 0, sizeof *img);
+    int rc = guarded(err, errlen, [&] { return read_image(path, img, err, errlen); });
+    if (rc != 0)
+        image_free(img);
+    return rc;
+}
+
+static int write_pixels(const char *path, const char *tmp, int w, int h, int ch, TypeDesc type, const void *pixels,
+                        char *err, size_t errlen)
+{
     auto out = ImageOutput::create(path);
     if (!out) {
         set_err(err, errlen, geterror());
@@ -168,25 +211,36 @@ static int write_pixels(const char *path, int w, int h, int ch, TypeDesc type, c
         spec.alpha_channel = ch - 1;
     if (!out->open(tmp, spec) || !out->write_image(type, pixels) || !out->close()) {
         set_err(err, errlen, out->geterror());
-        std::remove(tmp);
         return -1;
     }
     if (std::rename(tmp, path) != 0) {
         set_err(err, errlen, std::string("cannot rename into place: ") + std::strerror(errno));
-        std::remove(tmp);
         return -1;
     }
     return 0;
 }
 
+// Written to a temporary sibling, renamed when whole; removed on any failure.
+static int write_atomically(const char *path, int w, int h, int ch, TypeDesc type, const void *pixels, char *err,
+                            size_t errlen)
+{
+    char tmp[4200];
+    atomic_temp_name(path, tmp, sizeof tmp);
+    int rc = guarded(err, errlen, [&] { return write_pixels(path, tmp, w, h, ch, type, pixels, err, errlen); });
+    if (rc != 0)
+        std::remove(tmp);
+    atomic_temp_done(tmp);
+    return rc;
+}
+
 extern "C" int image_write_u8(const char *path, int width, int height, int channels, const uint8_t *pixels,
                               char *err, size_t errlen)
 {
-    return write_pixels(path, width, height, channels, TypeDesc::UINT8, pixels, err, errlen);
+    return write_atomically(path, width, height, channels, TypeDesc::UINT8, pixels, err, errlen);
 }
 
 extern "C" int image_write_u16(const char *path, int width, int height, int channels, const uint16_t *pixels,
                                char *err, size_t errlen)
 {
-    return write_pixels(path, width, height, channels, TypeDesc::UINT16, pixels, err, errlen);
+    return write_atomically(path, width, height, channels, TypeDesc::UINT16, pixels, err, errlen);
 }

@@ -11,6 +11,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "core/core.h"
+
 enum { COL_FILE, COL_TITLE, COL_DATE, COL_HEIGHT, COL_DESCRIPTION, COL_COUNT };
 static const char *const column_names[COL_COUNT] = {"file", "title", "date", "height_cm", "description"};
 
@@ -193,28 +195,6 @@ static void on_row(int terminator, void *user)
     s->too_many = 0;
 }
 
-/* The whole file, NUL-terminated; NULL with a reason. */
-static char *read_text(const char *path, size_t *len, char *err, size_t errlen)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, errlen, "%s: cannot open the catalogue: %s", path, strerror(errno));
-        return NULL;
-    }
-    char *buf = malloc((size_t)MAX_BYTES + 1);
-    size_t n = buf ? fread(buf, 1, (size_t)MAX_BYTES + 1, f) : 0;
-    int bad = !buf || ferror(f);
-    fclose(f);
-    if (bad || n > (size_t)MAX_BYTES) {
-        snprintf(err, errlen, "%s: %s", path, bad ? "cannot read the catalogue" : "catalogue larger than 16 MiB");
-        free(buf);
-        return NULL;
-    }
-    buf[n] = 0;
-    *len = n;
-    return buf;
-}
-
 /* 1 + the number of line breaks before offset. */
 static int line_at(const char *text, size_t offset)
 {
@@ -227,16 +207,25 @@ static int line_at(const char *text, size_t offset)
 int catalogue_read(const char *path, catalogue_t *cat, char *err, size_t errlen)
 {
     memset(cat, 0, sizeof *cat);
+    char *text, why[256];
     size_t len;
-    char *text = read_text(path, &len, err, errlen);
-    if (!text)
+    if (input_read_all(path, MAX_BYTES, &text, &len, why, sizeof why) != 0) {
+        snprintf(err, errlen, "%s: %s", path, why);
         return -1;
+    }
+    int rc = catalogue_parse(path, text, len, cat, err, errlen);
+    free(text);
+    return rc;
+}
+
+int catalogue_parse(const char *path, const char *text, size_t len, catalogue_t *cat, char *err, size_t errlen)
+{
+    memset(cat, 0, sizeof *cat);
     parse_state s = {.csv_path = path, .cat = cat, .err = err, .errlen = errlen};
     const char *slash = strrchr(path, '/');
     snprintf(s.folder, sizeof s.folder, "%.*s", slash ? (int)(slash - path) + 1 : 0, path);
     struct csv_parser p;
     if (csv_init(&p, CSV_STRICT | CSV_STRICT_FINI | CSV_APPEND_NULL) != 0) {
-        free(text);
         snprintf(err, errlen, "%s: out of memory", path);
         return -1;
     }
@@ -248,7 +237,6 @@ int catalogue_read(const char *path, catalogue_t *cat, char *err, size_t errlen)
     for (int i = 0; i < s.n_fields; i++)
         free(s.fields[i]);
     csv_free(&p);
-    free(text);
     if (rc == 0 && !s.failed && s.row == 0)
         snprintf(err, errlen, "%s: the catalogue is empty (it needs a header row)", path);
     if (rc != 0 || s.failed || s.row == 0) {

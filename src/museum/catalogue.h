@@ -29,6 +29,10 @@ typedef struct {
  * "PATH: row N: problem" (or "PATH: problem") in err. */
 int catalogue_read(const char *path, catalogue_t *cat, char *err, size_t errlen);
 
+/* catalogue_read on the file's text, read already; path names it in
+ * messages and is the folder the rows' photos are relative to. */
+int catalogue_parse(const char *path, const char *text, size_t len, catalogue_t *cat, char *err, size_t errlen);
+
 /* The entry for the photo at path (matched by realpath), or NULL. */
 const catalogue_entry *catalogue_find(const catalogue_t *cat, const char *photo_path);
 

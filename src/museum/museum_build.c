@@ -100,18 +100,8 @@ static int describe(const char *const *photos, int n, const catalogue_t *cat, mu
 
 static uint8_t *read_bytes(const char *path, size_t *len)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    uint8_t *buf = NULL;
-    long n = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
-    if (n > 0 && fseek(f, 0, SEEK_SET) == 0 && (buf = malloc((size_t)n)) && fread(buf, 1, (size_t)n, f) != (size_t)n) {
-        free(buf);
-        buf = NULL;
-    }
-    fclose(f);
-    *len = buf ? (size_t)n : 0;
-    return buf;
+    char *buf, why[256];
+    return input_read_all(path, INPUT_MAX_DATA_BYTES, &buf, len, why, sizeof why) == 0 ? (uint8_t *)buf : NULL;
 }
 
 static int write_bytes(const char *path, const uint8_t *data, size_t len)
@@ -244,8 +234,10 @@ static json_t *manifest(const build_ctx *b, const char *title, const museum_exhi
             json_array_append_new(lods, json_pack("{s:i, s:f, s:f, s:i}", "segments", ex[i].lods[k].segments,
                                                   "distance_m", ex[i].lods[k].distance, "error_m",
                                                   ex[i].lods[k].error, "triangles", ex[i].lods[k].mesh.n_tris));
-        json_array_append_new(vessels, json_pack("{s:s, s:s, s:s, s:f, s:f, s:o}", "title", ex[i].title, "photo",
-                                                 ex[i].photo, "folder", ex[i].slug, "height_cm",
+        char title[4 * 512], photo[4 * 4096];
+        json_array_append_new(vessels, json_pack("{s:s, s:s, s:s, s:f, s:f, s:o}", "title",
+                                                 json_text(ex[i].title, title, sizeof title), "photo",
+                                                 json_text(ex[i].photo, photo, sizeof photo), "folder", ex[i].slug, "height_cm",
                                                  100.0 * ex[i].height_m, "radius_cm", 100.0 * ex[i].radius_m,
                                                  "lods", lods));
     }

@@ -89,7 +89,10 @@ int museum_folder_begin(const char *dir, char *tmp, size_t len, char *err, size_
     }
     int n = snprintf(tmp, len, "%.*s.celadon-museum-%ld-%u", slash ? (int)(slash - dir) + 1 : 0, dir,
                      (long)getpid(), atomic_fetch_add(&temp_counter, 1u));
+    if (n >= 0 && (size_t)n < len)
+        temp_files_track(tmp);
     if (n < 0 || (size_t)n >= len || mkdir(tmp, 0777) != 0) {
+        temp_files_forget(tmp);
         snprintf(err, errlen, "%s: cannot create a folder beside it: %s", dir,
                  n < 0 || (size_t)n >= len ? "name too long" : strerror(errno));
         for (int k = n_made - 1; k >= 0; k--)
@@ -106,31 +109,45 @@ static int remove_entry(const char *path, const struct stat *st, int flag, struc
     return 0;
 }
 
-void museum_folder_remove(const char *dir) { nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
+void museum_folder_remove(const char *dir)
+{
+    nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+    temp_files_forget(dir);
+}
+
+/* The renames of museum_folder_publish; 0, or -1 with errno set. */
+static int publish(const char *tmp, const char *dir)
+{
+    struct stat st;
+    if (stat(dir, &st) != 0)
+        return rename(tmp, dir);
+    if (rmdir(dir) == 0) /* it was empty */
+        return rename(tmp, dir);
+    /* An old museum: moved aside, replaced, then deleted. */
+    char old[PATH_MAX + 32];
+    snprintf(old, sizeof old, "%s.old", tmp);
+    if (rename(dir, old) != 0)
+        return -1;
+    if (rename(tmp, dir) == 0) {
+        museum_folder_remove(old);
+        return 0;
+    }
+    int saved = errno;
+    rename(old, dir);
+    errno = saved;
+    return -1;
+}
 
 int museum_folder_publish(const char *tmp, const char *dir, char *err, size_t errlen)
 {
-    struct stat st;
-    if (stat(dir, &st) != 0) {
-        if (rename(tmp, dir) == 0)
-            return 0;
-    } else if (rmdir(dir) == 0) { /* it was empty */
-        if (rename(tmp, dir) == 0)
-            return 0;
-    } else {
-        /* An old museum: moved aside, replaced, then deleted. */
-        char old[PATH_MAX + 32];
-        snprintf(old, sizeof old, "%s.old", tmp);
-        if (rename(dir, old) == 0) {
-            if (rename(tmp, dir) == 0) {
-                museum_folder_remove(old);
-                return 0;
-            }
-            rename(old, dir);
-        }
-    }
-    snprintf(err, errlen, "cannot move the museum into %s: %s", dir, strerror(errno));
-    return -1;
+    temp_files_hold();
+    int rc = publish(tmp, dir);
+    if (rc == 0)
+        temp_files_forget(tmp);
+    else
+        snprintf(err, errlen, "cannot move the museum into %s: %s", dir, strerror(errno));
+    temp_files_release();
+    return rc;
 }
 
 int museum_folder_sub(const char *dir, const char *name)

@@ -288,7 +288,8 @@ int museum_scene_write(const char *path, const char *title, const layout_t *layo
     if (rc != 0 || rename(tmp, path) != 0) {
         snprintf(err, errlen, "cannot write %s: %s", path, rc ? "XML writer failed" : strerror(errno));
         remove(tmp);
-        return -1;
+        rc = -1;
     }
-    return 0;
+    atomic_temp_done(tmp);
+    return rc;
 }

@@ -3,7 +3,6 @@
  * reason for anything malformed. */
 #include "celadon/profile.h"
 
-#include <errno.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdarg.h>
@@ -12,6 +11,7 @@
 #include <string.h>
 
 #include "celadon/curve_domains.h"
+#include "celadon/sor.h"
 #include "core/core.h"
 
 enum { PROFILE_VERSION = 1 };
@@ -92,11 +92,12 @@ int profile_write_json(const char *path, const profile_t *p, char *err, size_t e
     }
     /* "o" steals a reference and fails on NULL: a non-finite number anywhere
      * (json_real refuses them) makes the whole pack fail. */
+    char source[4 * 4096];
     json_t *root = json_pack(
         "{s:i, s:{s:s, s:i, s:i}, s:{s:o, s:o, s:f}, s:o, s:s, s:o, s:{s:i, s:o, s:o}, s:o, s:{s:f, s:f},"
         " s:{s:i, s:i, s:i}, s:{s:f, s:f, s:f, s:f}}",
         "version", PROFILE_VERSION,
-        "source", "path", p->source_path, "width", p->source_width, "height", p->source_height,
+        "source", "path", json_text(p->source_path, source, sizeof source), "width", p->source_width, "height", p->source_height,
         "axis", "origin", pair(p->axis_origin), "direction", pair(p->axis_direction), "tilt_deg", p->tilt_deg,
         "corners", corners_json(p),
         "side", p->side,
@@ -198,8 +199,9 @@ static json_t *get_object(reader *r, json_t *obj, const char *key)
     return v;
 }
 
-/* An array of at least min_n elements; *n receives its size. */
-static json_t *get_array(reader *r, json_t *obj, const char *key, const char *path, size_t min_n, int *n)
+/* An array of min_n to max_n elements; *n receives its size. */
+static json_t *get_array(reader *r, json_t *obj, const char *key, const char *path, size_t min_n, size_t max_n,
+                         int *n)
 {
     json_t *v = member(r, obj, key, path);
     if (!v)
@@ -208,8 +210,12 @@ static json_t *get_array(reader *r, json_t *obj, const char *key, const char *pa
         fail(r, "'%s' must be an array", path);
         return NULL;
     }
-    if (json_array_size(v) < min_n || json_array_size(v) > 100000000) {
+    if (json_array_size(v) < min_n) {
         fail(r, "'%s' must have at least %zu elements", path, min_n);
+        return NULL;
+    }
+    if (json_array_size(v) > max_n) {
+        fail(r, "'%s' has %zu elements, more than the %zu a profile may have", path, json_array_size(v), max_n);
         return NULL;
     }
     *n = (int)json_array_size(v);
@@ -301,7 +307,7 @@ static int read_curve(reader *r, json_t *root, profile_t *p)
 {
     int n;
     if (json_object_get(root, "polyline")) { /* the measured profile: optional */
-        json_t *poly = get_array(r, root, "polyline", "polyline", 2, &n);
+        json_t *poly = get_array(r, root, "polyline", "polyline", 2, PROFILE_MAX_POINTS, &n);
         if (!poly)
             return -1;
         p->polyline = malloc((size_t)n * sizeof *p->polyline);
@@ -321,9 +327,9 @@ static int read_curve(reader *r, json_t *root, profile_t *p)
     if (!json_is_integer(deg) || json_integer_value(deg) != 3)
         return fail(r, "'bspline.degree' must be 3");
     int nk, nc;
-    json_t *knots = get_array(r, bs, "knots", "bspline.knots", 8, &nk);
-    json_t *ctrl = knots ? get_array(r, bs, "control_points", "bspline.control_points", 4, &nc) : NULL;
-    if (!ctrl)
+    json_t *ctrl = get_array(r, bs, "control_points", "bspline.control_points", 4, PROFILE_MAX_POINTS, &nc);
+    json_t *knots = ctrl ? get_array(r, bs, "knots", "bspline.knots", 8, PROFILE_MAX_POINTS + 4, &nk) : NULL;
+    if (!knots)
         return -1;
     if (nk != nc + 4)
         return fail(r, "'bspline.knots' has %d values; %d control points need %d", nk, nc, nc + 4);
@@ -337,6 +343,9 @@ static int read_curve(reader *r, json_t *root, profile_t *p)
         return fail(r, "invalid B-spline: %s", bad);
     if (p->curve.knots[0] != 0.0 || p->curve.knots[nk - 1] != 1.0)
         return fail(r, "invalid B-spline: the parameter must run from 0 to 1");
+    bad = sor_profile_check(&p->curve);
+    if (bad)
+        return fail(r, "the profile cannot be revolved: %s", bad);
 
     if (!json_object_get(root, "domains")) { /* computed as the reconstruction computes them */
         if (curve_domains_by_curvature_variation(&p->curve, PROFILE_DOMAIN_TOL_PX, PROFILE_DOMAIN_TOL_DEG,
@@ -344,7 +353,7 @@ static int read_curve(reader *r, json_t *root, profile_t *p)
             return fail(r, "cannot compute the curvature domains of the B-spline");
         return 0;
     }
-    json_t *dom = get_array(r, root, "domains", "domains", 2, &n);
+    json_t *dom = get_array(r, root, "domains", "domains", 2, PROFILE_MAX_POINTS, &n);
     if (!dom)
         return -1;
     p->domains = malloc((size_t)n * sizeof *p->domains);
@@ -397,12 +406,13 @@ int profile_read_json(const char *path, profile_t *p, char *err, size_t errlen)
 {
     memset(p, 0, sizeof *p);
     reader r = {err, errlen};
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return fail(&r, "cannot open: %s", strerror(errno));
+    char *text;
+    size_t len;
+    if (input_read_all(path, INPUT_MAX_TEXT_BYTES, &text, &len, err, errlen) != 0)
+        return -1;
     json_error_t jerr;
-    json_t *root = json_loadf(f, JSON_REJECT_DUPLICATES, &jerr);
-    fclose(f);
+    json_t *root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &jerr);
+    free(text);
     if (!root)
         return fail(&r, "not valid JSON (line %d): %s", jerr.line, jerr.text);
     int rc = json_is_object(root) ? 0 : fail(&r, "the top level must be an object");

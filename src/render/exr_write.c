@@ -91,10 +91,13 @@ int exr_write_float_attrs(const char *path, int width, int height, int nch, cons
         if (rv == EXR_ERR_SUCCESS)
             rv = f;
     }
-    if (rv == EXR_ERR_SUCCESS && rename(tmp, path) == 0)
+    if (rv == EXR_ERR_SUCCESS && rename(tmp, path) == 0) {
+        atomic_temp_done(tmp);
         return 0;
+    }
     int rename_errno = errno;
     remove(tmp);
+    atomic_temp_done(tmp);
     if (rv == EXR_ERR_SUCCESS)
         snprintf(err, errlen, "%s: cannot rename into place: %s", path, strerror(rename_errno));
     else

@@ -42,7 +42,7 @@ int film_init_format(film_t *f, int width, int height, film_pixel_format format,
                      char *err, size_t errlen)
 {
     memset(f, 0, sizeof *f);
-    if (width <= 0 || height <= 0 || (double)width * height > 1e9) {
+    if (width <= 0 || height <= 0 || width > FILM_MAX_SIDE || height > FILM_MAX_SIDE || (double)width * height > FILM_MAX_PIXELS) {
         snprintf(err, errlen, "film size %dx%d is out of range", width, height);
         return -1;
     }

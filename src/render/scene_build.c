@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "celadon/film.h"
 #include "render/scene_impl.h"
 
 scene_options scene_options_default(void)
@@ -44,8 +45,10 @@ static int build_film(scene_obj *sensor, const scene_options *opt, film_settings
         fs->width = opt->width;
     if (opt->height > 0)
         fs->height = opt->height;
-    if (fs->width < 1 || fs->height < 1 || fs->width > 65536 || fs->height > 65536)
-        return scene_obj_error(film, err, errlen, "film size %dx%d is out of range", fs->width, fs->height);
+    if (fs->width < 1 || fs->height < 1 || fs->width > FILM_MAX_SIDE || fs->height > FILM_MAX_SIDE ||
+        (double)fs->width * fs->height > FILM_MAX_PIXELS)
+        return scene_obj_error(film, err, errlen, "film size %dx%d is out of range (at most %d on a side, %.0e pixels)",
+                               fs->width, fs->height, FILM_MAX_SIDE, FILM_MAX_PIXELS);
     return 0;
 }
 

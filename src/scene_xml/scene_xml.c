@@ -2,6 +2,7 @@
  * validation against the plugin declarations the caller's lookup gives. */
 #include <errno.h>
 #include <libgen.h>
+#include <libxml/SAX2.h>
 #include <libxml/parser.h>
 #include <limits.h>
 #include <stdio.h>
@@ -9,6 +10,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "core/core.h"
 #include "scene_xml/scene_xml_internal.h"
 
 static const char *class_tags[SCENE_CLASS_COUNT] = {
@@ -90,6 +92,7 @@ void scene_desc_destroy(scene_desc *d)
         free(d->files[i]);
     free(d->objs);
     free(d->files);
+    xmlHashFree(d->ids, NULL);
     free(d);
 }
 
@@ -231,7 +234,8 @@ static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char 
     scene_class host = c->plugins(child->cls, child->type)->host;
     if (host != SCENE_SCENE && parent->cls != host)
         return scene_fail(c, line, "%s must be nested in a <%s>", cw, scene_class_name(host));
-    if (scene_obj_children(parent, child->cls, NULL, 0) >= rule->max)
+    /* Counted only when the limit is within reach: linear in the children. */
+    if (parent->nchildren >= rule->max && scene_obj_children(parent, child->cls, NULL, 0) >= rule->max)
         return scene_fail(c, line, "%s takes at most %d <%s>", pw, rule->max, scene_class_name(child->cls));
     parent->children = xrealloc(parent->children, sizeof(scene_obj *) * (size_t)(parent->nchildren + 1));
     parent->children[parent->nchildren++] = child;
@@ -240,10 +244,7 @@ static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char 
 
 static scene_obj *find_id(const scene_desc *d, const char *id)
 {
-    for (int i = 0; i < d->nobjs; i++)
-        if (d->objs[i]->id && strcmp(d->objs[i]->id, id) == 0)
-            return d->objs[i];
-    return NULL;
+    return xmlHashLookup(d->ids, BAD_CAST id);
 }
 
 /* Required parameters, minimum child counts, exclusive pairs. */
@@ -278,68 +279,49 @@ static int cmp_ptr(const void *a, const void *b)
 
 typedef struct {
     scene_obj **sorted; /* the objects by address */
-    char *state;        /* per sorted slot: 0 new, 1 on the path, 2 done */
+    int *height;        /* per sorted slot: 0 new, -1 on the path, else the longest chain from it */
     int n;
 } dfs_t;
 
-/* Depth-first search for a cycle made by references. */
-static int find_cycle(scene_ctx *c, dfs_t *g, scene_obj *o)
+/* Depth-first search for a cycle made by references, and for a chain of
+ * objects (nested or referenced) longer than SCENE_MAX_NESTING, which every
+ * later walk of the tree would follow as deep. depth: the objects above o on
+ * the way down. Returns the object's height, or -1. */
+static int find_cycle(scene_ctx *c, dfs_t *g, scene_obj *o, int depth)
 {
     scene_obj **slot = bsearch(&o, g->sorted, (size_t)g->n, sizeof(scene_obj *), cmp_ptr);
-    char *st = &g->state[slot - g->sorted];
-    if (*st == 2)
-        return 0;
-    if (*st == 1) {
-        char what[160];
-        describe(o, what, sizeof what);
-        c->file = o->file;
+    int *h = &g->height[slot - g->sorted];
+    if (*h > 0)
+        return *h;
+    char what[160];
+    describe(o, what, sizeof what);
+    c->file = o->file;
+    if (*h < 0)
         return scene_fail(c, o->line, "reference cycle: %s (id '%s') contains itself", what, o->id ? o->id : "");
+    if (depth > SCENE_MAX_NESTING) /* the way down is as long: stop before the stack runs out */
+        return scene_fail(c, o->line, "%s lies in a chain of nested or referenced objects more than %d deep", what,
+                          SCENE_MAX_NESTING);
+    *h = -1;
+    int below = 0;
+    for (int i = 0; i < o->nchildren + o->nprops && below >= 0; i++) {
+        scene_obj *next = i < o->nchildren ? o->children[i]
+                          : o->props[i - o->nchildren].type == SCENE_OBJECT ? o->props[i - o->nchildren].value.obj
+                                                                             : NULL;
+        int hn = next ? find_cycle(c, g, next, depth + 1) : 0;
+        below = hn < 0 ? -1 : below > hn ? below : hn;
     }
-    *st = 1;
-    for (int i = 0; i < o->nchildren; i++)
-        if (find_cycle(c, g, o->children[i]) != 0)
-            return -1;
-    for (int i = 0; i < o->nprops; i++)
-        if (o->props[i].type == SCENE_OBJECT && find_cycle(c, g, o->props[i].value.obj) != 0)
-            return -1;
-    *st = 2;
-    return 0;
+    if (below < 0)
+        return -1;
+    if (below + 1 > SCENE_MAX_NESTING) {
+        c->file = o->file;
+        return scene_fail(c, o->line, "%s holds a chain of nested or referenced objects more than %d deep", what,
+                          SCENE_MAX_NESTING);
+    }
+    return *h = below + 1;
 }
 
 /* --------------------------------------------------------------- parsing */
 static int parse_document(scene_ctx *c, const char *xml, size_t len, const char *path, scene_obj *parent);
-
-static int read_whole_file(const char *path, char **buf, size_t *len)
-{
-    struct stat st;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-        errno = EISDIR;
-        return -1;
-    }
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return -1;
-    size_t cap = 1 << 16, n = 0;
-    char *b = xrealloc(NULL, cap);
-    for (;;) {
-        size_t got = fread(b + n, 1, cap - n, f);
-        n += got;
-        if (n < cap)
-            break;
-        cap *= 2;
-        b = xrealloc(b, cap);
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(b);
-        errno = EIO;
-        return -1;
-    }
-    *buf = b;
-    *len = n;
-    return 0;
-}
 
 static int parse_include(scene_ctx *c, const xmlNode *n, scene_obj *parent)
 {
@@ -348,12 +330,14 @@ static int parse_include(scene_ctx *c, const xmlNode *n, scene_obj *parent)
     if (scene_check_attrs(c, n, "filename") != 0 || scene_attr_req(c, n, "filename", &name) != 0)
         return -1;
     char *path = scene_resolve_path(c, c->file, name);
-    char canon[PATH_MAX];
+    char canon[PATH_MAX], why[256];
     char *buf = NULL;
     size_t len = 0;
     int rc = 0;
-    if (!realpath(path, canon) || read_whole_file(path, &buf, &len) != 0)
+    if (!realpath(path, canon))
         rc = scene_fail(c, line, "cannot read included file '%s' (%s: %s)", name, path, strerror(errno));
+    else if (input_read_all(path, INPUT_MAX_TEXT_BYTES, &buf, &len, why, sizeof why) != 0)
+        rc = scene_fail(c, line, "cannot read included file '%s' (%s: %s)", name, path, why);
     for (int i = 0; i < c->depth && rc == 0; i++)
         if (strcmp(c->stack[i], canon) == 0)
             rc = scene_fail(c, line, "include cycle: '%s' is already being included", name);
@@ -471,6 +455,8 @@ static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_o
         }
     }
     scene_obj *o = new_obj(c, cls, type, line);
+    if (id && xmlHashAddEntry(c->d->ids, BAD_CAST id, o) != 0)
+        abort(); /* out of memory: a duplicate was refused above */
     o->id = id;
     o->name = name;
     id = name = NULL;
@@ -552,6 +538,29 @@ static int check_version(scene_ctx *c, xmlNode *root)
     return rc;
 }
 
+/* The first entity a document declares (its line; 0: none). */
+typedef struct {
+    int line;
+    char name[64];
+} entity_seen;
+
+/* libxml2's SAX hook for <!ENTITY ...>: the parse stops there. Mitsuba
+ * scenes need no entities (Mitsuba's own reader expands none), and
+ * expanding them is where a small file becomes gigabytes or hours
+ * (billion laughs; one 50 KB entity named 20,000 times in an attribute). */
+static void stop_at_entity(void *ctx, const xmlChar *name, int type, const xmlChar *public_id,
+                           const xmlChar *system_id, xmlChar *content)
+{
+    (void)type, (void)public_id, (void)system_id, (void)content;
+    xmlParserCtxtPtr px = ctx;
+    entity_seen *seen = px->_private;
+    if (!seen->line) {
+        seen->line = xmlSAX2GetLineNumber(ctx);
+        snprintf(seen->name, sizeof seen->name, "%s", (const char *)name);
+    }
+    xmlStopParser(px);
+}
+
 static int parse_document(scene_ctx *c, const char *xml, size_t len, const char *path, scene_obj *parent)
 {
     c->file = intern_file(c->d, path);
@@ -560,10 +569,17 @@ static int parse_document(scene_ctx *c, const char *xml, size_t len, const char 
     xmlParserCtxtPtr px = xmlNewParserCtxt();
     if (!px)
         abort();
+    entity_seen seen = {0};
+    px->_private = &seen;
+    px->sax->entityDecl = stop_at_entity;
     int opts = XML_PARSE_NONET | XML_PARSE_BIG_LINES | XML_PARSE_NOERROR | XML_PARSE_NOWARNING;
     xmlDocPtr doc = xmlCtxtReadMemory(px, xml, (int)len, path, NULL, opts);
     int rc = 0;
-    if (!doc) {
+    if (seen.line) {
+        rc = scene_fail(c, seen.line, "the document declares an entity ('%s'): scene files may not (Mitsuba "
+                        "scenes need none)", seen.name);
+        xmlFreeDoc(doc);
+    } else if (!doc) {
         const xmlError *e = xmlCtxtGetLastError(px);
         char msg[512];
         snprintf(msg, sizeof msg, "%s", e && e->message ? e->message : "unreadable document");
@@ -607,15 +623,15 @@ static int finish(scene_ctx *c)
     for (int i = 0; i < c->d->nobjs; i++)
         if (validate_obj(c, c->d->objs[i]) != 0)
             return -1;
-    dfs_t g = {xrealloc(NULL, sizeof(scene_obj *) * (size_t)c->d->nobjs), calloc((size_t)c->d->nobjs, 1),
-               c->d->nobjs};
-    if (!g.state)
+    dfs_t g = {xrealloc(NULL, sizeof(scene_obj *) * (size_t)c->d->nobjs),
+               calloc((size_t)c->d->nobjs, sizeof(int)), c->d->nobjs};
+    if (!g.height)
         abort();
     memcpy(g.sorted, c->d->objs, sizeof(scene_obj *) * (size_t)g.n);
     qsort(g.sorted, (size_t)g.n, sizeof(scene_obj *), cmp_ptr);
-    int rc = find_cycle(c, &g, c->d->root);
+    int rc = find_cycle(c, &g, c->d->root, 0) < 0 ? -1 : 0;
     free(g.sorted);
-    free(g.state);
+    free(g.height);
     return rc;
 }
 
@@ -626,7 +642,7 @@ static scene_desc *load(const char *xml, size_t len, const char *path, const sce
     scene_ctx c = {0};
     c.plugins = plugins;
     c.d = calloc(1, sizeof *c.d);
-    if (!c.d)
+    if (!c.d || !(c.d->ids = xmlHashCreate(0)))
         abort();
     c.err = err;
     c.errlen = errlen;
@@ -685,10 +701,10 @@ scene_desc *scene_desc_create_from_text(const char *xml, size_t len, const char 
 scene_desc *scene_desc_create_from_file(const char *path, const scene_define *defs, int ndefs,
                                         scene_plugin_lookup plugins, char *err, size_t errlen)
 {
-    char *buf;
+    char *buf, why[256];
     size_t len;
-    if (read_whole_file(path, &buf, &len) != 0) {
-        snprintf(err, errlen, "%s: cannot read scene: %s", path, strerror(errno));
+    if (input_read_all(path, INPUT_MAX_TEXT_BYTES, &buf, &len, why, sizeof why) != 0) {
+        snprintf(err, errlen, "%s: %s", path, why);
         return NULL;
     }
     scene_desc *d = load(buf, len, path, defs, ndefs, plugins, err, errlen);

@@ -1,5 +1,6 @@
 /* Typed access to a loaded scene description, with consumption tracking,
  * and messages about its objects. */
+#include <search.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -119,8 +120,22 @@ scene_obj *scene_obj_child(const scene_obj *o, scene_class cls)
     return c;
 }
 
-int scene_obj_unconsumed(const scene_obj *o, char *msg, size_t msglen)
+static int by_address(const void *a, const void *b) { return a < b ? -1 : a > b; }
+
+/* The set of seen objects owns none of them. */
+static void keep(void *o) { (void)o; }
+
+/* scene_obj_unconsumed over the objects not seen yet: a shared object is
+ * reached by every path to it, and a chain of them doubling at each step
+ * would be walked exponentially often. */
+static int unconsumed_in(const scene_obj *o, void **seen, char *msg, size_t msglen)
 {
+    if (tfind(o, seen, by_address))
+        return 0;
+    if (!tsearch(o, seen, by_address)) {
+        snprintf(msg, msglen, "out of memory");
+        return 1;
+    }
     for (int i = 0; i < o->nprops; i++) {
         const scene_prop *p = &o->props[i];
         if (!p->consumed) {
@@ -131,13 +146,21 @@ int scene_obj_unconsumed(const scene_obj *o, char *msg, size_t msglen)
                          scene_class_name(o->cls), o->type, p->name);
             return 1;
         }
-        if (p->type == SCENE_OBJECT && scene_obj_unconsumed(p->value.obj, msg, msglen))
+        if (p->type == SCENE_OBJECT && unconsumed_in(p->value.obj, seen, msg, msglen))
             return 1;
     }
     for (int i = 0; i < o->nchildren; i++)
-        if (scene_obj_unconsumed(o->children[i], msg, msglen))
+        if (unconsumed_in(o->children[i], seen, msg, msglen))
             return 1;
     return 0;
+}
+
+int scene_obj_unconsumed(const scene_obj *o, char *msg, size_t msglen)
+{
+    void *seen = NULL;
+    int rc = unconsumed_in(o, &seen, msg, msglen);
+    tdestroy(seen, keep);
+    return rc;
 }
 
 int scene_obj_error(const scene_obj *o, char *err, size_t errlen, const char *fmt, ...)

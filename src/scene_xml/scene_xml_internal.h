@@ -2,16 +2,21 @@
 #ifndef CELADON_SCENE_XML_INTERNAL_H
 #define CELADON_SCENE_XML_INTERNAL_H
 
+#include <libxml/hash.h>
 #include <libxml/tree.h>
 
 #include "celadon/scene_xml.h"
 
 #define SCENE_MAX_INCLUDE_DEPTH 32
+/* The deepest chain of nested or referenced objects a scene may have (real
+ * scenes nest a handful: shape, twosided, blend, texture). */
+#define SCENE_MAX_NESTING 100
 
 struct scene_desc {
     scene_obj *root;
     scene_obj **objs; /* every object, owned */
     int nobjs, capobjs;
+    xmlHashTablePtr ids; /* id -> object, for every object with an id */
     char **files;     /* interned file names the objects point to */
     int nfiles;
 };

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/core.h"
 #include "scene_xml/scene_xml_internal.h"
 #include "scene_xml/spectrum.h"
 
@@ -78,9 +79,10 @@ static int parse_pairs(scene_ctx *c, int line, const char *name, const char *tex
 /* A spectrum file: one "wavelength value" pair per line; '#' starts a comment. */
 static int read_spectrum_file(scene_ctx *c, int line, const char *shown, const char *path, sample_list *s)
 {
-    FILE *f = fopen(path, "r");
+    char why[256];
+    FILE *f = input_open(path, INPUT_MAX_TEXT_BYTES, NULL, why, sizeof why);
     if (!f)
-        return scene_fail(c, line, "spectrum file '%s' not found (%s: %s)", shown, path, strerror(errno));
+        return scene_fail(c, line, "cannot read spectrum file '%s' (%s: %s)", shown, path, why);
     char buf[512];
     int lineno = 0, rc = 0;
     while (rc == 0 && fgets(buf, sizeof buf, f)) {

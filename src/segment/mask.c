@@ -8,8 +8,10 @@
 
 /* On x86-64 the build targets the baseline (SSE2); the whole-row filter
  * loops also get an AVX2 clone, picked at load time when the CPU has it
- * (GCC/Clang function multiversioning). No FMA: both clones round alike. */
-#if defined(__x86_64__) && defined(__GNUC__)
+ * (GCC function multiversioning; clang 14, which builds the fuzz targets,
+ * keeps a clone's resolver local to its file). No FMA: both clones round
+ * alike. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define RECON_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define RECON_VECTOR_CLONES

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/core.h"
 #include "shapes/shape_impl.h"
 
 typedef struct {
@@ -140,9 +141,10 @@ static float *to_floats(const dbuf *b, size_t n, size_t pad)
 
 static int obj_read(const char *path, bool flip_tex_coords, shape_mesh_data *m, char *err, size_t errlen)
 {
-    FILE *fp = fopen(path, "r");
+    char why[256];
+    FILE *fp = input_open(path, INPUT_MAX_DATA_BYTES, NULL, why, sizeof why);
     if (!fp) {
-        snprintf(err, errlen, "cannot open '%s': %s", path, strerror(errno));
+        snprintf(err, errlen, "'%s': %s", path, why);
         return -1;
     }
     dbuf v = {0}, vt = {0}, vn = {0}, tris = {0};

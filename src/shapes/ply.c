@@ -2,12 +2,12 @@
  * vertex x y z, optional nx ny nz and u v (or s t, texture_u texture_v),
  * faces as a list property vertex_indices (or vertex_index), fanned into
  * triangles. Other elements and properties are read and skipped. */
-#include <errno.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/core.h"
 #include "shapes/shape_impl.h"
 
 enum { PLY_MAX_PROPS = 32, PLY_MAX_ELEMS = 8 };
@@ -69,7 +69,9 @@ static int ply_value(FILE *fp, int binary, int type, double *out)
     return 0;
 }
 
-static int ply_header(FILE *fp, int *binary, ply_elem *elems, int *nelems)
+/* Every element takes at least one byte of the file's size, so a header
+ * cannot make the reader allocate more than the file could fill. */
+static int ply_header(FILE *fp, long long size, int *binary, ply_elem *elems, int *nelems)
 {
     char line[512], a[64], b[64], c[64], d[64];
     if (!fgets(line, sizeof line, fp) || strncmp(line, "ply", 3))
@@ -93,7 +95,7 @@ static int ply_header(FILE *fp, int *binary, ply_elem *elems, int *nelems)
             snprintf(e->name, sizeof e->name, "%s", b);
             char *end;
             e->count = strtol(c, &end, 10);
-            if (*end || e->count < 0)
+            if (*end || e->count < 0 || e->count > size)
                 return -1;
         } else if (!strcmp(a, "property") && *nelems > 0 && elems[*nelems - 1].nprops < PLY_MAX_PROPS) {
             ply_elem *e = &elems[*nelems - 1];
@@ -205,15 +207,17 @@ static int read_elements(FILE *fp, int binary, const ply_elem *elems, int nelems
 static int ply_read(const char *path, shape_mesh_data *m, char *err, size_t errlen)
 {
     memset(m, 0, sizeof *m);
-    FILE *fp = fopen(path, "rb");
+    char why[256];
+    long long size;
+    FILE *fp = input_open(path, INPUT_MAX_DATA_BYTES, &size, why, sizeof why);
     if (!fp) {
-        snprintf(err, errlen, "cannot open '%s': %s", path, strerror(errno));
+        snprintf(err, errlen, "'%s': %s", path, why);
         return -1;
     }
     ply_elem elems[PLY_MAX_ELEMS];
     int nelems = 0, binary = 0;
     size_t tri_cap = 0;
-    int rc = ply_header(fp, &binary, elems, &nelems);
+    int rc = ply_header(fp, size, &binary, elems, &nelems);
     if (rc != 0)
         snprintf(err, errlen, "'%s' is not a PLY file this reader knows (ascii or binary_little_endian)", path);
     else if ((rc = read_elements(fp, binary, elems, nelems, m, &tri_cap)) != 0)

@@ -15,6 +15,7 @@
 #include <string.h>
 #include <zlib.h>
 
+#include "core/core.h"
 #include "shapes/shape_impl.h"
 
 enum {
@@ -43,24 +44,15 @@ static uint64_t le(const unsigned char *b, int n)
 
 static int read_file(const char *path, serialized_reader *r, char *why, size_t whylen)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(why, whylen, "cannot open '%s': %s", path, strerror(errno));
+    char *buf, reason[256];
+    size_t len;
+    if (input_read_all(path, INPUT_MAX_DATA_BYTES, &buf, &len, reason, sizeof reason) != 0) {
+        snprintf(why, whylen, "cannot read '%s': %s", path, reason);
         return -1;
     }
-    int rc = -1;
-    if (fseek(f, 0, SEEK_END) == 0) {
-        long n = ftell(f);
-        r->file = n > 0 ? malloc((size_t)n) : NULL;
-        if (r->file && fseek(f, 0, SEEK_SET) == 0 && fread(r->file, 1, (size_t)n, f) == (size_t)n) {
-            r->size = (size_t)n;
-            rc = 0;
-        }
-    }
-    fclose(f);
-    if (rc != 0)
-        snprintf(why, whylen, "cannot read '%s'", path);
-    return rc;
+    r->file = (unsigned char *)buf;
+    r->size = len;
+    return 0;
 }
 
 /* The file offset of mesh index, from the dictionary at the end. */

@@ -197,23 +197,50 @@ static int fail(char *err, size_t errlen, const char *msg)
     return -1;
 }
 
+/* Fitted profiles may miss r >= 0 and h(0) = 0 by rounding: within this of
+ * the profile's extent they are snapped, beyond that rejected. */
+static double snap_distance(const bspline_t *profile)
+{
+    double ext = 0.0;
+    for (int i = 0; i < profile->n_ctrl; i++)
+        ext = fmax(ext, fmax(fabs(profile->ctrl[i].x), fabs(profile->ctrl[i].y)));
+    return 1e-9 * ext;
+}
+
+const char *sor_profile_check(const bspline_t *profile)
+{
+    const char *why = bspline_validate(profile);
+    if (why)
+        return why;
+    if (profile->degree != 3)
+        return "must be a cubic B-spline";
+    for (int i = 0; i < profile->n_ctrl; i++)
+        if (fabs(profile->ctrl[i].x) > SOR_PROFILE_MAX_COORD || fabs(profile->ctrl[i].y) > SOR_PROFILE_MAX_COORD)
+            return "a control point lies beyond 1e9 px";
+    bezier3_t *bz;
+    int n = bspline_to_bezier(profile, &bz);
+    if (n <= 0)
+        return "out of memory";
+    double snap = snap_distance(profile), h1 = bz[n - 1].p[3].y;
+    why = !(fabs(bz[0].p[0].y) <= snap) || !(h1 > snap) ? "need h(0) = 0 < h(1)"
+          : h1 < SOR_PROFILE_MIN_HEIGHT                 ? "the profile is less than 1e-6 px high"
+                                                        : NULL;
+    for (int j = 0; j < n && !why; j++)
+        for (int k = 0; k < 4 && !why; k++)
+            if (!(bz[j].p[k].x >= -snap))
+                why = "r < 0: the profile crosses the axis";
+    free(bz);
+    return why;
+}
+
 /* Scaled Bézier pieces of the profile into s->bez, and the object's extent. */
 static int load_profile(sor_t *s, const bspline_t *profile, char *err, size_t errlen)
 {
     bezier3_t *bz;
     int n = bspline_to_bezier(profile, &bz);
     if (n <= 0)
-        return fail(err, errlen, "profile: cannot split into Bezier pieces");
-    /* Fitted profiles may miss r >= 0 and h(0) = 0 by rounding: within 1e-9 of
-     * the profile's extent they are snapped, beyond that rejected. */
-    double ext = 0.0;
-    for (int i = 0; i < profile->n_ctrl; i++)
-        ext = fmax(ext, fmax(fabs(profile->ctrl[i].x), fabs(profile->ctrl[i].y)));
-    double snap = 1e-9 * ext, h1 = bz[n - 1].p[3].y;
-    if (!(fabs(bz[0].p[0].y) <= snap) || !(h1 > snap)) {
-        free(bz);
-        return fail(err, errlen, "profile: need h(0) = 0 < h(1)");
-    }
+        return fail(err, errlen, "out of memory");
+    double h1 = bz[n - 1].p[3].y;
     bz[0].p[0].y = 0.0;
     s->scale = s->height / h1;
     s->bez = calloc((size_t)n, sizeof *s->bez);
@@ -226,10 +253,6 @@ static int load_profile(sor_t *s, const bspline_t *profile, char *err, size_t er
     for (int j = 0; j < n; j++) {
         sor_piece *pc = &s->bez[j];
         for (int k = 0; k < 4; k++) {
-            if (!(bz[j].p[k].x >= -snap)) {
-                free(bz);
-                return fail(err, errlen, "profile: control point with r < 0");
-            }
             bz[j].p[k].x = fmax(bz[j].p[k].x, 0.0);
             /* Shared joints stay bit-identical: the same doubles times the same scale. */
             pc->r[k] = bz[j].p[k].x * s->scale;
@@ -398,13 +421,9 @@ static int build_tree(sor_t *s, const int *iv_of_leaf)
 
 sor_t *sor_create(const bspline_t *profile, double height, unsigned caps, char *err, size_t errlen)
 {
-    const char *why = bspline_validate(profile);
+    const char *why = sor_profile_check(profile);
     if (why) {
-        fail(err, errlen, why);
-        return NULL;
-    }
-    if (profile->degree != 3) {
-        fail(err, errlen, "profile: must be a cubic B-spline");
+        snprintf(err, errlen, "profile: %s", why);
         return NULL;
     }
     if (!(height > 0.0) || !isfinite(height)) {

@@ -2,6 +2,7 @@
 
 #include <criterion/criterion.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,7 +40,26 @@ static char *slurp_and_remove(const char *path)
     return buf;
 }
 
-cli_result cli_run_argv(const char *scratch_dir, const char *const *argv)
+/* Waits for pid, killing it after seconds (0: no limit); 0, or -1 when killed. */
+static int wait_within(pid_t pid, double seconds, int *status)
+{
+    for (double waited = 0.0;; waited += 0.01) {
+        pid_t got = waitpid(pid, status, seconds > 0.0 ? WNOHANG : 0);
+        cr_assert_geq(got, 0);
+        if (got == pid)
+            return 0;
+        if (waited >= seconds) {
+            kill(pid, SIGKILL);
+            waitpid(pid, status, 0);
+            return -1;
+        }
+        usleep(10000);
+    }
+}
+
+/* cli_run_argv, failing the test when the program has not finished after
+ * seconds (0: no limit). */
+static cli_result run_argv_within(const char *scratch_dir, const char *const *argv, double seconds)
 {
     char out_path[512], err_path[512];
     snprintf(out_path, sizeof out_path, "%s/cli-stdout.txt", scratch_dir);
@@ -53,15 +73,21 @@ cli_result cli_run_argv(const char *scratch_dir, const char *const *argv)
                  argv[0]);
     posix_spawn_file_actions_destroy(&fa);
     int status;
-    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    int killed = wait_within(pid, seconds, &status);
     cli_result r = {0, slurp_and_remove(out_path), slurp_and_remove(err_path)};
+    cr_assert(!killed, "%s did not finish within %.0f s", argv[0], seconds);
     cr_assert(WIFEXITED(status), "%s died from signal %d; stderr: %s", argv[0],
               WIFSIGNALED(status) ? WTERMSIG(status) : 0, r.err);
     r.status = WEXITSTATUS(status);
     return r;
 }
 
-cli_result cli_run(const char *scratch_dir, const char *const *args)
+cli_result cli_run_argv(const char *scratch_dir, const char *const *argv)
+{
+    return run_argv_within(scratch_dir, argv, 0.0);
+}
+
+cli_result cli_run_within(const char *scratch_dir, const char *const *args, double seconds)
 {
     const char *argv[64];
     int n = 0;
@@ -69,8 +95,10 @@ cli_result cli_run(const char *scratch_dir, const char *const *args)
     for (; *args && n < 63; args++)
         argv[n++] = *args;
     argv[n] = NULL;
-    return cli_run_argv(scratch_dir, argv);
+    return run_argv_within(scratch_dir, argv, seconds);
 }
+
+cli_result cli_run(const char *scratch_dir, const char *const *args) { return cli_run_within(scratch_dir, args, 0.0); }
 
 void cli_result_free(cli_result *r)
 {

@@ -16,6 +16,9 @@ const char *cli_bin(void);
  * through files in scratch_dir. Fails the test if the child is killed by a
  * signal (a crash is never an acceptable answer to any input). */
 cli_result cli_run(const char *scratch_dir, const char *const *args);
+/* cli_run that also fails the test (and kills the child) when the command
+ * has not finished after the given seconds: for inputs that used to hang. */
+cli_result cli_run_within(const char *scratch_dir, const char *const *args, double seconds);
 /* The same for any program: argv[0] is looked up in PATH (e.g. mpirun). */
 cli_result cli_run_argv(const char *scratch_dir, const char *const *argv);
 void cli_result_free(cli_result *r);

@@ -1,0 +1,288 @@
+/* Faults (issue 15, docs/faults.md): SIGINT and SIGTERM at moments spread
+ * over a render and over a batch reconstruct leave complete outputs or
+ * none, and never a temporary; a full disk (a small tmpfs, where the test
+ * may mount one) leaves nothing half-written and exits 1. */
+#include <criterion/criterion.h>
+#include <dirent.h>
+#include <fcntl.h>
+#include <ftw.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mount.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "celadon/image.h"
+#include "celadon/profile.h"
+#include "support/cli_run.h"
+#include "support/scratch_dir.h"
+#include "support/synth_vessel.h"
+
+extern char **environ;
+
+static char dir[256];
+
+static void open_dir(void) { scratch_dir_make(dir, sizeof dir, "faults"); }
+static void close_dir(void) { scratch_dir_remove(dir); }
+
+TestSuite(faults, .init = open_dir, .fini = close_dir);
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+/* Starts celadon ARGS with its output thrown away. */
+static pid_t start(const char *const *args)
+{
+    const char *argv[32] = {cli_bin()};
+    int n = 1;
+    for (; *args && n < 31; args++)
+        argv[n++] = *args;
+    argv[n] = NULL;
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+    pid_t pid;
+    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, (char *const *)argv, environ), 0);
+    posix_spawn_file_actions_destroy(&fa);
+    return pid;
+}
+
+/* Runs celadon ARGS to the end; its wall time, seconds. */
+static double time_run(const char *const *args)
+{
+    double t0 = now();
+    int status;
+    cr_assert_eq(waitpid(start(args), &status, 0) > 0, 1);
+    cr_assert(WIFEXITED(status) && WEXITSTATUS(status) == 0, "the uninterrupted run failed (status %d)", status);
+    return now() - t0;
+}
+
+/* Runs celadon ARGS, sends sig after delay seconds; the wait status. */
+static int run_interrupted(const char *const *args, double delay, int sig)
+{
+    pid_t pid = start(args);
+    struct timespec ts = {(time_t)delay, (long)((delay - (time_t)delay) * 1e9)};
+    nanosleep(&ts, NULL);
+    kill(pid, sig);
+    int status;
+    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    return status;
+}
+
+static int temporaries;
+
+static int is_temporary(const char *name)
+{
+    return strstr(name, ".tmp-") || strstr(name, ".celadon-tmp-") || strstr(name, ".celadon-museum-");
+}
+
+static int count_temporary(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st, (void)flag;
+    if (is_temporary(path + ftw->base)) {
+        cr_log_error("left behind: %s", path);
+        temporaries++;
+    }
+    return 0;
+}
+
+/* Temporaries anywhere under root. */
+static int temporaries_under(const char *root)
+{
+    temporaries = 0;
+    nftw(root, count_temporary, 16, FTW_PHYS);
+    return temporaries;
+}
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+static void remove_tree(const char *path) { nftw(path, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
+
+/* Whatever exit: 130 from render's own Ctrl-C, death by the signal, or 0
+ * when the signal came after the work; never a crash of another kind. */
+static void expect_signal_outcome(int status, int sig)
+{
+    cr_expect((WIFEXITED(status) && (WEXITSTATUS(status) == 0 || WEXITSTATUS(status) == 130)) ||
+                  (WIFSIGNALED(status) && WTERMSIG(status) == sig),
+              "signal %d gave status %#x", sig, status);
+}
+
+/* The delays: spread over the uninterrupted run's time t, the last ones
+ * near its end, where the outputs are written. */
+#define TRIALS 8
+static double delay_of(int k, double t)
+{
+    static const double at[TRIALS] = {0.05, 0.3, 0.55, 0.75, 0.85, 0.92, 0.97, 1.0};
+    return at[k] * t;
+}
+
+static const char scene_xml[] =
+    "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
+    "<lookat origin=\"0,0,4\" target=\"0,0,0\" up=\"0,1,0\"/></transform></sensor>"
+    "<emitter type=\"constant\"><rgb name=\"radiance\" value=\"1,1,1\"/></emitter>"
+    "<shape type=\"sphere\"><bsdf type=\"diffuse\"/></shape></scene>\n";
+
+static void write_scene(char *path, size_t len)
+{
+    snprintf(path, len, "%s/scene.xml", dir);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs(scene_xml, f);
+    fclose(f);
+}
+
+Test(faults, signals_during_a_render_leave_the_image_whole_or_none, .timeout = 300)
+{
+    char scene[300], out_dir[300], out[320];
+    write_scene(scene, sizeof scene);
+    snprintf(out_dir, sizeof out_dir, "%s/render", dir);
+    for (int k = 0; k < 2 * TRIALS + 1; k++) {
+        const char *ext = k % 2 ? "exr" : "png";
+        remove_tree(out_dir);
+        cr_assert_eq(mkdir(out_dir, 0777), 0);
+        snprintf(out, sizeof out, "%s/out.%s", out_dir, ext);
+        const char *args[] = {"render", scene, "-o", out, "--res", "128x128", "--spp", "32", NULL};
+        static double t;
+        if (k == 0) {
+            t = time_run(args);
+            continue;
+        }
+        int sig = k % 4 < 2 ? SIGINT : SIGTERM;
+        expect_signal_outcome(run_interrupted(args, delay_of((k - 1) / 2, t), sig), sig);
+        cr_expect_eq(temporaries_under(out_dir), 0, "after signal %d at %.2f s", sig, delay_of((k - 1) / 2, t));
+        if (access(out, F_OK) == 0) {
+            image_t img;
+            char why[512];
+            cr_expect_eq(image_read(out, &img, why, sizeof why), 0, "%s is not whole: %s", out, why);
+            if (img.data)
+                cr_expect(img.width == 128 && img.height == 128);
+            image_free(&img);
+        }
+    }
+}
+
+static void draw_photo(const char *name, synth_shape shape)
+{
+    synth_params p = synth_defaults(shape, 400, 520);
+    p.textured = 1;
+    p.subrows = 4;
+    image_t img;
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    char path[320], err[256];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    cr_assert_eq(synth_write(path, &img, 8, err, sizeof err), 0, "%s", err);
+    image_free(&img);
+}
+
+/* Every folder of a batch's output holds the six outputs, whole. */
+static void expect_whole_vessels(const char *out)
+{
+    DIR *d = opendir(out);
+    if (!d)
+        return;
+    for (struct dirent *e; (e = readdir(d));) {
+        if (e->d_name[0] == '.')
+            continue;
+        char sub[600], path[700], err[512];
+        snprintf(sub, sizeof sub, "%s/%s", out, e->d_name);
+        int n = 0;
+        DIR *s = opendir(sub);
+        cr_assert_not_null(s, "%s is not a folder", sub);
+        for (struct dirent *f; (f = readdir(s));)
+            n += f->d_name[0] != '.';
+        closedir(s);
+        cr_expect_eq(n, 6, "%s holds %d files, not the six outputs", sub, n);
+        snprintf(path, sizeof path, "%s/profile.json", sub);
+        profile_t p;
+        if (n == 6) {
+            int rc = profile_read_json(path, &p, err, sizeof err);
+            cr_expect_eq(rc, 0, "%s: %s", path, err);
+            if (rc == 0)
+                profile_free(&p);
+        }
+    }
+    closedir(d);
+}
+
+Test(faults, signals_during_a_batch_reconstruct_leave_whole_vessels_or_none, .timeout = 300)
+{
+    char a[300], b[300], c[300], out[300];
+    draw_photo("a.png", SYNTH_VASE);
+    draw_photo("b.png", SYNTH_BOTTLE);
+    draw_photo("c.png", SYNTH_BOWL);
+    snprintf(a, sizeof a, "%s/a.png", dir);
+    snprintf(b, sizeof b, "%s/b.png", dir);
+    snprintf(c, sizeof c, "%s/c.png", dir);
+    snprintf(out, sizeof out, "%s/vessels", dir);
+    const char *args[] = {"reconstruct", a, b, c, "-o", out, NULL};
+    double t = time_run(args);
+    expect_whole_vessels(out);
+    for (int k = 0; k < 2 * TRIALS; k++) {
+        remove_tree(out);
+        if (k % 4 >= 2) /* into an existing folder too: published file by file */
+            cr_assert_eq(mkdir(out, 0777), 0);
+        int sig = k % 2 ? SIGTERM : SIGINT;
+        expect_signal_outcome(run_interrupted(args, delay_of(k / 2, t), sig), sig);
+        cr_expect_eq(temporaries_under(dir), 0, "after signal %d at %.2f s", sig, delay_of(k / 2, t));
+        expect_whole_vessels(out);
+    }
+}
+
+/* A tmpfs of 64 KiB at dir/full; 0, or -1 when this process may not mount. */
+static int mount_small_disk(char *mnt, size_t len)
+{
+    snprintf(mnt, len, "%s/full", dir);
+    cr_assert_eq(mkdir(mnt, 0777), 0);
+    return mount("tmpfs", mnt, "tmpfs", 0, "size=64k");
+}
+
+static int is_empty(const char *path)
+{
+    DIR *d = opendir(path);
+    cr_assert_not_null(d);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));)
+        n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
+    closedir(d);
+    return n == 0;
+}
+
+Test(faults, a_full_disk_leaves_nothing_half_written, .timeout = 300)
+{
+    char mnt[300];
+    if (mount_small_disk(mnt, sizeof mnt) != 0)
+        cr_skip_test("cannot mount a tmpfs here (needs root): the disk-full case is not tested");
+    char scene[300], out[400], photo[300];
+    write_scene(scene, sizeof scene);
+    draw_photo("a.png", SYNTH_VASE);
+    snprintf(photo, sizeof photo, "%s/a.png", dir);
+
+    /* An EXR of 256 x 256 floats (about 600 KiB) cannot fit. */
+    snprintf(out, sizeof out, "%s/out.exr", mnt);
+    cli_result r = cli_run(dir, (const char *[]){"render", scene, "-o", out, "--res", "256x256", "--spp", "1", NULL});
+    cr_expect_eq(r.status, 1, "render onto a full disk exited %d: %s", r.status, r.err);
+    cr_expect_not_null(strstr(r.err, "No space left on device"), "%s", r.err);
+    cr_expect(is_empty(mnt), "render left files on the full disk");
+    cli_result_free(&r);
+
+    snprintf(out, sizeof out, "%s/vessel", mnt);
+    r = cli_run(dir, (const char *[]){"reconstruct", photo, "-o", out, NULL});
+    cr_expect_eq(r.status, 1, "reconstruct onto a full disk exited %d: %s", r.status, r.err);
+    cr_expect(is_empty(mnt), "reconstruct left files on the full disk");
+    cli_result_free(&r);
+    umount(mnt);
+}
