@@ -161,6 +161,11 @@ build/bench/bench_recon: bench/bench_recon.c tests/support/synth_vessel.c build/
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_recon.c tests/support/synth_vessel.c build/opt/libceladon.a $(LDLIBS)
 
+# bench_perspective reads the synth-dev photos' truth with the test helper.
+build/bench/bench_perspective: bench/bench_perspective.c tests/support/synthdev_truth.c build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_perspective.c tests/support/synthdev_truth.c build/opt/libceladon.a $(LDLIBS)
+
 bench: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon $(BENCH_BIN)
 	@mkdir -p out/bench

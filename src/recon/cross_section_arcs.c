@@ -1,0 +1,176 @@
+/* The outline's top and bottom arcs, sub-pixel (recon_camera_internal.h).
+ *
+ * Between the rim corners the outline is the image of the rim circle, between
+ * the base corners that of the base circle: nearly horizontal arcs, which
+ * recon_extract's row-wise silhouettes do not cover. Each pixel column is
+ * measured like a silhouette row (recon_subpixel_edge: the area-based edge
+ * of the anti-aliased ramp), on a copy of the column's signal. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "recon/photo_sample.h"
+#include "recon/recon_camera_internal.h"
+#include "recon/recon_internal.h"
+
+/* Columns this far inside the corners are left out: the corner is where the
+ * wall's outline meets the arc, found within a few pixels. */
+#define CORNER_MARGIN_PX 3.0
+#define CORNER_MARGIN_FRAC 0.02
+
+/* The signal recon_extract measures edges on: alpha when the mask came from
+ * it, else Rec.601 luminance of the encoded values. */
+static void column_signal(const image_t *img, int alpha, int i, float *col)
+{
+    int C = img->channels;
+    for (int j = 0; j < img->height; j++) {
+        const float *p = img->data + ((size_t)j * img->width + i) * C;
+        col[j] = alpha ? p[C - 1] : C >= 3 ? 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2] : p[0];
+    }
+}
+
+/* The mask's outermost object row in column i, from the top (side -1) or
+ * the bottom (+1); -1 when the column is empty. */
+static int extreme_row(const recon_result *res, int i, int side)
+{
+    for (int k = 0; k < res->height; k++) {
+        int j = side < 0 ? k : res->height - 1 - k;
+        if (res->mask[(size_t)j * res->width + i])
+            return j;
+    }
+    return -1;
+}
+
+/* The outermost object pixel of column col near the mask's extreme row
+ * `here`, on side (-1 up, +1 down): the outermost step between neighbouring
+ * pixels of at least a third of the largest step within 20 px inside and
+ * 40 px outside the mask. A soft floor shadow that the mask took in, or a
+ * mask cut short by a shadow trim, moves the mask's edge by several pixels;
+ * the silhouette is the sharp step, the shadow a gentle ramp. */
+static int outermost_step(const float *col, int h, int here, int side)
+{
+    int j_in = here - side * 20, j_out = here + side * 40;
+    j_in = j_in < 1 ? 1 : j_in > h - 2 ? h - 2 : j_in;
+    j_out = j_out < 1 ? 1 : j_out > h - 2 ? h - 2 : j_out;
+    double big = 0;
+    for (int j = j_in; j != j_out + side; j += side)
+        big = fmax(big, fabs(col[j] - col[j - side]));
+    for (int j = j_out; j != j_in - side; j -= side)
+        if (fabs(col[j] - col[j - side]) >= big / 3)
+            return j - side;
+    return here;
+}
+
+/* One arc: columns strictly between the corners' x (less the margin). */
+static int trace_arc(const image_t *img, const recon_result *res, vec2 c0, vec2 c1, int side, float *col,
+                     int *edge_row, vec2 *out)
+{
+    double lo = fmin(c0.x, c1.x), hi = fmax(c0.x, c1.x);
+    double margin = fmax(CORNER_MARGIN_PX, CORNER_MARGIN_FRAC * (hi - lo));
+    int i0 = (int)ceil(lo + margin), i1 = (int)floor(hi - margin - 1);
+    i0 = i0 < 1 ? 1 : i0;
+    i1 = i1 > res->width - 2 ? res->width - 2 : i1;
+    int alpha = res->mask_mode == RECON_MASK_ALPHA, h = res->height;
+    /* As recon_extract: half the mask threshold (at least 3/255) tells the
+     * object from background noise. */
+    double delta = alpha ? 0.05 : fmax(0.5 * res->threshold_used, 3.0) / 255;
+    for (int i = i0; i <= i1; i++) {
+        int here = extreme_row(res, i, side);
+        if (here >= 0) {
+            column_signal(img, alpha, i, col);
+            here = outermost_step(col, h, here, side);
+        }
+        edge_row[i - i0] = here;
+    }
+    int n = 0;
+    for (int i = i0; i <= i1; i++) {
+        int here = edge_row[i - i0];
+        if (here < 0)
+            continue;
+        /* The arc's slope (rows per column) from the neighbouring columns. */
+        double slope = 0;
+        if (i > i0 && edge_row[i - i0 - 1] >= 0)
+            slope = fabs((double)(edge_row[i - i0 - 1] - here));
+        if (i < i1 && edge_row[i - i0 + 1] >= 0)
+            slope = fmax(slope, fabs((double)(edge_row[i - i0 + 1] - here)));
+        column_signal(img, alpha, i, col);
+        recon_edge e = recon_subpixel_edge(col, h, 1, 0, here, side, slope, delta);
+        if (e.ok)
+            out[n++] = v2(i + 0.5, e.x);
+    }
+    return n;
+}
+
+int recon_outline_arcs(const image_t *img, const recon_result *res, vec2 **top, int *n_top, vec2 **bottom,
+                       int *n_bottom)
+{
+    *top = malloc((size_t)res->width * sizeof **top);
+    *bottom = malloc((size_t)res->width * sizeof **bottom);
+    float *col = malloc((size_t)res->height * sizeof *col);
+    int *edge_row = malloc((size_t)res->width * sizeof *edge_row);
+    if (!*top || !*bottom || !col || !edge_row) {
+        free(*top);
+        free(*bottom);
+        free(col);
+        free(edge_row);
+        *top = *bottom = NULL;
+        return -1;
+    }
+    *n_top = trace_arc(img, res, res->corners[CORNER_RIM_LEFT], res->corners[CORNER_RIM_RIGHT], -1, col, edge_row,
+                       *top);
+    *n_bottom = trace_arc(img, res, res->corners[CORNER_BASE_LEFT], res->corners[CORNER_BASE_RIGHT], 1, col,
+                          edge_row, *bottom);
+    free(col);
+    free(edge_row);
+    return 0;
+}
+
+/* Luminance of the photo at a camera-frame point. */
+static double frame_luma(const image_t *img, const recon_camera *cam, double u, double w)
+{
+    float rgb[3];
+    recon_sample_rgb(img, recon_camera_to_image(cam, v2(u, w)), rgb);
+    return 0.299 * rgb[0] + 0.587 * rgb[1] + 0.114 * rgb[2];
+}
+
+static int by_value(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, by_value);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int recon_rim_near_arc_visible(const image_t *img, const recon_result *res, const recon_camera *cam,
+                               const recon_ellipse *rim)
+{
+    (void)res;
+    enum { SAMPLES = 64 };
+    /* The near half must lie clear of the outline's far half (4 px between
+     * them at the centre) and of the difference's reach (1 px each way). */
+    if (!(rim->b >= 2.0) || !(rim->a >= 20.0))
+        return -1;
+    double at[SAMPLES], ref[2][SAMPLES], sgn[SAMPLES];
+    for (int k = 0; k < SAMPLES; k++) {
+        double u = rim->a * 0.7 * (2.0 * (k + 0.5) / SAMPLES - 1);
+        double w = rim->w0 - rim->b * sqrt(1 - (u / rim->a) * (u / rim->a));
+        at[k] = frame_luma(img, cam, u, w + 1) - frame_luma(img, cam, u, w - 1);
+        sgn[k] = at[k];
+        for (int r = 0; r < 2; r++) {
+            double wr = w - 3.0 * (r + 1); /* into the wall below the near arc */
+            ref[r][k] = fabs(frame_luma(img, cam, u, wr + 1) - frame_luma(img, cam, u, wr - 1));
+        }
+        at[k] = fabs(at[k]);
+    }
+    double m_sign = median(sgn, SAMPLES);
+    int agree = 0;
+    for (int k = 0; k < SAMPLES; k++)
+        agree += sgn[k] * m_sign > 0;
+    double edge = median(at, SAMPLES), quiet = fmax(median(ref[0], SAMPLES), median(ref[1], SAMPLES));
+    /* An edge: three times the wall's own gradient, at least 4/255 over two
+     * pixels, and of one sign along three quarters of the arc. */
+    return edge > 3 * quiet && edge > 4.0 / 255 && agree >= 3 * SAMPLES / 4;
+}
