@@ -431,9 +431,13 @@ int recon_camera_solve(const image_t *img, const recon_result *res, const recon_
     }
     double sigma_e = INFINITY;
     int ok = 0;
-    /* The rectification depends on f: repeat until f settles (once when the
-     * imaged axis already passes through the principal point). */
+    /* The rectification depends on f: repeat until f settles. A yaw moves
+     * the principal point off the imaged axis by d px; a relative change
+     * df/f of the focal length moves the rectified points by about
+     * d (x/f)^2 df/f, x up to the half diagonal. */
     double f_rect = f_given > 0 ? f_given : 2.0 * hypot(img->width, img->height);
+    vec2 d = res->axis_direction, rel = v2_sub(cam->principal_point, res->axis_origin);
+    double off = fabs(v2_cross(d, rel)), half_diag = 0.5 * hypot(img->width, img->height);
     for (int it = 0; it < 6; it++) {
         set_frame_perspective(cam, res, f_rect);
         cam->focal_px = 0;
@@ -449,7 +453,8 @@ int recon_camera_solve(const image_t *img, const recon_result *res, const recon_
             break;
         }
         ok = focal_from_ellipses(img, res, cam, &sigma_e) == 0;
-        if (!ok || fabs(cam->focal_px - f_rect) < 1e-6 * f_rect)
+        double x = half_diag / cam->focal_px;
+        if (!ok || off * x * x * fabs(cam->focal_px - f_rect) / cam->focal_px < 0.01)
             break;
         f_rect = cam->focal_px;
     }

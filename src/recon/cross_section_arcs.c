@@ -17,14 +17,15 @@
 #define CORNER_MARGIN_PX 3.0
 #define CORNER_MARGIN_FRAC 0.02
 
-/* The signal recon_extract measures edges on: alpha when the mask came from
- * it, else Rec.601 luminance of the encoded values. */
-static void column_signal(const image_t *img, int alpha, int i, float *col)
+/* Rows j0..j1 of column i of the signal recon_extract measures edges on:
+ * alpha when the mask came from it, else Rec.601 luminance of the encoded
+ * values. */
+static void column_signal(const image_t *img, int alpha, int i, int j0, int j1, float *col)
 {
     int C = img->channels;
-    for (int j = 0; j < img->height; j++) {
+    for (int j = j0; j <= j1; j++) {
         const float *p = img->data + ((size_t)j * img->width + i) * C;
-        col[j] = alpha ? p[C - 1] : C >= 3 ? 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2] : p[0];
+        col[j - j0] = alpha ? p[C - 1] : C >= 3 ? 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2] : p[0];
     }
 }
 
@@ -40,17 +41,20 @@ static int extreme_row(const recon_result *res, int i, int side)
     return -1;
 }
 
-/* The outermost object pixel of column col near the mask's extreme row
+/* The outermost object row of column i near the mask's extreme row
  * `here`, on side (-1 up, +1 down): the outermost step between neighbouring
  * pixels of at least a third of the largest step within 20 px inside and
  * 40 px outside the mask. A soft floor shadow that the mask took in, or a
  * mask cut short by a shadow trim, moves the mask's edge by several pixels;
  * the silhouette is the sharp step, the shadow a gentle ramp. */
-static int outermost_step(const float *col, int h, int here, int side)
+static int outermost_step(const image_t *img, int alpha, int i, int here, int side, float *col)
 {
-    int j_in = here - side * 20, j_out = here + side * 40;
+    int h = img->height, j_in = here - side * 20, j_out = here + side * 40;
     j_in = j_in < 1 ? 1 : j_in > h - 2 ? h - 2 : j_in;
     j_out = j_out < 1 ? 1 : j_out > h - 2 ? h - 2 : j_out;
+    int j0 = (j_in < j_out ? j_in : j_out) - 1, j1 = (j_in < j_out ? j_out : j_in) + 1;
+    column_signal(img, alpha, i, j0, j1, col);
+    col -= j0; /* indexed by row from here on */
     double big = 0;
     for (int j = j_in; j != j_out + side; j += side)
         big = fmax(big, fabs(col[j] - col[j - side]));
@@ -75,11 +79,7 @@ static int trace_arc(const image_t *img, const recon_result *res, vec2 c0, vec2 
     double delta = alpha ? 0.05 : fmax(0.5 * res->threshold_used, 3.0) / 255;
     for (int i = i0; i <= i1; i++) {
         int here = extreme_row(res, i, side);
-        if (here >= 0) {
-            column_signal(img, alpha, i, col);
-            here = outermost_step(col, h, here, side);
-        }
-        edge_row[i - i0] = here;
+        edge_row[i - i0] = here >= 0 ? outermost_step(img, alpha, i, here, side, col) : -1;
     }
     int n = 0;
     for (int i = i0; i <= i1; i++) {
@@ -92,10 +92,14 @@ static int trace_arc(const image_t *img, const recon_result *res, vec2 c0, vec2 
             slope = fabs((double)(edge_row[i - i0 - 1] - here));
         if (i < i1 && edge_row[i - i0 + 1] >= 0)
             slope = fmax(slope, fabs((double)(edge_row[i - i0 + 1] - here)));
-        column_signal(img, alpha, i, col);
-        recon_edge e = recon_subpixel_edge(col, h, 1, 0, here, side, slope, delta);
+        /* The rows recon_subpixel_edge may read: |slope| + 12 beyond and a
+         * few inside. */
+        int reach = (int)slope + 16, j0 = here - reach < 0 ? 0 : here - reach;
+        int j1 = here + reach > h - 1 ? h - 1 : here + reach;
+        column_signal(img, alpha, i, j0, j1, col);
+        recon_edge e = recon_subpixel_edge(col, j1 - j0 + 1, 1, 0, here - j0, side, slope, delta);
         if (e.ok)
-            out[n++] = v2(i + 0.5, e.x);
+            out[n++] = v2(i + 0.5, j0 + e.x);
     }
     return n;
 }
