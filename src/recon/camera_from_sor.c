@@ -354,11 +354,11 @@ static int fit_arcs(recon_camera *cam, const vec2 *top, int n_top, const vec2 *b
 {
     for (int i = 0; i < n_top; i++)
         work[i] = recon_camera_to_frame(cam, top[i]);
-    if (recon_fit_axis_ellipse(work, n_top, &cam->rim))
+    if (recon_fit_axis_ellipse(work, n_top, 1, &cam->rim)) /* the rim's upper half */
         return -1;
     for (int i = 0; i < n_bottom; i++)
         work[i] = recon_camera_to_frame(cam, bottom[i]);
-    return recon_fit_axis_ellipse(work, n_bottom, &cam->base);
+    return recon_fit_axis_ellipse(work, n_bottom, -1, &cam->base); /* the base's lower half */
 }
 
 /* Focal length and pitch from the ellipses alone. The two candidates are

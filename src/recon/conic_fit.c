@@ -30,6 +30,7 @@ enum { RANSAC_TRIALS = 300, START_COUNT = 2, IRLS_STEPS = 100 };
 #define TUKEY_C 4.685   /* Tukey's biweight constant: 95% efficiency at the normal */
 #define MAD_TO_SIGMA 1.4826
 #define MIN_SIGMA_PX 0.01 /* scale floor: exact data must not shrink the band to nothing */
+#define F_CURVED 20.0     /* an ellipse, not a line: F(2, m) beyond p = 1e-8 for any m over 40 */
 
 /* Root s of F(s) = (r0 z0 / (s + r0))^2 + (z1 / (s + 1))^2 - 1 (Eberly,
  * "Distance from a point to an ellipse"), bracketed by [z1 - 1, |(r0 z0,
@@ -152,17 +153,6 @@ static double msac_cost(const vec2 *p, int n, double w0, double a, double b, dou
     return cost;
 }
 
-/* The same with the orthogonal distance: how the refined candidates compare. */
-static double msac_cost_exact(const vec2 *p, int n, const double th[3], double tol)
-{
-    double cost = 0;
-    for (int i = 0; i < n; i++) {
-        double d = recon_ellipse_distance(th[0], th[1], th[2], p[i], NULL);
-        cost += fmin(d * d, tol * tol);
-    }
-    return cost;
-}
-
 /* Median of |v[0..n)| (v is reordered). */
 static double median_abs(double *v, int n)
 {
@@ -214,21 +204,6 @@ static int solve3(const double M[3][3], const double y[3], double x[3], double i
         }
     }
     return 1;
-}
-
-/* Residual (signed orthogonal distance) and its gradient in (w0, a, b):
- * moving the ellipse by a parameter step moves the curve along its normal
- * by dF/dtheta / |grad F| at the foot point, F = (u/a)^2 + ((w-w0)/b)^2 - 1. */
-static double residual(double w0, double a, double b, vec2 p, double J[3])
-{
-    vec2 q;
-    double d = recon_ellipse_distance(w0, a, b, p, &q);
-    double qu = q.x, qv = q.y - w0;
-    double g = 2 * hypot(qu / (a * a), qv / (b * b));
-    J[0] = -2 * qv / (b * b) / g;
-    J[1] = -2 * qu * qu / (a * a * a) / g;
-    J[2] = -2 * qv * qv / (b * b * b) / g;
-    return d;
 }
 
 /* The symmetric conic minimising the algebraic error over the points
@@ -323,45 +298,56 @@ static int start_fits(const vec2 *p, int n, double th[START_COUNT][3])
     return found;
 }
 
-/* The line w = w0 through the inliers (a degenerate ellipse). */
-static void fit_line(const vec2 *p, int n, double *r, recon_ellipse *e)
+/* An arc and the half of the ellipse it lies on (+1 upper: w >= w0, -1
+ * lower, 0 either). */
+typedef struct {
+    const vec2 *p;
+    int n, half;
+} arc;
+
+/* Signed distance of p from the arc's half of the ellipse th = (w0, a, b),
+ * positive on its convex side, and (J not NULL) its gradient in th. On the
+ * right side this is the distance from the whole ellipse. A point across
+ * the centre line by delta (noise on a nearly flat arc) is measured as its
+ * mirror image, less 2 delta: the distance to the half, not to the other
+ * half, which would let a flat ellipse of height 2b swallow the noise of a
+ * straight arc. Moving the curve by a parameter step moves it along its
+ * normal by dF/dtheta / |grad F| at the foot point, F = (u/a)^2 + ((w -
+ * w0)/b)^2 - 1; a mirrored point also moves with w0. */
+static double half_distance(const double th[3], int half, vec2 p, double J[3])
 {
-    for (int i = 0; i < n; i++)
-        r[i] = p[i].y;
-    double med = n ? (gsl_sort(r, 1, (size_t)n), r[n / 2]) : 0;
-    for (int i = 0; i < n; i++)
-        r[i] = p[i].y - med;
-    double sigma = fmax(MAD_TO_SIGMA * median_abs(r, n), MIN_SIGMA_PX);
-    double sum = 0, umax = 0, ss = 0, dmax = 0;
-    int m = 0;
-    for (int i = 0; i < n; i++)
-        if (fabs(p[i].y - med) <= 3 * sigma) {
-            sum += p[i].y;
-            m++;
-        }
-    double w0 = m ? sum / m : med;
-    for (int i = 0; i < n; i++)
-        if (fabs(p[i].y - med) <= 3 * sigma) {
-            double d = p[i].y - w0;
-            ss += d * d;
-            dmax = fmax(dmax, fabs(d));
-            umax = fmax(umax, fabs(p[i].x));
-        }
-    *e = (recon_ellipse){.w0 = w0, .a = umax, .b = 0, .n_points = n, .n_inliers = m};
-    e->rms_px = m ? sqrt(ss / m) : 0;
-    e->max_px = dmax;
-    e->sigma_w0 = m > 1 ? sqrt(ss / (m - 1) / m) : INFINITY;
-    e->sigma_a = INFINITY;
-    e->sigma_b = e->sigma_w0;
+    double w0 = th[0], a = th[1], b = th[2], across = half * (w0 - p.y);
+    vec2 m = across > 0 ? v2(p.x, 2 * w0 - p.y) : p, q;
+    double d = recon_ellipse_distance(w0, a, b, m, &q);
+    if (J) {
+        double qu = q.x, qv = q.y - w0, gu = qu / (a * a), gv = qv / (b * b), g = hypot(gu, gv);
+        J[0] = -gv / g;
+        J[1] = -qu * qu / (a * a * a) / g;
+        J[2] = -qv * qv / (b * b * b) / g;
+        if (across > 0)
+            J[0] += 2 * gv / g - 2 * half; /* the mirror moves by 2 dw0, the offset by -2 half dw0 */
+    }
+    return across > 0 ? d - 2 * across : d;
 }
 
-/* Weighted sum of squared orthogonal distances. */
-static double weighted_ssr(const vec2 *pts, int n, const double th[3], const double *wt)
+/* MSAC cost with the half distance: how refined candidates compare. */
+static double msac_cost_exact(const arc *A, const double th[3], double tol)
+{
+    double cost = 0;
+    for (int i = 0; i < A->n; i++) {
+        double d = half_distance(th, A->half, A->p[i], NULL);
+        cost += fmin(d * d, tol * tol);
+    }
+    return cost;
+}
+
+/* Weighted sum of squared distances. */
+static double weighted_ssr(const arc *A, const double th[3], const double *wt)
 {
     double s = 0;
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < A->n; i++)
         if (wt[i] > 0) {
-            double d = recon_ellipse_distance(th[0], th[1], th[2], pts[i], NULL);
+            double d = half_distance(th, A->half, A->p[i], NULL);
             s += wt[i] * d * d;
         }
     return s;
@@ -374,12 +360,13 @@ static double weighted_ssr(const vec2 *pts, int n, const double th[3], const dou
  * the line limit b -> 0, a -> inf). r, wt: n doubles of work each; sigma
  * receives the final scale. Returns 1 when it converged with enough
  * inliers. */
-static int refine(const vec2 *pts, int n, double th[3], double *r, double *wt, double (*J)[3], double *sigma)
+static int refine(const arc *A, double th[3], double *r, double *wt, double (*J)[3], double *sigma)
 {
+    int n = A->n;
     double lambda = 1e-3;
     for (int it = 0; it < IRLS_STEPS; it++) {
         for (int i = 0; i < n; i++)
-            r[i] = residual(th[0], th[1], th[2], pts[i], J[i]);
+            r[i] = half_distance(th, A->half, A->p[i], J[i]);
         memcpy(wt, r, (size_t)n * sizeof *wt);
         *sigma = fmax(MAD_TO_SIGMA * median_abs(wt, n), MIN_SIGMA_PX);
         double c = TUKEY_C * *sigma, M[3][3] = {{0}}, g[3] = {0};
@@ -396,7 +383,7 @@ static int refine(const vec2 *pts, int n, double th[3], double *r, double *wt, d
         }
         if (inliers < 6)
             return 0;
-        double cost = weighted_ssr(pts, n, th, wt), next[3], moved = 0;
+        double cost = weighted_ssr(A, th, wt), next[3], moved = 0;
         int accepted = 0;
         for (int tries = 0; tries < 30 && !accepted; tries++) {
             double D[3][3], step[3];
@@ -413,7 +400,7 @@ static int refine(const vec2 *pts, int n, double th[3], double *r, double *wt, d
                 break;
             for (int j = 0; j < 3; j++)
                 next[j] = th[j] - step[j];
-            if (next[1] > 0 && next[2] > 0 && weighted_ssr(pts, n, next, wt) <= cost) {
+            if (next[1] > 0 && next[2] > 0 && weighted_ssr(A, next, wt) <= cost) {
                 accepted = 1;
                 for (int j = 0; j < 3; j++)
                     moved = fmax(moved, fabs(step[j]));
@@ -431,12 +418,12 @@ static int refine(const vec2 *pts, int n, double th[3], double *r, double *wt, d
 
 /* Inlier statistics, and standard errors from the unit-weight normal matrix
  * of the inliers. Returns 0 when too few are left. */
-static int summarise(const vec2 *pts, int n, const double th[3], double sigma, double (*J)[3], recon_ellipse *out)
+static int summarise(const arc *A, const double th[3], double sigma, double (*J)[3], recon_ellipse *out)
 {
     double M[3][3] = {{0}}, ss = 0, dmax = 0, zero[3] = {0}, tmp[3], cov[3][3];
     int m = 0;
-    for (int i = 0; i < n; i++) {
-        double d = residual(th[0], th[1], th[2], pts[i], J[i]);
+    for (int i = 0; i < A->n; i++) {
+        double d = half_distance(th, A->half, A->p[i], J[i]);
         if (fabs(d) >= TUKEY_C * sigma)
             continue;
         m++;
@@ -449,7 +436,7 @@ static int summarise(const vec2 *pts, int n, const double th[3], double sigma, d
     if (m < 6 || !solve3(M, zero, tmp, cov))
         return 0;
     double s2 = ss / (m - 3);
-    *out = (recon_ellipse){.w0 = th[0], .a = th[1], .b = th[2], .n_points = n, .n_inliers = m};
+    *out = (recon_ellipse){.w0 = th[0], .a = th[1], .b = th[2], .n_points = A->n, .n_inliers = m};
     out->rms_px = sqrt(ss / m);
     out->max_px = dmax;
     out->sigma_w0 = sqrt(s2 * cov[0][0]);
@@ -458,7 +445,56 @@ static int summarise(const vec2 *pts, int n, const double th[3], double sigma, d
     return 1;
 }
 
-int recon_fit_axis_ellipse(const vec2 *pts, int n, recon_ellipse *out)
+/* Whether the ellipse explains its inliers significantly better than the
+ * line w = const through them: the F statistic of its two extra parameters
+ * over F_CURVED. */
+static int curved(const arc *A, const double th[3], double sigma)
+{
+    double ssr = 0, sw = 0, sww = 0;
+    int m = 0;
+    for (int i = 0; i < A->n; i++) {
+        double d = half_distance(th, A->half, A->p[i], NULL);
+        if (fabs(d) >= TUKEY_C * sigma)
+            continue;
+        ssr += d * d, sw += A->p[i].y, sww += A->p[i].y * A->p[i].y;
+        m++;
+    }
+    double ssr_line = m > 0 ? sww - sw * sw / m : 0;
+    return m > 6 && (ssr_line - ssr) / 2 > F_CURVED * ssr / (m - 3);
+}
+
+/* The line w = w0 through the points (a degenerate ellipse): robust mean
+ * (within 3 robust sigmas of the median); r: n doubles of work. */
+static void fit_line(const vec2 *p, int n, double *r, recon_ellipse *e)
+{
+    for (int i = 0; i < n; i++)
+        r[i] = p[i].y;
+    gsl_sort(r, 1, (size_t)n);
+    double med = r[n / 2];
+    for (int i = 0; i < n; i++)
+        r[i] = p[i].y - med;
+    double sigma = fmax(MAD_TO_SIGMA * median_abs(r, n), MIN_SIGMA_PX), sum = 0, umax = 0, ss = 0, dmax = 0;
+    int m = 0;
+    for (int i = 0; i < n; i++)
+        if (fabs(p[i].y - med) <= 3 * sigma)
+            sum += p[i].y, m++;
+    double w0 = m ? sum / m : med;
+    for (int i = 0; i < n; i++)
+        if (fabs(p[i].y - med) <= 3 * sigma) {
+            double d = p[i].y - w0;
+            ss += d * d;
+            dmax = fmax(dmax, fabs(d));
+            umax = fmax(umax, fabs(p[i].x));
+        }
+    *e = (recon_ellipse){.w0 = w0, .a = umax, .b = 0, .n_points = n, .n_inliers = m};
+    e->rms_px = m ? sqrt(ss / m) : 0;
+    e->max_px = dmax;
+    e->sigma_w0 = m > 1 ? sqrt(ss / (m - 1) / m) : INFINITY;
+    e->sigma_a = INFINITY;
+    e->sigma_b = e->sigma_w0;
+}
+
+int recon_fit_axis_ellipse(const vec2 *pts, int n, int half, recon_ellipse *out)
 {
     memset(out, 0, sizeof *out);
     if (n < 6)
@@ -471,22 +507,23 @@ int recon_fit_axis_ellipse(const vec2 *pts, int n, recon_ellipse *out)
     }
     /* Each start is refined; the result of lowest MSAC cost wins (the
      * orthogonal distance has local minima along thin arcs). */
+    arc A = {pts, n, half};
     double starts[START_COUNT][3], th[3] = {0, 1, 1}, sigma = 0, best = INFINITY;
     int n_starts = start_fits(pts, n, starts), ok = 0;
     for (int k = 0; k < n_starts; k++) {
         double s_k;
-        if (!refine(pts, n, starts[k], r, r + n, J, &s_k))
+        if (!refine(&A, starts[k], r, r + n, J, &s_k))
             continue;
-        double c = msac_cost_exact(pts, n, starts[k], INLIER_PX);
+        double c = msac_cost_exact(&A, starts[k], INLIER_PX);
         if (c < best) {
             best = c, sigma = s_k, ok = 1;
             memcpy(th, starts[k], sizeof th);
         }
     }
-    ok = ok && summarise(pts, n, th, sigma, J, out);
+    ok = ok && summarise(&A, th, sigma, J, out) && curved(&A, th, sigma);
     /* No ellipse, or no significant curvature: the arc is a line (a level
      * orthographic view, or a circle at the camera's height). */
-    if (!ok || out->b < 2 * out->sigma_b)
+    if (!ok)
         fit_line(pts, n, r, out);
     free(r);
     free(J);

@@ -13,13 +13,15 @@
 double recon_ellipse_distance(double w0, double a, double b, vec2 p, vec2 *foot);
 
 /* Robust fit of an ellipse symmetric about the line u = 0 to the points
- * (u, w) of an arc of it (any part, e.g. one half): a consensus of exact
- * three-point conics picks the start, then Gauss–Newton on the orthogonal
- * distances with Tukey's biweight (scale: 1.4826 MAD) rejects outliers.
- * When the points show no curvature (the best b is under two standard
- * errors) the result is the line w = w0 (b = 0, a half the points' u span).
- * Returns 0, or -1 when there are fewer than 6 points or no ellipse fits. */
-int recon_fit_axis_ellipse(const vec2 *pts, int n, recon_ellipse *out);
+ * (u, w) of an arc of it on its upper half (half = +1: w >= w0), lower half
+ * (-1) or anywhere (0): a consensus of exact three-point conics picks the
+ * start, then Levenberg–Marquardt on the orthogonal distances from that
+ * half, reweighted with Tukey's biweight (scale: 1.4826 MAD), rejects
+ * outliers. When no ellipse fits, or the points show no significant
+ * curvature (an F-test against the line), the result is the line w = w0
+ * (b = 0, a half the points' u span). Returns 0, or -1 when there are fewer
+ * than 6 points or memory runs out. */
+int recon_fit_axis_ellipse(const vec2 *pts, int n, int half, recon_ellipse *out);
 
 /* ---- cross_section_arcs.c */
 
