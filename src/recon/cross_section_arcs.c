@@ -97,7 +97,7 @@ static int trace_arc(const image_t *img, const recon_result *res, vec2 c0, vec2 
         int reach = (int)slope + 16, j0 = here - reach < 0 ? 0 : here - reach;
         int j1 = here + reach > h - 1 ? h - 1 : here + reach;
         column_signal(img, alpha, i, j0, j1, col);
-        recon_edge e = recon_subpixel_edge(col, j1 - j0 + 1, 1, 0, here - j0, side, slope, delta);
+        recon_edge e = recon_subpixel_edge_flat(col, j1 - j0 + 1, 1, 0, here - j0, side, slope, delta);
         if (e.ok)
             out[n++] = v2(i + 0.5, j0 + e.x);
     }
@@ -153,28 +153,24 @@ int recon_rim_near_arc_visible(const image_t *img, const recon_result *res, cons
 {
     (void)res;
     enum { SAMPLES = 64 };
-    /* The near half must lie clear of the outline's far half (4 px between
-     * them at the centre) and of the difference's reach (1 px each way). */
-    if (!(rim->b >= 2.0) || !(rim->a >= 20.0))
+    /* The band between the rim's two halves, sampled on its centre line w0,
+     * must lie 1.5 px clear of both edges so that no sample mixes in the
+     * backdrop or the wall. */
+    if (!(rim->b >= 1.5) || !(rim->a >= 20.0))
         return -1;
-    double at[SAMPLES], ref[2][SAMPLES], sgn[SAMPLES];
+    double step[SAMPLES], wall[SAMPLES];
     for (int k = 0; k < SAMPLES; k++) {
-        double u = rim->a * 0.7 * (2.0 * (k + 0.5) / SAMPLES - 1);
-        double w = rim->w0 - rim->b * sqrt(1 - (u / rim->a) * (u / rim->a));
-        at[k] = frame_luma(img, cam, u, w + 1) - frame_luma(img, cam, u, w - 1);
-        sgn[k] = at[k];
-        for (int r = 0; r < 2; r++) {
-            double wr = w - 3.0 * (r + 1); /* into the wall below the near arc */
-            ref[r][k] = fabs(frame_luma(img, cam, u, wr + 1) - frame_luma(img, cam, u, wr - 1));
-        }
-        at[k] = fabs(at[k]);
+        double u = rim->a * 0.6 * (2.0 * (k + 0.5) / SAMPLES - 1);
+        double near = rim->w0 - rim->b * sqrt(1 - (u / rim->a) * (u / rim->a));
+        double below = frame_luma(img, cam, u, near - 3);
+        step[k] = fabs(frame_luma(img, cam, u, rim->w0) - below);
+        wall[k] = fabs(below - frame_luma(img, cam, u, near - 6));
     }
-    double m_sign = median(sgn, SAMPLES);
-    int agree = 0;
-    for (int k = 0; k < SAMPLES; k++)
-        agree += sgn[k] * m_sign > 0;
-    double edge = median(at, SAMPLES), quiet = fmax(median(ref[0], SAMPLES), median(ref[1], SAMPLES));
-    /* An edge: three times the wall's own gradient, at least 4/255 over two
-     * pixels, and of one sign along three quarters of the arc. */
-    return edge > 3 * quiet && edge > 4.0 / 255 && agree >= 3 * SAMPLES / 4;
+    /* From above, the band is the lip or the inside of the mouth, which the
+     * near half's edge parts from the outer wall; from below it is the wall
+     * itself. Visible: the band differs from the wall 3 px below the near
+     * half by at least 4/255 and by three times the wall's own change over
+     * the next 3 px. */
+    double band = median(step, SAMPLES), quiet = median(wall, SAMPLES);
+    return band > 3 * quiet && band > 4.0 / 255;
 }

@@ -69,10 +69,11 @@ double recon_circle_of_ellipse(const recon_camera *cam, const recon_ellipse *e, 
 
 /* ---- cross_section_arcs.c (needs the camera frame) */
 
-/* Whether the near half of the rim ellipse (the lower arc, inside the
- * outline) is an edge in the photo: then the camera looks into the mouth,
- * from above the rim. 1 yes, 0 no, -1 when the ellipse is too thin to tell
- * (its two halves under 4 px apart). */
+/* Whether the camera sees the top of the rim or into the mouth: the band
+ * between the rim ellipse's two halves then differs from the outer wall
+ * below its near (lower) half; from below the rim that band is the wall
+ * itself. 1 yes (the camera is above the rim), 0 no, -1 when the ellipse
+ * is too thin to tell (b under 1.5 px). */
 int recon_rim_near_arc_visible(const image_t *img, const recon_result *res, const recon_camera *cam,
                                const recon_ellipse *rim);
 

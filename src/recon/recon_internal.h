@@ -150,5 +150,11 @@ typedef struct {
  * neighbouring rows); delta the smallest difference from the background that
  * counts as object. */
 recon_edge recon_subpixel_edge(const float *gray, int w, int h, int j, int i0, int side, double slope, double delta);
+/* The same without following a glaze's drift toward the backdrop: fg is the
+ * pixel just inside. For the outline's top and bottom arcs, where a thin
+ * band of another colour (the lip, the mouth seen from above) lies just
+ * inside the edge and the drift rule would read it as a glaze. */
+recon_edge recon_subpixel_edge_flat(const float *gray, int w, int h, int j, int i0, int side, double slope,
+                                    double delta);
 
 #endif

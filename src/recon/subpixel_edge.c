@@ -18,13 +18,13 @@
  * before the outline, so the nearest pure pixel lags behind the level under
  * the edge. When the two pixels inside trend toward bg, fg is extrapolated one
  * pixel along that trend (by at most half the contrast). */
-static int ramp(const float *row, int w, int a0, int a1, int side, double *len, double *contrast)
+static int ramp(const float *row, int w, int a0, int a1, int side, int glaze, double *len, double *contrast)
 {
     if (a0 < 2 || a1 > w - 3 || a1 < a0)
         return 0;
     double fg = side > 0 ? row[a0 - 1] : row[a1 + 1], bg = side > 0 ? row[a1 + 1] : row[a0 - 1];
     double fg2 = side > 0 ? row[a0 - 2] : row[a1 + 2], ext = 2 * fg - fg2;
-    if ((ext - fg) * (bg - fg) > 0 && fabs(ext - fg) < 0.5 * fabs(bg - fg))
+    if (glaze && (ext - fg) * (bg - fg) > 0 && fabs(ext - fg) < 0.5 * fabs(bg - fg))
         fg = ext;
     *contrast = fabs(fg - bg);
     if (*contrast < 1e-4)
@@ -36,7 +36,8 @@ static int ramp(const float *row, int w, int a0, int a1, int side, double *len, 
     return 1;
 }
 
-recon_edge recon_subpixel_edge(const float *gray, int w, int h, int j, int i0, int side, double slope, double delta)
+static recon_edge edge_at(const float *gray, int w, int h, int j, int i0, int side, double slope, double delta,
+                          int glaze)
 {
     recon_edge out = {NAN, 0, 0};
     if (j < 0 || j >= h || i0 < 0 || i0 >= w)
@@ -59,17 +60,28 @@ recon_edge recon_subpixel_edge(const float *gray, int w, int h, int j, int i0, i
         return out;
     int a0 = side > 0 ? p - span : p, a1 = side > 0 ? p : p + span;
     double len, contrast;
-    if (!ramp(row, w, a0, a1, side, &len, &contrast))
+    if (!ramp(row, w, a0, a1, side, glaze, &len, &contrast))
         return out;
     double e = side > 0 ? a0 + len : a1 + 1 - len;
     /* Pass 2: only the pixels the edge can cross, so fg and bg come from the
      * pixels nearest to it. */
     a0 = (int)floor(e - half - 0.25);
     a1 = (int)floor(e + half + 0.25);
-    if (!ramp(row, w, a0, a1, side, &len, &contrast))
+    if (!ramp(row, w, a0, a1, side, glaze, &len, &contrast))
         return out;
     out.x = side > 0 ? a0 + len : a1 + 1 - len;
     out.contrast = contrast;
     out.ok = isfinite(out.x) && fabs(out.x - (i0 + 0.5 + 0.5 * side)) < span + 12;
     return out;
+}
+
+recon_edge recon_subpixel_edge(const float *gray, int w, int h, int j, int i0, int side, double slope, double delta)
+{
+    return edge_at(gray, w, h, j, i0, side, slope, delta, 1);
+}
+
+recon_edge recon_subpixel_edge_flat(const float *gray, int w, int h, int j, int i0, int side, double slope,
+                                    double delta)
+{
+    return edge_at(gray, w, h, j, i0, side, slope, delta, 0);
 }

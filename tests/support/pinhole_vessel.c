@@ -62,9 +62,9 @@ pinhole_params pinhole_defaults(synth_shape shape, double elevation_deg)
     pinhole_params p;
     memset(&p, 0, sizeof p);
     p.shape = shape;
-    p.width = 900;
-    p.height = 1200;
-    p.focal_px = 3000;
+    p.width = 600;
+    p.height = 800;
+    p.focal_px = 2000;
     p.elevation_deg = elevation_deg;
     p.look_at_height = 0.5;
     double rmax = 0;

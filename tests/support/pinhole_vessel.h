@@ -49,7 +49,7 @@ typedef struct {
     int subrows;           /* lines per pixel row (0: 24) */
 } pinhole_params;
 
-/* 900 x 1200 px, focal length 3000 px (17 deg across), looking at
+/* 600 x 800 px, focal length 2000 px (17 deg across), looking at
  * mid-height from the given elevation, at the distance where the vessel
  * spans about 70% of the image's height or width. */
 pinhole_params pinhole_defaults(synth_shape shape, double elevation_deg);
