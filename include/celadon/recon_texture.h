@@ -1,5 +1,6 @@
-/* The texture T(u, v) of a reconstructed vessel, taken from its photograph by
- * scanline resampling (one texture row per height step along the axis). */
+/* The texture T(u, v) of a reconstructed vessel, taken from its photograph:
+ * by scanline resampling (one texture row per height step along the axis),
+ * or by the camera (along the imaged cross-sections). */
 #ifndef CELADON_RECON_TEXTURE_H
 #define CELADON_RECON_TEXTURE_H
 
@@ -8,10 +9,12 @@
 
 #include "celadon/image.h"
 #include "celadon/recon.h"
+#include "celadon/recon_camera.h"
 
 typedef struct {
     int width, height;
-    uint8_t *rgb; /* width*height*3, row 0 = the rim (v = 1), last row = the base (v = 0) */
+    uint8_t *rgb;  /* width*height*3, row 0 = the rim (v = 1), last row = the base (v = 0) */
+    uint8_t *seen; /* width*height, 1 where the camera saw the texel; NULL: all seen (scanline) */
 } recon_texture_t;
 
 /* Builds the texture from the photo and its extraction result. Rows are
@@ -24,6 +27,21 @@ typedef struct {
  * u = 0 is the left silhouette, 0.5 the front meridian, 1 the right one.
  * Returns 0, or -1 with a one-line reason in err. */
 int recon_texture_from_photo(const image_t *photo, const recon_result *res, recon_texture_t *out, char *err, size_t errlen);
+
+/* Builds the texture by the camera (recon_camera.h): row j is the meridian
+ * height v = 1 - (j + 0.5) / height, column i the angle phi = pi (1 - u),
+ * u = (i + 0.5) / width (DESIGN.md: 0 the left outline, 0.5 facing the
+ * camera, 1 the right one), and each texel the photo's colour (bilinear)
+ * where the camera images the wall point (r(v), v, phi): the imaged
+ * cross-section ellipses, not horizontal scanlines (those are its special
+ * case for a level orthographic camera). Texels the camera did not see (the
+ * wall turned away from it, or so obliquely that they lie within half a
+ * pixel of the outline) have seen = 0 and the colour of the nearest seen
+ * texel of their row (of the nearest row with one, if none). One row per
+ * pixel of the meridian's height, the widest cross-section's width in
+ * pixels. Returns 0, or -1 with a one-line reason in err. */
+int recon_texture_from_camera(const image_t *photo, const recon_camera *cam, const recon_meridian *mer,
+                              recon_texture_t *out, char *err, size_t errlen);
 void recon_texture_free(recon_texture_t *t);
 
 #endif

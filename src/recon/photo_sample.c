@@ -1,6 +1,7 @@
 /* Bilinear samples of a photo (photo_sample.h). */
 #include "recon/photo_sample.h"
 
+#include <math.h>
 #include <stddef.h>
 
 void recon_sample_rgb(const image_t *img, vec2 p, float out[3])
@@ -19,4 +20,10 @@ void recon_sample_rgb(const image_t *img, vec2 p, float out[3])
         float top = p00[c] + tx * (p10[c] - p00[c]), bottom = p01[c] + tx * (p11[c] - p01[c]);
         out[k] = top + ty * (bottom - top);
     }
+}
+
+uint8_t recon_to_u8(float v)
+{
+    v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
+    return (uint8_t)lrintf(v * 255.0f);
 }

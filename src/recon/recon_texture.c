@@ -11,6 +11,7 @@
 void recon_texture_free(recon_texture_t *t)
 {
     free(t->rgb);
+    free(t->seen);
     memset(t, 0, sizeof *t);
 }
 
@@ -66,11 +67,6 @@ static int fill_missing_rows(double *s_row, const unsigned char *hit, int rows)
     return 0;
 }
 
-static uint8_t to_u8(float v)
-{
-    v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
-    return (uint8_t)lrintf(v * 255.0f);
-}
 
 int recon_texture_from_photo(const image_t *photo, const recon_result *res, recon_texture_t *out, char *err, size_t errlen)
 {
@@ -128,7 +124,7 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
             float rgb[3];
             recon_sample_rgb(photo, v2_add(on_axis, v2_scale(right, c - a * cos_u[i])), rgb);
             for (int k = 0; k < 3; k++)
-                px[3 * i + k] = to_u8(rgb[k]);
+                px[3 * i + k] = recon_to_u8(rgb[k]);
         }
     }
     free(cos_u);
