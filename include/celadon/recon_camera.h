@@ -97,6 +97,13 @@ int recon_camera_meridian(const image_t *img, const recon_result *res, const rec
                           recon_camera *cam, recon_meridian *mer, char *err, size_t errlen);
 void recon_meridian_free(recon_meridian *m);
 
+/* Fills profile.json's camera and meridian blocks of p (has_camera,
+ * camera, has_meridian, meridian, meridian domains) from a result of
+ * recon_camera_meridian. The meridian's curve and domains are borrowed,
+ * not copied: p must not outlive mer, and profile_free(p) must not run on
+ * them (clear has_meridian first, as for the other borrowed arrays). */
+void recon_camera_fill_profile(const recon_camera *cam, const recon_meridian *mer, profile_t *p);
+
 /* Focal length in pixels of a photo width x height for a horizontal field of
  * view (degrees), and for an EXIF 35 mm equivalent focal length (mm; by the
  * diagonal, 43.27 mm on the 35 mm frame). */

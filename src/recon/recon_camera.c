@@ -59,3 +59,25 @@ int recon_camera_sees(const recon_camera *cam, const recon_meridian *mer, double
     vec3 v = v3_norm(v3_neg(eye.d));
     return v3_dot(n, v) > min_cos;
 }
+
+void recon_camera_fill_profile(const recon_camera *cam, const recon_meridian *mer, profile_t *p)
+{
+    static const char *const methods[] = {"ellipses", "exif", "flag", "orthographic"};
+    profile_camera *c = &p->camera;
+    memset(c, 0, sizeof *c);
+    snprintf(c->method, sizeof c->method, "%s", methods[cam->method]);
+    snprintf(c->note, sizeof c->note, "%s", cam->note);
+    c->elevation_deg = cam->elevation_deg;
+    c->focal_px = cam->focal_px;
+    c->roll_deg = cam->roll_deg;
+    c->principal_point = cam->principal_point;
+    const recon_ellipse *e[2] = {&cam->base, &cam->rim};
+    for (int k = 0; k < 2; k++)
+        c->conics[k] = (profile_conic){recon_camera_to_image(cam, v2(0, e[k]->w0)), {e[k]->a, e[k]->b},
+                                       e[k]->rms_px, e[k]->max_px, e[k]->n_points, e[k]->n_inliers};
+    p->has_camera = 1;
+    p->has_meridian = 1;
+    p->meridian = mer->curve;
+    p->meridian_domains = mer->domains;
+    p->n_meridian_domains = mer->n_domains;
+}
