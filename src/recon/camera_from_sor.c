@@ -24,6 +24,9 @@
 #define MAX_REL_SIGMA_F (1.0 / 3.0)
 /* Floor of an ellipse parameter's standard error in the circle fit, px. */
 #define MIN_SIGMA_PX 0.02
+/* Fields of view across the image that a photo of a vessel can have. */
+#define MIN_FOV_DEG 1.0
+#define MAX_FOV_DEG 120.0
 #define PITCH_STEP (0.25 / DEG)
 #define PITCH_LIMIT (60.0 / DEG)
 /* 35 mm film frame diagonal, mm (36 x 24). */
@@ -381,6 +384,12 @@ static int focal_from_ellipses(const image_t *img, const recon_result *res, reco
     if (!(sf < MAX_REL_SIGMA_F * f)) {
         snprintf(cam->note, sizeof cam->note,
                  "the base and rim ellipses are too flat to give a focal length (%.0f +- %.0f px)", f, sf);
+        return -1;
+    }
+    double fov = 2 * atan(0.5 * img->width / f) * DEG;
+    if (!(fov >= MIN_FOV_DEG && fov <= MAX_FOV_DEG)) {
+        snprintf(cam->note, sizeof cam->note,
+                 "the base and rim ellipses give an implausible field of view (%.1f deg across)", fov);
         return -1;
     }
     cam->focal_px = f;
