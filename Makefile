@@ -146,6 +146,18 @@ demo-photo: check-deps-stamp
 	@mkdir -p scenes/demo
 	build/tools/draw_demo_photo scenes/demo/photo.png
 
+# `make perspective-figure` redraws the figure of docs/algorithms-recon.md,
+# "Perspective", from exact geometry (tests/tools/draw_perspective_figure.c).
+.PHONY: perspective-figure
+PERSPECTIVE_FIGURE_SRC := tests/tools/draw_perspective_figure.c tests/support/pinhole_vessel.c tests/support/synth_vessel.c
+build/tools/draw_perspective_figure: $(PERSPECTIVE_FIGURE_SRC) build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Itests -o $@ $(PERSPECTIVE_FIGURE_SRC) build/opt/libceladon.a $(LDLIBS)
+
+perspective-figure: check-deps-stamp
+	@$(MAKE) --no-print-directory build/tools/draw_perspective_figure
+	build/tools/draw_perspective_figure docs/img/perspective-geometry.png
+
 demo: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon
 	build/celadon reconstruct scenes/demo/photo.png -o out/demo
