@@ -25,7 +25,7 @@
 
 #include "recon/recon_camera_internal.h"
 
-enum { RANSAC_TRIALS = 300, START_COUNT = 2, IRLS_STEPS = 100 };
+enum { RANSAC_TRIALS = 100, START_COUNT = 2, IRLS_STEPS = 100 };
 #define INLIER_PX 1.0   /* consensus band of the start */
 #define TUKEY_C 4.685   /* Tukey's biweight constant: 95% efficiency at the normal */
 #define MAD_TO_SIGMA 1.4826
