@@ -149,6 +149,8 @@ Test(recon_camera, given_field_of_view_or_exif, .timeout = 120)
     recon_camera_options opt = {.fov_deg = 2 * atan(0.5 * p.width / p.focal_px) * 180 / M_PI};
     outcome o;
     run(&p, 0, &opt, &o);
+    cr_log_info("field of view given: elevation %.4f (true 10), meridian max %.3f%%", o.cam.elevation_deg,
+                100 * o.max);
     cr_expect_eq(o.cam.method, RECON_CAMERA_FLAG);
     cr_expect_float_eq(o.cam.focal_px, p.focal_px, 1e-9 * p.focal_px);
     cr_expect_leq(fabs(o.cam.elevation_deg - 10), ELEVATION_TOL_DEG, "elevation %.3f", o.cam.elevation_deg);
