@@ -29,15 +29,11 @@ Test(overlay_camera, ellipses_and_sections_where_the_circles_are, .timeout = 60)
 {
     pinhole_params p = pinhole_defaults(SYNTH_VASE, 10);
     image_t img;
-    uint8_t *mask = malloc((size_t)p.width * p.height);
-    cr_assert_eq(pinhole_draw(&p, &img, mask), 0);
     recon_result res;
-    cr_assert_eq(pinhole_extraction(&p, &img, mask, &res), 0);
-    free(mask);
     recon_camera cam;
     recon_meridian mer;
     char err[256];
-    cr_assert_eq(recon_camera_meridian(&img, &res, NULL, &cam, &mer, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(pinhole_camera(&p, &img, &res, &cam, &mer, err, sizeof err), 0, "%s", err);
     int W = p.width, H = p.height;
     uint8_t *rgb = malloc((size_t)W * H * 3);
     memset(rgb, 128, (size_t)W * H * 3);

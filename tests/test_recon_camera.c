@@ -50,15 +50,13 @@ static void profile_error(const pinhole_params *p, const bspline_t *curve, doubl
 static void run(const pinhole_params *p, int use_recon_extract, const recon_camera_options *opt, outcome *o)
 {
     image_t img;
-    uint8_t *mask = malloc((size_t)p->width * p->height);
-    cr_assert_eq(pinhole_draw(p, &img, mask), 0);
     recon_result res;
     char err[256];
-    if (use_recon_extract)
+    cr_assert_eq(pinhole_photo(p, &img, &res), 0);
+    if (use_recon_extract) {
+        recon_result_free(&res);
         cr_assert_eq(recon_extract(&img, NULL, &res, err, sizeof err), RECON_OK, "%s", err);
-    else
-        cr_assert_eq(pinhole_extraction(p, &img, mask, &res), 0);
-    free(mask);
+    }
     cr_assert_eq(recon_camera_meridian(&img, &res, opt, &o->cam, &o->mer, err, sizeof err), 0, "%s", err);
     profile_error(p, &o->mer.curve, &o->mean, &o->max);
     bspline_t today;
@@ -211,20 +209,16 @@ Test(recon_camera, mouth_tells_the_camera_candidates_apart, .timeout = 60)
     for (int k = 0; k < 2; k++) {
         pinhole_params p = pinhole_defaults(SYNTH_VASE, k ? 10 : 5);
         image_t img;
-        uint8_t *mask = malloc((size_t)p.width * p.height);
-        cr_assert_eq(pinhole_draw(&p, &img, mask), 0);
         recon_result res;
-        cr_assert_eq(pinhole_extraction(&p, &img, mask, &res), 0);
         recon_camera cam;
         recon_meridian mer;
         char err[256];
-        cr_assert_eq(recon_camera_meridian(&img, &res, NULL, &cam, &mer, err, sizeof err), 0, "%s", err);
+        cr_assert_eq(pinhole_camera(&p, &img, &res, &cam, &mer, err, sizeof err), 0, "%s", err);
         cr_expect_eq(recon_rim_near_arc_visible(&img, &res, &cam, &cam.rim), k, "elevation %d: mouth seen %d",
                      k ? 10 : 5, !k);
         recon_meridian_free(&mer);
         recon_result_free(&res);
         image_free(&img);
-        free(mask);
     }
 }
 
@@ -259,11 +253,8 @@ Test(recon_camera, refuses_what_it_cannot_use)
 {
     pinhole_params p = pinhole_defaults(SYNTH_JAR, 5);
     image_t img;
-    uint8_t *mask = malloc((size_t)p.width * p.height);
-    cr_assert_eq(pinhole_draw(&p, &img, mask), 0);
     recon_result res;
-    cr_assert_eq(pinhole_extraction(&p, &img, mask, &res), 0);
-    free(mask);
+    cr_assert_eq(pinhole_photo(&p, &img, &res), 0);
     recon_camera cam;
     recon_meridian mer;
     char err[256] = "";

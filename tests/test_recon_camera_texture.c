@@ -44,65 +44,62 @@ static double crossing(const uint8_t *rgb, int n, int stride, double expect, dou
     return best;
 }
 
+/* One boundary, expected at `expect` texels along the lines of one family
+ * (columns for a band boundary, rows for a sector boundary), lines first..last:
+ * its crossing on each line, except on the lines next to a boundary of the
+ * other family (the fraction `other` of the way through its period within
+ * 0.1 of a whole number: the colours swap there). *dev: the largest distance
+ * of a crossing from their mean, *off: the mean's distance from `expect`;
+ * missing on more than a tenth of the lines: both infinite. Returns the
+ * number found. */
+static int boundary(const recon_texture_t *t, int columns, int first, int last, double periods, double expect,
+                    double reach, double mid, double *dev, double *off)
+{
+    int W = t->width, H = t->height, n = 0, tried = 0;
+    double sum = 0, *x = malloc((size_t)(last - first + 1) * sizeof *x);
+    for (int k = first; k <= last; k++) {
+        double f = fmod((1.0 - (k + 0.5) / (columns ? W : H)) * periods, 1.0);
+        if (f < 0.1 || f > 0.9)
+            continue;
+        tried++;
+        x[n] = columns ? crossing(t->rgb + 3 * (size_t)k, H, W, expect, reach, mid)
+                       : crossing(t->rgb + 3 * (size_t)k * W, W, 1, expect, reach, mid);
+        if (!isnan(x[n]))
+            sum += x[n++];
+    }
+    *dev = *off = INFINITY;
+    if (n >= tried * 9 / 10 && n > 0) {
+        double mean = sum / n;
+        *dev = 0;
+        for (int q = 0; q < n; q++)
+            *dev = fmax(*dev, fabs(x[q] - mean));
+        *off = fabs(mean - expect);
+    }
+    free(x);
+    return n;
+}
+
 /* Measures a texture: band boundaries along the columns of the middle
- * u in [0.2, 0.8], sector boundaries along the rows of v in [0.1, 0.9].
- * reach: how far from its ideal place a boundary is looked for; a boundary
- * missing on more than a tenth of the lines counts as infinitely bent. */
+ * u in [0.2, 0.8], sector boundaries (u = 0.25, 0.5, 0.75) along the rows
+ * of v in [0.1, 0.9]. reach: how far from its ideal place a boundary is
+ * looked for. */
 static straightness measure(const recon_texture_t *t, double mid, double reach)
 {
     straightness s = {0};
     int W = t->width, H = t->height;
     for (int k = 1; k < BANDS; k++) {
-        double expect = (1.0 - (double)k / BANDS) * H, sum = 0, *x = malloc(W * sizeof *x);
-        int n = 0;
-        int tried = 0;
-        for (int i = (int)(0.2 * W); i <= (int)(0.8 * W); i++) {
-            /* Skip the columns next to a sector boundary, where colours swap. */
-            double f = fmod((1.0 - (i + 0.5) / W) * SECTORS / 2, 1.0);
-            if (f < 0.05 || f > 0.95)
-                continue;
-            tried++;
-            x[n] = crossing(t->rgb + 3 * (size_t)i, H, W, expect, reach, mid);
-            if (!isnan(x[n]))
-                sum += x[n++];
-        }
-        if (n < tried * 9 / 10) { /* not there on a tenth of the columns: not a line at all */
-            s.worst_row_dev = INFINITY;
-            free(x);
-            continue;
-        }
-        double mean = sum / n;
-        for (int q = 0; q < n; q++)
-            s.worst_row_dev = fmax(s.worst_row_dev, fabs(x[q] - mean));
-        s.worst_spacing = fmax(s.worst_spacing, fabs(mean - expect));
-        s.crossings += n;
-        free(x);
+        double dev, off;
+        s.crossings += boundary(t, 1, (int)(0.2 * W), (int)(0.8 * W), SECTORS / 2.0, (1.0 - (double)k / BANDS) * H,
+                                reach, mid, &dev, &off);
+        s.worst_row_dev = fmax(s.worst_row_dev, dev);
+        s.worst_spacing = fmax(s.worst_spacing, off);
     }
-    for (int m = 3; m <= 5; m++) { /* the boundaries at u = 0.25, 0.5, 0.75 */
-        double expect = (1.0 - 2.0 * m / SECTORS) * W, sum = 0, *x = malloc(H * sizeof *x);
-        int n = 0;
-        int tried = 0;
-        for (int j = (int)(0.1 * H); j <= (int)(0.9 * H); j++) {
-            /* Skip the rows next to a band boundary, where colours swap. */
-            double f = fmod((1.0 - (j + 0.5) / H) * BANDS, 1.0);
-            if (f < 0.1 || f > 0.9)
-                continue;
-            tried++;
-            x[n] = crossing(t->rgb + 3 * (size_t)j * W, W, 1, expect, reach, mid);
-            if (!isnan(x[n]))
-                sum += x[n++];
-        }
-        if (n < tried * 9 / 10) {
-            s.worst_col_dev = INFINITY;
-            free(x);
-            continue;
-        }
-        double mean = sum / n;
-        for (int q = 0; q < n; q++)
-            s.worst_col_dev = fmax(s.worst_col_dev, fabs(x[q] - mean));
-        s.worst_col_spacing = fmax(s.worst_col_spacing, fabs(mean - expect));
-        s.crossings += n;
-        free(x);
+    for (int m = 3; m <= 5; m++) {
+        double dev, off;
+        s.crossings += boundary(t, 0, (int)(0.1 * H), (int)(0.9 * H), BANDS, (1.0 - 2.0 * m / SECTORS) * W, reach,
+                                mid, &dev, &off);
+        s.worst_col_dev = fmax(s.worst_col_dev, dev);
+        s.worst_col_spacing = fmax(s.worst_col_spacing, off);
     }
     return s;
 }
@@ -113,15 +110,11 @@ Test(recon_camera_texture, checkerboard_unrolls_straight, .timeout = 180)
     p.checker_bands = BANDS;
     p.checker_sectors = SECTORS;
     image_t img;
-    uint8_t *mask = malloc((size_t)p.width * p.height);
-    cr_assert_eq(pinhole_draw(&p, &img, mask), 0);
     recon_result res;
-    cr_assert_eq(pinhole_extraction(&p, &img, mask, &res), 0);
-    free(mask);
     recon_camera cam;
     recon_meridian mer;
     char err[256];
-    cr_assert_eq(recon_camera_meridian(&img, &res, NULL, &cam, &mer, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(pinhole_camera(&p, &img, &res, &cam, &mer, err, sizeof err), 0, "%s", err);
     recon_texture_t ours, scan;
     cr_assert_eq(recon_texture_from_camera(&img, &cam, &mer, &ours, err, sizeof err), 0, "%s", err);
     cr_assert_eq(recon_texture_from_photo(&img, &res, &scan, err, sizeof err), 0, "%s", err);

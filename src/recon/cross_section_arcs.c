@@ -8,6 +8,9 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include <gsl/gsl_sort.h>
+#include <gsl/gsl_statistics_double.h>
+
 #include "recon/photo_sample.h"
 #include "recon/recon_camera_internal.h"
 #include "recon/recon_internal.h"
@@ -136,16 +139,11 @@ static double frame_luma(const image_t *img, const recon_camera *cam, double u, 
     return 0.299 * rgb[0] + 0.587 * rgb[1] + 0.114 * rgb[2];
 }
 
-static int by_value(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
+/* Median of v[0..n) (sorts v). */
 static double median(double *v, int n)
 {
-    qsort(v, (size_t)n, sizeof *v, by_value);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    gsl_sort(v, 1, (size_t)n);
+    return gsl_stats_median_from_sorted_data(v, 1, (size_t)n);
 }
 
 int recon_rim_near_arc_visible(const image_t *img, const recon_result *res, const recon_camera *cam,

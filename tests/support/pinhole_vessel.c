@@ -2,6 +2,7 @@
 #include "pinhole_vessel.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -453,4 +454,26 @@ int pinhole_extraction(const pinhole_params *p, const image_t *img, const uint8_
     res->polyline[n] = v2(n ? res->polyline[n - 1].x : 0, Hpx);
     res->n_polyline = n + 1;
     return 0;
+}
+
+int pinhole_photo(const pinhole_params *p, image_t *img, recon_result *res)
+{
+    uint8_t *mask = malloc((size_t)p->width * p->height);
+    int rc = mask && pinhole_draw(p, img, mask) == 0 ? 0 : -1;
+    if (rc == 0 && pinhole_extraction(p, img, mask, res) != 0) {
+        image_free(img);
+        rc = -1;
+    }
+    free(mask);
+    return rc;
+}
+
+int pinhole_camera(const pinhole_params *p, image_t *img, recon_result *res, recon_camera *cam, recon_meridian *mer,
+                   char *err, size_t errlen)
+{
+    if (pinhole_photo(p, img, res) != 0) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    return recon_camera_meridian(img, res, NULL, cam, mer, err, errlen);
 }

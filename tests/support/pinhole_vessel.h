@@ -30,6 +30,7 @@
 
 #include "celadon/image.h"
 #include "celadon/recon.h"
+#include "celadon/recon_camera.h"
 #include "celadon/vecmath.h"
 #include "synth_vessel.h"
 
@@ -83,5 +84,14 @@ int pinhole_draw(const pinhole_params *p, image_t *img, uint8_t *mask);
  * right side as side_used and its profile polyline. Returns 0, or -1 when
  * out of memory; free with recon_result_free. */
 int pinhole_extraction(const pinhole_params *p, const image_t *img, const uint8_t *mask, recon_result *res);
+
+/* pinhole_draw, then pinhole_extraction: the photo and what the image
+ * stages would find in it. Returns 0, or -1 when out of memory. */
+int pinhole_photo(const pinhole_params *p, image_t *img, recon_result *res);
+
+/* pinhole_photo, then recon_camera_meridian (no options). Returns 0, or -1
+ * with a reason in err. */
+int pinhole_camera(const pinhole_params *p, image_t *img, recon_result *res, recon_camera *cam, recon_meridian *mer,
+                   char *err, size_t errlen);
 
 #endif
