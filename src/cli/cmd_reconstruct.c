@@ -29,6 +29,12 @@
 
 enum { MIN_SIDE_PX = 32, MAX_LODS = 8 };
 #define MAX_MEGAPIXELS 100.0
+/* The curvature-adaptive domains (rings of the mesh): each within 0.25 px of
+ * its chord, and its tangent angle within 0.25 deg of linear in arc length
+ * (more domains where the curvature changes; bounds the interpolated shading
+ * normal's error between rings). */
+#define DOMAIN_TOL_PX 0.25
+#define DOMAIN_TOL_NORMAL_DEG 0.25
 
 typedef struct {
     const char *out_dir;
@@ -494,7 +500,7 @@ static int run_pipeline(const options *o, const char *photo, const char *tmp, re
     rep->ms_bspline = ms_since(t0);
     rep->control_points = curve.n_ctrl;
     t0 = now_seconds();
-    if (curve_domains_by_curvature_variation(&curve, PROFILE_DOMAIN_TOL_PX, PROFILE_DOMAIN_TOL_NORMAL_DEG, &domains, &n_domains) != 0) {
+    if (curve_domains_by_curvature_variation(&curve, DOMAIN_TOL_PX, DOMAIN_TOL_NORMAL_DEG, &domains, &n_domains) != 0) {
         fail(rep, 1, "%s", "cannot split the curve into domains");
         goto done;
     }
