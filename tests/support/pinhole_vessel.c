@@ -422,7 +422,9 @@ int pinhole_extraction(const pinhole_params *p, const image_t *img, const uint8_
     res->tilt_deg = atan2(res->axis_direction.x, -res->axis_direction.y) * 180 / PI;
     res->side_used = RECON_SIDE_RIGHT;
     res->mask = malloc((size_t)W * H);
-    float *gray = image_to_gray(img);
+    float *gray = malloc((size_t)W * H * sizeof *gray);
+    for (size_t i = 0; gray && i < (size_t)W * H; i++) /* Rec.601 luminance, as the mask's signal */
+        gray[i] = 0.299f * img->data[3 * i] + 0.587f * img->data[3 * i + 1] + 0.114f * img->data[3 * i + 2];
     for (int s = 0; s < 2; s++)
         res->silhouette[s] = malloc((size_t)H * sizeof(vec2));
     res->polyline = malloc((size_t)(H + 2) * sizeof(vec2));
