@@ -112,7 +112,7 @@ double recon_focal_from_35mm(int width, int height, double focal_35mm);
 
 /* Image point of the vessel point at meridian height h, radius r (meridian
  * units) and angle phi around the axis (phi = pi/2 faces the camera, 0 is to
- * the right: the texture convention of DESIGN.md). */
+ * the right: the texture convention of docs/conventions.md). */
 vec2 recon_camera_project(const recon_camera *cam, const recon_meridian *mer, double r, double h, double phi);
 
 /* 1 when the camera sees the outside of the wall at that point: the surface

@@ -30,7 +30,7 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
 
 /* Builds the texture by the camera (recon_camera.h): row j is the meridian
  * height v = 1 - (j + 0.5) / height, column i the angle phi = pi (1 - u),
- * u = (i + 0.5) / width (DESIGN.md: 0 the left outline, 0.5 facing the
+ * u = (i + 0.5) / width (docs/conventions.md: 0 the left outline, 0.5 facing the
  * camera, 1 the right one), and each texel the photo's colour (bilinear)
  * where the camera images the wall point (r(v), v, phi): the imaged
  * cross-section ellipses, not horizontal scanlines (those are its special

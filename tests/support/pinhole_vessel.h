@@ -21,7 +21,7 @@
  * optical axis (positive: the vessel's top leans right); square pixels,
  * principal point at the image centre:
  *     x = W/2 + f xc/zc,   y = H/2 - f yc/zc.
- * The angle phi of the texture convention (DESIGN.md) is atan2(-z, x):
+ * The angle phi of the texture convention (docs/conventions.md) is atan2(-z, x):
  * phi = pi/2 faces the camera. */
 #ifndef CELADON_TESTS_PINHOLE_VESSEL_H
 #define CELADON_TESTS_PINHOLE_VESSEL_H
