@@ -214,7 +214,7 @@ Test(recon_camera, mouth_tells_the_camera_candidates_apart, .timeout = 60)
         recon_meridian mer;
         char err[256];
         cr_assert_eq(pinhole_camera(&p, &img, &res, &cam, &mer, err, sizeof err), 0, "%s", err);
-        cr_expect_eq(recon_rim_near_arc_visible(&img, &res, &cam, &cam.rim), k, "elevation %d: mouth seen %d",
+        cr_expect_eq(recon_rim_near_arc_visible(&img, &cam, &cam.rim), k, "elevation %d: mouth seen %d",
                      k ? 10 : 5, !k);
         recon_meridian_free(&mer);
         recon_result_free(&res);

@@ -368,9 +368,9 @@ static int fit_arcs(recon_camera *cam, const vec2 *top, int n_top, const vec2 *b
  * told apart by whether the camera looks into the mouth (the rim's near
  * half is an edge in the photo): then it is above the rim. Returns 0, or -1
  * (with the reason in cam->note) when they give no usable focal length. */
-static int focal_from_ellipses(const image_t *img, const recon_result *res, recon_camera *cam, double *sigma_e)
+static int focal_from_ellipses(const image_t *img, recon_camera *cam, double *sigma_e)
 {
-    int above = recon_rim_near_arc_visible(img, res, cam, &cam->rim) == 1;
+    int above = recon_rim_near_arc_visible(img, cam, &cam->rim) == 1;
     double wh, f, sf, se;
     if (pick_horizon(&cam->base, &cam->rim, above, &wh, &f) != 0) {
         above = !above; /* only the other kind exists */
@@ -461,7 +461,7 @@ int recon_camera_solve(const image_t *img, const recon_result *res, const recon_
             ok = 1;
             break;
         }
-        ok = focal_from_ellipses(img, res, cam, &sigma_e) == 0;
+        ok = focal_from_ellipses(img, cam, &sigma_e) == 0;
         double x = half_diag / cam->focal_px;
         if (!ok || off * x * x * fabs(cam->focal_px - f_rect) / cam->focal_px < 0.01)
             break;

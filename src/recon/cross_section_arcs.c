@@ -146,10 +146,8 @@ static double median(double *v, int n)
     return gsl_stats_median_from_sorted_data(v, 1, (size_t)n);
 }
 
-int recon_rim_near_arc_visible(const image_t *img, const recon_result *res, const recon_camera *cam,
-                               const recon_ellipse *rim)
+int recon_rim_near_arc_visible(const image_t *img, const recon_camera *cam, const recon_ellipse *rim)
 {
-    (void)res;
     enum { SAMPLES = 64 };
     /* The band between the rim's two halves, sampled on its centre line w0,
      * must lie 1.5 px clear of both edges so that no sample mixes in the

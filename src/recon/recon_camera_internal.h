@@ -74,8 +74,7 @@ double recon_circle_of_ellipse(const recon_camera *cam, const recon_ellipse *e, 
  * below its near (lower) half; from below the rim that band is the wall
  * itself. 1 yes (the camera is above the rim), 0 no, -1 when the ellipse
  * is too thin to tell (b under 1.5 px). */
-int recon_rim_near_arc_visible(const image_t *img, const recon_result *res, const recon_camera *cam,
-                               const recon_ellipse *rim);
+int recon_rim_near_arc_visible(const image_t *img, const recon_camera *cam, const recon_ellipse *rim);
 
 /* Builds the camera from the arcs (image coordinates) and recon's axis. */
 int recon_camera_solve(const image_t *img, const recon_result *res, const recon_camera_options *opt,
