@@ -4,10 +4,11 @@
 
 CC      ?= cc
 CXX     ?= c++
-PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd libxxhash
+PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd libxxhash zlib
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
-            libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin
+            libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
+            zlib1g-dev
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)

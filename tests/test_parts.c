@@ -139,7 +139,7 @@ Test(parts, merge_refuses_missing_duplicated_foreign_and_incomplete_parts, .time
     /* A part whose render was interrupted says so in its header. */
     film_t film;
     cr_assert_eq(film_init(&film, 64, 48, NULL, 0, err, sizeof err), 0);
-    scene_t *s = scene_create_from_file(scene, (scene_define[]){{"spp", "12"}}, 1, NULL, err, sizeof err);
+    scene_t *s = scene_create_from_file(scene, (scene_define[]){{"spp", "12", false}}, 1, NULL, err, sizeof err);
     cr_assert_not_null(s, "%s", err);
     fixture_path(&f, "cut.exr", cut, sizeof cut);
     cr_assert_eq(render_part_write(&film, s, (render_part){2, 3}, 0, cut, err, sizeof err), 0, "%s", err);
@@ -171,7 +171,7 @@ Test(parts, scene_digest_follows_the_scene_and_its_files)
     free(loose);
     scene_options o = scene_options_default();
     uint64_t d[6];
-    const scene_define frame = {"frame", "5"};
+    const scene_define frame = {"frame", "5", false};
     scene_options res = o, seed = o;
     res.width = 32, res.height = 24;
     seed.seed = 77;

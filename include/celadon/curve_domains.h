@@ -4,14 +4,6 @@
 
 #include "celadon/bspline.h"
 
-/* The tolerances of profile.json's domains (the rings of the mesh), in the
- * profile's pixels: each domain within 0.25 px of its chord, and its tangent
- * angle within 0.25 deg of linear in arc length (more domains where the
- * curvature changes; bounds the interpolated shading normal's error between
- * rings). */
-#define PROFILE_DOMAIN_TOL_PX 0.25
-#define PROFILE_DOMAIN_TOL_NORMAL_DEG 0.25
-
 /* Splits the curve's parameter range [first knot, last knot] into domains
  * [u_k, u_k+1] such that on each domain the curve stays within tol_px of its
  * chord (the sagitta of the domain, measured at 16 interior samples, is

@@ -13,11 +13,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* An extra output: channels is 1 (written as "<name>.Y") or 3
- * ("<name>.R", "<name>.G", "<name>.B"). */
+/* An extra output: channels is 1 or 3, written as "<name>.<suffix>" with
+ * one suffix per channel ("T" for a depth, "X", "Y", "Z" for a vector, as
+ * Mitsuba's `aov` integrator names them), or, without suffixes, as
+ * "<name>.Y" or "<name>.R", "<name>.G", "<name>.B". */
 typedef struct {
     const char *name;
     int channels;
+    const char *const *suffixes; /* NULL: Y or R, G, B */
 } film_aov;
 
 typedef struct {

@@ -34,8 +34,10 @@ typedef struct {
 int render_aov_parse(const char *list, unsigned *mask);
 
 /* Renders into film (initialised here with the scene's size and the AOVs;
- * film_free it). Samples are taken in passes over all pixels, so a render
- * stopped early leaves every pixel with a consistent, noisier average.
+ * film_free it). Samples are taken in about eight passes over all pixels, so
+ * a render stopped after the first pass leaves every pixel with a
+ * consistent, noisier average; stopped during the first pass, the pixels not
+ * reached yet have no samples (film_develop gives them 0).
  * Returns 0, or -1 with a reason in err (also for a sample range outside
  * [0, spp] or empty). */
 int render_scene(const scene_t *s, const render_options *opt, film_t *film, render_stats *stats, char *err,

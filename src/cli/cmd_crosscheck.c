@@ -248,7 +248,7 @@ int cmd_crosscheck(int argc, char **argv)
             else if (!(defs[p.ndefs].name = strndup(val, (size_t)(eq - val))))
                 rc = 1;
             else
-                defs[p.ndefs++].value = eq + 1;
+                defs[p.ndefs].fallback = false, defs[p.ndefs++].value = eq + 1;
         } else {
             rc = cli_usage_error("crosscheck", "unknown option '%s'", a);
         }

@@ -28,7 +28,8 @@ static void usage(FILE *f)
                "SORs are intersected exactly unless --geometry mesh:N revolves them into N\n"
                "angular segments traced by Embree (same sampler seeds otherwise).\n\n"
                "  -o OUT          .exr (float32 RGB + AOV channels) or .png/.jpg (sRGB 8-bit)\n"
-               "  --spp N         samples per pixel (default: the scene's sampler)\n"
+               "  --spp N         samples per pixel (default: the scene's sampler); also the\n"
+               "                  value of $spp where the scene has no <default> for it\n"
                "  --res WxH       film size (default: the scene's film)\n"
                "  --geometry G    analytic (default) or mesh:N, N >= 3\n"
                "  --threads N     OpenMP threads (default: all cores; per rank under mpirun)\n"
@@ -47,8 +48,9 @@ typedef struct {
     const char *scene_path, *out;
     scene_options bo;
     render_options ro;
-    scene_define defs[MAX_DEFINES + 1]; /* + the frame's */
+    scene_define defs[MAX_DEFINES + 2]; /* + $spp's fallback + the frame's */
     int ndefs;
+    const char *spp; /* --spp's text, or NULL */
     render_part part; /* n == 0: the whole render */
     int frame_from, frame_to, frame_step, frames; /* frames == 0: no --frames */
 } render_args;
@@ -107,6 +109,7 @@ static int parse_args(int argc, char **argv, render_args *a)
             if (cli_parse_int(val, 1, 1 << 24, &v) != 0)
                 return cli_usage_error("render", "--spp wants an integer from 1 to 16777216, not '%s'", val);
             a->bo.spp = (int)v;
+            a->spp = val;
         } else if (!strcmp(arg, "--res")) {
             int w, h, n = 0;
             if (sscanf(val, "%dx%d%n", &w, &h, &n) != 2 || val[n] || w < 1 || h < 1 || w > 65536 || h > 65536)
@@ -134,7 +137,7 @@ static int parse_args(int argc, char **argv, render_args *a)
             char *name = strndup(val, (size_t)(eq - val));
             if (!name)
                 return 1;
-            a->defs[a->ndefs++] = (scene_define){name, eq + 1};
+            a->defs[a->ndefs++] = (scene_define){name, eq + 1, false};
         } else if (!strcmp(arg, "--aov")) {
             if (render_aov_parse(val, &a->ro.aovs) != 0)
                 return cli_usage_error("render", "--aov wants a list of depth, normal, albedo, not '%s'", val);
@@ -148,6 +151,12 @@ static int parse_args(int argc, char **argv, render_args *a)
             return cli_usage_error("render", "unknown option '%s'", arg);
         }
     }
+    /* --spp N is also $spp where the scene leaves it to the command line. */
+    int has_spp = 0;
+    for (int i = 0; i < a->ndefs; i++)
+        has_spp |= !strcmp(a->defs[i].name, "spp");
+    if (a->spp && !has_spp && !(a->defs[a->ndefs++] = (scene_define){strdup("spp"), a->spp, true}).name)
+        return 1;
     int is_exr = 0;
     if (!a->scene_path)
         return cli_usage_error("render", "%s", "missing SCENE.xml");
@@ -265,7 +274,7 @@ static int render_frames(render_args *a, const distribute_job *job)
         char value[16], out[4096];
         snprintf(value, sizeof value, "%d", f);
         frame_path(a->out, f, out, sizeof out);
-        a->defs[a->ndefs] = (scene_define){"frame", value};
+        a->defs[a->ndefs] = (scene_define){"frame", value, false};
         a->ndefs++;
         rc = render_one(a, job, out);
         a->ndefs--;

@@ -109,7 +109,7 @@ int recon_meridian_from_outline(const recon_camera *cam, const recon_result *res
     pts[m] = v2(pts[m - 1].x, Hm);
     m++;
     if (bspline_fit_profile(pts, m, smoothing_px, &mer->curve, NULL) != 0 ||
-        curve_domains_by_curvature_variation(&mer->curve, PROFILE_DOMAIN_TOL_PX, PROFILE_DOMAIN_TOL_NORMAL_DEG,
+        curve_domains_by_curvature_variation(&mer->curve, PROFILE_DOMAIN_TOL_PX, PROFILE_DOMAIN_TOL_DEG,
                                              &mer->domains, &mer->n_domains) != 0) {
         free(pts);
         recon_meridian_free(mer);

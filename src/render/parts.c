@@ -165,7 +165,7 @@ static int same_render(const part_info *a, const part_info *b, char *err, size_t
     return -2;
 }
 
-/* The film's AOVs from the channel list "R,G,B,depth.Y,normal.R,...". */
+/* The film's AOVs from the channel list "R,G,B,depth.T,normal.X,...". */
 static int film_for(const part_info *pi, film_t *film, char *err, size_t errlen)
 {
     char buf[ATTR_LEN], *names[MAX_CHANNELS], *save;
@@ -174,16 +174,18 @@ static int film_for(const part_info *pi, film_t *film, char *err, size_t errlen)
     for (char *t = strtok_r(buf, ",", &save); t && n < MAX_CHANNELS; t = strtok_r(NULL, ",", &save))
         names[n++] = t;
     film_aov aovs[MAX_CHANNELS];
+    const char *suffixes[MAX_CHANNELS]; /* each channel's, so an AOV's are consecutive */
     int naov = 0;
     for (int c = 3; c < n; c++) {
         char *dot = strrchr(names[c], '.');
         if (!dot)
             break;
         *dot = '\0';
+        suffixes[c] = dot + 1;
         if (naov > 0 && !strcmp(aovs[naov - 1].name, names[c]))
             aovs[naov - 1].channels++;
         else
-            aovs[naov++] = (film_aov){names[c], 1};
+            aovs[naov++] = (film_aov){names[c], 1, &suffixes[c]};
     }
     if (film_init(film, pi->width, pi->height, aovs, naov, err, errlen) != 0)
         return -1;

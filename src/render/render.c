@@ -80,14 +80,16 @@ static uint64_t render_tile(const scene_t *s, film_t *film, unsigned aovs, int t
 
 int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, size_t errlen)
 {
+    /* The channels as Mitsuba's aov integrator names them. */
+    static const char *const t[1] = {"T"}, *const xyz[3] = {"X", "Y", "Z"}, *const rgb[3] = {"R", "G", "B"};
     film_aov list[3];
     int naov = 0;
     if (aovs & RENDER_AOV_DEPTH)
-        list[naov++] = (film_aov){"depth", 1};
+        list[naov++] = (film_aov){"depth", 1, t};
     if (aovs & RENDER_AOV_NORMAL)
-        list[naov++] = (film_aov){"normal", 3};
+        list[naov++] = (film_aov){"normal", 3, xyz};
     if (aovs & RENDER_AOV_ALBEDO)
-        list[naov++] = (film_aov){"albedo", 3};
+        list[naov++] = (film_aov){"albedo", 3, rgb};
     return film_init(film, s->camera.width, s->camera.height, list, naov, err, errlen);
 }
 
