@@ -68,21 +68,41 @@ void recon_meridian_free(recon_meridian *m)
     memset(m, 0, sizeof *m);
 }
 
+/* The profile's outline in the camera frame: the polyline's points (what
+ * recon_extract kept of either side, or their mean, with the excluded parts
+ * left out) put back into the image on side_used, without its closing end
+ * points and the points it adds along a ledge (the tangent is fitted to one
+ * point per row). Returns the count. */
+static int profile_outline(const recon_camera *cam, const recon_result *res, vec2 *q)
+{
+    vec2 d = res->axis_direction, nrm = v2(-d.y, d.x);
+    double side = res->side_used == RECON_SIDE_LEFT ? -1 : 1, last_h = 0;
+    int n = 0;
+    for (int i = 1; i + 1 < res->n_polyline; i++) {
+        vec2 p = res->polyline[i];
+        if (p.y - last_h < 0.5)
+            continue;
+        last_h = p.y;
+        vec2 img = v2_add(res->axis_origin, v2_add(v2_scale(d, p.y), v2_scale(nrm, side * p.x)));
+        q[n++] = recon_camera_to_frame(cam, img);
+    }
+    return n;
+}
+
 int recon_meridian_from_outline(const recon_camera *cam, const recon_result *res, double smoothing_px,
                                 recon_meridian *mer, char *err, size_t errlen)
 {
     memset(mer, 0, sizeof *mer);
-    int s = res->side_used == RECON_SIDE_LEFT ? 0 : 1, n = res->n_silhouette[s];
     double Hm = cam->rim_y - cam->base_y;
-    vec2 *q = malloc((size_t)(n > 0 ? n : 1) * sizeof *q), *pts = malloc((size_t)(n + 2) * sizeof *pts);
+    int cap = res->n_polyline > 0 ? res->n_polyline : 1;
+    vec2 *q = malloc((size_t)cap * sizeof *q), *pts = malloc((size_t)(cap + 2) * sizeof *pts);
     if (!q || !pts) {
         free(q);
         free(pts);
         snprintf(err, errlen, "out of memory");
         return -1;
     }
-    for (int k = 0; k < n; k++)
-        q[k] = recon_camera_to_frame(cam, res->silhouette[s][k]);
+    int n = profile_outline(cam, res, q);
     /* Envelope samples (r, h) in world units, h above the base. */
     int m = 1;
     for (int k = 0; k < n; k++) {
