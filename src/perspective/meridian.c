@@ -68,23 +68,46 @@ void recon_meridian_free(recon_meridian *m)
     memset(m, 0, sizeof *m);
 }
 
-/* The profile's outline in the camera frame: the polyline's points (what
- * recon_extract kept of either side, or their mean, with the excluded parts
- * left out) put back into the image on side_used, without its closing end
- * points and the points it adds along a ledge (the tangent is fitted to one
- * point per row). Returns the count. */
-static int profile_outline(const recon_camera *cam, const recon_result *res, vec2 *q)
+/* The profile's outline in the camera frame, top to bottom: between the
+ * rim's and the base's heights along the imaged axis, the polyline's points
+ * (what recon_extract kept of either side, or their mean, with the excluded
+ * parts left out) put back into the image on side_used, without its closing
+ * end points and the points it adds along a ledge (the tangent is fitted to
+ * one point per row); above and below, where the polyline stops but the
+ * outline goes on (the rim's far edge and the foot's near edge seen from
+ * above), the silhouette of side_used. Returns the count; q[mid[0]] to
+ * q[mid[1] - 1] are the polyline's. */
+static int profile_outline(const recon_camera *cam, const recon_result *res, vec2 *q, int mid[2])
 {
+    int s = res->side_used == RECON_SIDE_LEFT ? 0 : 1, n_sil = res->n_silhouette[s], n = 0;
+    const vec2 *sil = res->silhouette[s];
     vec2 d = res->axis_direction, nrm = v2(-d.y, d.x);
-    double side = res->side_used == RECON_SIDE_LEFT ? -1 : 1, last_h = 0;
-    int n = 0;
-    for (int i = 1; i + 1 < res->n_polyline; i++) {
+    double side = s ? 1 : -1, H = res->n_polyline > 0 ? res->polyline[res->n_polyline - 1].y : 0;
+    /* Beyond the ends the outline is the rim's (base's) ellipse: no further
+     * out than its far (near) edge, half a pixel of noise allowed. */
+    double w_top = cam->rim.w0 + cam->rim.b + 0.5, w_bottom = cam->base.w0 - cam->base.b - 0.5;
+    int k = 0;
+    /* (half a pixel past the corners' rows, not the corners themselves) */
+    for (double h; k < n_sil && (h = v2_dot(v2_sub(sil[k], res->axis_origin), d)) >= H; k++) {
+        vec2 f = recon_camera_to_frame(cam, sil[k]);
+        if (h >= H + 0.5 && f.y <= w_top)
+            q[n++] = f;
+    }
+    double last_h = H;
+    mid[0] = n;
+    for (int i = res->n_polyline - 2; i > 0; i--) {
         vec2 p = res->polyline[i];
-        if (p.y - last_h < 0.5)
+        if (last_h - p.y < 0.5)
             continue;
         last_h = p.y;
         vec2 img = v2_add(res->axis_origin, v2_add(v2_scale(d, p.y), v2_scale(nrm, side * p.x)));
         q[n++] = recon_camera_to_frame(cam, img);
+    }
+    mid[1] = n;
+    for (; k < n_sil; k++) {
+        vec2 f = recon_camera_to_frame(cam, sil[k]);
+        if (v2_dot(v2_sub(sil[k], res->axis_origin), d) <= -0.5 && f.y >= w_bottom)
+            q[n++] = f;
     }
     return n;
 }
@@ -94,7 +117,7 @@ int recon_meridian_from_outline(const recon_camera *cam, const recon_result *res
 {
     memset(mer, 0, sizeof *mer);
     double Hm = cam->rim_y - cam->base_y;
-    int cap = res->n_polyline > 0 ? res->n_polyline : 1;
+    int s = res->side_used == RECON_SIDE_LEFT ? 0 : 1, cap = res->n_polyline + res->n_silhouette[s] + 1;
     vec2 *q = malloc((size_t)cap * sizeof *q), *pts = malloc((size_t)(cap + 2) * sizeof *pts);
     if (!q || !pts) {
         free(q);
@@ -102,13 +125,20 @@ int recon_meridian_from_outline(const recon_camera *cam, const recon_result *res
         snprintf(err, errlen, "out of memory");
         return -1;
     }
-    int n = profile_outline(cam, res, q);
-    /* Envelope samples (r, h) in world units, h above the base. */
+    int mid[2];
+    int n = profile_outline(cam, res, q, mid);
+    /* Envelope samples (r, h) in world units, h above the base. Beyond the
+     * polyline's ends the outline turns into the rim's (base's) ellipse: a
+     * point there is solved only while the outline is steeper than 45
+     * degrees (flatter, the tangent plane grazes the cross-sections and the
+     * radius is ill-conditioned: a level brush pot's rim gave 38% too wide). */
     int m = 1;
     for (int k = 0; k < n; k++) {
         double r, y;
-        if (recon_envelope_point(cam, q[k], tangent_at(q, n, k), &r, &y) == 0 && y > cam->base_y &&
-            y < cam->rim_y)
+        vec2 t = tangent_at(q, n, k);
+        if ((k < mid[0] || k >= mid[1]) && fabs(t.x) > 1)
+            continue;
+        if (recon_envelope_point(cam, q[k], t, &r, &y) == 0 && y > cam->base_y && y < cam->rim_y)
             pts[m++] = v2(r, y - cam->base_y);
     }
     free(q);
