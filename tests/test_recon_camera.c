@@ -109,15 +109,22 @@ Test(recon_camera, elevation_20, .timeout = 120) { elevation_case(20); }
 
 Test(recon_camera, through_recon_extract, .timeout = 120)
 {
-    /* The whole chain as the pipeline runs it, where today's corner finder
-     * copes (up to 10 degrees on the vase). */
+    /* The whole chain as the pipeline runs it, where the corner finder
+     * copes: at 0 and 5 degrees on the vase. From 10 degrees the wall meets
+     * the base's ellipse tangentially and caps.c takes the ellipse's pole
+     * for both base corners (docs/algorithms-recon.md, 13.8): the bottom arc
+     * is then a few columns wide, and the camera must say orthographic
+     * rather than be wrong. */
     for (int e = 0; e <= 10; e += 5) {
         pinhole_params p = pinhole_defaults(SYNTH_VASE, e);
         outcome o;
         run(&p, 1, NULL, &o);
         char what[64];
         snprintf(what, sizeof what, "vase at %d deg through recon_extract", e);
-        expect_accurate(&p, &o, what);
+        if (e < 10 || o.cam.method != RECON_CAMERA_ORTHOGRAPHIC)
+            expect_accurate(&p, &o, what);
+        else
+            cr_expect_neq(o.cam.note[0], '\0', "%s: the orthographic fallback says why", what);
         recon_meridian_free(&o.mer);
     }
 }
