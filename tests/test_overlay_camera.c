@@ -28,16 +28,13 @@ static int coloured_near(const uint8_t *rgb, int w, int h, vec2 p, double reach,
 Test(overlay_camera, ellipses_and_sections_where_the_circles_are, .timeout = 60)
 {
     pinhole_params p = pinhole_defaults(SYNTH_VASE, 10);
-    image_t img;
-    recon_result res;
-    recon_camera cam;
-    recon_meridian mer;
+    pinhole_shot sh;
     char err[256];
-    cr_assert_eq(pinhole_camera(&p, &img, &res, &cam, &mer, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(pinhole_camera(&p, &sh, err, sizeof err), 0, "%s", err);
     int W = p.width, H = p.height;
     uint8_t *rgb = malloc((size_t)W * H * 3);
     memset(rgb, 128, (size_t)W * H * 3);
-    cr_assert_eq(overlay_draw_camera(rgb, W, H, &cam, &mer, 3), 0);
+    cr_assert_eq(overlay_draw_camera(rgb, W, H, &sh.cam, &sh.mer, 3), 0);
     double reach = 1.5; /* the line's half width is 1 px on a photo this size */
     const uint8_t *green = overlay_camera_colours[OVERLAY_CAMERA_ELLIPSES];
     const uint8_t *blue = overlay_camera_colours[OVERLAY_CAMERA_SECTIONS];
@@ -63,7 +60,5 @@ Test(overlay_camera, ellipses_and_sections_where_the_circles_are, .timeout = 60)
     cr_expect_eq(rgb[0], 128);
     cr_expect_eq(rgb[3 * ((size_t)H * W - 1)], 128);
     free(rgb);
-    recon_meridian_free(&mer);
-    recon_result_free(&res);
-    image_free(&img);
+    pinhole_shot_free(&sh);
 }

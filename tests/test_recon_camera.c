@@ -215,17 +215,12 @@ Test(recon_camera, mouth_tells_the_camera_candidates_apart, .timeout = 60)
      * (drawn in its own colour); at 5 degrees it is below it. */
     for (int k = 0; k < 2; k++) {
         pinhole_params p = pinhole_defaults(SYNTH_VASE, k ? 10 : 5);
-        image_t img;
-        recon_result res;
-        recon_camera cam;
-        recon_meridian mer;
+        pinhole_shot sh;
         char err[256];
-        cr_assert_eq(pinhole_camera(&p, &img, &res, &cam, &mer, err, sizeof err), 0, "%s", err);
-        cr_expect_eq(recon_rim_near_arc_visible(&img, &cam, &cam.rim), k, "elevation %d: mouth seen %d",
+        cr_assert_eq(pinhole_camera(&p, &sh, err, sizeof err), 0, "%s", err);
+        cr_expect_eq(recon_rim_near_arc_visible(&sh.img, &sh.cam, &sh.cam.rim), k, "elevation %d: mouth seen %d",
                      k ? 10 : 5, !k);
-        recon_meridian_free(&mer);
-        recon_result_free(&res);
-        image_free(&img);
+        pinhole_shot_free(&sh);
     }
 }
 

@@ -109,15 +109,12 @@ Test(recon_camera_texture, checkerboard_unrolls_straight, .timeout = 180)
     pinhole_params p = pinhole_defaults(SYNTH_JAR, 10);
     p.checker_bands = BANDS;
     p.checker_sectors = SECTORS;
-    image_t img;
-    recon_result res;
-    recon_camera cam;
-    recon_meridian mer;
+    pinhole_shot sh;
     char err[256];
-    cr_assert_eq(pinhole_camera(&p, &img, &res, &cam, &mer, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(pinhole_camera(&p, &sh, err, sizeof err), 0, "%s", err);
     recon_texture_t ours, scan;
-    cr_assert_eq(recon_texture_from_camera(&img, &cam, &mer, &ours, err, sizeof err), 0, "%s", err);
-    cr_assert_eq(recon_texture_from_photo(&img, &res, &scan, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(recon_texture_from_camera(&sh.img, &sh.cam, &sh.mer, &ours, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(recon_texture_from_photo(&sh.img, &sh.res, &scan, err, sizeof err), 0, "%s", err);
     double mid = 255 * 0.5 * (0.299 * (p.fg[0] + p.fg2[0]) + 0.587 * (p.fg[1] + p.fg2[1]) +
                               0.114 * (p.fg[2] + p.fg2[2]));
 
@@ -147,7 +144,5 @@ Test(recon_camera_texture, checkerboard_unrolls_straight, .timeout = 180)
                                         "tell", t.worst_row_dev);
     recon_texture_free(&ours);
     recon_texture_free(&scan);
-    recon_meridian_free(&mer);
-    recon_result_free(&res);
-    image_free(&img);
+    pinhole_shot_free(&sh);
 }

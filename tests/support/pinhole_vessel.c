@@ -463,12 +463,19 @@ int pinhole_photo(const pinhole_params *p, image_t *img, recon_result *res)
     return rc;
 }
 
-int pinhole_camera(const pinhole_params *p, image_t *img, recon_result *res, recon_camera *cam, recon_meridian *mer,
-                   char *err, size_t errlen)
+int pinhole_camera(const pinhole_params *p, pinhole_shot *s, char *err, size_t errlen)
 {
-    if (pinhole_photo(p, img, res) != 0) {
+    memset(s, 0, sizeof *s);
+    if (pinhole_photo(p, &s->img, &s->res) != 0) {
         snprintf(err, errlen, "out of memory");
         return -1;
     }
-    return recon_camera_meridian(img, res, NULL, cam, mer, err, errlen);
+    return recon_camera_meridian(&s->img, &s->res, NULL, &s->cam, &s->mer, err, errlen);
+}
+
+void pinhole_shot_free(pinhole_shot *s)
+{
+    recon_meridian_free(&s->mer);
+    recon_result_free(&s->res);
+    image_free(&s->img);
 }

@@ -89,9 +89,17 @@ int pinhole_extraction(const pinhole_params *p, const image_t *img, const uint8_
  * stages would find in it. Returns 0, or -1 when out of memory. */
 int pinhole_photo(const pinhole_params *p, image_t *img, recon_result *res);
 
+/* A drawn photo with what the image stages and the camera stage find. */
+typedef struct {
+    image_t img;
+    recon_result res;
+    recon_camera cam;
+    recon_meridian mer;
+} pinhole_shot;
+
 /* pinhole_photo, then recon_camera_meridian (no options). Returns 0, or -1
- * with a reason in err. */
-int pinhole_camera(const pinhole_params *p, image_t *img, recon_result *res, recon_camera *cam, recon_meridian *mer,
-                   char *err, size_t errlen);
+ * with a reason in err; free with pinhole_shot_free either way. */
+int pinhole_camera(const pinhole_params *p, pinhole_shot *s, char *err, size_t errlen);
+void pinhole_shot_free(pinhole_shot *s);
 
 #endif
