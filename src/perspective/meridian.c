@@ -158,9 +158,14 @@ int recon_meridian_from_outline(const recon_camera *cam, const recon_result *res
     pts[0] = v2(pts[1].x, 0);
     pts[m] = v2(pts[m - 1].x, Hm);
     m++;
-    if (bspline_fit_profile(pts, m, smoothing_px, &mer->curve, NULL) != 0 ||
-        curve_domains_by_curvature_variation(&mer->curve, PROFILE_DOMAIN_TOL_PX, PROFILE_DOMAIN_TOL_DEG,
-                                             &mer->domains, &mer->n_domains) != 0) {
+    int fitted = bspline_fit_profile(pts, m, smoothing_px, &mer->curve, NULL) == 0;
+    /* As for the outline's curve (reconstruct.c): control points that
+     * undershoot the axis (a mouth closing on it) are put on it, so the
+     * profile.json reader, which refuses a negative radius, reads it back. */
+    for (int i = 0; fitted && i < mer->curve.n_ctrl; i++)
+        mer->curve.ctrl[i].x = fmax(0, mer->curve.ctrl[i].x);
+    if (!fitted || curve_domains_by_curvature_variation(&mer->curve, PROFILE_DOMAIN_TOL_PX, PROFILE_DOMAIN_TOL_DEG,
+                                                        &mer->domains, &mer->n_domains) != 0) {
         free(pts);
         recon_meridian_free(mer);
         snprintf(err, errlen, "cannot fit a curve to the meridian");
