@@ -113,8 +113,7 @@ static void fit_camera(const char *path, const reconstruct_options *opt, reconst
     r->has_camera = recon_camera_meridian(&r->photo, &r->extract, &copt, &r->camera, &r->meridian, why,
                                           sizeof why) == 0;
     if (!r->has_camera)
-        snprintf(r->camera_note, sizeof r->camera_note, "no camera model (%s): the image outline is the profile",
-                 why);
+        snprintf(r->camera_note, sizeof r->camera_note, "no camera model: %s", why);
 }
 
 int reconstruction_is_perspective(const reconstruction *r)
