@@ -236,6 +236,18 @@ demo-photo: check-deps-stamp
 	@mkdir -p scenes/demo
 	build/tools/draw_demo_photo scenes/demo/photo.png
 
+# `make perspective-figure` redraws the figure of docs/algorithms-recon.md,
+# "Perspective", from exact geometry (tests/tools/draw_perspective_figure.c).
+.PHONY: perspective-figure
+PERSPECTIVE_FIGURE_SRC := tests/tools/draw_perspective_figure.c tests/support/pinhole_vessel.c tests/support/synth_vessel.c
+build/tools/draw_perspective_figure: $(PERSPECTIVE_FIGURE_SRC) build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Itests -o $@ $(PERSPECTIVE_FIGURE_SRC) build/opt/libceladon.a $(LDLIBS)
+
+perspective-figure: check-deps-stamp
+	@$(MAKE) --no-print-directory build/tools/draw_perspective_figure
+	build/tools/draw_perspective_figure docs/img/perspective-geometry.png
+
 demo: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon
 	build/celadon reconstruct scenes/demo/photo.png -o out/demo
@@ -257,6 +269,11 @@ build/bench/bench_maxflow: bench/bench_maxflow.c build/opt/libceladon.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(shell pkg-config --cflags igraph 2>/dev/null) -O3 -o $@ $< build/opt/libceladon.a \
 	  $(LDLIBS) $(shell pkg-config --libs igraph 2>/dev/null)
+
+# bench_perspective reads the synth-dev photos' truth with the test helper.
+build/bench/bench_perspective: bench/bench_perspective.c tests/support/synthdev_truth.c build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_perspective.c tests/support/synthdev_truth.c build/opt/libceladon.a $(LDLIBS)
 
 bench: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon $(BENCH_BIN)

@@ -121,10 +121,15 @@ static int count_obj(const char *text, const char *tag)
 /* The vertex and face counts of the profile's mesh at s segments with a base
  * cap (mesh.h): one ring per domain parameter, the base ring again with one
  * centre vertex per segment. */
+/* The mesh's counts: one ring per domain boundary of the profile's shape
+ * (profile_shape: the meridian when the file has one). */
 static void expected_mesh(const profile_t *p, int s, int *verts, int *faces)
 {
-    *verts = p->n_domains * s + 2 * s;
-    *faces = 2 * s * (p->n_domains - 1) + s;
+    const double *domains;
+    int n;
+    profile_shape(p, &domains, &n);
+    *verts = n * s + 2 * s;
+    *faces = 2 * s * (n - 1) + s;
 }
 
 static void check_outputs(const char *dir, const synth_params *truth, int *verts, int *faces)
@@ -271,7 +276,7 @@ Test(cli_reconstruct, json_report_has_the_table_1_columns)
     cr_expect_float_eq(json_real_value(json_object_get(e, "polyline_to_curve")), p.err_polyline_to_curve, 1e-5);
     json_t *t = json_object_get(rep, "timings_ms");
     static const char *const stages[] = {"decode", "image_processing", "bspline", "domains", "hausdorff",
-                                         "texture", "mesh", "overlay", "write", "total"};
+                                         "camera", "texture", "mesh", "overlay", "write", "total"};
     double sum = 0;
     for (size_t i = 0; i < sizeof stages / sizeof *stages; i++) {
         json_t *v = json_object_get(t, stages[i]);
@@ -301,6 +306,51 @@ Test(cli_reconstruct, json_report_has_the_table_1_columns)
     profile_free(&p);
     json_decref(rep);
     cli_result_free(&r);
+}
+
+/* The drawn jar is a level orthographic view: its base and rim are straight
+ * lines, so the camera is orthographic and says why; with --fov the focal
+ * length is the one the field of view gives, and the report and
+ * profile.json's camera block agree. */
+Test(cli_reconstruct, the_report_says_which_camera_model)
+{
+    draw_photo("jar.png", SYNTH_JAR, 0.0, 280, 360);
+    char photo[300], out[300], path[400], err[256];
+    path_in(photo, sizeof photo, "jar.png");
+    for (int k = 0; k < 2; k++) {
+        path_in(out, sizeof out, k ? "fov" : "auto");
+        cli_result r = k ? run_reconstruct((const char *const[]){"--json", "--fov", "20", photo, "-o", out, NULL})
+                         : run_reconstruct((const char *const[]){"--json", photo, "-o", out, NULL});
+        cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+        json_t *rep = json_loads(r.out, 0, NULL);
+        cr_assert_not_null(rep);
+        json_t *cam = json_object_get(rep, "camera");
+        const char *model = json_string_value(json_object_get(cam, "model"));
+        const char *method = json_string_value(json_object_get(cam, "method"));
+        double focal = json_real_value(json_object_get(cam, "focal_px"));
+        cr_assert(model && method, "camera.model and camera.method");
+        profile_t p;
+        snprintf(path, sizeof path, "%s/profile.json", out);
+        cr_assert_eq(profile_read_json(path, &p, err, sizeof err), 0, "%s", err);
+        cr_expect(p.has_camera && p.has_meridian, "profile.json has the camera and the meridian");
+        cr_expect_str_eq(p.camera.method, method);
+        cr_expect_float_eq(p.camera.focal_px, focal, 0.01); /* the report has 6 digits */
+        if (k) {
+            cr_expect_str_eq(model, "perspective");
+            cr_expect_str_eq(method, "flag");
+            cr_expect_float_eq(focal, 140.0 / tan(10.0 * M_PI / 180), 0.01, "f = (W/2) / tan(fov/2): %g", focal);
+            cr_expect_not_null(strstr(r.err, "camera: perspective"), "stderr: %s", r.err);
+        } else {
+            cr_expect_str_eq(model, "orthographic");
+            cr_expect_str_eq(method, "orthographic");
+            cr_expect_eq(focal, 0.0);
+            cr_expect_neq(json_string_value(json_object_get(cam, "note"))[0], '\0', "the fallback says why");
+            cr_expect_not_null(strstr(r.err, "camera: orthographic"), "stderr: %s", r.err);
+        }
+        profile_free(&p);
+        json_decref(rep);
+        cli_result_free(&r);
+    }
 }
 
 Test(cli_reconstruct, batch_gives_one_folder_per_photo)
@@ -484,6 +534,8 @@ Test(cli_reconstruct, usage_errors_exit_2)
         {"photo.png", "-o", "x", "--segments", "2", NULL},   /* too few segments */
         {"photo.png", "-o", "x", "--threshold", "300", NULL},
         {"photo.png", "-o", "x", "--frobnicate", NULL},
+        {"photo.png", "-o", "x", "--fov", "0", NULL},       /* no field of view */
+        {"photo.png", "-o", "x", "--fov", "20deg", NULL},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         cli_result r = run_reconstruct(cases[i]);

@@ -4,7 +4,8 @@
  * "Accuracy": at least 14 of the 17 pass the quality gate, the median
  * left/right disagreement of those is at most 1% of the largest radius, and
  * every result that passes is a profile the renderer builds (r >= 0, a valid
- * surface of revolution). */
+ * surface of revolution) from its shape (profile_shape: the meridian when
+ * the camera gave one). */
 #include <criterion/criterion.h>
 #include <dirent.h>
 #include <stdio.h>
@@ -45,10 +46,15 @@ Test(recon_realdev, most_real_photos_pass_and_build, .timeout = 1800)
         reconstruct_options opt = reconstruct_options_default();
         reconstruction r;
         int st = reconstruct_photo(path, &opt, &r, err, sizeof err);
-        cr_log_info("%-50s %s", list[i]->d_name, st == 0 ? "passed" : err);
+        cr_log_info("%-50s %s%s", list[i]->d_name, st == 0 ? "passed" : err,
+                    st != 0 ? "" : reconstruction_is_perspective(&r) ? ", perspective camera" : ", orthographic");
         if (st == 0) {
             lr[passed++] = r.quality.lr_disagreement;
-            sor_t *s = sor_create(&r.curve, 1.0, SOR_CAPS_ALL, err, sizeof err);
+            profile_t p;
+            reconstruction_profile(&r, path, &p);
+            const double *domains;
+            int n_domains;
+            sor_t *s = sor_create(profile_shape(&p, &domains, &n_domains), 1.0, SOR_CAPS_ALL, err, sizeof err);
             cr_expect_not_null(s, "%s: the renderer cannot build the profile: %s", list[i]->d_name, err);
             sor_destroy(s);
         }

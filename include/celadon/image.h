@@ -30,6 +30,10 @@ int image_read_checked(const char *path, int min_side, double max_megapixels, im
 /* Reads only the header: size and channels, cheap. */
 int image_probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen);
 
+/* The photo's 35 mm equivalent focal length from its EXIF
+ * (FocalLengthIn35mmFilm), mm; 0 when it has none or cannot be read. */
+double image_exif_focal_35mm(const char *path);
+
 /* Writes 8-bit pixels; the format follows the extension (png, jpg, tif, ...).
  * Written to a temporary file in the same folder and renamed, so a failure
  * leaves no partial file. */

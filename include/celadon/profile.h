@@ -10,6 +10,26 @@
 
 enum { CORNER_RIM_LEFT, CORNER_RIM_RIGHT, CORNER_BASE_LEFT, CORNER_BASE_RIGHT, CORNER_COUNT };
 
+/* A fitted outline arc of a perspective reconstruction: the ellipse of the
+ * base (conics[0]) or the rim (conics[1]) in the camera's frame. */
+typedef struct {
+    vec2 center_px;           /* the ellipse's centre, image point */
+    double semi_axes_px[2];   /* across and along the imaged axis */
+    double rms_px, max_px;    /* orthogonal residuals of the inliers */
+    int points, inliers;
+} profile_conic;
+
+/* The camera of a perspective reconstruction (profile.json "camera"). */
+typedef struct {
+    char method[16];          /* "ellipses", "exif", "flag" or "orthographic" */
+    double elevation_deg;     /* the optical axis below the horizontal */
+    double focal_px;          /* 0 for the orthographic model */
+    double roll_deg;
+    vec2 principal_point;
+    char note[200];           /* why the orthographic model, or empty */
+    profile_conic conics[2];  /* base, rim */
+} profile_camera;
+
 typedef struct {
     char source_path[4096];
     int source_width, source_height;
@@ -43,6 +63,14 @@ typedef struct {
         double hausdorff_px, lr_disagreement, excluded_fraction;
         unsigned border_contact; /* bits: 1 top, 2 bottom, 4 left, 8 right */
     } quality;
+    /* Perspective reconstructions only (has_camera, has_meridian: 0 when
+     * the file has no such block). */
+    int has_camera;
+    profile_camera camera;
+    int has_meridian;
+    bspline_t meridian;       /* the true profile, clamped cubic, (r, h) with h 0 at the base and 1 at the rim */
+    int n_meridian_domains;
+    double *meridian_domains; /* its curvature domains, increasing u values from 0 to 1 */
 } profile_t;
 
 /* The most elements an array of profile.json may hold (control points,
@@ -67,5 +95,14 @@ int profile_write_json(const char *path, const profile_t *p, char *err, size_t e
  * -1 with a one-line reason. */
 int profile_read_json(const char *path, profile_t *p, char *err, size_t errlen);
 void profile_free(profile_t *p);
+
+/* The profile a surface of revolution is built from: the meridian when the
+ * file has one (a perspective reconstruction: the vessel's true profile),
+ * else the B-spline (the image outline); *domains and *n_domains receive
+ * its curvature domains. Both run from the base (u = 0) to the rim (u = 1)
+ * and are scaled by whoever revolves them so that the rim is at the height
+ * asked for, so their units (height, pixels) do not matter. `mesh` and the
+ * renderer's `sor` shape take the profile from here. */
+const bspline_t *profile_shape(const profile_t *p, const double **domains, int *n_domains);
 
 #endif

@@ -1,5 +1,6 @@
-/* The texture T(u, v) of a reconstructed vessel, taken from its photograph by
- * scanline resampling (one texture row per height step along the axis). */
+/* The texture T(u, v) of a reconstructed vessel, taken from its photograph:
+ * by scanline resampling (one texture row per height step along the axis),
+ * or by the camera (along the imaged cross-sections: recon_camera.h). */
 #ifndef CELADON_RECON_TEXTURE_H
 #define CELADON_RECON_TEXTURE_H
 
@@ -11,7 +12,8 @@
 
 typedef struct {
     int width, height;
-    uint8_t *rgb; /* width*height*3, row 0 = the rim (v = 1), last row = the base (v = 0) */
+    uint8_t *rgb;  /* width*height*3, row 0 = the rim (v = 1), last row = the base (v = 0) */
+    uint8_t *seen; /* width*height, 1 where the camera saw the texel; NULL: all seen (scanline) */
 } recon_texture_t;
 
 /* Builds the texture from the photo and its extraction result. Rows are
@@ -24,6 +26,7 @@ typedef struct {
  * u = 0 is the left silhouette, 0.5 the front meridian, 1 the right one.
  * Returns 0, or -1 with a one-line reason in err. */
 int recon_texture_from_photo(const image_t *photo, const recon_result *res, recon_texture_t *out, char *err, size_t errlen);
+
 void recon_texture_free(recon_texture_t *t);
 
 #endif

@@ -2,7 +2,8 @@
  * (`celadon reconstruct`), the museum, the benchmarks and the tests share.
  *
  *   reconstruct_photo    decode, image stages (recon_extract), B-spline fit,
- *                        curvature domains, Hausdorff errors, texture
+ *                        curvature domains, Hausdorff errors, the camera and
+ *                        the meridian (recon_camera_meridian), texture
  *   reconstruct_write    profile.json, texture.png, model.obj/.mtl/.ply and
  *                        the --lod meshes, overlay.png: all or nothing
  *
@@ -24,6 +25,7 @@
 #include "celadon/image.h"
 #include "celadon/profile.h"
 #include "celadon/recon.h"
+#include "celadon/recon_camera.h"
 #include "celadon/recon_texture.h"
 
 enum { RECONSTRUCT_MAX_LODS = 8 };
@@ -49,10 +51,12 @@ typedef struct {
     int lods[RECONSTRUCT_MAX_LODS], n_lods; /* extra meshes model_N.* */
     int mouth_cap;         /* close the mouth with a disc (the base is always closed) */
     int force;             /* write the outputs even when the quality gate fails */
+    recon_camera_options camera; /* fov_deg (--fov); focal_35mm 0: read from the photo's EXIF */
 } reconstruct_options;
 
 /* The defaults of `celadon reconstruct`: automatic threshold and side, 1 px
- * smoothing, 360 segments, no LODs, open mouth. */
+ * smoothing, 360 segments, no LODs, open mouth, the focal length from the
+ * ellipses or the EXIF. */
 reconstruct_options reconstruct_options_default(void);
 
 typedef struct {
@@ -61,7 +65,7 @@ typedef struct {
 
 /* Wall-clock milliseconds per stage (the paper's Table 1 and more). */
 typedef struct {
-    double decode, image, bspline, domains, hausdorff, texture, mesh, overlay, write, total;
+    double decode, image, bspline, domains, hausdorff, camera, texture, mesh, overlay, write, total;
 } reconstruct_timings;
 
 typedef struct {
@@ -71,7 +75,16 @@ typedef struct {
     double *domains;        /* curvature domains: increasing u from 0 to 1 */
     int n_domains;
     double err_curve_to_polyline, err_polyline_to_curve; /* one-sided Hausdorff, px */
-    recon_texture_t texture;
+    /* The camera model: has_camera 1 when recon_camera_meridian succeeded
+     * (perspective, or orthographic when the ellipses are too flat: see
+     * camera.method and camera.note), then meridian is the vessel's profile
+     * (profile.json "camera" and "meridian"); 0 when it failed (camera_note
+     * says why): the image outline (curve) is the profile. */
+    int has_camera;
+    recon_camera camera;
+    recon_meridian meridian;
+    char camera_note[256];
+    recon_texture_t texture; /* by the camera when it is perspective, else by scanlines */
     reconstruct_quality quality;
     reconstruct_mesh_stats mesh, lods[RECONSTRUCT_MAX_LODS]; /* filled by reconstruct_write */
     reconstruct_timings ms;
@@ -82,8 +95,12 @@ typedef struct {
 int reconstruct_photo(const char *path, const reconstruct_options *opt, reconstruction *r, char *err,
                       size_t errlen);
 
+/* 1 when the camera is perspective (not the orthographic fallback). */
+int reconstruction_is_perspective(const reconstruction *r);
+
 /* The profile.json view of a reconstruction (borrows r's arrays: valid while
- * r is). source is the photo's path as recorded in the file. */
+ * r is; do not profile_free it). source is the photo's path as recorded in
+ * the file. Its profile_shape() is the meridian when r has a camera. */
 void reconstruction_profile(const reconstruction *r, const char *source, profile_t *p);
 
 /* Writes every output into the folder dir (created if missing; its parent

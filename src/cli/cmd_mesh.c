@@ -160,7 +160,10 @@ int cmd_mesh(int argc, char **argv)
     }
     mesh_t m;
     unsigned caps = MESH_CAP_BASE | (mouth_cap ? MESH_CAP_MOUTH : 0u);
-    if (mesh_revolve(&p.curve, p.domains, p.n_domains, height, (int)segments, caps, &m) != 0) {
+    const double *domains;
+    int n_domains;
+    const bspline_t *shape = profile_shape(&p, &domains, &n_domains); /* the meridian when there is one */
+    if (mesh_revolve(shape, domains, n_domains, height, (int)segments, caps, &m) != 0) {
         fprintf(stderr, "celadon: %s: cannot revolve this profile at %ld segments (rim not above the base, "
                         "or too many vertices)\n", profile_path, segments);
         profile_free(&p);

@@ -36,6 +36,10 @@ typedef struct {
     reconstruct_mesh_stats mesh, lods[RECONSTRUCT_MAX_LODS];
     double err_curve_to_polyline, err_polyline_to_curve;
     reconstruct_quality quality;
+    const char *model;      /* "perspective" or "orthographic" */
+    const char *method;     /* how the focal length was found; "none" without a camera */
+    double elevation_deg, focal_px;
+    char camera_note[256];  /* why orthographic, or empty */
     reconstruct_timings ms;
 } report;
 
@@ -57,6 +61,9 @@ static void usage(FILE *f)
             "  --mouth-cap          close the mouth with a disc (the base is always closed)\n"
             "  --smoothing PX       largest distance of a profile point from the fitted\n"
             "                       B-spline, pixels (default 1)\n"
+            "  --fov DEG            the camera's horizontal field of view over the photo's width\n"
+            "                       (default: the EXIF focal length, else found from the imaged\n"
+            "                       base and rim ellipses)\n"
             "  --force              write the outputs even when the result fails the quality gate\n"
             "                       (a warning line; profile.json records \"quality\": {\"passed\": false})\n"
             "  --json               print the report as JSON on stdout (an array for several photos)\n"
@@ -94,13 +101,13 @@ static int parse_lods(const char *s, reconstruct_options *o)
 /* Returns -1 to continue, otherwise the exit code. */
 static int parse_options(int argc, char **argv, options *o)
 {
-    enum { OPT_THRESHOLD = 256, OPT_SIDE, OPT_SEGMENTS, OPT_LOD, OPT_MOUTH_CAP, OPT_JSON, OPT_SMOOTHING, OPT_FORCE };
+    enum { OPT_THRESHOLD = 256, OPT_SIDE, OPT_SEGMENTS, OPT_LOD, OPT_MOUTH_CAP, OPT_JSON, OPT_SMOOTHING, OPT_FORCE, OPT_FOV };
     static const struct option longopts[] = {
         {"output", required_argument, NULL, 'o'},      {"threshold", required_argument, NULL, OPT_THRESHOLD},
         {"side", required_argument, NULL, OPT_SIDE},   {"segments", required_argument, NULL, OPT_SEGMENTS},
         {"lod", required_argument, NULL, OPT_LOD},     {"mouth-cap", no_argument, NULL, OPT_MOUTH_CAP},
         {"json", no_argument, NULL, OPT_JSON},         {"smoothing", required_argument, NULL, OPT_SMOOTHING},
-        {"force", no_argument, NULL, OPT_FORCE},
+        {"force", no_argument, NULL, OPT_FORCE},      {"fov", required_argument, NULL, OPT_FOV},
         {"help", no_argument, NULL, 'h'},              {NULL, 0, NULL, 0},
     };
     *o = (options){.pipeline = reconstruct_options_default()};
@@ -150,6 +157,14 @@ static int parse_options(int argc, char **argv, options *o)
                 return cli_usage_error("reconstruct", "--smoothing wants pixels between 0.01 and 100, not '%s'", optarg);
             break;
         }
+        case OPT_FOV: {
+            char *end;
+            double fov = strtod(optarg, &end);
+            if (end == optarg || *end || !(fov >= 1.0 && fov <= 150.0))
+                return cli_usage_error("reconstruct", "--fov wants degrees between 1 and 150, not '%s'", optarg);
+            o->pipeline.camera.fov_deg = fov;
+            break;
+        }
         case 'h':
             usage(stdout);
             return 0;
@@ -181,6 +196,17 @@ static void file_stem(const char *path, char *stem, size_t len)
 
 /* ------------------------------------------------------------------ one photo */
 
+/* Which camera model the profile came from. */
+static void camera_report(const reconstruction *r, report *rep)
+{
+    static const char *const methods[] = {"ellipses", "exif", "flag", "orthographic"};
+    rep->model = reconstruction_is_perspective(r) ? "perspective" : "orthographic";
+    rep->method = r->has_camera ? methods[r->camera.method] : "none";
+    rep->elevation_deg = r->has_camera ? r->camera.elevation_deg : 0;
+    rep->focal_px = r->has_camera ? r->camera.focal_px : 0;
+    snprintf(rep->camera_note, sizeof rep->camera_note, "%s", r->has_camera ? r->camera.note : r->camera_note);
+}
+
 /* The library pipeline, then the outputs into rep->out; the run's figures
  * are kept in the report (the arrays are released). */
 static void reconstruct_one(const options *o, report *rep)
@@ -207,6 +233,7 @@ static void reconstruct_one(const options *o, report *rep)
         rep->domains = r.n_domains;
         rep->err_curve_to_polyline = r.err_curve_to_polyline;
         rep->err_polyline_to_curve = r.err_polyline_to_curve;
+        camera_report(&r, rep);
         rep->mesh = r.mesh;
         memcpy(rep->lods, r.lods, sizeof rep->lods);
         rep->ms = r.ms;
@@ -222,13 +249,20 @@ static void print_summary(const report *r)
             "  %d contour points -> %d control points, %d domains; Hausdorff curve->polyline %.2f px, "
             "polyline->curve %.2f px\n"
             "  mesh %d vertices, %d faces (%d segments)\n"
-            "  %.1f ms: decode %.1f, image processing %.1f, B-spline %.1f, domains %.1f, errors %.1f, texture %.1f, "
-            "mesh %.1f, overlay %.1f, writing %.1f\n",
+            "  %.1f ms: decode %.1f, image processing %.1f, B-spline %.1f, domains %.1f, errors %.1f, camera %.1f, "
+            "texture %.1f, mesh %.1f, overlay %.1f, writing %.1f\n",
             r->photo, r->out, r->tilt_deg, r->side, r->excluded, r->excluded == 1 ? "" : "s", r->dropped_objects,
             r->dropped_objects == 1 ? "" : "s", r->contour_points, r->control_points, r->domains,
             r->err_curve_to_polyline, r->err_polyline_to_curve, r->mesh.vertices, r->mesh.faces, r->mesh.segments,
-            r->ms.total, r->ms.decode, r->ms.image, r->ms.bspline, r->ms.domains, r->ms.hausdorff, r->ms.texture,
-            r->ms.mesh, r->ms.overlay, r->ms.write);
+            r->ms.total, r->ms.decode, r->ms.image, r->ms.bspline, r->ms.domains, r->ms.hausdorff, r->ms.camera,
+            r->ms.texture, r->ms.mesh, r->ms.overlay, r->ms.write);
+    if (!strcmp(r->model, "perspective"))
+        fprintf(stderr, "  camera: perspective, elevation %.2f deg, focal length %.0f px (from the %s); the profile "
+                        "is the meridian\n",
+                r->elevation_deg, r->focal_px,
+                !strcmp(r->method, "flag") ? "--fov" : !strcmp(r->method, "exif") ? "EXIF" : "ellipses");
+    else
+        fprintf(stderr, "  camera: orthographic, the profile is the image outline: %s\n", r->camera_note);
     if (!r->quality.passed)
         fprintf(stderr, "celadon: warning: %s: written with --force although the quality gate failed: %s\n", r->photo,
                 r->quality.failed);
@@ -252,25 +286,27 @@ static json_t *report_json(const options *o, const report *r)
     for (int k = 0; k < o->pipeline.n_lods; k++)
         json_array_append_new(lods, mesh_json(&r->lods[k]));
     json_t *timings = json_pack(
-        "{s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f}", "decode", r->ms.decode, "image_processing", r->ms.image,
-        "bspline", r->ms.bspline, "domains", r->ms.domains, "hausdorff", r->ms.hausdorff, "texture", r->ms.texture,
+        "{s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f}", "decode", r->ms.decode, "image_processing", r->ms.image,
+        "bspline", r->ms.bspline, "domains", r->ms.domains, "hausdorff", r->ms.hausdorff, "camera", r->ms.camera, "texture", r->ms.texture,
         "mesh", r->ms.mesh, "overlay", r->ms.overlay, "write", r->ms.write, "total", r->ms.total);
     json_t *errors = json_pack("{s:f, s:f}", "curve_to_polyline", r->err_curve_to_polyline, "polyline_to_curve",
                                r->err_polyline_to_curve);
+    json_t *camera = json_pack("{s:s, s:s, s:f, s:f, s:s}", "model", r->model, "method", r->method,
+                               "elevation_deg", r->elevation_deg, "focal_px", r->focal_px, "note", r->camera_note);
     json_t *quality = json_pack("{s:b, s:f, s:f, s:f, s:i, s:s}", "passed", r->quality.passed, "hausdorff_px",
                                 r->quality.hausdorff_px, "lr_disagreement", r->quality.lr_disagreement,
                                 "excluded_fraction", r->quality.excluded_fraction, "border_contact",
                                 (int)r->quality.border_contact, "failed", r->quality.failed);
     return json_pack("{s:s, s:b, s:s, s:i, s:i, s:f, s:s, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, "
-                     "s:o, s:o, s:o, s:o}",
+                     "s:o, s:o, s:o, s:o, s:o}",
                      "photo", json_text(r->photo, photo, sizeof photo), "ok", 1, "output",
                      json_text(r->out, out, sizeof out), "width", r->width, "height", r->height,
                      "tilt_deg", r->tilt_deg, "side", r->side, "threshold", r->threshold_used, "dropped_objects",
                      r->dropped_objects, "holes_filled", r->holes_filled, "excluded_parts", r->excluded,
                      "contour_points", r->contour_points, "polyline_points", r->polyline_points, "control_points",
                      r->control_points, "domains", r->domains, "segments", r->mesh.segments, "vertices",
-                     r->mesh.vertices, "faces", r->mesh.faces, "error_px", errors, "quality", quality, "timings_ms",
-                     timings, "lods", lods);
+                     r->mesh.vertices, "faces", r->mesh.faces, "error_px", errors, "quality", quality, "camera", camera,
+                     "timings_ms", timings, "lods", lods);
 }
 
 /* Output folders: DIR itself for one photo; DIR/STEM for several, with

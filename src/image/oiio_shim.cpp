@@ -78,6 +78,23 @@ extern "C" int image_probe(const char *path, int *width, int *height, int *chann
     return guarded(err, errlen, [&] { return probe(path, width, height, channels, err, errlen); });
 }
 
+extern "C" double image_exif_focal_35mm(const char *path)
+{
+    double mm = 0;
+    char err[8];
+    guarded(err, sizeof err, [&] {
+        auto in = ImageInput::open(path);
+        if (!in) {
+            (void)geterror(); // retrieved, so that none is left pending
+            return 0;
+        }
+        mm = in->spec().get_float_attribute("Exif:FocalLengthIn35mmFilm", 0.0f);
+        in->close();
+        return 0;
+    });
+    return mm > 0 && mm < 1e5 ? mm : 0;
+}
+
 // Decodes all pixels of the open file as floats into dst and closes it.
 // read_image converts any format; 8-bit files without alpha are decoded as
 // bytes and scaled here instead (v * (1/255), the very float OpenImageIO's

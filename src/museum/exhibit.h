@@ -15,7 +15,7 @@ typedef struct {
     char *title, *date, *description; /* owned; date and description may be NULL */
     double height_m;          /* real height, the rim at y = height_m */
     double radius_m;          /* bound on the largest radius (the control polygon's) */
-    bspline_t curve;          /* the profile, (r, h) px */
+    bspline_t curve;          /* the shape (profile_shape): (r, h), px, or units of the height for a meridian */
     lod_level lods[LOD_MAX_LEVELS];
     int n_lods;
     uint8_t *texture_png, *label_png; /* the files' bytes, owned */

@@ -135,13 +135,18 @@ static void make_exhibit(const museum_options *opt, const char *tmp, museum_exhi
     rep->status = reconstruct_photo(e->photo, &ro, &r, rep->error, sizeof rep->error);
     char dir[PATH_MAX + 128], path[PATH_MAX + 160], why[400];
     snprintf(dir, sizeof dir, "vessels/%s", e->slug);
-    if (rep->status == 0 && (museum_folder_sub(tmp, dir) != 0 || bspline_copy(&e->curve, &r.curve) != 0)) {
+    profile_t prof;
+    const double *domains;
+    int n_domains;
+    if (rep->status == 0)
+        reconstruction_profile(&r, e->photo, &prof);
+    /* The vessel's shape: the meridian when the camera gave one. */
+    if (rep->status == 0 && (museum_folder_sub(tmp, dir) != 0 ||
+                             bspline_copy(&e->curve, profile_shape(&prof, &domains, &n_domains)) != 0)) {
         rep->status = 1;
         snprintf(rep->error, sizeof rep->error, "cannot create %.200s: %s", dir, strerror(errno));
     }
     if (rep->status == 0) {
-        profile_t prof;
-        reconstruction_profile(&r, e->photo, &prof);
         snprintf(path, sizeof path, "%s/%s/profile.json", tmp, dir);
         int rc = profile_write_json(path, &prof, why, sizeof why);
         snprintf(path, sizeof path, "%s/%s/texture.png", tmp, dir);

@@ -1,5 +1,6 @@
 /* reconstruct_photo: decode -> image stages -> B-spline -> domains ->
- * Hausdorff errors -> texture. See include/celadon/reconstruct.h. */
+ * Hausdorff errors -> camera and meridian -> texture. See
+ * include/celadon/reconstruct.h. */
 #include "celadon/reconstruct.h"
 
 #include <math.h>
@@ -98,6 +99,28 @@ static void assess(reconstruction *r)
     q->passed = len == 0;
 }
 
+/* The camera and the meridian (recon_camera.h): the focal length from --fov,
+ * else from the photo's EXIF, else from the ellipses. A failure is not the
+ * photo's: the image outline stays the profile and camera_note says why. */
+static void fit_camera(const char *path, const reconstruct_options *opt, reconstruction *r)
+{
+    recon_camera_options copt = opt->camera;
+    if (!(copt.fov_deg > 0) && !(copt.focal_35mm > 0))
+        copt.focal_35mm = image_exif_focal_35mm(path);
+    if (!(copt.smoothing_px > 0))
+        copt.smoothing_px = opt->smoothing_px;
+    char why[200];
+    r->has_camera = recon_camera_meridian(&r->photo, &r->extract, &copt, &r->camera, &r->meridian, why,
+                                          sizeof why) == 0;
+    if (!r->has_camera)
+        snprintf(r->camera_note, sizeof r->camera_note, "no camera model: %s", why);
+}
+
+int reconstruction_is_perspective(const reconstruction *r)
+{
+    return r->has_camera && r->camera.method != RECON_CAMERA_ORTHOGRAPHIC;
+}
+
 static int fail(int code, char *err, size_t errlen, const char *what)
 {
     snprintf(err, errlen, "%s", what);
@@ -144,7 +167,13 @@ int reconstruct_photo(const char *path, const reconstruct_options *opt, reconstr
     }
 
     t0 = now_seconds();
-    if (recon_texture_from_photo(&r->photo, &r->extract, &r->texture, err, errlen) != 0)
+    fit_camera(path, opt, r);
+    r->ms.camera = ms_since(t0);
+    t0 = now_seconds();
+    int tex = reconstruction_is_perspective(r)
+                  ? recon_texture_from_camera(&r->photo, &r->camera, &r->meridian, &r->texture, err, errlen)
+                  : recon_texture_from_photo(&r->photo, &r->extract, &r->texture, err, errlen);
+    if (tex != 0)
         return 2;
     r->ms.texture = ms_since(t0);
     r->ms.total = ms_since(t_start);
@@ -191,11 +220,14 @@ void reconstruction_profile(const reconstruction *r, const char *source, profile
     p->quality.lr_disagreement = q->lr_disagreement;
     p->quality.excluded_fraction = q->excluded_fraction;
     p->quality.border_contact = q->border_contact;
+    if (r->has_camera)
+        recon_camera_fill_profile(&r->camera, &r->meridian, p);
 }
 
 void reconstruction_free(reconstruction *r)
 {
     recon_texture_free(&r->texture);
+    recon_meridian_free(&r->meridian);
     free(r->domains);
     bspline_free(&r->curve);
     recon_result_free(&r->extract);

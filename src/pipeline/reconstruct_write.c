@@ -12,6 +12,8 @@
 #include "celadon/reconstruct.h"
 
 enum { MAX_FILES = 4 + 2 * (1 + RECONSTRUCT_MAX_LODS) };
+/* Imaged cross-sections the overlay draws over a perspective photo. */
+enum { OVERLAY_CROSS_SECTIONS = 5 };
 
 /* The names of the files written so far into the temporary folder. */
 typedef struct {
@@ -32,17 +34,23 @@ static void add_file(file_list *f, const char *name)
 
 static double ms_since(double t0) { return 1e3 * (now_seconds() - t0); }
 
-/* model.* at opt->segments, then model_N.* for each LOD. */
-static int write_meshes(reconstruction *r, const reconstruct_options *opt, const char *tmp, file_list *files,
-                        char *err, size_t errlen)
+/* model.* at opt->segments, then model_N.* for each LOD, revolved from the
+ * profile's shape (profile_shape: the meridian when there is a camera). */
+static int write_meshes(reconstruction *r, const char *source, const reconstruct_options *opt, const char *tmp,
+                        file_list *files, char *err, size_t errlen)
 {
     unsigned caps = MESH_CAP_BASE | (opt->mouth_cap ? MESH_CAP_MOUTH : 0u);
     char path[PATH_MAX + 64], why[400];
+    profile_t prof;
+    reconstruction_profile(r, source, &prof);
+    const double *domains;
+    int n_domains;
+    const bspline_t *shape = profile_shape(&prof, &domains, &n_domains);
     for (int k = -1; k < opt->n_lods; k++) {
         int segments = k < 0 ? opt->segments : opt->lods[k];
         mesh_t m;
         double t0 = now_seconds();
-        if (mesh_revolve(&r->curve, r->domains, r->n_domains, 1.0, segments, caps, &m) != 0) {
+        if (mesh_revolve(shape, domains, n_domains, 1.0, segments, caps, &m) != 0) {
             snprintf(err, errlen, "cannot build the mesh (out of memory?)");
             return 1;
         }
@@ -89,11 +97,17 @@ static int write_all(reconstruction *r, const char *source, const char *tmp, con
     }
     add_file(files, "model.mtl");
     r->ms.write += ms_since(t0);
-    if (write_meshes(r, opt, tmp, files, err, errlen) != 0)
+    if (write_meshes(r, source, opt, tmp, files, err, errlen) != 0)
         return 1;
 
     t0 = now_seconds();
     uint8_t *overlay = overlay_render(&r->photo, &r->extract, &r->curve);
+    if (overlay && reconstruction_is_perspective(r) &&
+        overlay_draw_camera(overlay, r->photo.width, r->photo.height, &r->camera, &r->meridian,
+                            OVERLAY_CROSS_SECTIONS) != 0) {
+        free(overlay);
+        overlay = NULL;
+    }
     if (!overlay) {
         snprintf(err, errlen, "out of memory drawing the overlay");
         return 1;

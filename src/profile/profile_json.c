@@ -83,9 +83,45 @@ static int add_reconstruction_notes(json_t *root, const profile_t *p)
     return q && json_object_set_new(root, "quality", q) == 0 ? 0 : -1;
 }
 
+static json_t *conic_json(const profile_conic *c)
+{
+    return json_pack("{s:o, s:[f, f], s:f, s:f, s:i, s:i}", "center_px", pair(c->center_px), "semi_axes_px",
+                     c->semi_axes_px[0], c->semi_axes_px[1], "rms_px", c->rms_px, "max_px", c->max_px, "points",
+                     c->points, "inliers", c->inliers);
+}
+
+static json_t *camera_json(const profile_camera *c)
+{
+    return json_pack("{s:s, s:f, s:f, s:f, s:o, s:s, s:{s:o, s:o}}", "method", c->method, "elevation_deg",
+                     c->elevation_deg, "focal_px", c->focal_px, "roll_deg", c->roll_deg, "principal_point",
+                     pair(c->principal_point), "note", c->note, "conics", "base", conic_json(&c->conics[0]), "rim",
+                     conic_json(&c->conics[1]));
+}
+
+static json_t *meridian_json(const profile_t *p)
+{
+    return json_pack("{s:i, s:o, s:o, s:o}", "degree", p->meridian.degree, "knots",
+                     reals(p->meridian.knots, bspline_n_knots(&p->meridian)), "control_points",
+                     pairs(p->meridian.ctrl, p->meridian.n_ctrl), "domains",
+                     reals(p->meridian_domains, p->n_meridian_domains));
+}
+
+/* Adds the perspective blocks that p has. Returns 0, or -1 when a value
+ * is not finite. */
+static int add_perspective(json_t *root, const profile_t *p)
+{
+    if (p->has_camera && json_object_set_new(root, "camera", camera_json(&p->camera)) != 0)
+        return -1;
+    if (p->has_meridian && json_object_set_new(root, "meridian", meridian_json(p)) != 0)
+        return -1;
+    return 0;
+}
+
 int profile_write_json(const char *path, const profile_t *p, char *err, size_t errlen)
 {
     const char *bad = bspline_validate(&p->curve);
+    if (!bad && p->has_meridian)
+        bad = bspline_validate(&p->meridian);
     if (bad) {
         snprintf(err, errlen, "invalid B-spline: %s", bad);
         return -1;
@@ -109,7 +145,7 @@ int profile_write_json(const char *path, const profile_t *p, char *err, size_t e
         "stats", "contour_points", p->contour_points, "control_points", p->curve.n_ctrl, "domains", p->n_domains,
         "timings_ms", "image_processing", p->ms_image_processing, "bspline", p->ms_bspline, "texture",
         p->ms_texture, "mesh", p->ms_mesh);
-    if (root && add_reconstruction_notes(root, p) != 0) {
+    if (root && (add_reconstruction_notes(root, p) != 0 || add_perspective(root, p) != 0)) {
         json_decref(root);
         root = NULL;
     }
@@ -303,6 +339,60 @@ static int read_header(reader *r, json_t *root, profile_t *p)
     return 0;
 }
 
+/* A clamped cubic from 0 to 1: obj's degree, knots and control_points
+ * (named path.* in messages). */
+static int read_cubic(reader *r, json_t *obj, const char *path, bspline_t *c)
+{
+    char key[64], key2[64];
+    snprintf(key, sizeof key, "%s.degree", path);
+    json_t *deg = member(r, obj, "degree", key);
+    if (!deg)
+        return -1;
+    if (!json_is_integer(deg) || json_integer_value(deg) != 3)
+        return fail(r, "'%s' must be 3", key);
+    int nk, nc;
+    snprintf(key, sizeof key, "%s.knots", path);
+    snprintf(key2, sizeof key2, "%s.control_points", path);
+    json_t *knots = get_array(r, obj, "knots", key, 8, PROFILE_MAX_POINTS + 4, &nk);
+    json_t *ctrl = knots ? get_array(r, obj, "control_points", key2, 4, PROFILE_MAX_POINTS, &nc) : NULL;
+    if (!ctrl)
+        return -1;
+    if (nk != nc + 4)
+        return fail(r, "'%s' has %d values; %d control points need %d", key, nk, nc, nc + 4);
+    if (bspline_init(c, 3, nc) != 0)
+        return fail(r, "out of memory");
+    if (read_reals(r, knots, key, c->knots) || read_pairs(r, ctrl, key2, c->ctrl))
+        return -1;
+    const char *bad = bspline_validate(c);
+    if (bad)
+        return fail(r, "invalid B-spline: %s", bad);
+    if (c->knots[0] != 0.0 || c->knots[nk - 1] != 1.0)
+        return fail(r, "invalid B-spline: the parameter must run from 0 to 1");
+    bad = sor_profile_check(c);
+    if (bad)
+        return fail(r, "the %s cannot be revolved: %s", strcmp(path, "bspline") ? path : "profile", bad);
+    return 0;
+}
+
+/* Curvature domains: increasing values from 0 to 1, obj's member key. */
+static int read_domains(reader *r, json_t *obj, const char *key, const char *path, double **dom, int *n)
+{
+    json_t *a = get_array(r, obj, key, path, 2, PROFILE_MAX_POINTS, n);
+    if (!a)
+        return -1;
+    *dom = malloc((size_t)*n * sizeof **dom);
+    if (!*dom)
+        return fail(r, "out of memory");
+    if (read_reals(r, a, path, *dom) != 0)
+        return -1;
+    if ((*dom)[0] != 0.0 || (*dom)[*n - 1] != 1.0)
+        return fail(r, "'%s' must start at 0 and end at 1", path);
+    for (int i = 1; i < *n; i++)
+        if (!((*dom)[i] > (*dom)[i - 1]))
+            return fail(r, "'%s' must be strictly increasing (%s[%d] = %.17g)", path, path, i, (*dom)[i]);
+    return 0;
+}
+
 static int read_curve(reader *r, json_t *root, profile_t *p)
 {
     int n;
@@ -319,55 +409,14 @@ static int read_curve(reader *r, json_t *root, profile_t *p)
     }
 
     json_t *bs = get_object(r, root, "bspline");
-    if (!bs)
+    if (!bs || read_cubic(r, bs, "bspline", &p->curve) != 0)
         return -1;
-    json_t *deg = member(r, bs, "degree", "bspline.degree");
-    if (!deg)
-        return -1;
-    if (!json_is_integer(deg) || json_integer_value(deg) != 3)
-        return fail(r, "'bspline.degree' must be 3");
-    int nk, nc;
-    json_t *ctrl = get_array(r, bs, "control_points", "bspline.control_points", 4, PROFILE_MAX_POINTS, &nc);
-    json_t *knots = ctrl ? get_array(r, bs, "knots", "bspline.knots", 8, PROFILE_MAX_POINTS + 4, &nk) : NULL;
-    if (!knots)
-        return -1;
-    if (nk != nc + 4)
-        return fail(r, "'bspline.knots' has %d values; %d control points need %d", nk, nc, nc + 4);
-    if (bspline_init(&p->curve, 3, nc) != 0)
-        return fail(r, "out of memory");
-    if (read_reals(r, knots, "bspline.knots", p->curve.knots) ||
-        read_pairs(r, ctrl, "bspline.control_points", p->curve.ctrl))
-        return -1;
-    const char *bad = bspline_validate(&p->curve);
-    if (bad)
-        return fail(r, "invalid B-spline: %s", bad);
-    if (p->curve.knots[0] != 0.0 || p->curve.knots[nk - 1] != 1.0)
-        return fail(r, "invalid B-spline: the parameter must run from 0 to 1");
-    bad = sor_profile_check(&p->curve);
-    if (bad)
-        return fail(r, "the profile cannot be revolved: %s", bad);
-
-    if (!json_object_get(root, "domains")) { /* computed as the reconstruction computes them */
-        if (curve_domains_by_curvature_variation(&p->curve, PROFILE_DOMAIN_TOL_PX, PROFILE_DOMAIN_TOL_DEG,
-                                                 &p->domains, &p->n_domains) != 0)
-            return fail(r, "cannot compute the curvature domains of the B-spline");
-        return 0;
-    }
-    json_t *dom = get_array(r, root, "domains", "domains", 2, PROFILE_MAX_POINTS, &n);
-    if (!dom)
-        return -1;
-    p->domains = malloc((size_t)n * sizeof *p->domains);
-    if (!p->domains)
-        return fail(r, "out of memory");
-    p->n_domains = n;
-    if (read_reals(r, dom, "domains", p->domains) != 0)
-        return -1;
-    if (p->domains[0] != 0.0 || p->domains[n - 1] != 1.0)
-        return fail(r, "'domains' must start at 0 and end at 1");
-    for (int i = 1; i < n; i++)
-        if (!(p->domains[i] > p->domains[i - 1]))
-            return fail(r, "'domains' must be strictly increasing (domains[%d] = %.17g)", i, p->domains[i]);
-    return 0;
+    if (!json_object_get(root, "domains")) /* computed as the reconstruction computes them */
+        return curve_domains_by_curvature_variation(&p->curve, PROFILE_DOMAIN_TOL_PX, PROFILE_DOMAIN_TOL_DEG,
+                                                    &p->domains, &p->n_domains) != 0
+                   ? fail(r, "cannot compute the curvature domains of the B-spline")
+                   : 0;
+    return read_domains(r, root, "domains", "domains", &p->domains, &p->n_domains);
 }
 
 /* The reconstruction's report: optional, checked when present; nothing
@@ -402,6 +451,106 @@ static int read_report(reader *r, json_t *root, profile_t *p)
     return 0;
 }
 
+static int get_string(reader *r, json_t *obj, const char *key, const char *path, char *out, size_t len)
+{
+    json_t *v = member(r, obj, key, path);
+    if (!v)
+        return -1;
+    if (!json_is_string(v) || json_string_length(v) >= len)
+        return fail(r, "'%s' must be a string shorter than %zu bytes", path, len);
+    snprintf(out, len, "%s", json_string_value(v));
+    return 0;
+}
+
+static int read_conic(reader *r, json_t *conics, const char *name, profile_conic *c)
+{
+    char path[64], key[96];
+    snprintf(path, sizeof path, "camera.conics.%s", name);
+    json_t *o = member(r, conics, name, path);
+    if (!o)
+        return -1;
+    if (!json_is_object(o))
+        return fail(r, "'%s' must be an object", path);
+    vec2 axes;
+#define KEY(k) (snprintf(key, sizeof key, "%s.%s", path, k), key)
+    if (get_pair(r, o, "center_px", KEY("center_px"), &c->center_px) ||
+        get_pair(r, o, "semi_axes_px", KEY("semi_axes_px"), &axes) ||
+        get_number(r, o, "rms_px", KEY("rms_px"), &c->rms_px) || get_number(r, o, "max_px", KEY("max_px"), &c->max_px) ||
+        get_count(r, o, "points", KEY("points"), &c->points) || get_count(r, o, "inliers", KEY("inliers"), &c->inliers))
+        return -1;
+#undef KEY
+    c->semi_axes_px[0] = axes.x, c->semi_axes_px[1] = axes.y;
+    if (axes.x < 0 || axes.y < 0 || c->rms_px < 0 || c->max_px < 0 || c->inliers > c->points)
+        return fail(r, "'%s' has a negative size or more inliers than points", path);
+    return 0;
+}
+
+static int read_camera(reader *r, json_t *cam, profile_camera *c)
+{
+    if (!json_is_object(cam))
+        return fail(r, "'camera' must be an object");
+    static const char *const methods[] = {"ellipses", "exif", "flag", "orthographic"};
+    if (get_string(r, cam, "method", "camera.method", c->method, sizeof c->method) ||
+        get_number(r, cam, "elevation_deg", "camera.elevation_deg", &c->elevation_deg) ||
+        get_number(r, cam, "focal_px", "camera.focal_px", &c->focal_px) ||
+        get_number(r, cam, "roll_deg", "camera.roll_deg", &c->roll_deg) ||
+        get_pair(r, cam, "principal_point", "camera.principal_point", &c->principal_point) ||
+        get_string(r, cam, "note", "camera.note", c->note, sizeof c->note))
+        return -1;
+    int known = 0;
+    for (int k = 0; k < 4; k++)
+        known |= !strcmp(c->method, methods[k]);
+    if (!known)
+        return fail(r, "'camera.method' must be \"ellipses\", \"exif\", \"flag\" or \"orthographic\"");
+    if (c->focal_px < 0 || (c->focal_px == 0) != !strcmp(c->method, "orthographic"))
+        return fail(r, "'camera.focal_px' must be positive, and 0 exactly for the orthographic model");
+    if (fabs(c->elevation_deg) > 90)
+        return fail(r, "'camera.elevation_deg' must be within -90..90");
+    json_t *conics = member(r, cam, "conics", "camera.conics");
+    if (!conics)
+        return -1;
+    if (!json_is_object(conics))
+        return fail(r, "'camera.conics' must be an object");
+    return read_conic(r, conics, "base", &c->conics[0]) || read_conic(r, conics, "rim", &c->conics[1]) ? -1 : 0;
+}
+
+/* The meridian: a clamped cubic whose control polygon starts at h = 0 and
+ * ends at h = 1 (both exact) with r >= 0, and its domains. */
+static int read_meridian(reader *r, json_t *m, profile_t *p)
+{
+    if (!json_is_object(m))
+        return fail(r, "'meridian' must be an object");
+    if (read_cubic(r, m, "meridian", &p->meridian) != 0)
+        return -1;
+    const bspline_t *c = &p->meridian;
+    if (c->ctrl[0].y != 0.0 || c->ctrl[c->n_ctrl - 1].y != 1.0)
+        return fail(r, "'meridian' must run from h = 0 (the base) to h = 1 (the rim)");
+    for (int i = 0; i < c->n_ctrl; i++)
+        if (c->ctrl[i].x < 0)
+            return fail(r, "'meridian.control_points[%d]' has a negative radius", i);
+    return read_domains(r, m, "domains", "meridian.domains", &p->meridian_domains, &p->n_meridian_domains);
+}
+
+/* The optional blocks of a perspective reconstruction. */
+static int read_perspective(reader *r, json_t *root, profile_t *p)
+{
+    json_t *cam = json_object_get(root, "camera"), *mer = json_object_get(root, "meridian");
+    if (cam && read_camera(r, cam, &p->camera) != 0)
+        return -1;
+    p->has_camera = cam != NULL;
+    if (mer && read_meridian(r, mer, p) != 0)
+        return -1;
+    p->has_meridian = mer != NULL;
+    return 0;
+}
+
+const bspline_t *profile_shape(const profile_t *p, const double **domains, int *n_domains)
+{
+    *domains = p->has_meridian ? p->meridian_domains : p->domains;
+    *n_domains = p->has_meridian ? p->n_meridian_domains : p->n_domains;
+    return p->has_meridian ? &p->meridian : &p->curve;
+}
+
 int profile_read_json(const char *path, profile_t *p, char *err, size_t errlen)
 {
     memset(p, 0, sizeof *p);
@@ -417,7 +566,10 @@ int profile_read_json(const char *path, profile_t *p, char *err, size_t errlen)
         return fail(&r, "not valid JSON (line %d): %s", jerr.line, jerr.text);
     int rc = json_is_object(root) ? 0 : fail(&r, "the top level must be an object");
     if (rc == 0)
-        rc = read_header(&r, root, p) || read_curve(&r, root, p) || read_report(&r, root, p) ? -1 : 0;
+        rc = read_header(&r, root, p) || read_curve(&r, root, p) || read_report(&r, root, p) ||
+                     read_perspective(&r, root, p)
+                 ? -1
+                 : 0;
     json_decref(root);
     if (rc != 0)
         profile_free(p);
@@ -428,8 +580,11 @@ void profile_free(profile_t *p)
 {
     free(p->polyline);
     free(p->domains);
+    free(p->meridian_domains);
     bspline_free(&p->curve);
+    bspline_free(&p->meridian);
     p->polyline = NULL;
-    p->domains = NULL;
-    p->n_polyline = p->n_domains = 0;
+    p->domains = p->meridian_domains = NULL;
+    p->n_polyline = p->n_domains = p->n_meridian_domains = 0;
+    p->has_meridian = 0;
 }

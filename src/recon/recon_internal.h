@@ -1,5 +1,6 @@
-/* The stages of recon_extract, exposed for the tests. Image buffers are
- * row-major, width w, height h; masks hold 0/1 bytes. */
+/* The stages of recon_extract, exposed for the tests (the sub-pixel edge is
+ * in recon/recon.h, the folder's interface). Image buffers are row-major,
+ * width w, height h; masks hold 0/1 bytes. */
 #ifndef CELADON_RECON_INTERNAL_H
 #define CELADON_RECON_INTERNAL_H
 
@@ -7,6 +8,7 @@
 #include <stdint.h>
 
 #include "celadon/recon.h"
+#include "recon/recon.h"
 #include "segment/segment.h"
 
 /* ---- the caps: where the outline meets its top and bottom (caps.c) */
@@ -80,31 +82,5 @@ void recon_pca(const vec2 *pts, int n, vec2 *mean, vec2 axes[2], double eig[2]);
  * the outlines disagree too much to trust (axis unchanged). */
 int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec2 *origin, vec2 *dir, double h_lo,
                         double h_hi, int suspect, double noise_px, int *washed_side);
-
-/* ---- sub-pixel silhouette (subpixel_edge.c) */
-
-typedef struct {
-    double x;        /* edge position on the row's centre line, px */
-    double contrast; /* |fg - bg| at the edge, signal units */
-    int ok;
-} recon_edge;
-
-/* One pixel row of the signal the outline is measured on: its colours
- * (channels 3) or one value per pixel (channels 1: gray, or alpha). */
-typedef struct {
-    const float *row;
-    int width, channels;
-} recon_signal;
-
-/* Sub-pixel position of the outermost edge of the object on a row, on side
- * (-1 left, +1 right), from the anti-aliased ramp: the fraction of each pixel
- * covered by the object, the projection of (c - bg) onto fg - bg over
- * |fg - bg|^2, summed over the pixels the edge crosses, is the object's
- * length in that window (exact for a straight edge under box anti-aliasing).
- * The search starts at i0, the mask's outermost object pixel on that side of
- * the row; slope is the outline's dx per row (from the neighbouring rows);
- * delta the smallest colour distance from the background that counts as
- * object. */
-recon_edge recon_subpixel_edge(const recon_signal *s, int i0, int side, double slope, double delta);
 
 #endif

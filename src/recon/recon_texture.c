@@ -6,9 +6,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "recon/recon.h"
+
 void recon_texture_free(recon_texture_t *t)
 {
     free(t->rgb);
+    free(t->seen);
     memset(t, 0, sizeof *t);
 }
 
@@ -64,31 +67,6 @@ static int fill_missing_rows(double *s_row, const unsigned char *hit, int rows)
     return 0;
 }
 
-/* Bilinear sample of the photo's colour at the continuous point p (pixel
- * (i, j) has its centre at (i + 0.5, j + 0.5)); gray photos give gray. */
-static void sample_rgb(const image_t *img, vec2 p, float out[3])
-{
-    double fx = p.x - 0.5, fy = p.y - 0.5;
-    fx = fmin(fmax(fx, 0.0), img->width - 1.0);
-    fy = fmin(fmax(fy, 0.0), img->height - 1.0);
-    int x0 = (int)fx, y0 = (int)fy;
-    int x1 = x0 + 1 < img->width ? x0 + 1 : x0, y1 = y0 + 1 < img->height ? y0 + 1 : y0;
-    float tx = (float)(fx - x0), ty = (float)(fy - y0);
-    int C = img->channels;
-    const float *p00 = img->data + ((size_t)y0 * img->width + x0) * C, *p10 = img->data + ((size_t)y0 * img->width + x1) * C;
-    const float *p01 = img->data + ((size_t)y1 * img->width + x0) * C, *p11 = img->data + ((size_t)y1 * img->width + x1) * C;
-    for (int k = 0; k < 3; k++) {
-        int c = C >= 3 ? k : 0;
-        float top = p00[c] + tx * (p10[c] - p00[c]), bottom = p01[c] + tx * (p11[c] - p01[c]);
-        out[k] = top + ty * (bottom - top);
-    }
-}
-
-static uint8_t to_u8(float v)
-{
-    v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
-    return (uint8_t)lrintf(v * 255.0f);
-}
 
 int recon_texture_from_photo(const image_t *photo, const recon_result *res, recon_texture_t *out, char *err, size_t errlen)
 {
@@ -151,9 +129,9 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
         uint8_t *px = out->rgb + (size_t)j * out->width * 3;
         for (int i = 0; i < out->width; i++) {
             float rgb[3];
-            sample_rgb(photo, v2_add(on_axis, v2_scale(right, c - a * cos_u[i])), rgb);
+            recon_sample_rgb(photo, v2_add(on_axis, v2_scale(right, c - a * cos_u[i])), rgb);
             for (int k = 0; k < 3; k++)
-                px[3 * i + k] = to_u8(rgb[k]);
+                px[3 * i + k] = recon_to_u8(rgb[k]);
         }
     }
     free(cos_u);

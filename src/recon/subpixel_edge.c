@@ -29,9 +29,9 @@ static double dist(const recon_signal *s, const float *a, const float *b)
  * |fg - bg|. A glossy glaze at grazing angles reflects its surroundings, i.e.
  * the backdrop: its colour drifts toward the backdrop's over the last pixels
  * before the outline, so the nearest pure pixel lags behind the colour under
- * the edge. When the two pixels inside trend toward bg, fg is extrapolated one
- * pixel along that trend (by at most half the contrast). */
-static int ramp(const recon_signal *s, int a0, int a1, int side, double *len, double *contrast)
+ * the edge. When glaze is set and the two pixels inside trend toward bg, fg is
+ * extrapolated one pixel along that trend (by at most half the contrast). */
+static int ramp(const recon_signal *s, int a0, int a1, int side, int glaze, double *len, double *contrast)
 {
     const int w = s->width, ch = s->channels;
     if (a0 < 2 || a1 > w - 3 || a1 < a0)
@@ -48,7 +48,7 @@ static int ramp(const recon_signal *s, int a0, int a1, int side, double *len, do
         dd += (bg[c] - fg[c]) * (bg[c] - fg[c]);
     }
     /* extrapolate when the step points toward bg and is under half the contrast */
-    if (ext_along > 0 && ext_len2 < 0.25 * dd)
+    if (glaze && ext_along > 0 && ext_len2 < 0.25 * dd)
         for (int c = 0; c < ch; c++)
             fg[c] += pfg[c] - pfg2[c];
     double n2 = 0;
@@ -71,7 +71,7 @@ static int ramp(const recon_signal *s, int a0, int a1, int side, double *len, do
     return 1;
 }
 
-recon_edge recon_subpixel_edge(const recon_signal *s, int i0, int side, double slope, double delta)
+static recon_edge edge_at(const recon_signal *s, int i0, int side, double slope, double delta, int glaze)
 {
     recon_edge out = {NAN, 0, 0};
     const int w = s->width;
@@ -94,17 +94,27 @@ recon_edge recon_subpixel_edge(const recon_signal *s, int i0, int side, double s
         return out;
     int a0 = side > 0 ? p - span : p, a1 = side > 0 ? p : p + span;
     double len, contrast;
-    if (!ramp(s, a0, a1, side, &len, &contrast))
+    if (!ramp(s, a0, a1, side, glaze, &len, &contrast))
         return out;
     double e = side > 0 ? a0 + len : a1 + 1 - len;
     /* Pass 2: only the pixels the edge can cross, so fg and bg come from the
      * pixels nearest to it. */
     a0 = (int)floor(e - half - 0.25);
     a1 = (int)floor(e + half + 0.25);
-    if (!ramp(s, a0, a1, side, &len, &contrast))
+    if (!ramp(s, a0, a1, side, glaze, &len, &contrast))
         return out;
     out.x = side > 0 ? a0 + len : a1 + 1 - len;
     out.contrast = contrast;
     out.ok = isfinite(out.x) && fabs(out.x - (i0 + 0.5 + 0.5 * side)) < span + 12;
     return out;
+}
+
+recon_edge recon_subpixel_edge(const recon_signal *s, int i0, int side, double slope, double delta)
+{
+    return edge_at(s, i0, side, slope, delta, 1);
+}
+
+recon_edge recon_subpixel_edge_flat(const recon_signal *s, int i0, int side, double slope, double delta)
+{
+    return edge_at(s, i0, side, slope, delta, 0);
 }

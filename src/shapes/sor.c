@@ -53,7 +53,9 @@ static void *sor_shape_create(const char *profile_path, double height, bool caps
     }
     sor_shape *s = calloc(1, sizeof *s);
     unsigned mask = SOR_CAP_BASE | (caps ? SOR_CAP_MOUTH : 0u);
-    if (!s || bspline_copy(&s->curve, &prof.curve) != 0) {
+    const double *domains;
+    int n_domains;
+    if (!s || bspline_copy(&s->curve, profile_shape(&prof, &domains, &n_domains)) != 0) { /* meridian if any */
         snprintf(err, errlen, "out of memory");
         free(s);
         profile_free(&prof);
@@ -216,8 +218,10 @@ static int sor_mesh(const char *profile_path, double height, bool caps, int segm
      * the profile chord error shrinks like the angular one (mesh_rings.h). */
     double *rings = NULL;
     int n_rings = 0;
-    if (mesh_rings(&prof.curve, prof.domains, prof.n_domains, mesh_ring_tolerance(&prof.curve, segments), &rings,
-                   &n_rings) != 0) {
+    const double *domains;
+    int n_domains;
+    const bspline_t *shape = profile_shape(&prof, &domains, &n_domains); /* the meridian when there is one */
+    if (mesh_rings(shape, domains, n_domains, mesh_ring_tolerance(shape, segments), &rings, &n_rings) != 0) {
         snprintf(err, errlen, "cannot place mesh rings for %d segments", segments);
         profile_free(&prof);
         return -1;
@@ -232,7 +236,7 @@ static int sor_mesh(const char *profile_path, double height, bool caps, int segm
     }
     mesh_t mesh;
     unsigned mask = MESH_CAP_BASE | (caps ? MESH_CAP_MOUTH : 0u);
-    int rc = mesh_revolve(&prof.curve, rings, n_rings, height, segments, mask, &mesh);
+    int rc = mesh_revolve(shape, rings, n_rings, height, segments, mask, &mesh);
     free(rings);
     profile_free(&prof);
     if (rc != 0) {

@@ -1,0 +1,53 @@
+/* What src/recon/ offers the other reconstruction folders (src/perspective/)
+ * besides its public API (celadon/recon.h, recon_texture.h, overlay.h): the
+ * sub-pixel edge on a row of the photo, and bilinear samples of the photo. */
+#ifndef CELADON_RECON_RECON_H
+#define CELADON_RECON_RECON_H
+
+#include <stdint.h>
+
+#include "celadon/image.h"
+#include "celadon/vecmath.h"
+
+/* ---- sub-pixel silhouette (subpixel_edge.c) */
+
+typedef struct {
+    double x;        /* edge position on the row's centre line, px */
+    double contrast; /* |fg - bg| at the edge, signal units */
+    int ok;
+} recon_edge;
+
+/* One pixel row of the signal the outline is measured on: its colours
+ * (channels 3) or one value per pixel (channels 1: gray, or alpha). */
+typedef struct {
+    const float *row;
+    int width, channels;
+} recon_signal;
+
+/* Sub-pixel position of the outermost edge of the object on a row, on side
+ * (-1 left, +1 right), from the anti-aliased ramp: the fraction of each pixel
+ * covered by the object, the projection of (c - bg) onto fg - bg over
+ * |fg - bg|^2, summed over the pixels the edge crosses, is the object's
+ * length in that window (exact for a straight edge under box anti-aliasing).
+ * The search starts at i0, the mask's outermost object pixel on that side of
+ * the row; slope is the outline's dx per row (from the neighbouring rows);
+ * delta the smallest colour distance from the background that counts as
+ * object. */
+recon_edge recon_subpixel_edge(const recon_signal *s, int i0, int side, double slope, double delta);
+/* The same without following a glaze's drift toward the backdrop: fg is the
+ * pixel just inside. For the outline's top and bottom arcs, where a thin
+ * band of another colour (the lip, the mouth seen from above) lies just
+ * inside the edge and the drift rule would read it as a glaze. */
+recon_edge recon_subpixel_edge_flat(const recon_signal *s, int i0, int side, double slope, double delta);
+
+/* ---- bilinear samples of a photo (photo_sample.c) */
+
+/* The photo's colour at the continuous point p (pixel (i, j) has its centre
+ * at (i + 0.5, j + 0.5); clamped to the image), bilinear; gray photos give
+ * gray. */
+void recon_sample_rgb(const image_t *img, vec2 p, float out[3]);
+
+/* An 8-bit channel value of v in [0, 1] (clamped, rounded). */
+uint8_t recon_to_u8(float v);
+
+#endif

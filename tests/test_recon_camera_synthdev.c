@@ -1,0 +1,71 @@
+/* The camera model through the pipeline (reconstruct_photo) on the rendered
+ * synth-dev photographs (exact cameras and profiles; skipped when
+ * ../shared/data/synth-dev is absent): the profile's shape that mesh, render
+ * and the museum revolve (profile_shape of the profile.json view) is the
+ * meridian, within 0.3% of the height on average and 1.0% at worst from
+ * profile.csv over 3-97% of the height, scaled to the true height, and the
+ * recovered elevation within 0.5 degrees of camera.json, on the PNG and the
+ * JPEG of each photo. The image outline's B-spline (the profile before the
+ * camera model) is logged beside it. Two photos are known failures
+ * (docs/algorithms-recon.md, sections 12 and 13.8): the melon vase, whose
+ * washed-out side the extraction's corners miss by 50-110 px, and the
+ * incense bowl, whose floor shadow widens the base ellipse; on them the test
+ * only asks for a profile. bench/bench_perspective prints the stage alone as
+ * a table. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "celadon/reconstruct.h"
+#include "support/synthdev_truth.h"
+
+static int known_failure(const char *name)
+{
+    return !strcmp(name, "melon_vase_specular") || !strcmp(name, "incense_bowl_sweep_e4");
+}
+
+static void run_all(const char *file)
+{
+    char dir[900];
+    if (!synthdev_dir(dir, sizeof dir))
+        cr_skip_test("synth-dev data not found at %s (set CELADON_SHARED)", dir);
+    for (int c = 0; c < SYNTHDEV_NCASES; c++) {
+        const char *name = SYNTHDEV_CASES[c];
+        char path[1200], err[512];
+        synthdev_truth t;
+        cr_assert_eq(synthdev_truth_load(dir, name, &t, err, sizeof err), 0, "%s", err);
+        snprintf(path, sizeof path, "%s/%s/%s", dir, name, file);
+        reconstruct_options opt = reconstruct_options_default();
+        opt.force = 1; /* the melon's washed-out side fails the gate */
+        reconstruction r;
+        cr_assert_eq(reconstruct_photo(path, &opt, &r, err, sizeof err), 0, "%s: %s", path, err);
+        profile_t p;
+        reconstruction_profile(&r, path, &p);
+        const double *domains;
+        int n_domains;
+        const bspline_t *shape = profile_shape(&p, &domains, &n_domains);
+        double before_mean, before_max, mean, max;
+        synthdev_profile_error(&t, &r.curve, 0.03, 0.97, &before_mean, &before_max);
+        synthdev_profile_error(&t, shape, 0.03, 0.97, &mean, &max);
+        cr_log_info("%-27s %s %s elevation %6.2f (true %4.1f), f %5.0f (true %5.0f); outline %.3f%% / %.3f%%, "
+                    "profile %.3f%% / %.3f%%",
+                    name, file, reconstruction_is_perspective(&r) ? "perspective " : "orthographic",
+                    r.camera.elevation_deg, t.elevation_deg, r.camera.focal_px, t.focal_px, 100 * before_mean,
+                    100 * before_max, 100 * mean, 100 * max);
+        if (!known_failure(name)) {
+            cr_expect(reconstruction_is_perspective(&r), "%s/%s: no perspective camera (%s)", name, file,
+                      r.has_camera ? r.camera.note : r.camera_note);
+            cr_expect(shape == &p.meridian, "%s/%s: the shape is not the meridian", name, file);
+            cr_expect_leq(fabs(r.camera.elevation_deg - t.elevation_deg), 0.5, "%s/%s: elevation %.3f, true %.1f",
+                          name, file, r.camera.elevation_deg, t.elevation_deg);
+            cr_expect_leq(mean, 0.003, "%s/%s: profile mean %.3f%% of the height", name, file, 100 * mean);
+            cr_expect_leq(max, 0.010, "%s/%s: profile max %.3f%% of the height", name, file, 100 * max);
+        }
+        reconstruction_free(&r);
+        synthdev_truth_free(&t);
+    }
+}
+
+Test(recon_camera_synthdev, png, .timeout = 300) { run_all("photo.png"); }
+Test(recon_camera_synthdev, jpeg, .timeout = 300) { run_all("photo.jpg"); }
