@@ -141,10 +141,15 @@ static double shadow_factor(const float *c, const float *bc)
     return bb > 1e-6 ? ((double)c[0] * bc[0] + (double)c[1] * bc[1] + (double)c[2] * bc[2]) / bb : 1;
 }
 
-void recon_colour_costs(const recon_colour_model *m, const float *c, const float *bc, const float *mc,
-                        const float *mbc, double *cost_object, double *cost_backdrop)
+static double object_cost(const recon_colour_model *m, const float *c)
 {
-    *cost_object = -logsumexp2(log(1 - OBJECT_UNSEEN) + recon_gmm_log_density(&m->object, c), log(OBJECT_UNSEEN));
+    return -logsumexp2(log(1 - OBJECT_UNSEEN) + recon_gmm_log_density(&m->object, c), log(OBJECT_UNSEEN));
+}
+
+/* log p(c | backdrop or shadow), before the support's colours. */
+static double backdrop_log_likelihood(const recon_colour_model *m, const float *c, const float *bc, const float *mc,
+                                      const float *mbc)
+{
     double d[3] = {c[0] - bc[0], c[1] - bc[1], c[2] - bc[2]};
     double l_bg = logsumexp2(m->bg_lognorm - 0.5 * quad3(m->bg_icov, d), m->tail_lognorm - 0.5 * quad3(m->tail_icov, d));
     /* The shadow: the backdrop scaled by the k that fits c best. */
@@ -156,10 +161,22 @@ void recon_colour_costs(const recon_colour_model *m, const float *c, const float
         if (k0 < 0.97 && km < 0.97 && fabs(k0 - km) < SHADOW_ALIKE)
             prior = log(SHADOW_SYMMETRIC_FACTOR);
     }
-    double l = logsumexp2(l_bg, prior + m->shadow_lognorm - 0.5 * quad3(m->shadow_icov, ds));
+    return logsumexp2(l_bg, prior + m->shadow_lognorm - 0.5 * quad3(m->shadow_icov, ds));
+}
+
+/* -log p(c | not object) from the backdrop's log-likelihood l. */
+static double cost_not_object(const recon_colour_model *m, const float *c, double l)
+{
     if (m->have_support)
         l = logsumexp2(l, log(SUPPORT_PRIOR) + recon_gmm_log_density(&m->support, c));
-    *cost_backdrop = -l;
+    return -l;
+}
+
+void recon_colour_costs(const recon_colour_model *m, const float *c, const float *bc, const float *mc,
+                        const float *mbc, double *cost_object, double *cost_backdrop)
+{
+    *cost_object = object_cost(m, c);
+    *cost_backdrop = cost_not_object(m, c, backdrop_log_likelihood(m, c, bc, mc, mbc));
 }
 
 /* ---- the axis of a mask */
@@ -314,27 +331,6 @@ static void add_smoothness(maxflow_graph *g, const float *wt, int w, int h)
             }
 }
 
-/* t-links from the colour costs, with the border prior. */
-static void add_data_terms(maxflow_graph *g, const recon_segmentation *seg, const float *backdrop_rgb)
-{
-    const int w = seg->w, h = seg->h;
-    const double border = log((1 - BORDER_PRIOR_EPS) / BORDER_PRIOR_EPS);
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            int p = y * w + x;
-            double co, cb;
-            int q = seg->have_axis ? recon_segment_mirror(seg, p) : -1;
-            recon_colour_costs(&seg->model, seg->rgb + 3 * (size_t)p, backdrop_rgb + 3 * (size_t)p,
-                               q >= 0 ? seg->rgb + 3 * (size_t)q : NULL, q >= 0 ? backdrop_rgb + 3 * (size_t)q : NULL,
-                               &co, &cb);
-            if (x == 0 || y == 0 || x == w - 1 || y == h - 1)
-                co += border;
-            double lo = co < cb ? co : cb;
-            /* the source side is the object: a pixel left on the sink side pays cb */
-            maxflow_add_terminals(g, p, cb - lo, co - lo);
-        }
-}
-
 static void add_symmetry(maxflow_graph *g, const recon_segmentation *seg)
 {
     const double lambda = log((1 - SYMMETRY_EPS) / SYMMETRY_EPS);
@@ -402,9 +398,22 @@ static int largest_component(const long *area, int n)
     return best;
 }
 
-/* ---- the whole segmentation */
+/* ---- the steps of the segmentation */
 
-int recon_segment(const image_t *img, recon_segmentation *seg)
+/* What the rounds keep between steps. */
+struct recon_segment_work {
+    float *bgc;        /* w*h*3 backdrop colour */
+    float *nlw;        /* w*h*4 smoothness weights */
+    double *l_bg;      /* w*h log-likelihood of backdrop or shadow: fixed once the axis is */
+    double *t_src, *t_snk; /* w*h the round's t-links */
+    int *lab, *idx;    /* w*h */
+    uint8_t *use;      /* w*h */
+    long *area;
+    int main_c;        /* the largest object component of lab */
+    maxflow_graph *g;
+};
+
+int recon_segment_start(const image_t *img, recon_segmentation *seg)
 {
     memset(seg, 0, sizeof *seg);
     int longest = img->width > img->height ? img->width : img->height;
@@ -415,93 +424,160 @@ int recon_segment(const image_t *img, recon_segmentation *seg)
     seg->factor = f;
     seg->w = w;
     seg->h = h;
+    recon_segment_work *k = seg->work = calloc(1, sizeof *seg->work);
+    if (!k)
+        return -1;
     seg->rgb = downsample(img, f, w, h);
     seg->object = calloc(n, 1);
-    float *bgc = malloc(n * 3 * sizeof *bgc);
-    uint8_t *use = malloc(n * 2);
-    int *lab = malloc(n * sizeof *lab), *idx = malloc(n * sizeof *idx);
-    float *nlw = malloc(n * 4 * sizeof *nlw);
-    long *area = NULL;
-    maxflow_graph *g = maxflow_create((int)n, (int)(5 * n));
-    int rc = -1;
-    if (!seg->rgb || !seg->object || !bgc || !use || !lab || !idx || !nlw || !g)
-        goto out;
+    k->bgc = malloc(n * 3 * sizeof *k->bgc);
+    k->use = malloc(n);
+    k->lab = malloc(n * sizeof *k->lab);
+    k->idx = malloc(n * sizeof *k->idx);
+    k->nlw = malloc(n * 4 * sizeof *k->nlw);
+    k->l_bg = malloc(n * 3 * sizeof *k->l_bg);
+    k->t_src = k->l_bg ? k->l_bg + n : NULL;
+    k->t_snk = k->l_bg ? k->l_bg + 2 * n : NULL;
+    k->g = maxflow_create((int)n, (int)(5 * n));
+    if (!seg->rgb || !seg->object || !k->bgc || !k->use || !k->lab || !k->idx || !k->nlw || !k->l_bg || !k->g)
+        return -1;
 
     /* The backdrop first from a ring along the image border (6% of the
      * shorter side), robustly: a stand or a caption reaching the border
      * weighs nothing. */
+    uint8_t *use = k->use;
     int ring = (int)(0.06 * (w < h ? w : h)) + 2;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++)
             use[(size_t)y * w + x] = x < ring || y < ring || x >= w - ring || y >= h - ring;
     if (recon_backdrop_fit(&seg->model.backdrop, seg->rgb, w, h, use, 1, 6, 4) != 0 ||
         recon_colour_model_prepare(&seg->model) != 0)
-        goto out;
-    eval_backdrop(&seg->model.backdrop, bgc);
+        return -1;
+    eval_backdrop(&seg->model.backdrop, k->bgc);
     /* The initial object: what the backdrop cannot explain. */
     for (size_t p = 0; p < n; p++) {
         double d[3];
         for (int c = 0; c < 3; c++)
-            d[c] = seg->rgb[3 * p + c] - bgc[3 * p + c];
+            d[c] = seg->rgb[3 * p + c] - k->bgc[3 * p + c];
         seg->object[p] = quad3(seg->model.bg_icov, d) > INIT_CHI2;
     }
-
     seg->beta = recon_contrast_beta(seg->rgb, w, h);
-    smoothness_weights(seg, nlw);
-    for (int r = 0; r < ROUNDS; r++) {
-        free(area);
-        area = NULL;
-        int nc = recon_mask_label(seg->object, w, h, lab, &area);
-        if (nc < 0)
-            goto out;
-        int main_c = largest_component(area, nc);
-        if (!main_c) {
-            rc = 1;
-            goto out;
-        }
-        /* Models from the current labels: the object's colours from its
-         * largest component, the backdrop from the pixels at least 2 px
-         * from any object. */
-        if (fit_object_model(seg, lab, main_c, idx) != 0) {
-            rc = 1;
-            goto out;
-        }
-        /* The axis of the symmetry links comes from the initial object
-         * (what the backdrop cannot explain: a highlight that the colour
-         * models will take for backdrop is still there), and the rounds
-         * keep it: only the colour models change, so only the t-links are
-         * rebuilt. */
-        if (r == 0) {
-            maxflow_reset(g);
-            add_smoothness(g, nlw, w, h);
-            for (size_t p = 0; p < n; p++)
-                use[p] = lab[p] == main_c;
-            seg->have_axis = recon_mask_axis(use, w, h, &seg->axis_x0, &seg->axis_slope) == 0;
-            if (seg->have_axis)
-                add_symmetry(g, seg);
-        } else {
-            maxflow_reset_terminals(g);
-        }
-        add_data_terms(g, seg, bgc);
-        maxflow_solve(g);
-        for (size_t p = 0; p < n; p++)
-            seg->object[p] = (uint8_t)maxflow_source_side(g, (int)p);
-        seg->rounds = r + 1;
+    smoothness_weights(seg, k->nlw);
+    return 0;
+}
+
+int recon_segment_models(recon_segmentation *seg)
+{
+    recon_segment_work *k = seg->work;
+    const int w = seg->w, h = seg->h;
+    free(k->area);
+    k->area = NULL;
+    int nc = recon_mask_label(seg->object, w, h, k->lab, &k->area);
+    if (nc < 0)
+        return -1;
+    k->main_c = largest_component(k->area, nc);
+    /* Models from the current labels: the object's colours from its
+     * largest component. */
+    if (!k->main_c || fit_object_model(seg, k->lab, k->main_c, k->idx) != 0)
+        return 1;
+    /* The axis of the symmetry links comes from the initial object (what
+     * the backdrop cannot explain: a highlight that the colour models will
+     * take for backdrop is still there), and the rounds keep it. */
+    if (seg->rounds == 0) {
+        for (size_t p = 0; p < (size_t)w * h; p++)
+            k->use[p] = k->lab[p] == k->main_c;
+        seg->have_axis = recon_mask_axis(k->use, w, h, &seg->axis_x0, &seg->axis_slope) == 0;
     }
-    rc = 0;
-out:
-    maxflow_destroy(g);
-    free(area);
-    free(lab);
-    free(idx);
-    free(nlw);
-    free(use);
-    free(bgc);
-    return rc;
+    return 0;
+}
+
+void recon_segment_data_terms(recon_segmentation *seg)
+{
+    recon_segment_work *k = seg->work;
+    const int w = seg->w, h = seg->h;
+    const double border = log((1 - BORDER_PRIOR_EPS) / BORDER_PRIOR_EPS);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int p = y * w + x;
+            const float *c = seg->rgb + 3 * (size_t)p;
+            /* the backdrop's part depends on neither the object's model nor
+             * the labels: the first round's serves them all */
+            if (seg->rounds == 0) {
+                int q = seg->have_axis ? recon_segment_mirror(seg, p) : -1;
+                k->l_bg[p] = backdrop_log_likelihood(&seg->model, c, k->bgc + 3 * (size_t)p,
+                                                     q >= 0 ? seg->rgb + 3 * (size_t)q : NULL,
+                                                     q >= 0 ? k->bgc + 3 * (size_t)q : NULL);
+            }
+            double co = object_cost(&seg->model, c), cb = cost_not_object(&seg->model, c, k->l_bg[p]);
+            if (x == 0 || y == 0 || x == w - 1 || y == h - 1)
+                co += border;
+            double lo = co < cb ? co : cb;
+            /* the source side is the object: a pixel left on the sink side pays cb */
+            k->t_src[p] = cb - lo;
+            k->t_snk[p] = co - lo;
+        }
+}
+
+int recon_segment_cut(recon_segmentation *seg)
+{
+    recon_segment_work *k = seg->work;
+    const int w = seg->w, h = seg->h;
+    const size_t n = (size_t)w * h;
+    /* The links stay; later rounds change only the t-links and go on from
+     * the last round's flow. */
+    if (seg->rounds == 0) {
+        maxflow_reset(k->g);
+        add_smoothness(k->g, k->nlw, w, h);
+        if (seg->have_axis)
+            add_symmetry(k->g, seg);
+        for (size_t p = 0; p < n; p++)
+            maxflow_add_terminals(k->g, (int)p, k->t_src[p], k->t_snk[p]);
+    } else {
+        for (size_t p = 0; p < n; p++)
+            maxflow_set_terminals(k->g, (int)p, k->t_src[p], k->t_snk[p]);
+    }
+    maxflow_solve(k->g);
+    for (size_t p = 0; p < n; p++)
+        seg->object[p] = (uint8_t)maxflow_source_side(k->g, (int)p);
+    seg->rounds++;
+    return 0;
+}
+
+static void work_free(recon_segment_work *k)
+{
+    if (!k)
+        return;
+    maxflow_destroy(k->g);
+    free(k->area);
+    free(k->lab);
+    free(k->idx);
+    free(k->nlw);
+    free(k->use);
+    free(k->bgc);
+    free(k->l_bg);
+    free(k);
+}
+
+int recon_segment(const image_t *img, recon_segmentation *seg)
+{
+    if (recon_segment_start(img, seg) != 0)
+        return -1;
+    for (int r = 0; r < ROUNDS; r++) {
+        int rc = recon_segment_models(seg);
+        if (rc != 0)
+            return rc;
+        recon_segment_data_terms(seg);
+        if (recon_segment_cut(seg) != 0)
+            return -1;
+    }
+    /* the rounds' buffers are not needed after them */
+    work_free(seg->work);
+    seg->work = NULL;
+    return 0;
 }
 
 void recon_segmentation_free(recon_segmentation *seg)
 {
+    work_free(seg->work);
     free(seg->rgb);
     free(seg->object);
     memset(seg, 0, sizeof *seg);

@@ -35,6 +35,8 @@ typedef struct {
     recon_gmm support;
 } recon_colour_model;
 
+typedef struct recon_segment_work recon_segment_work;
+
 typedef struct recon_segmentation_s {
     int factor;         /* full-resolution pixels per low-resolution pixel, per side */
     int w, h;           /* low-resolution size */
@@ -45,6 +47,7 @@ typedef struct recon_segmentation_s {
     double axis_x0, axis_slope; /* the axis at low resolution: x = axis_x0 + axis_slope * (y + 0.5) */
     double beta;        /* of the contrast-sensitive links: 1 / (2 <|dc|^2>) over neighbour pairs */
     int rounds;
+    recon_segment_work *work; /* the rounds' buffers and graph, between the steps below */
 } recon_segmentation;
 
 /* Costs of one colour c whose backdrop colour is backdrop_c: -log p(c |
@@ -70,6 +73,24 @@ double recon_segment_link(const recon_segmentation *seg, int p, int q, int diago
 /* Runs the segmentation. Returns 0, 1 when nothing in the photo differs from
  * its backdrop, or -1 when out of memory. */
 int recon_segment(const image_t *img, recon_segmentation *seg);
+
+/* recon_segment's steps, in order (bench/bench_recon.c times each; seg is
+ * freed by recon_segmentation_free whatever they return):
+ *   start       the box-filtered colours, the backdrop fitted on the border
+ *               ring, the initial object (what the backdrop cannot explain),
+ *               the contrast-sensitive link weights; 0, or -1;
+ * then per round
+ *   models      the object's colour mixture from the largest component of
+ *               the current labels (the first round also fixes the symmetry
+ *               axis from it); 0, 1 when there is no object, or -1;
+ *   data_terms  every pixel's t-links from the colour models;
+ *   cut         the min-cut: the first round builds the graph, the later
+ *               ones change its t-links and go on from the last flow;
+ *               updates object and rounds; 0, or -1. */
+int recon_segment_start(const image_t *img, recon_segmentation *seg);
+int recon_segment_models(recon_segmentation *seg);
+void recon_segment_data_terms(recon_segmentation *seg);
+int recon_segment_cut(recon_segmentation *seg);
 void recon_segmentation_free(recon_segmentation *seg);
 
 /* The mirror image of low-resolution pixel p across the axis, or -1 outside. */
