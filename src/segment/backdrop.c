@@ -81,10 +81,44 @@ static void add_bending_penalty(gsl_matrix *A, int g, double lambda)
             }
 }
 
-/* One weighted solve: coef from the samples (x, y, colour, weight). The
+/* A sample's 16 basis weights (wx[i] wy[j] at 4 j + i) and the index of its
+ * first control point (the others follow: + j g + i). */
+typedef struct {
+    double phi[16];
+    int first;
+} sample_basis;
+
+static void sample_basis_at(const recon_backdrop *b, double x, double y, sample_basis *sb)
+{
+    int fx, fy;
+    double wx[4], wy[4];
+    basis(x, b->width, b->grid, &fx, wx);
+    basis(y, b->height, b->grid, &fy, wy);
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 4; i++)
+            sb->phi[4 * j + i] = wx[i] * wy[j];
+    sb->first = fy * b->grid + fx;
+}
+
+/* The surface at a sample, summed as recon_backdrop_at sums it. */
+static void surface_at(const recon_backdrop *b, const sample_basis *sb, double out[3])
+{
+    out[0] = out[1] = out[2] = 0;
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 4; i++) {
+            const double *c = b->coef[sb->first + j * b->grid + i];
+            double wgt = sb->phi[4 * j + i];
+            out[0] += wgt * c[0];
+            out[1] += wgt * c[1];
+            out[2] += wgt * c[2];
+        }
+}
+
+/* One weighted solve: coef from the samples (basis, colour, weight). The
  * normal equations are summed in plain arrays (a sample touches 16 control
- * points) and solved by Cholesky. */
-static int solve(recon_backdrop *b, const double *xy, const float *col, const double *wt, int n)
+ * points) and solved by Cholesky, which reads only the lower triangle: the
+ * upper one is not summed. */
+static int solve(recon_backdrop *b, const sample_basis *sb, const float *col, const double *wt, int n)
 {
     const int g = b->grid, m = g * g;
     double *ata = calloc((size_t)m * (m + 3), sizeof *ata), *atb = ata + (size_t)m * m;
@@ -96,23 +130,16 @@ static int solve(recon_backdrop *b, const double *xy, const float *col, const do
     for (int s = 0; s < n; s++) {
         if (wt[s] <= 0)
             continue;
-        int fx, fy;
-        double wx[4], wy[4], phi[16];
-        int id[16];
-        basis(xy[2 * s], b->width, g, &fx, wx);
-        basis(xy[2 * s + 1], b->height, g, &fy, wy);
-        for (int j = 0; j < 4; j++)
-            for (int i = 0; i < 4; i++) {
-                phi[4 * j + i] = wx[i] * wy[j];
-                id[4 * j + i] = (fy + j) * g + fx + i;
-            }
+        const double *phi = sb[s].phi;
+        /* control points in increasing index order: a = 4 j + i is at first + j g + i */
         for (int a = 0; a < 16; a++) {
             double wa = wt[s] * phi[a];
-            double *row = ata + (size_t)id[a] * m;
-            for (int c = 0; c < 16; c++)
-                row[id[c]] += wa * phi[c];
+            int ia = sb[s].first + (a >> 2) * g + (a & 3);
+            double *row = ata + (size_t)ia * m + sb[s].first;
+            for (int c = 0; c <= a; c++)
+                row[(c >> 2) * g + (c & 3)] += wa * phi[c];
             for (int c = 0; c < 3; c++)
-                atb[3 * id[a] + c] += wa * col[3 * s + c];
+                atb[3 * ia + c] += wa * col[3 * s + c];
         }
         wsum += wt[s];
     }
@@ -156,18 +183,18 @@ int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const 
     b->width = w;
     b->height = h;
     int cap = ((w + step - 1) / step) * ((h + step - 1) / step);
-    double *xy = malloc((size_t)cap * 2 * sizeof *xy), *wt = malloc((size_t)cap * 2 * sizeof *wt);
+    sample_basis *sb = malloc((size_t)cap * sizeof *sb);
+    double *wt = malloc((size_t)cap * 2 * sizeof *wt);
     float *col = malloc((size_t)cap * 3 * sizeof *col);
     int rc = -1, n = 0;
-    if (!xy || !wt || !col)
+    if (!sb || !wt || !col)
         goto out;
     for (int y = step / 2; y < h; y += step)
         for (int x = step / 2; x < w; x += step) {
             size_t p = (size_t)y * w + x;
             if (!use[p])
                 continue;
-            xy[2 * n] = x + 0.5;
-            xy[2 * n + 1] = y + 0.5;
+            sample_basis_at(b, x + 0.5, y + 0.5, &sb[n]);
             memcpy(col + 3 * n, rgb + 3 * p, 3 * sizeof *col);
             wt[n++] = 1;
         }
@@ -175,11 +202,11 @@ int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const 
         goto out;
     double *res = wt + cap;
     for (int r = 0;; r++) {
-        if (solve(b, xy, col, wt, n) != 0)
+        if (solve(b, sb, col, wt, n) != 0)
             goto out;
         for (int s = 0; s < n; s++) {
             double m[3];
-            recon_backdrop_at(b, xy[2 * s], xy[2 * s + 1], m);
+            surface_at(b, &sb[s], m);
             double d0 = col[3 * s] - m[0], d1 = col[3 * s + 1] - m[1], d2 = col[3 * s + 2] - m[2];
             res[s] = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
         }
@@ -198,7 +225,7 @@ int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const 
                 if (res[k] >= cut)
                     continue;
                 double m[3], d[3];
-                recon_backdrop_at(b, xy[2 * k], xy[2 * k + 1], m);
+                surface_at(b, &sb[k], m);
                 for (int i = 0; i < 3; i++)
                     d[i] = col[3 * k + i] - m[i];
                 for (int i = 0; i < 9; i++)
@@ -216,7 +243,7 @@ int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const 
     }
     rc = 0;
 out:
-    free(xy);
+    free(sb);
     free(wt);
     free(col);
     return rc;
