@@ -25,21 +25,36 @@ static void basis(double x, double len, int g, int *first, double wt[4])
     *first = s;
 }
 
-void recon_backdrop_at(const recon_backdrop *b, double x, double y, double out[3])
+void recon_backdrop_basis_x(const recon_backdrop *b, double x, recon_backdrop_basis *out)
 {
-    int fx, fy;
-    double wx[4], wy[4];
-    basis(x, b->width, b->grid, &fx, wx);
-    basis(y, b->height, b->grid, &fy, wy);
+    basis(x, b->width, b->grid, &out->first, out->wt);
+}
+
+void recon_backdrop_basis_y(const recon_backdrop *b, double y, recon_backdrop_basis *out)
+{
+    basis(y, b->height, b->grid, &out->first, out->wt);
+}
+
+void recon_backdrop_at_basis(const recon_backdrop *b, const recon_backdrop_basis *bx, const recon_backdrop_basis *by,
+                             double out[3])
+{
     out[0] = out[1] = out[2] = 0;
     for (int j = 0; j < 4; j++)
         for (int i = 0; i < 4; i++) {
-            const double *c = b->coef[(fy + j) * b->grid + fx + i];
-            double wgt = wx[i] * wy[j];
+            const double *c = b->coef[(by->first + j) * b->grid + bx->first + i];
+            double wgt = bx->wt[i] * by->wt[j];
             out[0] += wgt * c[0];
             out[1] += wgt * c[1];
             out[2] += wgt * c[2];
         }
+}
+
+void recon_backdrop_at(const recon_backdrop *b, double x, double y, double out[3])
+{
+    recon_backdrop_basis bx, by;
+    recon_backdrop_basis_x(b, x, &bx);
+    recon_backdrop_basis_y(b, y, &by);
+    recon_backdrop_at_basis(b, &bx, &by, out);
 }
 
 void recon_backdrop_row(const recon_backdrop *b, int y, float *out)
@@ -131,13 +146,16 @@ static int solve(recon_backdrop *b, const sample_basis *sb, const float *col, co
         if (wt[s] <= 0)
             continue;
         const double *phi = sb[s].phi;
-        /* control points in increasing index order: a = 4 j + i is at first + j g + i */
+        /* control points in increasing index order: a = 4 j + i is at
+         * first + j g + i; the rows of 4 up to a's own (its upper part
+         * within that row of 4 is summed too, and not read) */
         for (int a = 0; a < 16; a++) {
             double wa = wt[s] * phi[a];
             int ia = sb[s].first + (a >> 2) * g + (a & 3);
             double *row = ata + (size_t)ia * m + sb[s].first;
-            for (int c = 0; c <= a; c++)
-                row[(c >> 2) * g + (c & 3)] += wa * phi[c];
+            for (int jc = 0; jc <= a >> 2; jc++)
+                for (int ic = 0; ic < 4; ic++)
+                    row[jc * g + ic] += wa * phi[4 * jc + ic];
             for (int c = 0; c < 3; c++)
                 atb[3 * ia + c] += wa * col[3 * s + c];
         }

@@ -23,11 +23,26 @@ static void pixel_rgb(const image_t *img, size_t p, float out[3])
     }
 }
 
+/* The backdrop's basis at every full-resolution column and row: the surface
+ * at pixel (X, Y) is the low-resolution one at ((X + 0.5) / f, (Y + 0.5) / f). */
+static recon_backdrop_basis *backdrop_bases(const recon_segmentation *seg, int W, int H)
+{
+    recon_backdrop_basis *bb = malloc(((size_t)W + H) * sizeof *bb);
+    if (!bb)
+        return NULL;
+    for (int X = 0; X < W; X++)
+        recon_backdrop_basis_x(&seg->model.backdrop, (X + 0.5) / seg->factor, &bb[X]);
+    for (int Y = 0; Y < H; Y++)
+        recon_backdrop_basis_y(&seg->model.backdrop, (Y + 0.5) / seg->factor, &bb[W + Y]);
+    return bb;
+}
+
 /* The modelled backdrop colour at full-resolution pixel (X, Y). */
-static void backdrop_at(const recon_segmentation *seg, int X, int Y, float out[3])
+static void backdrop_at(const recon_segmentation *seg, const recon_backdrop_basis *bb, int W, int X, int Y,
+                        float out[3])
 {
     double bg[3];
-    recon_backdrop_at(&seg->model.backdrop, (X + 0.5) / seg->factor, (Y + 0.5) / seg->factor, bg);
+    recon_backdrop_at_basis(&seg->model.backdrop, &bb[X], &bb[W + Y], bg);
     for (int c = 0; c < 3; c++)
         out[c] = (float)bg[c];
 }
@@ -69,6 +84,7 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
     int rc = -1, nn = 0;
     maxflow_graph *g = NULL;
     float *col = NULL;
+    recon_backdrop_basis *bb = NULL;
     if (!band || !node)
         goto out;
     boundary_band(coarse, w, h, band);
@@ -76,11 +92,12 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
      * take the nearest cell's); band pixels become nodes. */
     for (int Y = 0; Y < H; Y++) {
         int y = Y / f < h ? Y / f : h - 1;
-        for (int X = 0; X < W; X++) {
-            int x = X / f < w ? X / f : w - 1;
-            size_t P = (size_t)Y * W + X, p = (size_t)y * w + x;
-            mask[P] = coarse[p];
-            node[P] = band[p] ? nn++ : -1;
+        for (int x = 0; x < w; x++) { /* the cell's columns; the last cell's run to the border */
+            size_t p = (size_t)y * w + x, P0 = (size_t)Y * W + (size_t)x * f;
+            int run = x + 1 < w ? f : W - x * f;
+            memset(mask + P0, coarse[p], (size_t)run);
+            for (int i = 0; i < run; i++)
+                node[P0 + i] = band[p] ? nn++ : -1;
         }
     }
     if (nn == 0) {
@@ -89,7 +106,8 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
     }
     col = malloc((size_t)nn * 3 * sizeof *col);
     g = maxflow_create(nn, 5 * nn);
-    if (!col || !g)
+    bb = backdrop_bases(seg, W, H);
+    if (!col || !g || !bb)
         goto out;
     for (size_t P = 0; P < (size_t)W * H; P++)
         if (node[P] >= 0)
@@ -122,11 +140,11 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
             const float *ca = col + 3 * (size_t)a;
             double co, cb;
             float bgf[3], mc[3], mbgf[3];
-            backdrop_at(seg, X, Y, bgf);
+            backdrop_at(seg, bb, W, X, Y, bgf);
             long M = seg->have_axis ? mirror_full(seg, W, H, X, Y) : -1;
             if (M >= 0) {
                 pixel_rgb(img, (size_t)M, mc);
-                backdrop_at(seg, (int)(M % W), (int)(M / W), mbgf);
+                backdrop_at(seg, bb, W, (int)(M % W), (int)(M / W), mbgf);
             }
             recon_colour_costs(&seg->model, ca, bgf, M >= 0 ? mc : NULL, M >= 0 ? mbgf : NULL, &co, &cb);
             double src = cb, snk = co; /* the cost of ending as backdrop / as object */
@@ -173,6 +191,7 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
     rc = 0;
 out:
     maxflow_destroy(g);
+    free(bb);
     free(col);
     free(node);
     free(band);
