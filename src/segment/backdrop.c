@@ -153,9 +153,13 @@ static int solve(recon_backdrop *b, const sample_basis *sb, const float *col, co
             double wa = wt[s] * phi[a];
             int ia = sb[s].first + (a >> 2) * g + (a & 3);
             double *row = ata + (size_t)ia * m + sb[s].first;
-            for (int jc = 0; jc <= a >> 2; jc++)
+            for (int jc = 0; jc <= a >> 2; jc++) {
+                double *r = row + jc * g;
+                const double *q = phi + 4 * jc;
+#pragma omp simd
                 for (int ic = 0; ic < 4; ic++)
-                    row[jc * g + ic] += wa * phi[4 * jc + ic];
+                    r[ic] += wa * q[ic];
+            }
             for (int c = 0; c < 3; c++)
                 atb[3 * ia + c] += wa * col[3 * s + c];
         }

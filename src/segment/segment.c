@@ -60,27 +60,34 @@ enum { ROUNDS = 3 };
  * distance above the chi-square(3) quantile at 1e-4. */
 #define INIT_CHI2 21.1
 
+/* A colour value clamped to [0, 1]; NaN becomes 0. */
+static inline float finite01(float v) { return v > 0 ? (v < 1 ? v : 1) : 0; }
+
 /* Box-filtered colour at factor f (three channels). */
 static float *downsample(const image_t *img, int f, int w, int h)
 {
     float *out = calloc((size_t)w * h * 3, sizeof *out);
     if (!out)
         return NULL;
-    const int c = img->channels, colour = c >= 3;
+    const int c = img->channels, colour = c >= 3, gc = colour ? 1 : 0, bc = colour ? 2 : 0;
     const float inv = 1.0f / (f * f);
     for (int y = 0; y < h; y++)
         for (int j = 0; j < f; j++) {
             const float *row = img->data + ((size_t)(y * f + j) * img->width) * c;
             float *o = out + (size_t)y * w * 3;
-            for (int x = 0; x < w; x++)
-                for (int i = 0; i < f; i++) {
-                    const float *p = row + (size_t)(x * f + i) * c;
-                    float r = p[0], g = colour ? p[1] : p[0], b = colour ? p[2] : p[0];
+            for (int x = 0; x < w; x++) {
+                const float *p = row + (size_t)x * f * c;
+                float s0 = o[3 * x], s1 = o[3 * x + 1], s2 = o[3 * x + 2];
+                for (int i = 0; i < f; i++, p += c) {
                     /* NaN or HDR values from broken files count as black / white */
-                    o[3 * x] += inv * (r > 0 ? (r < 1 ? r : 1) : 0);
-                    o[3 * x + 1] += inv * (g > 0 ? (g < 1 ? g : 1) : 0);
-                    o[3 * x + 2] += inv * (b > 0 ? (b < 1 ? b : 1) : 0);
+                    s0 += inv * finite01(p[0]);
+                    s1 += inv * finite01(p[gc]);
+                    s2 += inv * finite01(p[bc]);
                 }
+                o[3 * x] = s0;
+                o[3 * x + 1] = s1;
+                o[3 * x + 2] = s2;
+            }
         }
     return out;
 }
@@ -410,8 +417,21 @@ struct recon_segment_work {
     uint8_t *use;      /* w*h */
     long *area;
     int main_c;        /* the largest object component of lab */
+    recon_gmm last_object; /* the object's model the t-links were computed with */
     maxflow_graph *g;
 };
+
+/* The two mixtures are the same, bit for bit. */
+static int same_gmm(const recon_gmm *a, const recon_gmm *b)
+{
+    if (a->k != b->k)
+        return 0;
+    for (int k = 0; k < a->k; k++)
+        if (memcmp(a->mean[k], b->mean[k], sizeof a->mean[k]) || memcmp(a->icov[k], b->icov[k], sizeof a->icov[k]) ||
+            a->lognorm[k] != b->lognorm[k])
+            return 0;
+    return 1;
+}
 
 int recon_segment_start(const image_t *img, recon_segmentation *seg)
 {
@@ -495,6 +515,10 @@ void recon_segment_data_terms(recon_segmentation *seg)
     recon_segment_work *k = seg->work;
     const int w = seg->w, h = seg->h;
     const double border = log((1 - BORDER_PRIOR_EPS) / BORDER_PRIOR_EPS);
+    /* the mixture converged: the last round's t-links stand (and its cut) */
+    if (seg->rounds > 0 && same_gmm(&seg->model.object, &k->last_object))
+        return;
+    k->last_object = seg->model.object;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             int p = y * w + x;
