@@ -443,7 +443,8 @@ static void mesh_and_batch(const char *photo, const char *cli)
             die("mesh failed");
         char label[96];
         snprintf(label, sizeof label, "%d segments, %d faces", segments, m.n_tris);
-        TIME_MESH(label, mesh_free(&m), if (mesh_revolve(&curve, u, nu, 1.0, segments, MESH_CAP_BASE, &m)) die("mesh failed"));
+        TIME_MESH(label, mesh_free(&m),
+                  if (mesh_revolve(&curve, u, nu, 1.0, segments, MESH_CAP_BASE, &m)) die("mesh failed"));
         mesh_free(&m);
     }
     uint8_t *ov = NULL;
@@ -474,7 +475,8 @@ static void mesh_and_batch(const char *photo, const char *cli)
             die("the batch reconstruct failed (is build/celadon built?)");
         best = fmin(best, now_seconds() - t0);
         getrusage(RUSAGE_CHILDREN, &after);
-        double used = (after.ru_utime.tv_sec - before.ru_utime.tv_sec) + (after.ru_stime.tv_sec - before.ru_stime.tv_sec) +
+        double used = (after.ru_utime.tv_sec - before.ru_utime.tv_sec) +
+                      (after.ru_stime.tv_sec - before.ru_stime.tv_sec) +
                       1e-6 * ((after.ru_utime.tv_usec - before.ru_utime.tv_usec) +
                               (after.ru_stime.tv_usec - before.ru_stime.tv_usec));
         cpu = fmin(cpu, used);

@@ -680,9 +680,10 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     /* 7. Parts: where the two sides disagree, the side that continues the
      * body, or a bridge; where they agree, their mean. */
     recon_outline_point *mp = pts, *op = pts + h;
-    int nm = recon_outline_points(res->silhouette[s], gaps + s * h, res->n_silhouette[s], origin, dir, s ? 1 : -1, H, mp);
+    int nm = recon_outline_points(res->silhouette[s], gaps + s * h, res->n_silhouette[s], origin, dir, s ? 1 : -1, H,
+                                  mp);
     int no = recon_outline_points(res->silhouette[1 - s], gaps + (1 - s) * h, res->n_silhouette[1 - s], origin, dir,
-                            s ? -1 : 1, H, op);
+                                  s ? -1 : 1, H, op);
     double rmax = 0;
     for (int i = 0; i < nm; i++)
         rmax = fmax(rmax, mp[i].r);
