@@ -38,15 +38,21 @@ void recon_backdrop_basis_y(const recon_backdrop *b, double y, recon_backdrop_ba
 void recon_backdrop_at_basis(const recon_backdrop *b, const recon_backdrop_basis *bx, const recon_backdrop_basis *by,
                              double out[3])
 {
-    out[0] = out[1] = out[2] = 0;
-    for (int j = 0; j < 4; j++)
+    /* summed in registers (sums in out[], which might alias coef, are
+     * stored at every step), in the order surface_at sums a fit's samples */
+    double o0 = 0, o1 = 0, o2 = 0;
+    for (int j = 0; j < 4; j++) {
+        const double(*c)[3] = b->coef + (by->first + j) * b->grid + bx->first;
         for (int i = 0; i < 4; i++) {
-            const double *c = b->coef[(by->first + j) * b->grid + bx->first + i];
             double wgt = bx->wt[i] * by->wt[j];
-            out[0] += wgt * c[0];
-            out[1] += wgt * c[1];
-            out[2] += wgt * c[2];
+            o0 += wgt * c[i][0];
+            o1 += wgt * c[i][1];
+            o2 += wgt * c[i][2];
         }
+    }
+    out[0] = o0;
+    out[1] = o1;
+    out[2] = o2;
 }
 
 void recon_backdrop_at(const recon_backdrop *b, double x, double y, double out[3])
@@ -118,15 +124,19 @@ static void sample_basis_at(const recon_backdrop *b, double x, double y, sample_
 /* The surface at a sample, summed as recon_backdrop_at sums it. */
 static void surface_at(const recon_backdrop *b, const sample_basis *sb, double out[3])
 {
-    out[0] = out[1] = out[2] = 0;
-    for (int j = 0; j < 4; j++)
+    double o0 = 0, o1 = 0, o2 = 0;
+    for (int j = 0; j < 4; j++) {
+        const double(*c)[3] = b->coef + sb->first + j * b->grid;
         for (int i = 0; i < 4; i++) {
-            const double *c = b->coef[sb->first + j * b->grid + i];
             double wgt = sb->phi[4 * j + i];
-            out[0] += wgt * c[0];
-            out[1] += wgt * c[1];
-            out[2] += wgt * c[2];
+            o0 += wgt * c[i][0];
+            o1 += wgt * c[i][1];
+            o2 += wgt * c[i][2];
         }
+    }
+    out[0] = o0;
+    out[1] = o1;
+    out[2] = o2;
 }
 
 /* One weighted solve: coef from the samples (basis, colour, weight). The

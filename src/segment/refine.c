@@ -85,6 +85,7 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
     maxflow_graph *g = NULL;
     float *col = NULL;
     recon_backdrop_basis *bb = NULL;
+    recon_cost_memo *memo = NULL;
     if (!band || !node)
         goto out;
     boundary_band(coarse, w, h, band);
@@ -104,14 +105,23 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
         rc = 0;
         goto out;
     }
-    col = malloc((size_t)nn * 3 * sizeof *col);
+    /* each node's colour and modelled backdrop colour (a node's mirror is
+     * mostly a node too) */
+    col = malloc((size_t)nn * 6 * sizeof *col);
     g = maxflow_create(nn, 5 * nn);
     bb = backdrop_bases(seg, W, H);
-    if (!col || !g || !bb)
+    memo = calloc(1, sizeof *memo);
+    if (!col || !g || !bb || !memo)
         goto out;
-    for (size_t P = 0; P < (size_t)W * H; P++)
-        if (node[P] >= 0)
-            pixel_rgb(img, P, col + 3 * (size_t)node[P]);
+    float *bgn = col + 3 * (size_t)nn;
+    for (int Y = 0; Y < H; Y++)
+        for (int X = 0; X < W; X++) {
+            size_t P = (size_t)Y * W + X;
+            if (node[P] >= 0) {
+                pixel_rgb(img, P, col + 3 * (size_t)node[P]);
+                backdrop_at(seg, bb, W, X, Y, bgn + 3 * (size_t)node[P]);
+            }
+        }
     double beta = 0;
     {
         double s = 0;
@@ -139,14 +149,19 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
                 continue;
             const float *ca = col + 3 * (size_t)a;
             double co, cb;
-            float bgf[3], mc[3], mbgf[3];
-            backdrop_at(seg, bb, W, X, Y, bgf);
+            float mc_fixed[3], mbgf_fixed[3];
+            const float *mc = NULL, *mbgf = NULL;
             long M = seg->have_axis ? mirror_full(seg, W, H, X, Y) : -1;
-            if (M >= 0) {
-                pixel_rgb(img, (size_t)M, mc);
-                backdrop_at(seg, bb, W, (int)(M % W), (int)(M / W), mbgf);
+            if (M >= 0 && node[M] >= 0) {
+                mc = col + 3 * (size_t)node[M];
+                mbgf = bgn + 3 * (size_t)node[M];
+            } else if (M >= 0) {
+                pixel_rgb(img, (size_t)M, mc_fixed);
+                backdrop_at(seg, bb, W, (int)(M % W), (int)(M / W), mbgf_fixed);
+                mc = mc_fixed;
+                mbgf = mbgf_fixed;
             }
-            recon_colour_costs(&seg->model, ca, bgf, M >= 0 ? mc : NULL, M >= 0 ? mbgf : NULL, &co, &cb);
+            recon_colour_costs(&seg->model, memo, ca, bgn + 3 * (size_t)a, mc, mbgf, &co, &cb);
             double src = cb, snk = co; /* the cost of ending as backdrop / as object */
             /* Links: to band neighbours once (forward half), to fixed
              * neighbours as terminal costs (all eight directions). */
@@ -191,6 +206,7 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
     rc = 0;
 out:
     maxflow_destroy(g);
+    free(memo);
     free(bb);
     free(col);
     free(node);

@@ -148,9 +148,19 @@ static double shadow_factor(const float *c, const float *bc)
     return bb > 1e-6 ? ((double)c[0] * bc[0] + (double)c[1] * bc[1] + (double)c[2] * bc[2]) / bb : 1;
 }
 
-static double object_cost(const recon_colour_model *m, const float *c)
+static double object_cost(const recon_colour_model *m, recon_cost_memo *memo, const float *c)
 {
-    return -logsumexp2(log(1 - OBJECT_UNSEEN) + recon_gmm_log_density(&m->object, c), log(OBJECT_UNSEEN));
+    if (!memo)
+        return -logsumexp2(log(1 - OBJECT_UNSEEN) + recon_gmm_log_density(&m->object, c), log(OBJECT_UNSEEN));
+    uint32_t b[3];
+    memcpy(b, c, sizeof b);
+    uint32_t slot = (b[0] * 0x9E3779B1u ^ b[1] * 0x85EBCA77u ^ b[2] * 0xC2B2AE3Du) >> (32 - RECON_COST_MEMO_BITS);
+    if (!memo->e[slot].used || memcmp(memo->e[slot].c, c, sizeof memo->e[slot].c) != 0) {
+        memo->e[slot].used = 1;
+        memcpy(memo->e[slot].c, c, sizeof memo->e[slot].c);
+        memo->e[slot].cost = object_cost(m, NULL, c);
+    }
+    return memo->e[slot].cost;
 }
 
 /* log p(c | backdrop or shadow), before the support's colours. */
@@ -179,10 +189,10 @@ static double cost_not_object(const recon_colour_model *m, const float *c, doubl
     return -l;
 }
 
-void recon_colour_costs(const recon_colour_model *m, const float *c, const float *bc, const float *mc,
-                        const float *mbc, double *cost_object, double *cost_backdrop)
+void recon_colour_costs(const recon_colour_model *m, recon_cost_memo *memo, const float *c, const float *bc,
+                        const float *mc, const float *mbc, double *cost_object, double *cost_backdrop)
 {
-    *cost_object = object_cost(m, c);
+    *cost_object = object_cost(m, memo, c);
     *cost_backdrop = cost_not_object(m, c, backdrop_log_likelihood(m, c, bc, mc, mbc));
 }
 
@@ -418,6 +428,7 @@ struct recon_segment_work {
     long *area;
     int main_c;        /* the largest object component of lab */
     recon_gmm last_object; /* the object's model the t-links were computed with */
+    recon_cost_memo memo;  /* its costs by colour */
     maxflow_graph *g;
 };
 
@@ -519,6 +530,7 @@ void recon_segment_data_terms(recon_segmentation *seg)
     if (seg->rounds > 0 && same_gmm(&seg->model.object, &k->last_object))
         return;
     k->last_object = seg->model.object;
+    memset(&k->memo, 0, sizeof k->memo);
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             int p = y * w + x;
@@ -531,7 +543,7 @@ void recon_segment_data_terms(recon_segmentation *seg)
                                                      q >= 0 ? seg->rgb + 3 * (size_t)q : NULL,
                                                      q >= 0 ? k->bgc + 3 * (size_t)q : NULL);
             }
-            double co = object_cost(&seg->model, c), cb = cost_not_object(&seg->model, c, k->l_bg[p]);
+            double co = object_cost(&seg->model, &k->memo, c), cb = cost_not_object(&seg->model, c, k->l_bg[p]);
             if (x == 0 || y == 0 || x == w - 1 || y == h - 1)
                 co += border;
             double lo = co < cb ? co : cb;

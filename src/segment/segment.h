@@ -50,12 +50,28 @@ typedef struct recon_segmentation_s {
     recon_segment_work *work; /* the rounds' buffers and graph, between the steps below */
 } recon_segmentation;
 
+/* The object's costs of the colours seen so far under one colour model, by
+ * colour: the cost is a function of the colour alone, and a photo repeats
+ * colours (8-bit channels, flat backdrops), while the mixture's exp and log
+ * are most of a pixel's data term. Direct-mapped; all zero is empty (calloc,
+ * or memset when the model changes). */
+enum { RECON_COST_MEMO_BITS = 12 };
+typedef struct {
+    struct {
+        float c[3];
+        int used;
+        double cost;
+    } e[1 << RECON_COST_MEMO_BITS];
+} recon_cost_memo;
+
 /* Costs of one colour c whose backdrop colour is backdrop_c: -log p(c |
  * object) and -log p(c | not object). mirror_c and its backdrop colour (both
  * NULL when unknown) are the pixel's mirror image across the axis: a shadow
- * is unlikely where the mirror is darkened alike. */
-void recon_colour_costs(const recon_colour_model *m, const float *c, const float *backdrop_c, const float *mirror_c,
-                        const float *mirror_backdrop_c, double *cost_object, double *cost_backdrop);
+ * is unlikely where the mirror is darkened alike. memo: NULL, or the object
+ * costs already computed under m. */
+void recon_colour_costs(const recon_colour_model *m, recon_cost_memo *memo, const float *c, const float *backdrop_c,
+                        const float *mirror_c, const float *mirror_backdrop_c, double *cost_object,
+                        double *cost_backdrop);
 
 /* Sets the backdrop and shadow terms of m from its backdrop's residual
  * covariance and the priors (which depend on have_support). Returns 0, or -1
