@@ -9,6 +9,9 @@
 #include <gsl/gsl_linalg.h>
 #include <gsl/gsl_statistics_double.h>
 
+#include "segment/robust.h"
+#include "segment/vector_clones.h"
+
 /* Uniform cubic B-spline with g control points on [0, len]: the g-3 spans
  * share the length; writes the first control index and the 4 weights. */
 static void basis(double x, double len, int g, int *first, double wt[4])
@@ -35,24 +38,34 @@ void recon_backdrop_basis_y(const recon_backdrop *b, double y, recon_backdrop_ba
     basis(y, b->height, b->grid, &out->first, out->wt);
 }
 
-void recon_backdrop_at_basis(const recon_backdrop *b, const recon_backdrop_basis *bx, const recon_backdrop_basis *by,
-                             double out[3])
+/* The surface at a point whose 16 basis weights (wx[i] wy[j] at 4 j + i)
+ * start at control point `first` (the others follow: + j g + i), summed in
+ * registers (sums in out[], which might alias coef, would be stored at every
+ * step); the fit's residuals and every evaluation sum in this one order. */
+static void surface_sum(const recon_backdrop *b, int first, const double phi[16], double out[3])
 {
-    /* summed in registers (sums in out[], which might alias coef, are
-     * stored at every step), in the order surface_at sums a fit's samples */
     double o0 = 0, o1 = 0, o2 = 0;
     for (int j = 0; j < 4; j++) {
-        const double(*c)[3] = b->coef + (by->first + j) * b->grid + bx->first;
+        const double(*c)[3] = b->coef + first + j * b->grid;
         for (int i = 0; i < 4; i++) {
-            double wgt = bx->wt[i] * by->wt[j];
-            o0 += wgt * c[i][0];
-            o1 += wgt * c[i][1];
-            o2 += wgt * c[i][2];
+            o0 += phi[4 * j + i] * c[i][0];
+            o1 += phi[4 * j + i] * c[i][1];
+            o2 += phi[4 * j + i] * c[i][2];
         }
     }
     out[0] = o0;
     out[1] = o1;
     out[2] = o2;
+}
+
+void recon_backdrop_at_basis(const recon_backdrop *b, const recon_backdrop_basis *bx, const recon_backdrop_basis *by,
+                             double out[3])
+{
+    double phi[16];
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 4; i++)
+            phi[4 * j + i] = bx->wt[i] * by->wt[j];
+    surface_sum(b, by->first * b->grid + bx->first, phi, out);
 }
 
 void recon_backdrop_at(const recon_backdrop *b, double x, double y, double out[3])
@@ -121,22 +134,29 @@ static void sample_basis_at(const recon_backdrop *b, double x, double y, sample_
     sb->first = fy * b->grid + fx;
 }
 
-/* The surface at a sample, summed as recon_backdrop_at sums it. */
-static void surface_at(const recon_backdrop *b, const sample_basis *sb, double out[3])
+/* Adds a sample of weight w to the normal equations ata (m x m) and atb
+ * (m x 3), control points in increasing index order: a = 4 j + i is at
+ * first + j g + i; the rows of 4 up to a's own (its upper part within that
+ * row of 4 is summed too, and not read). */
+RECON_VECTOR_CLONES static void add_sample(double *restrict ata, double *restrict atb, int m, int g,
+                                           const sample_basis *sb, const float *c, double w)
 {
-    double o0 = 0, o1 = 0, o2 = 0;
-    for (int j = 0; j < 4; j++) {
-        const double(*c)[3] = b->coef + sb->first + j * b->grid;
+    const double *phi = sb->phi;
+    for (int ja = 0; ja < 4; ja++)
         for (int i = 0; i < 4; i++) {
-            double wgt = sb->phi[4 * j + i];
-            o0 += wgt * c[i][0];
-            o1 += wgt * c[i][1];
-            o2 += wgt * c[i][2];
+            double wa = w * phi[4 * ja + i];
+            int ia = sb->first + ja * g + i;
+            double *row = ata + (size_t)ia * m + sb->first;
+            for (int jc = 0; jc <= ja; jc++) {
+                double *r = row + jc * g;
+                const double *q = phi + 4 * jc;
+#pragma omp simd
+                for (int ic = 0; ic < 4; ic++)
+                    r[ic] += wa * q[ic];
+            }
+            for (int k = 0; k < 3; k++)
+                atb[3 * ia + k] += wa * c[k];
         }
-    }
-    out[0] = o0;
-    out[1] = o1;
-    out[2] = o2;
 }
 
 /* One weighted solve: coef from the samples (basis, colour, weight). The
@@ -155,24 +175,7 @@ static int solve(recon_backdrop *b, const sample_basis *sb, const float *col, co
     for (int s = 0; s < n; s++) {
         if (wt[s] <= 0)
             continue;
-        const double *phi = sb[s].phi;
-        /* control points in increasing index order: a = 4 j + i is at
-         * first + j g + i; the rows of 4 up to a's own (its upper part
-         * within that row of 4 is summed too, and not read) */
-        for (int a = 0; a < 16; a++) {
-            double wa = wt[s] * phi[a];
-            int ia = sb[s].first + (a >> 2) * g + (a & 3);
-            double *row = ata + (size_t)ia * m + sb[s].first;
-            for (int jc = 0; jc <= a >> 2; jc++) {
-                double *r = row + jc * g;
-                const double *q = phi + 4 * jc;
-#pragma omp simd
-                for (int ic = 0; ic < 4; ic++)
-                    r[ic] += wa * q[ic];
-            }
-            for (int c = 0; c < 3; c++)
-                atb[3 * ia + c] += wa * col[3 * s + c];
-        }
+        add_sample(ata, atb, m, g, &sb[s], col + 3 * s, wt[s]);
         wsum += wt[s];
     }
     gsl_matrix_view A = gsl_matrix_view_array(ata, m, m);
@@ -199,11 +202,6 @@ out:
     free(ata);
     return rc;
 }
-
-/* Tukey's biweight constant (95% efficiency for normal residuals). */
-#define TUKEY_C 4.685
-/* MAD to sigma for a normal distribution. */
-#define MAD_TO_SIGMA 1.4826
 
 int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const uint8_t *use, int step, int grid,
                        int rounds)
@@ -238,7 +236,7 @@ int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const 
             goto out;
         for (int s = 0; s < n; s++) {
             double m[3];
-            surface_at(b, &sb[s], m);
+            surface_sum(b, sb[s].first, sb[s].phi, m);
             double d0 = col[3 * s] - m[0], d1 = col[3 * s + 1] - m[1], d2 = col[3 * s + 2] - m[2];
             res[s] = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
         }
@@ -257,7 +255,7 @@ int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const 
                 if (res[k] >= cut)
                     continue;
                 double m[3], d[3];
-                surface_at(b, &sb[k], m);
+                surface_sum(b, sb[k].first, sb[k].phi, m);
                 for (int i = 0; i < 3; i++)
                     d[i] = col[3 * k + i] - m[i];
                 for (int i = 0; i < 9; i++)
