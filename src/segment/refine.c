@@ -10,9 +10,6 @@
 #include "segment/maxflow.h"
 #include "segment/segment.h"
 
-/* Must match the symmetry link of the low-resolution rounds (segment.c). */
-#define SYMMETRY_EPS 0.02
-
 static void pixel_rgb(const image_t *img, size_t p, float out[3])
 {
     const float *v = img->data + p * (size_t)img->channels;

@@ -9,6 +9,7 @@
 #include <gsl/gsl_statistics_double.h>
 
 #include "segment/maxflow.h"
+#include "segment/robust.h"
 
 /* The working resolution: the longer side is brought down to about this many
  * pixels (an integer box factor), enough for a vessel's outline to within a
@@ -21,12 +22,6 @@ enum { ROUNDS = 3 };
 /* Contrast-sensitive smoothness weight between 8-neighbours, in nats (GrabCut's
  * gamma = 50). */
 #define SMOOTHNESS_GAMMA 50.0
-/* The symmetry link: the prior probability that a pixel and its mirror image
- * across the axis differ is eps = 2%, so a differing pair costs
- * log((1 - eps) / eps) = 3.9 nats. A cast shadow or a reflection of the room
- * in the backdrop, which the colour models leave nearly undecided, goes with
- * its mirror; a handle, whose colours are plainly the object's, stays. */
-#define SYMMETRY_EPS 0.02
 /* The image border is backdrop with prior probability 0.99 (log 99 nats). */
 #define BORDER_PRIOR_EPS 0.01
 /* A floor shadow: the backdrop darkened to k = 0.3 .. 1 times its colour, with
@@ -197,10 +192,6 @@ void recon_colour_costs(const recon_colour_model *m, recon_cost_memo *memo, cons
 }
 
 /* ---- the axis of a mask */
-
-/* Tukey's biweight constant, and MAD to sigma for a normal distribution. */
-#define TUKEY_C 4.685
-#define MAD_TO_SIGMA 1.4826
 
 int recon_mask_axis(const uint8_t *mask, int w, int h, double *x0, double *slope)
 {

@@ -23,6 +23,14 @@
 #include "segment/backdrop.h"
 #include "segment/gmm.h"
 
+/* The symmetry link, of the low-resolution rounds and the full-resolution
+ * refinement alike: the prior probability that a pixel and its mirror image
+ * across the axis differ is eps = 2%, so a differing pair costs
+ * log((1 - eps) / eps) = 3.9 nats. A cast shadow or a reflection of the room
+ * in the backdrop, which the colour models leave nearly undecided, goes with
+ * its mirror; a handle, whose colours are plainly the object's, stays. */
+#define SYMMETRY_EPS 0.02
+
 /* The colour models that decide what a pixel is; shared by the low-resolution
  * rounds and the full-resolution refinement. */
 typedef struct {
