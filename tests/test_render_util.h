@@ -99,7 +99,7 @@ static inline float *render_to_pixels(const char *scene_path, int mesh_segments,
     bo.seed = seed;
     scene_t *s = scene_create_from_file(scene_path, NULL, 0, &bo, err, sizeof err);
     cr_assert_not_null(s, "%s", err);
-    render_options ro = {threads, aovs, 0};
+    render_options ro = {.threads = threads, .aovs = aovs};
     film_t film;
     cr_assert_eq(render_scene(s, &ro, &film, NULL, err, sizeof err), 0, "%s", err);
     *w = film.width, *h = film.height, *nch = film.nchannels;

@@ -45,10 +45,20 @@ typedef struct {
     } quality;
 } profile_t;
 
+/* The curvature domains of a profile (docs/user-guide.md#profilejson): each
+ * piece within this many pixels of its chord and its tangent within this many
+ * degrees of turning at a constant rate (curve_domains.h). */
+#define PROFILE_DOMAIN_TOL_PX 0.25
+#define PROFILE_DOMAIN_TOL_DEG 0.25
+
 /* Writes atomically. Returns 0, or -1 with a one-line reason. */
 int profile_write_json(const char *path, const profile_t *p, char *err, size_t errlen);
 /* Reads and validates (version, finite numbers, a valid clamped cubic B-spline,
- * increasing domains in [0,1]). Returns 0, or -1 with a one-line reason. */
+ * increasing domains in [0,1]). Only `version` and `bspline` are required:
+ * every other field is checked when present; absent `domains` are computed
+ * from the B-spline (PROFILE_DOMAIN_TOL_*), an absent `side` is "right", an
+ * absent `axis.direction` (0, -1), the rest zero. Returns 0, or -1 with a
+ * one-line reason. */
 int profile_read_json(const char *path, profile_t *p, char *err, size_t errlen);
 void profile_free(profile_t *p);
 

@@ -178,7 +178,7 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
                 hm += hs[i];
                 cnt++;
             }
-        if (cnt < 20 || (washed == 0 && cnt < 0.3 * m))
+        if (cnt < 20 || cnt < (washed ? 0.15 : 0.3) * m)
             break;
         hm /= cnt;
         double se = 0, shh = 0, seh = 0;
@@ -204,10 +204,10 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
      * one outline is unreliable: keep the corner-based axis then. */
     double turn = acos(fmin(1.0, fabs(v2_dot(d, *dir)))) * 180 / M_PI;
     vec2 n0 = v2(-dir->y, dir->x);
+    *washed_side = washed; /* also when the axis stays: the outline is washed out all the same */
     if (!ok || turn > 8.0 || fabs(v2_dot(v2_sub(o, *origin), n0)) > 0.1 * (h_hi - h_lo) + 5)
         return 0;
     *origin = o;
     *dir = d;
-    *washed_side = washed;
     return 1;
 }

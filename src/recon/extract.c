@@ -362,7 +362,16 @@ static void fill_across_axis(uint8_t *mask, int w, int h, vec2 origin, vec2 dir)
     for (int j = j0; j <= j1; j++) {
         uint8_t *m = mask + (size_t)j * w;
         int c = (int)floor(origin.x + (j + 0.5 - origin.y) * dir.x / dir.y);
-        if (c < 0 || c >= w || m[c])
+        if (c < 0 || c >= w)
+            continue;
+        /* The axis is known to a few pixels (a fraction of a degree over the
+         * height): a gap that starts within 2% of the row's width of it is
+         * the one around the axis. */
+        const uint8_t *a = memchr(m, 1, (size_t)w), *b = memrchr(m, 1, (size_t)w);
+        int reach = (int)fmax(3, 0.02 * (b - a + 1));
+        for (int k = 1; m[c] && k <= reach; k++)
+            c = c - k >= 0 && !m[c - k] ? c - k : (c + k < w && !m[c + k] ? c + k : c);
+        if (m[c])
             continue;
         int l = c, r = c;
         while (l >= 0 && !m[l])

@@ -82,9 +82,9 @@ void recon_pca(const vec2 *pts, int n, vec2 *mean, vec2 axes[2], double eig[2]);
  * contrast; its outline then lies inside the true one), -1 for the right, 0
  * for neither. When most rows are not symmetric, the suspect side is taken
  * as washed out and the fit rests on the rows that a one-sided consensus
- * finds symmetric; *washed_side is then the suspect side, else 0. Returns 1
- * when refined, 0 when the outlines disagree too much to trust (axis
- * unchanged). */
+ * finds symmetric (at least 15% of them); *washed_side is then the suspect
+ * side, else 0, whether or not the axis moves. Returns 1 when refined, 0 when
+ * the outlines disagree too much to trust (axis unchanged). */
 int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec2 *origin, vec2 *dir, double h_lo,
                         double h_hi, int suspect, double noise_px, int *washed_side);
 

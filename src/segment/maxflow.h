@@ -3,7 +3,7 @@
  * neighbouring pixels, any other pairwise links). Boykov–Kolmogorov max-flow;
  * docs/algorithms-recon.md ("Min-cut") describes it, its cost and its tests.
  *
- * Usage, one graph per round:
+ * Usage (one allocation, reused round after round):
  *     maxflow_graph *g = maxflow_create(n, max_edges);
  *     maxflow_add_terminals(g, p, cost_if_sink_side, cost_if_source_side);  (every p that has one)
  *     maxflow_add_edge(g, p, q, cap_pq, cap_qp);                             (each pair once)
@@ -15,9 +15,10 @@
  *     maxflow_destroy(g);
  *
  * Preconditions (checked by assert): node indices in [0, n), capacities
- * finite and >= 0, at most max_edges calls of maxflow_add_edge between resets,
- * no additions between maxflow_solve and the next reset (maxflow_set_terminals
- * only after a solve). Capacities are
+ * finite and >= 0, at most max_edges calls of maxflow_add_edge since the last
+ * maxflow_reset (maxflow_reset_terminals keeps the links, so they still
+ * count), no additions between maxflow_solve and the next reset
+ * (maxflow_set_terminals only after a solve). Capacities are
  * doubles: with integer capacities (below 2^53 in total) the flow and the cut
  * are exact. One graph is used by one thread at a time. */
 #ifndef CELADON_SEGMENT_MAXFLOW_H
@@ -26,8 +27,9 @@
 typedef struct maxflow_graph maxflow_graph;
 
 /* A graph of n_nodes >= 0 nodes (numbered 0..n_nodes-1, no links yet) with
- * room for max_edges >= 0 calls of maxflow_add_edge. NULL when out of memory.
- * Memory: about 65 * n_nodes + 56 * max_edges bytes. */
+ * room for max_edges >= 0 calls of maxflow_add_edge. NULL when out of memory
+ * or when max_edges > INT_MAX / 2.
+ * Memory: about 65 * n_nodes + 72 * max_edges bytes. */
 maxflow_graph *maxflow_create(int n_nodes, int max_edges);
 
 /* Adds cap_source to the capacity of the link source -> node and cap_sink to
@@ -65,7 +67,8 @@ void maxflow_set_terminals(maxflow_graph *g, int node, double cap_source, double
 void maxflow_reset(maxflow_graph *g);
 
 /* Removes the t-links and the flow but keeps the n-links (with the capacities
- * they were added with): for rounds that change only the terminal costs. */
+ * they were added with): for rounds that change only the terminal costs, and
+ * cheaper than adding the n-links again (their layout in memory is kept). */
 void maxflow_reset_terminals(maxflow_graph *g);
 
 void maxflow_destroy(maxflow_graph *g);

@@ -213,21 +213,33 @@ out:
 }
 
 /* Does the cut-off part pass its hypothesis's test? A shadow has no mirror
- * image: most of its pixels mirror onto the backdrop (a symmetric part
- * mirrors onto itself: a stand, not a shadow). A stand is another body: the
- * cut follows an edge. */
+ * image: most of its pixels lie beyond the object's reach on the other side
+ * of the axis, mirrored (the row's extent, not the mirror pixel: a highlight
+ * as light as the backdrop leaves holes in the other side, not a shorter
+ * row). A symmetric part mirrors onto itself: a stand, not a shadow. A stand
+ * is another body: the cut follows an edge. */
 static int accepted(const recon_segmentation *seg, hypothesis hyp, const uint8_t *m, const uint8_t *sup,
                     double edge)
 {
     if (hyp == HYPO_STAND)
         return edge <= EDGE_LINK_MAX;
+    const int w = seg->w;
     long part = 0, unmirrored = 0;
-    for (int p = 0; p < seg->w * seg->h; p++) {
-        if (!sup[p])
-            continue;
-        int q = recon_segment_mirror(seg, p);
-        part++;
-        unmirrored += q < 0 || !m[q];
+    for (int y = 0; y < seg->h; y++) {
+        const uint8_t *row = m + (size_t)y * w, *srow = sup + (size_t)y * w;
+        double c = seg->have_axis ? seg->axis_x0 + seg->axis_slope * (y + 0.5) : w / 2.0;
+        double reach[2] = {-1, -1}; /* the object's farthest pixel edge from the axis, left and right */
+        for (int x = 0; x < w; x++)
+            if (row[x] && !srow[x]) {
+                int s = x + 0.5 > c;
+                reach[s] = fmax(reach[s], s ? x + 1 - c : c - x);
+            }
+        for (int x = 0; x < w; x++)
+            if (srow[x]) {
+                int s = x + 0.5 > c;
+                part++;
+                unmirrored += fabs(x + 0.5 - c) > reach[1 - s] + 1;
+            }
     }
     return 2 * unmirrored > part;
 }

@@ -4,17 +4,22 @@
  *   draw_hard_cases OUTDIR [WIDTH HEIGHT]
  *
  * writes OUTDIR/NAME.png for each case (600x800 unless a size is given),
- * OUTDIR/contact-sheet.png (every case, named) and OUTDIR/truth-sheet.png
+ * OUTDIR/contact-sheet.png (every case, named), OUTDIR/truth-sheet.png
  * (the same with the truth drawn on: the body's exact outline in red, the
  * base and rim discs' centres, the foot row in green, and each part's box
- * and name in blue). */
+ * and name in blue) and OUTDIR/recon-sheet.png (each case reconstructed as
+ * `celadon reconstruct --force` does, its overlay, labelled with the quality
+ * gate's verdict or the refusal). */
 #include <cairo.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "../support/synth_scene.h"
 #include "../support/synth_vessel.h"
+#include "celadon/overlay.h"
+#include "celadon/reconstruct.h"
 
 enum { COLUMNS = 6, THUMB_W = 210, LABEL_H = 30, MARGIN = 8 };
 
@@ -105,6 +110,33 @@ static void label(cairo_t *cr, const char *text, int x, int y)
     cairo_show_text(cr, text);
 }
 
+/* The photo at path reconstructed with --force: its overlay as an image
+ * (the photo itself when refused), and the verdict in `verdict`. */
+static int reconstruct_overlay(const char *path, image_t *out, char *verdict, size_t len)
+{
+    reconstruct_options opt = reconstruct_options_default();
+    opt.force = 1;
+    reconstruction r;
+    char err[400];
+    if (reconstruct_photo(path, &opt, &r, err, sizeof err) != 0) {
+        snprintf(verdict, len, "refused: %s", err);
+        reconstruction_free(&r);
+        return image_read(path, out, err, sizeof err);
+    }
+    snprintf(verdict, len, "%s", r.quality.passed ? "passed" : r.quality.failed);
+    uint8_t *rgb = overlay_render(&r.photo, &r.extract, &r.curve);
+    int rc = -1;
+    if (rgb) {
+        *out = image_alloc(r.photo.width, r.photo.height, 3);
+        for (size_t i = 0; i < (size_t)r.photo.width * r.photo.height * 3; i++)
+            out->data[i] = rgb[i] / 255.0f;
+        free(rgb);
+        rc = 0;
+    }
+    reconstruction_free(&r);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2 && argc != 4) {
@@ -119,9 +151,10 @@ int main(int argc, char **argv)
     int n = synth_scene_case_count(), rows = (n + COLUMNS - 1) / COLUMNS;
     double s = (double)THUMB_W / W;
     int cell_w = THUMB_W + MARGIN, cell_h = (int)(H * s) + LABEL_H;
-    cairo_surface_t *sheets[2];
-    cairo_t *cr[2];
-    for (int k = 0; k < 2; k++) {
+    enum { SHEETS = 3 };
+    cairo_surface_t *sheets[SHEETS];
+    cairo_t *cr[SHEETS];
+    for (int k = 0; k < SHEETS; k++) {
         sheets[k] = cairo_image_surface_create(CAIRO_FORMAT_RGB24, COLUMNS * cell_w + MARGIN, rows * cell_h + MARGIN);
         cr[k] = cairo_create(sheets[k]);
         cairo_set_source_rgb(cr[k], 1, 1, 1);
@@ -150,11 +183,23 @@ int main(int argc, char **argv)
             label(cr[k], name, x, y + (int)(H * s) + 16);
         }
         draw_truth(cr[1], &t, W, H, x, y, s);
+        image_t ov;
+        char verdict[512];
+        if (rc == 0 && reconstruct_overlay(path, &ov, verdict, sizeof verdict) == 0) {
+            paint_thumbnail(sheets[2], &ov, x, y, s);
+            label(cr[2], name, x, y + (int)(H * s) + 13);
+            if (strlen(verdict) > 44) /* the cell's width */
+                strcpy(verdict + 41, "...");
+            cairo_set_font_size(cr[2], 9);
+            cairo_move_to(cr[2], x, y + (int)(H * s) + 25);
+            cairo_show_text(cr[2], verdict);
+            image_free(&ov);
+        }
         printf("%-22s %s\n", name, synth_scene_case_description(i));
         image_free(&img);
     }
-    const char *names[2] = {"contact-sheet.png", "truth-sheet.png"};
-    for (int k = 0; k < 2; k++) {
+    const char *names[SHEETS] = {"contact-sheet.png", "truth-sheet.png", "recon-sheet.png"};
+    for (int k = 0; k < SHEETS; k++) {
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", argv[1], names[k]);
         if (rc == 0 && cairo_surface_write_to_png(sheets[k], path) != CAIRO_STATUS_SUCCESS) {
