@@ -2,15 +2,16 @@
  * (segmentation steps, refinement, outline, axis, caps, parts), of the whole
  * recon_extract and of the whole reconstruct_photo, median of repeated runs,
  * on a drawn 900x1200 catalogue-like vase, on three drawn museum photos
- * (tests/support/synth_scene.h, 600x800) and, when the folder is there, on
- * the real-dev photos; then meshes of 90k to 400k faces and the batch
+ * (tests/support/synth_scene.h, 600x800) and, when the folders are there, on
+ * the synth-dev and real-dev photos; then meshes of 90k to 400k faces and the batch
  * throughput of `celadon reconstruct` on 32 photos in one call.
  * Run by `make bench`; docs/BENCHMARKS.md ("Reconstruction") explains it.
  *
  *     build/bench/bench_recon [--stages] [REAL_DEV_DIR]
  *
  * --stages: the stage tables only (no meshes, no batch). REAL_DEV_DIR
- * defaults to $CELADON_SHARED/data/real-dev, else ../shared/data/real-dev.
+ * defaults to $CELADON_SHARED/data/real-dev, else ../shared/data/real-dev;
+ * the synth-dev photos are its sibling folder synth-dev (CASE/photo.png).
  * The vase and its vessel mask go to out/bench/ (bench_recon_{photo,mask}.png)
  * and the drawn museum photos to out/bench/NAME.png. */
 #include <dirent.h>
@@ -314,6 +315,24 @@ static int list_real(const char *dir, char paths[][1024])
     return n;
 }
 
+/* The synth-dev photos (each case's photo.png, sorted), at most MAX_REAL; 0
+ * without the folder. */
+static int list_synth(const char *dir, char paths[][1024])
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return 0;
+    int n = 0;
+    struct stat st;
+    for (struct dirent *e; (e = readdir(d)) && n < MAX_REAL;)
+        if (e->d_name[0] != '.' && snprintf(paths[n], 1024, "%s/%s/photo.png", dir, e->d_name) < 1024 &&
+            stat(paths[n], &st) == 0)
+            n++;
+    closedir(d);
+    qsort(paths, (size_t)n, sizeof paths[0], (int (*)(const void *, const void *))strcmp);
+    return n;
+}
+
 /* The decoded photo as reconstruct_photo decodes it (upright). */
 static void read_photo(const char *path, image_t *img)
 {
@@ -323,6 +342,39 @@ static void read_photo(const char *path, image_t *img)
 }
 
 static void mesh_and_batch(const char *photo, const char *cli);
+
+/* The stage table of n photos of a folder (per stage the median and the
+ * largest over the photos), then each photo's segmentation, recon_extract
+ * and reconstruct_photo. */
+static void time_folder(const char *what, const char *dir, char paths[][1024], int n)
+{
+    if (n == 0) {
+        printf("%s photos: %s not found (or no photo in it): skipped\n", what, dir);
+        return;
+    }
+    static double ms[MAX_REAL][ST_COUNT];
+    double col[MAX_REAL], sum[2][ST_COUNT];
+    for (int i = 0; i < n; i++) {
+        image_t img;
+        read_photo(paths[i], &img);
+        time_stages(&img, paths[i], REPS_REAL, ms[i]);
+        image_free(&img);
+    }
+    for (int k = 0; k < ST_COUNT; k++) {
+        for (int i = 0; i < n; i++)
+            col[i] = ms[i][k];
+        sum[0][k] = median(col, n);
+        sum[1][k] = col[n - 1]; /* sorted by median() */
+    }
+    char cols[2][40] = {"median of photos", "slowest photo"}, title[1200];
+    snprintf(title, sizeof title, "reconstruction stages, %d %s photos (%s), median of %d runs each", n, what, dir,
+             REPS_REAL);
+    print_table(title, 2, cols, sum);
+    printf("  per photo (CPU ms): %-43s %12s %12s %12s\n", "", "segment", "recon_extract", "photo");
+    for (int i = 0; i < n; i++)
+        printf("  %-63s %12.1f %12.1f %12.1f\n", paths[i] + strlen(dir) + 1, ms[i][ST_SEGMENT], ms[i][ST_EXTRACT],
+               ms[i][ST_PHOTO]);
+}
 
 int main(int argc, char **argv)
 {
@@ -370,38 +422,14 @@ int main(int argc, char **argv)
     snprintf(title, sizeof title, "reconstruction stages, drawn photos (out/bench/), median of %d runs", REPS_DRAWN);
     print_table(title, N_DRAWN, names, ms);
 
-    /* Real photos: per stage the median and the largest over the photos,
-     * then each photo's recon_extract. */
-    static char real[MAX_REAL][1024];
-    int n_real = list_real(real_dir, real);
-    if (n_real == 0) {
-        printf("real photos: %s not found (or no .jpg in it): skipped\n", real_dir);
-    } else {
-        static double rms[MAX_REAL][ST_COUNT];
-        double col[MAX_REAL], sum[2][ST_COUNT];
-        for (int i = 0; i < n_real; i++) {
-            image_t img;
-            read_photo(real[i], &img);
-            time_stages(&img, real[i], REPS_REAL, rms[i]);
-            image_free(&img);
-        }
-        for (int k = 0; k < ST_COUNT; k++) {
-            for (int i = 0; i < n_real; i++)
-                col[i] = rms[i][k];
-            sum[0][k] = median(col, n_real);
-            sum[1][k] = col[n_real - 1]; /* sorted by median() */
-        }
-        char cols[2][40] = {"median of photos", "slowest photo"};
-        snprintf(title, sizeof title, "reconstruction stages, %d real photos (%s), median of %d runs each", n_real,
-                 real_dir, REPS_REAL);
-        print_table(title, 2, cols, sum);
-        printf("  per photo: %-52s %12s %12s %12s\n", "", "segment ms", "extract ms", "photo ms");
-        for (int i = 0; i < n_real; i++) {
-            const char *base = strrchr(real[i], '/');
-            printf("  %-63s %12.1f %12.1f %12.1f\n", base ? base + 1 : real[i], rms[i][ST_SEGMENT], rms[i][ST_EXTRACT],
-                   rms[i][ST_PHOTO]);
-        }
-    }
+    /* The photos of synth-dev and real-dev, when there. */
+    static char photos[MAX_REAL][1024];
+    char synth_dir[1024];
+    const char *slash = strrchr(real_dir, '/');
+    snprintf(synth_dir, sizeof synth_dir, "%.*s%ssynth-dev", slash ? (int)(slash - real_dir) : 0, real_dir,
+             slash ? "/" : "");
+    time_folder("synth-dev", synth_dir, photos, list_synth(synth_dir, photos));
+    time_folder("real", real_dir, photos, list_real(real_dir, photos));
     if (!stages_only)
         mesh_and_batch(paths[0], cli);
     return 0;
