@@ -191,9 +191,10 @@ bench-render: check-deps-stamp
 # tests/tools/ link the vessel's and the scene's.
 SYNTH_C := $(addprefix tests/support/,synth_vessel.c synth_body.c synth_profile.c synth_raster.c)
 SCENE_C := $(SYNTH_C) $(addprefix tests/support/,synth_scene.c synth_scene_layers.c synth_noise.c synth_jpeg.c)
-build/tools/%: tests/tools/%.c $(SCENE_C) build/opt/libceladon.a
+SHEET_C := tests/tools/sheet/recon_sheet.c
+build/tools/%: tests/tools/%.c $(SCENE_C) $(SHEET_C) build/opt/libceladon.a
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -o $@ $< $(SCENE_C) build/opt/libceladon.a $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) -Itests/tools -o $@ $< $(SCENE_C) $(SHEET_C) build/opt/libceladon.a $(LDLIBS)
 
 # `make hard-cases` draws the named hard cases of tests/support/synth_scene.c
 # (the reconstruction's test photographs) into out/hard-cases/, with a contact
@@ -216,6 +217,14 @@ real-dev: check-deps-stamp
 	@rm -rf out/real-dev && mkdir -p out/real-dev
 	build/celadon reconstruct $(REAL_DEV)/*.jpg -o out/real-dev --force --json > out/real-dev.json
 	@mv out/real-dev.json out/real-dev/report.json
+
+# `make gallery-real` rewrites docs/gallery-real.md and docs/img/real-dev/:
+# every real photo's overlay drawn over its segmentation, not the photo.
+.PHONY: gallery-real
+gallery-real: check-deps-stamp
+	@test -d $(REAL_DEV) || { echo "make gallery-real: $(REAL_DEV) not found (set REAL_DEV=...)" >&2; exit 2; }
+	@$(MAKE) --no-print-directory build/tools/draw_real_gallery
+	build/tools/draw_real_gallery docs $(REAL_DEV)/*.jpg
 
 # `make demo` reconstructs the bundled catalogue photo; `make demo-photo`
 # redraws that photo (tests/tools/draw_demo_photo.c) from its analytic vessel.

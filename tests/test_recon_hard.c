@@ -52,6 +52,10 @@ static void run_case(const char *name, void (*edit)(synth_scene_params *), int f
     opt.force = force;
     out->status = reconstruct_photo(path, &opt, &out->r, out->err, sizeof out->err);
     unlink(path);
+    /* Whatever is written must revolve: r >= 0 at every control point (a
+     * knob or a mouth closing on the axis may not undershoot it). */
+    for (int i = 0; out->status == 0 && i < out->r.curve.n_ctrl; i++)
+        cr_expect_geq(out->r.curve.ctrl[i].x, 0, "%s: control point %d at r = %g", name, i, out->r.curve.ctrl[i].x);
 }
 
 /* r of the fitted curve at height h (px along the image axis), by
@@ -146,6 +150,15 @@ Test(recon_hard, maebyeong_and_ewer_shapes_reconstruct, .timeout = 120)
     expect_profile("maebyeong_studio", 0.5, 5.0);
     expect_profile("maebyeong_high", 0.2, 1.0);
     expect_profile("ewer_neck", 0.3, 1.0);
+}
+
+/* A line as light as the backdrop painted round the neck cuts the vessel in
+ * two across its whole width; it is still one vessel (the neck and mouth
+ * joined across the line, docs/algorithms-recon.md section 3), not "two
+ * objects" or a vessel without its mouth. */
+Test(recon_hard, a_line_in_the_backdrop_colour_does_not_cut_the_vessel, .timeout = 60)
+{
+    expect_profile("vase_backdrop_line", 0.3, 1.5);
 }
 
 /* ---- cut at the foot */

@@ -121,6 +121,13 @@ int reconstruct_photo(const char *path, const reconstruct_options *opt, reconstr
     t0 = now_seconds();
     if (bspline_fit_profile(r->extract.polyline, r->extract.n_polyline, opt->smoothing_px, &r->curve, NULL) != 0)
         return fail(2, err, errlen, "the profile is too short or degenerate to fit a curve");
+    /* A surface of revolution needs r >= 0 at every control point (the
+     * curve's convex hull then keeps r >= 0; sor_build refuses otherwise).
+     * A fit through a mouth or a knob that closes on the axis can undershoot
+     * it: such points are put on the axis, and the Hausdorff distance below
+     * measures what that moved. */
+    for (int i = 0; i < r->curve.n_ctrl; i++)
+        r->curve.ctrl[i].x = fmax(0, r->curve.ctrl[i].x);
     r->ms.bspline = ms_since(t0);
     t0 = now_seconds();
     if (curve_domains_by_curvature_variation(&r->curve, DOMAIN_TOL_PX, DOMAIN_TOL_NORMAL_DEG, &r->domains,

@@ -257,7 +257,10 @@ static recon_status segment_vessel(const image_t *img, recon_result *res, vec2 *
         st = fail(RECON_ERR_NO_OBJECT, err, errlen, "no object found: the object is too small");
         goto out;
     }
-    if (recon_refine_mask(img, &seg, seg.object, res->mask) != 0) {
+    /* The band's refinement at full resolution can open again a band that the
+     * low resolution joined across. */
+    if (recon_refine_mask(img, &seg, seg.object, res->mask) != 0 ||
+        recon_mask_join_bands(res->mask, img->width, img->height, RECON_BAND_MAX_ROWS * seg.factor) != 0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
@@ -713,8 +716,16 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
-    int np = 0;
+    /* Rows the main side's outline lost (washed out, no edge) are bridged
+     * like a part's rows: the chord across them is not outline. They count
+     * among the rows the profile does not measure. */
+    int np = 0, missing = 0;
     for (int i = 0; i < nm; i++) {
+        int lost = i > 0 ? (int)lround(fabs(mp[i].y - mp[i - 1].y)) - 1 : 0;
+        if (lost > 2 && np > 0) {
+            res->polyline_bridge[np - 1] = 1;
+            missing += lost;
+        }
         if (isnan(mp[i].r)) {
             if (np > 0)
                 res->polyline_bridge[np - 1] = 1;
@@ -732,6 +743,7 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
                   np);
         goto out;
     }
+    res->excluded_fraction = (res->excluded_fraction * nm + missing) / (nm + missing);
     res->polyline_bridge[np - 1] = res->polyline_bridge[np - 1] || H - res->polyline[np - 1].y > 3;
     res->polyline[np] = v2(res->polyline[np - 1].x, H);
     res->n_polyline = np + 1;

@@ -161,7 +161,8 @@ int recon_mask_open(uint8_t *mask, int w, int h, int r);
 /* ---- the vessel among the segmentation's objects (object_select.c) */
 
 /* Keeps in the low-resolution mask only the vessel: the largest component
- * that is not a strip along the image border (a frame line, a caption bar).
+ * that is not a strip along the image border (a frame line, a caption bar),
+ * with the components that continue it across a band (recon_mask_join_bands).
  * Another component of a quarter of its size or more is a second object and
  * refuses the photo, unless it lies under the vessel and runs to the bottom
  * border: a stand, reported in *stand (what = RECON_PART_STAND, rows at low
@@ -169,6 +170,14 @@ int recon_mask_open(uint8_t *mask, int w, int h, int r);
  * components. Returns RECON_OK or the refusal with its reason in why. */
 recon_status recon_select_object(uint8_t *mask, int w, int h, int *dropped, recon_excluded *stand, char *why,
                                  size_t len);
+/* Joins to the largest object of a mask each object that continues it above
+ * or below across a band at most `gap` rows high (a decoration line as light
+ * as the backdrop painted round the vessel): same axis, same width at the
+ * facing ends; the band's rows are filled between them. recon_select_object
+ * does the same at the segmentation's scale, where a band is at most
+ * RECON_BAND_MAX_ROWS rows. Returns 0, or -1 when out of memory. */
+enum { RECON_BAND_MAX_ROWS = 3 };
+int recon_mask_join_bands(uint8_t *mask, int w, int h, int gap);
 
 /* ---- stands and shadows at the foot (support.c) */
 

@@ -299,6 +299,7 @@ typedef struct {
 /* Colours (encoded values). */
 #define CELADON {0.50f, 0.62f, 0.53f}
 #define INLAY_WHITE {0.90f, 0.89f, 0.82f}
+#define BACKDROP_LIGHT {0.93f, 0.93f, 0.92f} /* FLAT_LIGHT's wall */
 #define TENMOKU {0.13f, 0.09f, 0.07f}
 #define RUST {0.55f, 0.30f, 0.13f}
 #define PORCELAIN {0.90f, 0.90f, 0.87f}
@@ -315,7 +316,7 @@ typedef struct {
      .horizon = (mid), .softness = (width), .vignette = (vign), __VA_ARGS__}
 #define SWEEP_GREY SWEEP(0.33f, 0.95f, 0.68, 0.17, 0.15, .frame = 0)
 #define SWEEP_LIGHT SWEEP(0.62f, 0.97f, 0.70, 0.20, 0.10, .frame = 0)
-#define FLAT_LIGHT {.kind = SYNTH_BACKDROP_FLAT, .wall = {0.93f, 0.93f, 0.92f}}
+#define FLAT_LIGHT {.kind = SYNTH_BACKDROP_FLAT, .wall = BACKDROP_LIGHT}
 #define FLAT_BW {.kind = SYNTH_BACKDROP_FLAT, .wall = {0.80f, 0.80f, 0.80f}, .vignette = 0.12}
 #define BLACK_CLOTH {.kind = SYNTH_BACKDROP_FLAT, .wall = {0.03f, 0.03f, 0.03f}}
 #define PAPER                                                                                                          \
@@ -402,6 +403,12 @@ static const scene_case CASES[] = {
      0.56, 0.8, 0.78, 0.5, 0, 0,
      {.backdrop = SWEEP_LIGHT, .vessel_count = 1, .vessels = {{LIT(SYNTH_PROFILE_BOTTLE, 0, BLACK_GLAZE, 0.45, 60)}},
       .stand = {SYNTH_STAND_CYLINDER, 1.15, 1.2, 0, STAND_WHITE}, .contact_shadow = 0.35, MUSEUM_JPEG}},
+    {"vase_backdrop_line", "celadon vase in one colour with a line painted round its neck in the backdrop's own "
+     "colour (it cuts the vessel in two), near-white backdrop",
+     0.80, 0.8, 0.90, 0.5, 0, 0,
+     {.backdrop = FLAT_LIGHT, .vessel_count = 1,
+      .vessels = {{FLAT(SYNTH_PROFILE_VASE, 0, CELADON), DECOR(LINES, BACKDROP_LIGHT)}},
+      MUSEUM_JPEG}},
     {"footed_bowl_stand", "terracotta footed bowl on a narrower white stand (a waist at the foot), near-white backdrop",
      0.36, 0.85, 0.55, 0.5, 0, 0,
      {.backdrop = FLAT_LIGHT, .vessel_count = 1,

@@ -48,7 +48,7 @@ typedef struct {
     int frame;       /* a thin dark frame line around the whole image */
 } synth_backdrop;
 
-typedef enum { SYNTH_DECOR_NONE, SYNTH_DECOR_BANDS, SYNTH_DECOR_MEDALLIONS } synth_decor;
+typedef enum { SYNTH_DECOR_NONE, SYNTH_DECOR_LINES, SYNTH_DECOR_BANDS, SYNTH_DECOR_MEDALLIONS } synth_decor;
 
 /* A vessel's look. With lit = 0 every body pixel is `glaze` (coverage
  * blended with what lies under it): the cases for exact outline tests. */
@@ -56,7 +56,8 @@ typedef struct {
     synth_body body;
     float glaze[3];
     float decor_colour[3];
-    synth_decor decor;          /* BANDS: horizontal bands; MEDALLIONS: bands and a ring of roundels */
+    synth_decor decor;          /* LINES: a thin line under the shoulder; BANDS: it, another over the foot
+                                   and a wide band; MEDALLIONS: the two lines and a ring of roundels */
     int lit;                    /* studio lighting: darker toward the silhouette, lit from the upper left */
     double highlight;           /* strength of a vertical highlight stripe (0: none) */
     double highlight_deg;       /* its azimuth: 0 faces the camera; beyond ±75 it touches the outline */

@@ -169,12 +169,13 @@ static double feature(double d) { return clamp01(0.5 - d); }
 static void decorate(const synth_scene_vessel *v, double h, double phi, double col[3])
 {
     double H = v->body.height_px, r = synth_body_radius(&v->body, h), a = 0;
-    /* Two thin lines, over the foot and under the shoulder, on both decors. */
-    a = fmax(a, feature(fabs(h - 0.12 * H) - 0.008 * H));
+    /* A thin line under the shoulder, and one over the foot but on LINES. */
+    if (v->decor != SYNTH_DECOR_LINES)
+        a = fmax(a, feature(fabs(h - 0.12 * H) - 0.008 * H));
     a = fmax(a, feature(fabs(h - 0.77 * H) - 0.008 * H));
     if (v->decor == SYNTH_DECOR_BANDS)
         a = fmax(a, feature(fabs(h - 0.41 * H) - 0.11 * H));
-    else {
+    else if (v->decor == SYNTH_DECOR_MEDALLIONS) {
         /* Roundels on every 60° meridian at mid height, in arc length. */
         double step = M_PI / 3, du = (phi - step * round(phi / step)) * r, dist = hypot(du, h - 0.45 * H);
         a = fmax(a, feature(fabs(dist - 0.085 * H) - 0.012 * H));

@@ -18,35 +18,9 @@
 
 #include "../support/synth_scene.h"
 #include "../support/synth_vessel.h"
-#include "celadon/overlay.h"
-#include "celadon/reconstruct.h"
+#include "sheet/recon_sheet.h"
 
 enum { COLUMNS = 6, THUMB_W = 210, LABEL_H = 30, MARGIN = 8 };
-
-/* A box-filtered thumbnail of img painted at (x, y), scale s (< 1). */
-static void paint_thumbnail(cairo_surface_t *sheet, const image_t *img, int x, int y, double s)
-{
-    int tw = (int)(img->width * s), th = (int)(img->height * s), stride = cairo_image_surface_get_stride(sheet);
-    int sw = cairo_image_surface_get_width(sheet), sh = cairo_image_surface_get_height(sheet);
-    unsigned char *data = cairo_image_surface_get_data(sheet);
-    cairo_surface_flush(sheet);
-    for (int j = 0; j < th && y + j < sh; j++)
-        for (int i = 0; i < tw && x + i < sw; i++) {
-            int i0 = (int)(i / s), i1 = (int)((i + 1) / s), j0 = (int)(j / s), j1 = (int)((j + 1) / s);
-            double sum[3] = {0}, n = 0;
-            for (int b = j0; b < j1 && b < img->height; b++)
-                for (int a = i0; a < i1 && a < img->width; a++, n++) {
-                    const float *px = img->data + ((size_t)b * img->width + a) * img->channels;
-                    for (int q = 0; q < 3; q++)
-                        sum[q] += px[img->channels == 1 ? 0 : q];
-                }
-            uint32_t px = 0xff000000u;
-            for (int q = 0; q < 3; q++)
-                px |= (uint32_t)lround(255 * fmin(1, sum[q] / fmax(1, n))) << (16 - 8 * q);
-            *(uint32_t *)(data + (size_t)(y + j) * stride + 4 * (x + i)) = px;
-        }
-    cairo_surface_mark_dirty(sheet);
-}
 
 /* The truth over a thumbnail at (x, y), scale s. */
 static void draw_truth(cairo_t *cr, const synth_scene_truth *t, int width, int height, int x, int y, double s)
@@ -110,33 +84,6 @@ static void label(cairo_t *cr, const char *text, int x, int y)
     cairo_show_text(cr, text);
 }
 
-/* The photo at path reconstructed with --force: its overlay as an image
- * (the photo itself when refused), and the verdict in `verdict`. */
-static int reconstruct_overlay(const char *path, image_t *out, char *verdict, size_t len)
-{
-    reconstruct_options opt = reconstruct_options_default();
-    opt.force = 1;
-    reconstruction r;
-    char err[400];
-    if (reconstruct_photo(path, &opt, &r, err, sizeof err) != 0) {
-        snprintf(verdict, len, "refused: %s", err);
-        reconstruction_free(&r);
-        return image_read(path, out, err, sizeof err);
-    }
-    snprintf(verdict, len, "%s", r.quality.passed ? "passed" : r.quality.failed);
-    uint8_t *rgb = overlay_render(&r.photo, &r.extract, &r.curve);
-    int rc = -1;
-    if (rgb) {
-        *out = image_alloc(r.photo.width, r.photo.height, 3);
-        for (size_t i = 0; i < (size_t)r.photo.width * r.photo.height * 3; i++)
-            out->data[i] = rgb[i] / 255.0f;
-        free(rgb);
-        rc = 0;
-    }
-    reconstruction_free(&r);
-    return rc;
-}
-
 int main(int argc, char **argv)
 {
     if (argc != 2 && argc != 4) {
@@ -179,14 +126,15 @@ int main(int argc, char **argv)
         }
         int x = MARGIN + (i % COLUMNS) * cell_w, y = MARGIN + (i / COLUMNS) * cell_h;
         for (int k = 0; k < 2; k++) {
-            paint_thumbnail(sheets[k], &img, x, y, s);
+            sheet_paint_thumbnail(sheets[k], &img, x, y, s);
             label(cr[k], name, x, y + (int)(H * s) + 16);
         }
         draw_truth(cr[1], &t, W, H, x, y, s);
         image_t ov;
         char verdict[512];
-        if (rc == 0 && reconstruct_overlay(path, &ov, verdict, sizeof verdict) == 0) {
-            paint_thumbnail(sheets[2], &ov, x, y, s);
+        reconstruction r = {0};
+        if (rc == 0 && sheet_reconstruct_overlay(path, 0, &r, &ov, verdict, sizeof verdict) == 0) {
+            sheet_paint_thumbnail(sheets[2], &ov, x, y, s);
             label(cr[2], name, x, y + (int)(H * s) + 13);
             if (strlen(verdict) > 44) /* the cell's width */
                 strcpy(verdict + 41, "...");
@@ -195,6 +143,7 @@ int main(int argc, char **argv)
             cairo_show_text(cr[2], verdict);
             image_free(&ov);
         }
+        reconstruction_free(&r);
         printf("%-22s %s\n", name, synth_scene_case_description(i));
         image_free(&img);
     }
