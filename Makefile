@@ -189,8 +189,8 @@ bench-render: check-deps-stamp
 	build/bench/bench_render | tee out/bench/bench_render.txt
 
 # ---------------------------------------------------------------- demo and benchmarks
-# The test drawers of synthetic photographs: bench_recon links the vessel's,
-# the tools in tests/tools/ the scene's too.
+# The test drawers of synthetic photographs: bench_recon and the tools in
+# tests/tools/ link the vessel's and the scene's.
 SYNTH_C := $(addprefix tests/support/,synth_vessel.c synth_body.c synth_profile.c synth_raster.c)
 SCENE_C := $(SYNTH_C) $(addprefix tests/support/,synth_scene.c synth_scene_layers.c synth_noise.c synth_jpeg.c)
 SHEET_C := tests/tools/sheet/recon_sheet.c
@@ -259,9 +259,9 @@ demo: check-deps-stamp
 BENCH_BIN := $(patsubst bench/%.c,build/bench/%,$(BENCH_C))
 # The OpenCV reference uses Debian's python3-opencv, if installed (not by deps).
 PYTHON_CV ?= /usr/bin/python3
-build/bench/bench_recon: bench/bench_recon.c $(SYNTH_C) build/opt/libceladon.a
+build/bench/bench_recon: bench/bench_recon.c $(SCENE_C) build/opt/libceladon.a
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_recon.c $(SYNTH_C) build/opt/libceladon.a $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_recon.c $(SCENE_C) build/opt/libceladon.a $(LDLIBS)
 
 # The min-cut benchmark compares with igraph's max-flow (libigraph-dev); only
 # the benchmark links igraph.

@@ -4,7 +4,8 @@
 Times the OpenCV operations that do what bench_recon.c times, on the same
 photo and cleaned mask (out/bench/bench_recon_{photo,mask}.png, written by
 build/bench/bench_recon), median of 21 runs, OpenCV limited to one thread like
-each celadon stage.
+each celadon stage; then GrabCut, the standard tool for what celadon's
+segmentation does, on the same photo.
 Used only by `make bench` (needs Debian's python3-opencv); never by tests.
 """
 import statistics
@@ -17,12 +18,12 @@ import numpy as np
 REPS = 21
 
 
-def timed(label, fn):
+def timed(label, fn, reps=REPS):
     """Median wall and thread CPU time (the CPU time does not count the time
     other processes hold the shared cores)."""
     fn()  # warm-up
     wall, cpu = [], []
-    for _ in range(REPS):
+    for _ in range(reps):
         t0, c0 = time.perf_counter(), time.thread_time()
         out = fn()
         wall.append(1e3 * (time.perf_counter() - t0))
@@ -60,6 +61,35 @@ def main():
     pts = contour.reshape(-1, 2).astype(np.float64)
     timed("PCA of the contour (PCACompute2)", lambda: cv2.PCACompute2(pts, mean=None))
     print(f"  ({len(contour)} contour points; gray {gray.shape[1]}x{gray.shape[0]})")
+    grabcut(img)
+
+
+GRABCUT_REPS = 5
+
+
+def grabcut(img):
+    """GrabCut (5-component mixtures and a min-cut, like celadon's
+    segmentation without its backdrop surface, shadow and symmetry terms),
+    3 iterations from a rectangle 6% inside the border (celadon's border ring
+    is its backdrop prior): on the whole photo, and on the photo box-filtered
+    to celadon's working resolution (longer side ~200 px, as recon_segment
+    does before refining a band around the outline at full resolution)."""
+    h, w = img.shape[:2]
+    print(f"GrabCut (cv2.grabCut, 3 iterations, rectangle 6% inside the border), median of {GRABCUT_REPS} runs")
+    print(f"  {'stage':<44} {'wall ms':>9} {'CPU ms':>9}")
+    f = max(1, round(max(w, h) / 200))
+    small = cv2.resize(img, (w // f, h // f), interpolation=cv2.INTER_AREA)
+    for label, im in ((f"whole photo {w}x{h}", img), (f"box-filtered to {w // f}x{h // f}", small)):
+        ih, iw = im.shape[:2]
+        rect = (int(0.06 * iw), int(0.06 * ih), iw - 2 * int(0.06 * iw), ih - 2 * int(0.06 * ih))
+
+        def run():
+            mask = np.zeros((ih, iw), np.uint8)
+            bgd, fgd = np.zeros((1, 65), np.float64), np.zeros((1, 65), np.float64)
+            cv2.grabCut(im, mask, rect, bgd, fgd, 3, cv2.GC_INIT_WITH_RECT)
+            return mask
+
+        timed(f"GrabCut, {label}", run, GRABCUT_REPS)
 
 
 if __name__ == "__main__":

@@ -131,13 +131,16 @@ static int drop_outliers(vec2 *pts, double *contrast, uint8_t *gap, int n)
  * returns the count. */
 /* Row j of the signal the outline is measured on: the photo's colours in
  * [0, 1] (a gray photo's one channel), or the alpha-based gray when the mask
- * came from alpha. buf: width * 3 floats. */
+ * came from alpha. buf: width * 3 floats, or NULL when the photo has three
+ * channels already in [0, 1] (its rows serve as they are). */
 static recon_signal signal_row(const image_t *img, const float *gray, int alpha, int j, float *buf)
 {
     const int w = img->width, c = img->channels, colour = c >= 3 && !alpha;
     if (alpha || c < 3)
         return (recon_signal){alpha ? gray + (size_t)j * w : (gray + (size_t)j * w), w, 1};
     const float *p = img->data + (size_t)j * w * c;
+    if (!buf)
+        return (recon_signal){p, w, 3};
     for (int i = 0; i < w; i++)
         for (int k = 0; k < 3; k++) {
             float v = p[(size_t)i * c + k];
@@ -184,6 +187,22 @@ static int trace_side(const image_t *img, const float *gray, int alpha, const in
         contrast[n++] = e.contrast;
     }
     return drop_outliers(pts, contrast, gap, n);
+}
+
+/* Every value of the photo is in [0, 1] (not -0, not NaN): the bits of such
+ * a float are at most those of 1. */
+static int in_unit_range(const image_t *img)
+{
+    const float *v = img->data;
+    const size_t n = (size_t)img->width * img->height * img->channels;
+    uint32_t worst = 0;
+#pragma omp simd reduction(max : worst)
+    for (size_t i = 0; i < n; i++) {
+        uint32_t bits;
+        memcpy(&bits, v + i, sizeof bits);
+        worst = bits > worst ? bits : worst;
+    }
+    return worst <= 0x3f800000u;
 }
 
 /* Roughness of an outline: median |second difference| of x over its middle. */
@@ -293,14 +312,18 @@ static int fill_holes_but_windows(uint8_t *mask, int w, int h, vec2 origin, vec2
         return -1;
     }
     vec2 nrm = v2(-dir.y, dir.x);
+    for (int x = 0; x < w; x++)
+        stat[4 * lab[x]] = stat[4 * lab[(size_t)(h - 1) * w + x]] = 1;
+    for (int y = 0; y < h; y++)
+        stat[4 * lab[(size_t)y * w]] = stat[4 * lab[(size_t)y * w + w - 1]] = 1;
+    /* the rest only for the holes (the background around the object is
+     * most of the photo and is never filled) */
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             int c = lab[(size_t)y * w + x];
-            if (!c)
+            if (!c || stat[4 * c])
                 continue;
             long *s = stat + 4 * c;
-            if (x == 0 || y == 0 || x == w - 1 || y == h - 1)
-                s[0] = 1;
             vec2 p = v2(x + 0.5, y + 0.5);
             double r = v2_dot(v2_sub(p, origin), nrm);
             s[r < 0 ? 1 : 2] = 1;
@@ -403,9 +426,7 @@ static void row_extents(const uint8_t *mask, int w, int h, vec2 origin, vec2 dir
 
 /* ---- the profile */
 
-/* Points of one side's outline in the axis frame, between the base and the
- * rim, sorted by height. */
-static int outline_points(const vec2 *sil, const uint8_t *gap, int n, vec2 origin, vec2 dir, int side, double H,
+int recon_outline_points(const vec2 *sil, const uint8_t *gap, int n, vec2 origin, vec2 dir, int side, double H,
                           recon_outline_point *out)
 {
     vec2 nrm = v2(-dir.y, dir.x);
@@ -549,8 +570,9 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     con = malloc((size_t)h * 4 * sizeof *con);
     gaps = malloc((size_t)h * 2);
     pts = malloc((size_t)h * 2 * sizeof *pts);
-    rowbuf = malloc((size_t)w * 3 * sizeof *rowbuf);
-    if (!ext || !con || !gaps || !pts || !rowbuf) {
+    int direct = img->channels == 3 && in_unit_range(img);
+    rowbuf = direct ? NULL : malloc((size_t)w * 3 * sizeof *rowbuf);
+    if (!ext || !con || !gaps || !pts || (!direct && !rowbuf)) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
@@ -670,9 +692,10 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     /* 7. Parts: where the two sides disagree, the side that continues the
      * body, or a bridge; where they agree, their mean. */
     recon_outline_point *mp = pts, *op = pts + h;
-    int nm = outline_points(res->silhouette[s], gaps + s * h, res->n_silhouette[s], origin, dir, s ? 1 : -1, H, mp);
-    int no = outline_points(res->silhouette[1 - s], gaps + (1 - s) * h, res->n_silhouette[1 - s], origin, dir,
-                            s ? -1 : 1, H, op);
+    int nm = recon_outline_points(res->silhouette[s], gaps + s * h, res->n_silhouette[s], origin, dir, s ? 1 : -1, H,
+                                  mp);
+    int no = recon_outline_points(res->silhouette[1 - s], gaps + (1 - s) * h, res->n_silhouette[1 - s], origin, dir,
+                                  s ? -1 : 1, H, op);
     double rmax = 0;
     for (int i = 0; i < nm; i++)
         rmax = fmax(rmax, mp[i].r);

@@ -31,6 +31,13 @@ typedef struct {
     int gap;     /* background lies beyond this point on its row, then object again (a handle's loop) */
 } recon_outline_point;
 
+/* The points of one side's outline sil[0..n) (side -1 left, +1 right; gap as
+ * recon_outline_point's) in the frame of the axis (origin on it at the base,
+ * unit direction toward the rim), between heights 0 and H exclusive, sorted
+ * by height (a point not above the last is dropped). Returns their count. */
+int recon_outline_points(const vec2 *sil, const uint8_t *gap, int n, vec2 origin, vec2 dir, int side, double H,
+                         recon_outline_point *out);
+
 /* The profile's radius per row of the main side's outline (sorted by h),
  * written over main_side[].r: the mean of the two sides where they agree
  * within tol; over a handle's rows (a window, and its attachments) the side

@@ -9,6 +9,9 @@
 #include <gsl/gsl_linalg.h>
 #include <gsl/gsl_statistics_double.h>
 
+#include "segment/robust.h"
+#include "segment/vector_clones.h"
+
 /* Uniform cubic B-spline with g control points on [0, len]: the g-3 spans
  * share the length; writes the first control index and the 4 weights. */
 static void basis(double x, double len, int g, int *first, double wt[4])
@@ -25,21 +28,52 @@ static void basis(double x, double len, int g, int *first, double wt[4])
     *first = s;
 }
 
+void recon_backdrop_basis_x(const recon_backdrop *b, double x, recon_backdrop_basis *out)
+{
+    basis(x, b->width, b->grid, &out->first, out->wt);
+}
+
+void recon_backdrop_basis_y(const recon_backdrop *b, double y, recon_backdrop_basis *out)
+{
+    basis(y, b->height, b->grid, &out->first, out->wt);
+}
+
+/* The surface at a point whose 16 basis weights (wx[i] wy[j] at 4 j + i)
+ * start at control point `first` (the others follow: + j g + i), summed in
+ * registers (sums in out[], which might alias coef, would be stored at every
+ * step); the fit's residuals and every evaluation sum in this one order. */
+static void surface_sum(const recon_backdrop *b, int first, const double phi[16], double out[3])
+{
+    double o0 = 0, o1 = 0, o2 = 0;
+    for (int j = 0; j < 4; j++) {
+        const double(*c)[3] = b->coef + first + j * b->grid;
+        for (int i = 0; i < 4; i++) {
+            o0 += phi[4 * j + i] * c[i][0];
+            o1 += phi[4 * j + i] * c[i][1];
+            o2 += phi[4 * j + i] * c[i][2];
+        }
+    }
+    out[0] = o0;
+    out[1] = o1;
+    out[2] = o2;
+}
+
+void recon_backdrop_at_basis(const recon_backdrop *b, const recon_backdrop_basis *bx, const recon_backdrop_basis *by,
+                             double out[3])
+{
+    double phi[16];
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 4; i++)
+            phi[4 * j + i] = bx->wt[i] * by->wt[j];
+    surface_sum(b, by->first * b->grid + bx->first, phi, out);
+}
+
 void recon_backdrop_at(const recon_backdrop *b, double x, double y, double out[3])
 {
-    int fx, fy;
-    double wx[4], wy[4];
-    basis(x, b->width, b->grid, &fx, wx);
-    basis(y, b->height, b->grid, &fy, wy);
-    out[0] = out[1] = out[2] = 0;
-    for (int j = 0; j < 4; j++)
-        for (int i = 0; i < 4; i++) {
-            const double *c = b->coef[(fy + j) * b->grid + fx + i];
-            double wgt = wx[i] * wy[j];
-            out[0] += wgt * c[0];
-            out[1] += wgt * c[1];
-            out[2] += wgt * c[2];
-        }
+    recon_backdrop_basis bx, by;
+    recon_backdrop_basis_x(b, x, &bx);
+    recon_backdrop_basis_y(b, y, &by);
+    recon_backdrop_at_basis(b, &bx, &by, out);
 }
 
 void recon_backdrop_row(const recon_backdrop *b, int y, float *out)
@@ -81,10 +115,55 @@ static void add_bending_penalty(gsl_matrix *A, int g, double lambda)
             }
 }
 
-/* One weighted solve: coef from the samples (x, y, colour, weight). The
+/* A sample's 16 basis weights (wx[i] wy[j] at 4 j + i) and the index of its
+ * first control point (the others follow: + j g + i). */
+typedef struct {
+    double phi[16];
+    int first;
+} sample_basis;
+
+static void sample_basis_at(const recon_backdrop *b, double x, double y, sample_basis *sb)
+{
+    int fx, fy;
+    double wx[4], wy[4];
+    basis(x, b->width, b->grid, &fx, wx);
+    basis(y, b->height, b->grid, &fy, wy);
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 4; i++)
+            sb->phi[4 * j + i] = wx[i] * wy[j];
+    sb->first = fy * b->grid + fx;
+}
+
+/* Adds a sample of weight w to the normal equations ata (m x m) and atb
+ * (m x 3), control points in increasing index order: a = 4 j + i is at
+ * first + j g + i; the rows of 4 up to a's own (its upper part within that
+ * row of 4 is summed too, and not read). */
+RECON_VECTOR_CLONES static void add_sample(double *restrict ata, double *restrict atb, int m, int g,
+                                           const sample_basis *sb, const float *c, double w)
+{
+    const double *phi = sb->phi;
+    for (int ja = 0; ja < 4; ja++)
+        for (int i = 0; i < 4; i++) {
+            double wa = w * phi[4 * ja + i];
+            int ia = sb->first + ja * g + i;
+            double *row = ata + (size_t)ia * m + sb->first;
+            for (int jc = 0; jc <= ja; jc++) {
+                double *r = row + jc * g;
+                const double *q = phi + 4 * jc;
+#pragma omp simd
+                for (int ic = 0; ic < 4; ic++)
+                    r[ic] += wa * q[ic];
+            }
+            for (int k = 0; k < 3; k++)
+                atb[3 * ia + k] += wa * c[k];
+        }
+}
+
+/* One weighted solve: coef from the samples (basis, colour, weight). The
  * normal equations are summed in plain arrays (a sample touches 16 control
- * points) and solved by Cholesky. */
-static int solve(recon_backdrop *b, const double *xy, const float *col, const double *wt, int n)
+ * points) and solved by Cholesky, which reads only the lower triangle: the
+ * upper one is not summed. */
+static int solve(recon_backdrop *b, const sample_basis *sb, const float *col, const double *wt, int n)
 {
     const int g = b->grid, m = g * g;
     double *ata = calloc((size_t)m * (m + 3), sizeof *ata), *atb = ata + (size_t)m * m;
@@ -96,24 +175,7 @@ static int solve(recon_backdrop *b, const double *xy, const float *col, const do
     for (int s = 0; s < n; s++) {
         if (wt[s] <= 0)
             continue;
-        int fx, fy;
-        double wx[4], wy[4], phi[16];
-        int id[16];
-        basis(xy[2 * s], b->width, g, &fx, wx);
-        basis(xy[2 * s + 1], b->height, g, &fy, wy);
-        for (int j = 0; j < 4; j++)
-            for (int i = 0; i < 4; i++) {
-                phi[4 * j + i] = wx[i] * wy[j];
-                id[4 * j + i] = (fy + j) * g + fx + i;
-            }
-        for (int a = 0; a < 16; a++) {
-            double wa = wt[s] * phi[a];
-            double *row = ata + (size_t)id[a] * m;
-            for (int c = 0; c < 16; c++)
-                row[id[c]] += wa * phi[c];
-            for (int c = 0; c < 3; c++)
-                atb[3 * id[a] + c] += wa * col[3 * s + c];
-        }
+        add_sample(ata, atb, m, g, &sb[s], col + 3 * s, wt[s]);
         wsum += wt[s];
     }
     gsl_matrix_view A = gsl_matrix_view_array(ata, m, m);
@@ -141,11 +203,6 @@ out:
     return rc;
 }
 
-/* Tukey's biweight constant (95% efficiency for normal residuals). */
-#define TUKEY_C 4.685
-/* MAD to sigma for a normal distribution. */
-#define MAD_TO_SIGMA 1.4826
-
 int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const uint8_t *use, int step, int grid,
                        int rounds)
 {
@@ -156,18 +213,18 @@ int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const 
     b->width = w;
     b->height = h;
     int cap = ((w + step - 1) / step) * ((h + step - 1) / step);
-    double *xy = malloc((size_t)cap * 2 * sizeof *xy), *wt = malloc((size_t)cap * 2 * sizeof *wt);
+    sample_basis *sb = malloc((size_t)cap * sizeof *sb);
+    double *wt = malloc((size_t)cap * 2 * sizeof *wt);
     float *col = malloc((size_t)cap * 3 * sizeof *col);
     int rc = -1, n = 0;
-    if (!xy || !wt || !col)
+    if (!sb || !wt || !col)
         goto out;
     for (int y = step / 2; y < h; y += step)
         for (int x = step / 2; x < w; x += step) {
             size_t p = (size_t)y * w + x;
             if (!use[p])
                 continue;
-            xy[2 * n] = x + 0.5;
-            xy[2 * n + 1] = y + 0.5;
+            sample_basis_at(b, x + 0.5, y + 0.5, &sb[n]);
             memcpy(col + 3 * n, rgb + 3 * p, 3 * sizeof *col);
             wt[n++] = 1;
         }
@@ -175,11 +232,11 @@ int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const 
         goto out;
     double *res = wt + cap;
     for (int r = 0;; r++) {
-        if (solve(b, xy, col, wt, n) != 0)
+        if (solve(b, sb, col, wt, n) != 0)
             goto out;
         for (int s = 0; s < n; s++) {
             double m[3];
-            recon_backdrop_at(b, xy[2 * s], xy[2 * s + 1], m);
+            surface_sum(b, sb[s].first, sb[s].phi, m);
             double d0 = col[3 * s] - m[0], d1 = col[3 * s + 1] - m[1], d2 = col[3 * s + 2] - m[2];
             res[s] = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
         }
@@ -198,7 +255,7 @@ int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const 
                 if (res[k] >= cut)
                     continue;
                 double m[3], d[3];
-                recon_backdrop_at(b, xy[2 * k], xy[2 * k + 1], m);
+                surface_sum(b, sb[k].first, sb[k].phi, m);
                 for (int i = 0; i < 3; i++)
                     d[i] = col[3 * k + i] - m[i];
                 for (int i = 0; i < 9; i++)
@@ -216,7 +273,7 @@ int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const 
     }
     rc = 0;
 out:
-    free(xy);
+    free(sb);
     free(wt);
     free(col);
     return rc;

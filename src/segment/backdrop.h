@@ -28,6 +28,17 @@ int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const 
 /* The modelled backdrop colour at the continuous position (x, y). */
 void recon_backdrop_at(const recon_backdrop *b, double x, double y, double out[3]);
 
+/* The same from the basis of x and of y (the first control point and the four
+ * weights along each), for callers that evaluate many points on a grid. */
+typedef struct {
+    int first;
+    double wt[4];
+} recon_backdrop_basis;
+void recon_backdrop_basis_x(const recon_backdrop *b, double x, recon_backdrop_basis *out);
+void recon_backdrop_basis_y(const recon_backdrop *b, double y, recon_backdrop_basis *out);
+void recon_backdrop_at_basis(const recon_backdrop *b, const recon_backdrop_basis *bx, const recon_backdrop_basis *by,
+                             double out[3]);
+
 /* The modelled backdrop colour of every pixel of row y (out: w*3). */
 void recon_backdrop_row(const recon_backdrop *b, int y, float *out);
 

@@ -102,9 +102,10 @@ double recon_gmm_log_density(const recon_gmm *g, const float *c)
         l[k] = g->lognorm[k] - 0.5 * mahalanobis2(g, k, c);
         m = l[k] > m ? l[k] : m;
     }
+    /* exp(0) of the largest term is 1, without the call */
     double s = 0;
     for (int k = 0; k < g->k; k++)
-        s += exp(l[k] - m);
+        s += l[k] - m == 0 ? 1.0 : exp(l[k] - m);
     return m + log(s);
 }
 

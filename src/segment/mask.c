@@ -5,17 +5,7 @@
 #include <string.h>
 
 #include "segment/segment.h"
-
-/* On x86-64 the build targets the baseline (SSE2); the whole-row filter
- * loops also get an AVX2 clone, picked at load time when the CPU has it
- * (GCC function multiversioning; clang 14, which builds the fuzz targets,
- * keeps a clone's resolver local to its file). No FMA: both clones round
- * alike. */
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define RECON_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define RECON_VECTOR_CLONES
-#endif
+#include "segment/vector_clones.h"
 
 /* Clamps a signal value to [0, 1]; NaN (HDR or broken files) becomes 0. */
 static inline float finite01(float v) { return v > 0 ? (v < 1 ? v : 1) : 0; }

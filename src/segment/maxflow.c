@@ -16,6 +16,16 @@
  * source -> node, < 0: node -> sink) after pushing min(cap_source, cap_sink)
  * straight through.
  *
+ * A solved graph can take new t-links (maxflow_set_terminals) and be solved
+ * again from its flow and search trees, as Kohli & Torr's dynamic graph cuts
+ * do (PAMI 2007) and as Kolmogorov's implementation reuses its trees: a
+ * node's signed residual moves by the change of its net capacity (a residual
+ * beyond the new capacity only adds a constant to both of its t-links, which
+ * no cut notices), a node whose residual changed sign changes trees, one
+ * whose terminal link vanished becomes an orphan, and the search goes on
+ * from the changed nodes. The minimum cut, and so the source side, does not
+ * depend on which maximum flow is reached.
+ *
  * Capacities are doubles, not floats: float arcs (12 bytes instead of 16)
  * were no faster on the benchmark's graphs (the search waits on scattered
  * nodes, not on arc bytes), and doubles keep integer capacities exact up to
@@ -42,6 +52,7 @@ typedef struct {
 typedef struct {
     double tr_cap; /* residual t-link: > 0 from the source, < 0 to the sink */
     int parent;    /* arc from this node to its parent in its tree, or PARENT_* */
+    int pnode;     /* the parent node when parent is an arc (its head: walks up a tree need no arc) */
     int ts;        /* the augmentation count at which dist was last known exact */
     int dist;      /* links to the tree's terminal (valid at ts) */
     unsigned char in_sink_tree;
@@ -68,9 +79,14 @@ struct maxflow_graph {
     double *cap0;  /* each arc's capacity as added */
     int laid_out;  /* first, arcs and cap0 hold the layout of edges[] */
     mf_queue active, orphans;
+    double *tcap;  /* per node: the source and the sink capacity as given (for the flow's value) */
+    int *changed;  /* nodes whose t-links maxflow_set_terminals changed since the last solve */
+    int n_changed;
+    unsigned char *is_changed;
     double flow;
     int time;
-    int solved;
+    int solved; /* the flow is maximal for the links as they are */
+    int trees;  /* the search trees hold a solve's state: maxflow_set_terminals may follow */
 };
 
 static void queue_push(mf_queue *q, int v)
@@ -105,7 +121,11 @@ maxflow_graph *maxflow_create(int n_nodes, int max_edges)
     g->cap0 = malloc((2 * (size_t)max_edges + 1) * sizeof *g->cap0);
     g->active.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
     g->orphans.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
-    if (!g->nodes || !g->edges || !g->first || !g->arcs || !g->cap0 || !g->active.slot || !g->orphans.slot) {
+    g->tcap = malloc(((size_t)n_nodes + 1) * 2 * sizeof *g->tcap);
+    g->changed = malloc(((size_t)n_nodes + 1) * sizeof *g->changed);
+    g->is_changed = calloc((size_t)n_nodes + 1, 1);
+    if (!g->nodes || !g->edges || !g->first || !g->arcs || !g->cap0 || !g->active.slot || !g->orphans.slot || !g->tcap ||
+        !g->changed || !g->is_changed) {
         maxflow_destroy(g);
         return NULL;
     }
@@ -125,6 +145,9 @@ void maxflow_destroy(maxflow_graph *g)
     free(g->cap0);
     free(g->active.slot);
     free(g->orphans.slot);
+    free(g->tcap);
+    free(g->changed);
+    free(g->is_changed);
     free(g);
 }
 
@@ -132,8 +155,12 @@ void maxflow_reset_terminals(maxflow_graph *g)
 {
     for (int i = 0; i < g->n; i++)
         g->nodes[i].tr_cap = 0;
+    memset(g->tcap, 0, (size_t)g->n * 2 * sizeof *g->tcap);
+    for (int k = 0; k < g->n_changed; k++)
+        g->is_changed[g->changed[k]] = 0;
+    g->n_changed = 0;
     g->flow = 0;
-    g->solved = 0;
+    g->solved = g->trees = 0;
 }
 
 void maxflow_reset(maxflow_graph *g)
@@ -145,10 +172,12 @@ void maxflow_reset(maxflow_graph *g)
 
 void maxflow_add_terminals(maxflow_graph *g, int node, double cap_source, double cap_sink)
 {
-    assert(!g->solved && node >= 0 && node < g->n);
+    assert(!g->trees && node >= 0 && node < g->n);
     assert(cap_source >= 0 && cap_sink >= 0 && isfinite(cap_source) && isfinite(cap_sink));
     /* the node's earlier residual joins the new capacities; the common part
      * of the two flows straight from the source to the sink */
+    g->tcap[2 * node] += cap_source;
+    g->tcap[2 * node + 1] += cap_sink;
     double r = g->nodes[node].tr_cap;
     if (r > 0)
         cap_source += r;
@@ -160,13 +189,36 @@ void maxflow_add_terminals(maxflow_graph *g, int node, double cap_source, double
 
 void maxflow_add_edge(maxflow_graph *g, int i, int j, double cap_ij, double cap_ji)
 {
-    assert(!g->solved && i >= 0 && i < g->n && j >= 0 && j < g->n);
+    assert(!g->trees && i >= 0 && i < g->n && j >= 0 && j < g->n);
     assert(cap_ij >= 0 && cap_ji >= 0 && isfinite(cap_ij) && isfinite(cap_ji));
     if (i == j || (cap_ij == 0 && cap_ji == 0))
         return;
     assert(g->n_edges < g->max_edges);
     g->edges[g->n_edges++] = (mf_edge){i, j, cap_ij, cap_ji};
     g->laid_out = 0;
+}
+
+void maxflow_set_terminals(maxflow_graph *g, int node, double cap_source, double cap_sink)
+{
+    assert(g->trees && node >= 0 && node < g->n);
+    assert(cap_source >= 0 && cap_sink >= 0 && isfinite(cap_source) && isfinite(cap_sink));
+    double *t = g->tcap + 2 * node;
+    if (t[0] == cap_source && t[1] == cap_sink)
+        return;
+    /* The flow through the node's t-links stays; with the straight-through
+     * part as large as the capacities allow, the flow's value is the sum
+     * over nodes of cap_source - max(residual, 0). */
+    mf_node *v = &g->nodes[node];
+    double r = v->tr_cap, nr = r + ((cap_source - cap_sink) - (t[0] - t[1]));
+    g->flow += (cap_source - (nr > 0 ? nr : 0)) - (t[0] - (r > 0 ? r : 0));
+    v->tr_cap = nr;
+    g->solved = 0;
+    t[0] = cap_source;
+    t[1] = cap_sink;
+    if (!g->is_changed[node]) {
+        g->is_changed[node] = 1;
+        g->changed[g->n_changed++] = node;
+    }
 }
 
 /* Lays the edges out as arcs grouped by tail (a counting sort). */
@@ -272,6 +324,7 @@ static int grow(maxflow_graph *g, int i)
         if (vj->parent == PARENT_NONE) {
             vj->in_sink_tree = (unsigned char)sink_tree;
             vj->parent = g->arcs[a].sister;
+            vj->pnode = i;
             vj->ts = vi->ts;
             vj->dist = vi->dist + 1;
             activate(g, g->arcs[a].head);
@@ -279,6 +332,7 @@ static int grow(maxflow_graph *g, int i)
             return sink_tree ? g->arcs[a].sister : a;
         } else if (vj->ts <= vi->ts && vj->dist > vi->dist) {
             vj->parent = g->arcs[a].sister;
+            vj->pnode = i;
             vj->ts = vi->ts;
             vj->dist = vi->dist + 1;
         }
@@ -286,10 +340,8 @@ static int grow(maxflow_graph *g, int i)
     return -1;
 }
 
-static double min2(double a, double b)
-{
-    return a < b ? a : b; /* fmin is a library call (NaN rules); capacities are never NaN */
-}
+/* fmin is a library call (NaN rules); capacities are never NaN: inlined */
+static inline double min2(double a, double b) { return b < a ? b : a; }
 
 /* Augmentation along source -> S .. u -> v .. T -> sink, `mid` the arc u -> v.
  * Nodes whose parent link saturates become orphans. */
@@ -300,10 +352,10 @@ static void augment(maxflow_graph *g, int mid)
     const int u = arcs[arcs[mid].sister].head, v = arcs[mid].head;
     double b = arcs[mid].rcap;
     int i;
-    for (i = u; nodes[i].parent != PARENT_TERMINAL; i = arcs[nodes[i].parent].head)
+    for (i = u; nodes[i].parent != PARENT_TERMINAL; i = nodes[i].pnode)
         b = min2(b, arcs[arcs[nodes[i].parent].sister].rcap);
     b = min2(b, nodes[i].tr_cap);
-    for (i = v; nodes[i].parent != PARENT_TERMINAL; i = arcs[nodes[i].parent].head)
+    for (i = v; nodes[i].parent != PARENT_TERMINAL; i = nodes[i].pnode)
         b = min2(b, arcs[nodes[i].parent].rcap);
     b = min2(b, -nodes[i].tr_cap);
 
@@ -319,11 +371,12 @@ static void augment(maxflow_graph *g, int mid)
                 make_orphan(g, i);
             break;
         }
+        int next = nodes[i].pnode;
         arcs[p].rcap += b;
         arcs[arcs[p].sister].rcap -= b;
         if (arcs[arcs[p].sister].rcap == 0)
             make_orphan(g, i);
-        i = arcs[p].head;
+        i = next;
     }
     for (i = v;;) {
         int p = nodes[i].parent;
@@ -333,11 +386,12 @@ static void augment(maxflow_graph *g, int mid)
                 make_orphan(g, i);
             break;
         }
+        int next = nodes[i].pnode;
         arcs[arcs[p].sister].rcap += b;
         arcs[p].rcap -= b;
         if (arcs[p].rcap == 0)
             make_orphan(g, i);
-        i = arcs[p].head;
+        i = next;
     }
     g->flow += b;
 }
@@ -349,7 +403,7 @@ static int origin_distance(maxflow_graph *g, int j)
 {
     mf_node *nodes = g->nodes;
     int d = 0;
-    for (int k = j;; k = g->arcs[nodes[k].parent].head) {
+    for (int k = j;; k = nodes[k].pnode) {
         if (nodes[k].ts == g->time) {
             d += nodes[k].dist;
             break;
@@ -364,7 +418,7 @@ static int origin_distance(maxflow_graph *g, int j)
         }
     }
     int dk = d;
-    for (int k = j; nodes[k].ts != g->time; k = g->arcs[nodes[k].parent].head) {
+    for (int k = j; nodes[k].ts != g->time; k = nodes[k].pnode) {
         nodes[k].ts = g->time;
         nodes[k].dist = dk--;
     }
@@ -396,6 +450,7 @@ static void adopt(maxflow_graph *g, int i)
     }
     if (best >= 0) {
         vi->parent = best;
+        vi->pnode = g->arcs[best].head;
         vi->ts = g->time;
         vi->dist = best_d + 1;
         return;
@@ -408,8 +463,46 @@ static void adopt(maxflow_graph *g, int i)
             continue;
         if (grow_cap(g, a, !sink_tree) > 0)
             activate(g, j);
-        if (vj->parent >= 0 && g->arcs[vj->parent].head == i)
+        if (vj->parent >= 0 && vj->pnode == i)
             make_orphan(g, j);
+    }
+}
+
+/* Before a solve that continues from the last one: the nodes whose t-links
+ * changed become roots of the tree their residual's sign says (their old
+ * tree's children of them orphans) or, without a residual, orphans if they
+ * hung on their terminal; each is active. (Kolmogorov's reuse of the trees.) */
+static void reuse_trees(maxflow_graph *g)
+{
+    g->time++;
+    for (int k = 0; k < g->n_changed; k++) {
+        int i = g->changed[k];
+        mf_node *v = &g->nodes[i];
+        g->is_changed[i] = 0;
+        if (v->tr_cap == 0) {
+            if (v->parent == PARENT_TERMINAL)
+                make_orphan(g, i);
+            continue;
+        }
+        int sink_tree = v->tr_cap < 0;
+        if (v->parent != PARENT_NONE && v->in_sink_tree != sink_tree)
+            for (int a = g->first[i]; a < g->first[i + 1]; a++) {
+                const mf_node *vj = &g->nodes[g->arcs[a].head];
+                if (vj->parent == g->arcs[a].sister)
+                    make_orphan(g, g->arcs[a].head);
+            }
+        v->in_sink_tree = (unsigned char)sink_tree;
+        v->parent = PARENT_TERMINAL;
+        v->ts = g->time;
+        v->dist = 1;
+        activate(g, i);
+    }
+    g->n_changed = 0;
+    /* an orphan that a later change made a root is no orphan any more */
+    while (g->orphans.count) {
+        int i = queue_pop(&g->orphans);
+        if (g->nodes[i].parent == PARENT_ORPHAN)
+            adopt(g, i);
     }
 }
 
@@ -417,11 +510,15 @@ double maxflow_solve(maxflow_graph *g)
 {
     if (g->solved)
         return g->flow;
-    if (g->laid_out)
-        restore_arcs(g);
-    else
-        build_arcs(g);
-    init_trees(g);
+    if (g->trees) {
+        reuse_trees(g);
+    } else {
+        if (g->laid_out)
+            restore_arcs(g);
+        else
+            build_arcs(g);
+        init_trees(g);
+    }
     /* A node that found a path stays current: it may touch the other tree
      * through more of its arcs. */
     int current = -1;
@@ -438,7 +535,7 @@ double maxflow_solve(maxflow_graph *g)
         while (g->orphans.count)
             adopt(g, queue_pop(&g->orphans));
     }
-    g->solved = 1;
+    g->solved = g->trees = 1;
     return g->flow;
 }
 

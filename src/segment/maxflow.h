@@ -9,6 +9,7 @@
  *     maxflow_add_edge(g, p, q, cap_pq, cap_qp);                             (each pair once)
  *     double cut = maxflow_solve(g);
  *     ... maxflow_source_side(g, p) ...
+ *     maxflow_set_terminals(g, p, ...);  (new t-links, solved again from this flow) or
  *     maxflow_reset_terminals(g);   (same n-links, new t-links) or maxflow_reset(g)
  *     ...
  *     maxflow_destroy(g);
@@ -16,7 +17,8 @@
  * Preconditions (checked by assert): node indices in [0, n), capacities
  * finite and >= 0, at most max_edges calls of maxflow_add_edge since the last
  * maxflow_reset (maxflow_reset_terminals keeps the links, so they still
- * count), no additions between maxflow_solve and the next reset. Capacities are
+ * count), no additions between maxflow_solve and the next reset
+ * (maxflow_set_terminals only after a solve). Capacities are
  * doubles: with integer capacities (below 2^53 in total) the flow and the cut
  * are exact. One graph is used by one thread at a time. */
 #ifndef CELADON_SEGMENT_MAXFLOW_H
@@ -27,7 +29,7 @@ typedef struct maxflow_graph maxflow_graph;
 /* A graph of n_nodes >= 0 nodes (numbered 0..n_nodes-1, no links yet) with
  * room for max_edges >= 0 calls of maxflow_add_edge. NULL when out of memory
  * or when max_edges > INT_MAX / 2.
- * Memory: about 36 * n_nodes + 72 * max_edges bytes. */
+ * Memory: about 65 * n_nodes + 72 * max_edges bytes. */
 maxflow_graph *maxflow_create(int n_nodes, int max_edges);
 
 /* Adds cap_source to the capacity of the link source -> node and cap_sink to
@@ -52,6 +54,13 @@ double maxflow_solve(maxflow_graph *g);
  * cuts: a node that could go either way without changing the cut's value
  * (a tie, e.g. a node with no links at all) is on the sink side. */
 int maxflow_source_side(const maxflow_graph *g, int node);
+
+/* After maxflow_solve: sets the node's terminal capacities anew (replacing
+ * what was added or set before; same meaning as maxflow_add_terminals). The
+ * next maxflow_solve continues from the flow and the search trees it left,
+ * which is much cheaper than solving again when few t-links change, and
+ * finds the same minimum cut. */
+void maxflow_set_terminals(maxflow_graph *g, int node, double cap_source, double cap_sink);
 
 /* Removes every link and the flow; the graph keeps its node count and its
  * memory, ready for the next round. */

@@ -10,9 +10,6 @@
 #include "segment/maxflow.h"
 #include "segment/segment.h"
 
-/* Must match the symmetry link of the low-resolution rounds (segment.c). */
-#define SYMMETRY_EPS 0.02
-
 static void pixel_rgb(const image_t *img, size_t p, float out[3])
 {
     const float *v = img->data + p * (size_t)img->channels;
@@ -23,11 +20,26 @@ static void pixel_rgb(const image_t *img, size_t p, float out[3])
     }
 }
 
+/* The backdrop's basis at every full-resolution column and row: the surface
+ * at pixel (X, Y) is the low-resolution one at ((X + 0.5) / f, (Y + 0.5) / f). */
+static recon_backdrop_basis *backdrop_bases(const recon_segmentation *seg, int W, int H)
+{
+    recon_backdrop_basis *bb = malloc(((size_t)W + H) * sizeof *bb);
+    if (!bb)
+        return NULL;
+    for (int X = 0; X < W; X++)
+        recon_backdrop_basis_x(&seg->model.backdrop, (X + 0.5) / seg->factor, &bb[X]);
+    for (int Y = 0; Y < H; Y++)
+        recon_backdrop_basis_y(&seg->model.backdrop, (Y + 0.5) / seg->factor, &bb[W + Y]);
+    return bb;
+}
+
 /* The modelled backdrop colour at full-resolution pixel (X, Y). */
-static void backdrop_at(const recon_segmentation *seg, int X, int Y, float out[3])
+static void backdrop_at(const recon_segmentation *seg, const recon_backdrop_basis *bb, int W, int X, int Y,
+                        float out[3])
 {
     double bg[3];
-    recon_backdrop_at(&seg->model.backdrop, (X + 0.5) / seg->factor, (Y + 0.5) / seg->factor, bg);
+    recon_backdrop_at_basis(&seg->model.backdrop, &bb[X], &bb[W + Y], bg);
     for (int c = 0; c < 3; c++)
         out[c] = (float)bg[c];
 }
@@ -69,6 +81,8 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
     int rc = -1, nn = 0;
     maxflow_graph *g = NULL;
     float *col = NULL;
+    recon_backdrop_basis *bb = NULL;
+    recon_cost_memo *memo = NULL;
     if (!band || !node)
         goto out;
     boundary_band(coarse, w, h, band);
@@ -76,24 +90,35 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
      * take the nearest cell's); band pixels become nodes. */
     for (int Y = 0; Y < H; Y++) {
         int y = Y / f < h ? Y / f : h - 1;
-        for (int X = 0; X < W; X++) {
-            int x = X / f < w ? X / f : w - 1;
-            size_t P = (size_t)Y * W + X, p = (size_t)y * w + x;
-            mask[P] = coarse[p];
-            node[P] = band[p] ? nn++ : -1;
+        for (int x = 0; x < w; x++) { /* the cell's columns; the last cell's run to the border */
+            size_t p = (size_t)y * w + x, P0 = (size_t)Y * W + (size_t)x * f;
+            int run = x + 1 < w ? f : W - x * f;
+            memset(mask + P0, coarse[p], (size_t)run);
+            for (int i = 0; i < run; i++)
+                node[P0 + i] = band[p] ? nn++ : -1;
         }
     }
     if (nn == 0) {
         rc = 0;
         goto out;
     }
-    col = malloc((size_t)nn * 3 * sizeof *col);
+    /* each node's colour and modelled backdrop colour (a node's mirror is
+     * mostly a node too) */
+    col = malloc((size_t)nn * 6 * sizeof *col);
     g = maxflow_create(nn, 5 * nn);
-    if (!col || !g)
+    bb = backdrop_bases(seg, W, H);
+    memo = calloc(1, sizeof *memo);
+    if (!col || !g || !bb || !memo)
         goto out;
-    for (size_t P = 0; P < (size_t)W * H; P++)
-        if (node[P] >= 0)
-            pixel_rgb(img, P, col + 3 * (size_t)node[P]);
+    float *bgn = col + 3 * (size_t)nn;
+    for (int Y = 0; Y < H; Y++)
+        for (int X = 0; X < W; X++) {
+            size_t P = (size_t)Y * W + X;
+            if (node[P] >= 0) {
+                pixel_rgb(img, P, col + 3 * (size_t)node[P]);
+                backdrop_at(seg, bb, W, X, Y, bgn + 3 * (size_t)node[P]);
+            }
+        }
     double beta = 0;
     {
         double s = 0;
@@ -121,14 +146,19 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
                 continue;
             const float *ca = col + 3 * (size_t)a;
             double co, cb;
-            float bgf[3], mc[3], mbgf[3];
-            backdrop_at(seg, X, Y, bgf);
+            float mc_fixed[3], mbgf_fixed[3];
+            const float *mc = NULL, *mbgf = NULL;
             long M = seg->have_axis ? mirror_full(seg, W, H, X, Y) : -1;
-            if (M >= 0) {
-                pixel_rgb(img, (size_t)M, mc);
-                backdrop_at(seg, (int)(M % W), (int)(M / W), mbgf);
+            if (M >= 0 && node[M] >= 0) {
+                mc = col + 3 * (size_t)node[M];
+                mbgf = bgn + 3 * (size_t)node[M];
+            } else if (M >= 0) {
+                pixel_rgb(img, (size_t)M, mc_fixed);
+                backdrop_at(seg, bb, W, (int)(M % W), (int)(M / W), mbgf_fixed);
+                mc = mc_fixed;
+                mbgf = mbgf_fixed;
             }
-            recon_colour_costs(&seg->model, ca, bgf, M >= 0 ? mc : NULL, M >= 0 ? mbgf : NULL, &co, &cb);
+            recon_colour_costs(&seg->model, memo, ca, bgn + 3 * (size_t)a, mc, mbgf, &co, &cb);
             double src = cb, snk = co; /* the cost of ending as backdrop / as object */
             /* Links: to band neighbours once (forward half), to fixed
              * neighbours as terminal costs (all eight directions). */
@@ -173,6 +203,8 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
     rc = 0;
 out:
     maxflow_destroy(g);
+    free(memo);
+    free(bb);
     free(col);
     free(node);
     free(band);

@@ -9,6 +9,7 @@
 #include <gsl/gsl_statistics_double.h>
 
 #include "segment/maxflow.h"
+#include "segment/robust.h"
 
 /* The working resolution: the longer side is brought down to about this many
  * pixels (an integer box factor), enough for a vessel's outline to within a
@@ -21,12 +22,6 @@ enum { ROUNDS = 3 };
 /* Contrast-sensitive smoothness weight between 8-neighbours, in nats (GrabCut's
  * gamma = 50). */
 #define SMOOTHNESS_GAMMA 50.0
-/* The symmetry link: the prior probability that a pixel and its mirror image
- * across the axis differ is eps = 2%, so a differing pair costs
- * log((1 - eps) / eps) = 3.9 nats. A cast shadow or a reflection of the room
- * in the backdrop, which the colour models leave nearly undecided, goes with
- * its mirror; a handle, whose colours are plainly the object's, stays. */
-#define SYMMETRY_EPS 0.02
 /* The image border is backdrop with prior probability 0.99 (log 99 nats). */
 #define BORDER_PRIOR_EPS 0.01
 /* A floor shadow: the backdrop darkened to k = 0.3 .. 1 times its colour, with
@@ -60,27 +55,34 @@ enum { ROUNDS = 3 };
  * distance above the chi-square(3) quantile at 1e-4. */
 #define INIT_CHI2 21.1
 
+/* A colour value clamped to [0, 1]; NaN becomes 0. */
+static inline float finite01(float v) { return v > 0 ? (v < 1 ? v : 1) : 0; }
+
 /* Box-filtered colour at factor f (three channels). */
 static float *downsample(const image_t *img, int f, int w, int h)
 {
     float *out = calloc((size_t)w * h * 3, sizeof *out);
     if (!out)
         return NULL;
-    const int c = img->channels, colour = c >= 3;
+    const int c = img->channels, colour = c >= 3, gc = colour ? 1 : 0, bc = colour ? 2 : 0;
     const float inv = 1.0f / (f * f);
     for (int y = 0; y < h; y++)
         for (int j = 0; j < f; j++) {
             const float *row = img->data + ((size_t)(y * f + j) * img->width) * c;
             float *o = out + (size_t)y * w * 3;
-            for (int x = 0; x < w; x++)
-                for (int i = 0; i < f; i++) {
-                    const float *p = row + (size_t)(x * f + i) * c;
-                    float r = p[0], g = colour ? p[1] : p[0], b = colour ? p[2] : p[0];
+            for (int x = 0; x < w; x++) {
+                const float *p = row + (size_t)x * f * c;
+                float s0 = o[3 * x], s1 = o[3 * x + 1], s2 = o[3 * x + 2];
+                for (int i = 0; i < f; i++, p += c) {
                     /* NaN or HDR values from broken files count as black / white */
-                    o[3 * x] += inv * (r > 0 ? (r < 1 ? r : 1) : 0);
-                    o[3 * x + 1] += inv * (g > 0 ? (g < 1 ? g : 1) : 0);
-                    o[3 * x + 2] += inv * (b > 0 ? (b < 1 ? b : 1) : 0);
+                    s0 += inv * finite01(p[0]);
+                    s1 += inv * finite01(p[gc]);
+                    s2 += inv * finite01(p[bc]);
                 }
+                o[3 * x] = s0;
+                o[3 * x + 1] = s1;
+                o[3 * x + 2] = s2;
+            }
         }
     return out;
 }
@@ -141,10 +143,25 @@ static double shadow_factor(const float *c, const float *bc)
     return bb > 1e-6 ? ((double)c[0] * bc[0] + (double)c[1] * bc[1] + (double)c[2] * bc[2]) / bb : 1;
 }
 
-void recon_colour_costs(const recon_colour_model *m, const float *c, const float *bc, const float *mc,
-                        const float *mbc, double *cost_object, double *cost_backdrop)
+static double object_cost(const recon_colour_model *m, recon_cost_memo *memo, const float *c)
 {
-    *cost_object = -logsumexp2(log(1 - OBJECT_UNSEEN) + recon_gmm_log_density(&m->object, c), log(OBJECT_UNSEEN));
+    if (!memo)
+        return -logsumexp2(log(1 - OBJECT_UNSEEN) + recon_gmm_log_density(&m->object, c), log(OBJECT_UNSEEN));
+    uint32_t b[3];
+    memcpy(b, c, sizeof b);
+    uint32_t slot = (b[0] * 0x9E3779B1u ^ b[1] * 0x85EBCA77u ^ b[2] * 0xC2B2AE3Du) >> (32 - RECON_COST_MEMO_BITS);
+    if (!memo->e[slot].used || memcmp(memo->e[slot].c, c, sizeof memo->e[slot].c) != 0) {
+        memo->e[slot].used = 1;
+        memcpy(memo->e[slot].c, c, sizeof memo->e[slot].c);
+        memo->e[slot].cost = object_cost(m, NULL, c);
+    }
+    return memo->e[slot].cost;
+}
+
+/* log p(c | backdrop or shadow), before the support's colours. */
+static double backdrop_log_likelihood(const recon_colour_model *m, const float *c, const float *bc, const float *mc,
+                                      const float *mbc)
+{
     double d[3] = {c[0] - bc[0], c[1] - bc[1], c[2] - bc[2]};
     double l_bg = logsumexp2(m->bg_lognorm - 0.5 * quad3(m->bg_icov, d), m->tail_lognorm - 0.5 * quad3(m->tail_icov, d));
     /* The shadow: the backdrop scaled by the k that fits c best. */
@@ -156,17 +173,25 @@ void recon_colour_costs(const recon_colour_model *m, const float *c, const float
         if (k0 < 0.97 && km < 0.97 && fabs(k0 - km) < SHADOW_ALIKE)
             prior = log(SHADOW_SYMMETRIC_FACTOR);
     }
-    double l = logsumexp2(l_bg, prior + m->shadow_lognorm - 0.5 * quad3(m->shadow_icov, ds));
+    return logsumexp2(l_bg, prior + m->shadow_lognorm - 0.5 * quad3(m->shadow_icov, ds));
+}
+
+/* -log p(c | not object) from the backdrop's log-likelihood l. */
+static double cost_not_object(const recon_colour_model *m, const float *c, double l)
+{
     if (m->have_support)
         l = logsumexp2(l, log(SUPPORT_PRIOR) + recon_gmm_log_density(&m->support, c));
-    *cost_backdrop = -l;
+    return -l;
+}
+
+void recon_colour_costs(const recon_colour_model *m, recon_cost_memo *memo, const float *c, const float *bc,
+                        const float *mc, const float *mbc, double *cost_object, double *cost_backdrop)
+{
+    *cost_object = object_cost(m, memo, c);
+    *cost_backdrop = cost_not_object(m, c, backdrop_log_likelihood(m, c, bc, mc, mbc));
 }
 
 /* ---- the axis of a mask */
-
-/* Tukey's biweight constant, and MAD to sigma for a normal distribution. */
-#define TUKEY_C 4.685
-#define MAD_TO_SIGMA 1.4826
 
 int recon_mask_axis(const uint8_t *mask, int w, int h, double *x0, double *slope)
 {
@@ -314,27 +339,6 @@ static void add_smoothness(maxflow_graph *g, const float *wt, int w, int h)
             }
 }
 
-/* t-links from the colour costs, with the border prior. */
-static void add_data_terms(maxflow_graph *g, const recon_segmentation *seg, const float *backdrop_rgb)
-{
-    const int w = seg->w, h = seg->h;
-    const double border = log((1 - BORDER_PRIOR_EPS) / BORDER_PRIOR_EPS);
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            int p = y * w + x;
-            double co, cb;
-            int q = seg->have_axis ? recon_segment_mirror(seg, p) : -1;
-            recon_colour_costs(&seg->model, seg->rgb + 3 * (size_t)p, backdrop_rgb + 3 * (size_t)p,
-                               q >= 0 ? seg->rgb + 3 * (size_t)q : NULL, q >= 0 ? backdrop_rgb + 3 * (size_t)q : NULL,
-                               &co, &cb);
-            if (x == 0 || y == 0 || x == w - 1 || y == h - 1)
-                co += border;
-            double lo = co < cb ? co : cb;
-            /* the source side is the object: a pixel left on the sink side pays cb */
-            maxflow_add_terminals(g, p, cb - lo, co - lo);
-        }
-}
-
 static void add_symmetry(maxflow_graph *g, const recon_segmentation *seg)
 {
     const double lambda = log((1 - SYMMETRY_EPS) / SYMMETRY_EPS);
@@ -402,9 +406,36 @@ static int largest_component(const long *area, int n)
     return best;
 }
 
-/* ---- the whole segmentation */
+/* ---- the steps of the segmentation */
 
-int recon_segment(const image_t *img, recon_segmentation *seg)
+/* What the rounds keep between steps. */
+struct recon_segment_work {
+    float *bgc;        /* w*h*3 backdrop colour */
+    float *nlw;        /* w*h*4 smoothness weights */
+    double *l_bg;      /* w*h log-likelihood of backdrop or shadow: fixed once the axis is */
+    double *t_src, *t_snk; /* w*h the round's t-links */
+    int *lab, *idx;    /* w*h */
+    uint8_t *use;      /* w*h */
+    long *area;
+    int main_c;        /* the largest object component of lab */
+    recon_gmm last_object; /* the object's model the t-links were computed with */
+    recon_cost_memo memo;  /* its costs by colour */
+    maxflow_graph *g;
+};
+
+/* The two mixtures are the same, bit for bit. */
+static int same_gmm(const recon_gmm *a, const recon_gmm *b)
+{
+    if (a->k != b->k)
+        return 0;
+    for (int k = 0; k < a->k; k++)
+        if (memcmp(a->mean[k], b->mean[k], sizeof a->mean[k]) || memcmp(a->icov[k], b->icov[k], sizeof a->icov[k]) ||
+            a->lognorm[k] != b->lognorm[k])
+            return 0;
+    return 1;
+}
+
+int recon_segment_start(const image_t *img, recon_segmentation *seg)
 {
     memset(seg, 0, sizeof *seg);
     int longest = img->width > img->height ? img->width : img->height;
@@ -415,93 +446,165 @@ int recon_segment(const image_t *img, recon_segmentation *seg)
     seg->factor = f;
     seg->w = w;
     seg->h = h;
+    recon_segment_work *k = seg->work = calloc(1, sizeof *seg->work);
+    if (!k)
+        return -1;
     seg->rgb = downsample(img, f, w, h);
     seg->object = calloc(n, 1);
-    float *bgc = malloc(n * 3 * sizeof *bgc);
-    uint8_t *use = malloc(n * 2);
-    int *lab = malloc(n * sizeof *lab), *idx = malloc(n * sizeof *idx);
-    float *nlw = malloc(n * 4 * sizeof *nlw);
-    long *area = NULL;
-    maxflow_graph *g = maxflow_create((int)n, (int)(5 * n));
-    int rc = -1;
-    if (!seg->rgb || !seg->object || !bgc || !use || !lab || !idx || !nlw || !g)
-        goto out;
+    k->bgc = malloc(n * 3 * sizeof *k->bgc);
+    k->use = malloc(n);
+    k->lab = malloc(n * sizeof *k->lab);
+    k->idx = malloc(n * sizeof *k->idx);
+    k->nlw = malloc(n * 4 * sizeof *k->nlw);
+    k->l_bg = malloc(n * 3 * sizeof *k->l_bg);
+    k->t_src = k->l_bg ? k->l_bg + n : NULL;
+    k->t_snk = k->l_bg ? k->l_bg + 2 * n : NULL;
+    k->g = maxflow_create((int)n, (int)(5 * n));
+    if (!seg->rgb || !seg->object || !k->bgc || !k->use || !k->lab || !k->idx || !k->nlw || !k->l_bg || !k->g)
+        return -1;
 
     /* The backdrop first from a ring along the image border (6% of the
      * shorter side), robustly: a stand or a caption reaching the border
      * weighs nothing. */
+    uint8_t *use = k->use;
     int ring = (int)(0.06 * (w < h ? w : h)) + 2;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++)
             use[(size_t)y * w + x] = x < ring || y < ring || x >= w - ring || y >= h - ring;
     if (recon_backdrop_fit(&seg->model.backdrop, seg->rgb, w, h, use, 1, 6, 4) != 0 ||
         recon_colour_model_prepare(&seg->model) != 0)
-        goto out;
-    eval_backdrop(&seg->model.backdrop, bgc);
+        return -1;
+    eval_backdrop(&seg->model.backdrop, k->bgc);
     /* The initial object: what the backdrop cannot explain. */
     for (size_t p = 0; p < n; p++) {
         double d[3];
         for (int c = 0; c < 3; c++)
-            d[c] = seg->rgb[3 * p + c] - bgc[3 * p + c];
+            d[c] = seg->rgb[3 * p + c] - k->bgc[3 * p + c];
         seg->object[p] = quad3(seg->model.bg_icov, d) > INIT_CHI2;
     }
-
     seg->beta = recon_contrast_beta(seg->rgb, w, h);
-    smoothness_weights(seg, nlw);
-    for (int r = 0; r < ROUNDS; r++) {
-        free(area);
-        area = NULL;
-        int nc = recon_mask_label(seg->object, w, h, lab, &area);
-        if (nc < 0)
-            goto out;
-        int main_c = largest_component(area, nc);
-        if (!main_c) {
-            rc = 1;
-            goto out;
-        }
-        /* Models from the current labels: the object's colours from its
-         * largest component, the backdrop from the pixels at least 2 px
-         * from any object. */
-        if (fit_object_model(seg, lab, main_c, idx) != 0) {
-            rc = 1;
-            goto out;
-        }
-        /* The axis of the symmetry links comes from the initial object
-         * (what the backdrop cannot explain: a highlight that the colour
-         * models will take for backdrop is still there), and the rounds
-         * keep it: only the colour models change, so only the t-links are
-         * rebuilt. */
-        if (r == 0) {
-            maxflow_reset(g);
-            add_smoothness(g, nlw, w, h);
-            for (size_t p = 0; p < n; p++)
-                use[p] = lab[p] == main_c;
-            seg->have_axis = recon_mask_axis(use, w, h, &seg->axis_x0, &seg->axis_slope) == 0;
-            if (seg->have_axis)
-                add_symmetry(g, seg);
-        } else {
-            maxflow_reset_terminals(g);
-        }
-        add_data_terms(g, seg, bgc);
-        maxflow_solve(g);
-        for (size_t p = 0; p < n; p++)
-            seg->object[p] = (uint8_t)maxflow_source_side(g, (int)p);
-        seg->rounds = r + 1;
+    smoothness_weights(seg, k->nlw);
+    return 0;
+}
+
+int recon_segment_models(recon_segmentation *seg)
+{
+    recon_segment_work *k = seg->work;
+    const int w = seg->w, h = seg->h;
+    free(k->area);
+    k->area = NULL;
+    int nc = recon_mask_label(seg->object, w, h, k->lab, &k->area);
+    if (nc < 0)
+        return -1;
+    k->main_c = largest_component(k->area, nc);
+    /* Models from the current labels: the object's colours from its
+     * largest component. */
+    if (!k->main_c || fit_object_model(seg, k->lab, k->main_c, k->idx) != 0)
+        return 1;
+    /* The axis of the symmetry links comes from the initial object (what
+     * the backdrop cannot explain: a highlight that the colour models will
+     * take for backdrop is still there), and the rounds keep it. */
+    if (seg->rounds == 0) {
+        for (size_t p = 0; p < (size_t)w * h; p++)
+            k->use[p] = k->lab[p] == k->main_c;
+        seg->have_axis = recon_mask_axis(k->use, w, h, &seg->axis_x0, &seg->axis_slope) == 0;
     }
-    rc = 0;
-out:
-    maxflow_destroy(g);
-    free(area);
-    free(lab);
-    free(idx);
-    free(nlw);
-    free(use);
-    free(bgc);
-    return rc;
+    return 0;
+}
+
+void recon_segment_data_terms(recon_segmentation *seg)
+{
+    recon_segment_work *k = seg->work;
+    const int w = seg->w, h = seg->h;
+    const double border = log((1 - BORDER_PRIOR_EPS) / BORDER_PRIOR_EPS);
+    /* the mixture converged: the last round's t-links stand (and its cut) */
+    if (seg->rounds > 0 && same_gmm(&seg->model.object, &k->last_object))
+        return;
+    k->last_object = seg->model.object;
+    memset(&k->memo, 0, sizeof k->memo);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int p = y * w + x;
+            const float *c = seg->rgb + 3 * (size_t)p;
+            /* the backdrop's part depends on neither the object's model nor
+             * the labels: the first round's serves them all */
+            if (seg->rounds == 0) {
+                int q = seg->have_axis ? recon_segment_mirror(seg, p) : -1;
+                k->l_bg[p] = backdrop_log_likelihood(&seg->model, c, k->bgc + 3 * (size_t)p,
+                                                     q >= 0 ? seg->rgb + 3 * (size_t)q : NULL,
+                                                     q >= 0 ? k->bgc + 3 * (size_t)q : NULL);
+            }
+            double co = object_cost(&seg->model, &k->memo, c), cb = cost_not_object(&seg->model, c, k->l_bg[p]);
+            if (x == 0 || y == 0 || x == w - 1 || y == h - 1)
+                co += border;
+            double lo = co < cb ? co : cb;
+            /* the source side is the object: a pixel left on the sink side pays cb */
+            k->t_src[p] = cb - lo;
+            k->t_snk[p] = co - lo;
+        }
+}
+
+int recon_segment_cut(recon_segmentation *seg)
+{
+    recon_segment_work *k = seg->work;
+    const int w = seg->w, h = seg->h;
+    const size_t n = (size_t)w * h;
+    /* The links stay; later rounds change only the t-links and go on from
+     * the last round's flow. */
+    if (seg->rounds == 0) {
+        maxflow_reset(k->g);
+        add_smoothness(k->g, k->nlw, w, h);
+        if (seg->have_axis)
+            add_symmetry(k->g, seg);
+        for (size_t p = 0; p < n; p++)
+            maxflow_add_terminals(k->g, (int)p, k->t_src[p], k->t_snk[p]);
+    } else {
+        for (size_t p = 0; p < n; p++)
+            maxflow_set_terminals(k->g, (int)p, k->t_src[p], k->t_snk[p]);
+    }
+    maxflow_solve(k->g);
+    for (size_t p = 0; p < n; p++)
+        seg->object[p] = (uint8_t)maxflow_source_side(k->g, (int)p);
+    seg->rounds++;
+    return 0;
+}
+
+static void work_free(recon_segment_work *k)
+{
+    if (!k)
+        return;
+    maxflow_destroy(k->g);
+    free(k->area);
+    free(k->lab);
+    free(k->idx);
+    free(k->nlw);
+    free(k->use);
+    free(k->bgc);
+    free(k->l_bg);
+    free(k);
+}
+
+int recon_segment(const image_t *img, recon_segmentation *seg)
+{
+    if (recon_segment_start(img, seg) != 0)
+        return -1;
+    for (int r = 0; r < ROUNDS; r++) {
+        int rc = recon_segment_models(seg);
+        if (rc != 0)
+            return rc;
+        recon_segment_data_terms(seg);
+        if (recon_segment_cut(seg) != 0)
+            return -1;
+    }
+    /* the rounds' buffers are not needed after them */
+    work_free(seg->work);
+    seg->work = NULL;
+    return 0;
 }
 
 void recon_segmentation_free(recon_segmentation *seg)
 {
+    work_free(seg->work);
     free(seg->rgb);
     free(seg->object);
     memset(seg, 0, sizeof *seg);

@@ -23,6 +23,14 @@
 #include "segment/backdrop.h"
 #include "segment/gmm.h"
 
+/* The symmetry link, of the low-resolution rounds and the full-resolution
+ * refinement alike: the prior probability that a pixel and its mirror image
+ * across the axis differ is eps = 2%, so a differing pair costs
+ * log((1 - eps) / eps) = 3.9 nats. A cast shadow or a reflection of the room
+ * in the backdrop, which the colour models leave nearly undecided, goes with
+ * its mirror; a handle, whose colours are plainly the object's, stays. */
+#define SYMMETRY_EPS 0.02
+
 /* The colour models that decide what a pixel is; shared by the low-resolution
  * rounds and the full-resolution refinement. */
 typedef struct {
@@ -35,6 +43,8 @@ typedef struct {
     recon_gmm support;
 } recon_colour_model;
 
+typedef struct recon_segment_work recon_segment_work;
+
 typedef struct recon_segmentation_s {
     int factor;         /* full-resolution pixels per low-resolution pixel, per side */
     int w, h;           /* low-resolution size */
@@ -45,14 +55,31 @@ typedef struct recon_segmentation_s {
     double axis_x0, axis_slope; /* the axis at low resolution: x = axis_x0 + axis_slope * (y + 0.5) */
     double beta;        /* of the contrast-sensitive links: 1 / (2 <|dc|^2>) over neighbour pairs */
     int rounds;
+    recon_segment_work *work; /* the rounds' buffers and graph, between the steps below */
 } recon_segmentation;
+
+/* The object's costs of the colours seen so far under one colour model, by
+ * colour: the cost is a function of the colour alone, and a photo repeats
+ * colours (8-bit channels, flat backdrops), while the mixture's exp and log
+ * are most of a pixel's data term. Direct-mapped; all zero is empty (calloc,
+ * or memset when the model changes). */
+enum { RECON_COST_MEMO_BITS = 12 };
+typedef struct {
+    struct {
+        float c[3];
+        int used;
+        double cost;
+    } e[1 << RECON_COST_MEMO_BITS];
+} recon_cost_memo;
 
 /* Costs of one colour c whose backdrop colour is backdrop_c: -log p(c |
  * object) and -log p(c | not object). mirror_c and its backdrop colour (both
  * NULL when unknown) are the pixel's mirror image across the axis: a shadow
- * is unlikely where the mirror is darkened alike. */
-void recon_colour_costs(const recon_colour_model *m, const float *c, const float *backdrop_c, const float *mirror_c,
-                        const float *mirror_backdrop_c, double *cost_object, double *cost_backdrop);
+ * is unlikely where the mirror is darkened alike. memo: NULL, or the object
+ * costs already computed under m. */
+void recon_colour_costs(const recon_colour_model *m, recon_cost_memo *memo, const float *c, const float *backdrop_c,
+                        const float *mirror_c, const float *mirror_backdrop_c, double *cost_object,
+                        double *cost_backdrop);
 
 /* Sets the backdrop and shadow terms of m from its backdrop's residual
  * covariance and the priors (which depend on have_support). Returns 0, or -1
@@ -70,6 +97,24 @@ double recon_segment_link(const recon_segmentation *seg, int p, int q, int diago
 /* Runs the segmentation. Returns 0, 1 when nothing in the photo differs from
  * its backdrop, or -1 when out of memory. */
 int recon_segment(const image_t *img, recon_segmentation *seg);
+
+/* recon_segment's steps, in order (bench/bench_recon.c times each; seg is
+ * freed by recon_segmentation_free whatever they return):
+ *   start       the box-filtered colours, the backdrop fitted on the border
+ *               ring, the initial object (what the backdrop cannot explain),
+ *               the contrast-sensitive link weights; 0, or -1;
+ * then per round
+ *   models      the object's colour mixture from the largest component of
+ *               the current labels (the first round also fixes the symmetry
+ *               axis from it); 0, 1 when there is no object, or -1;
+ *   data_terms  every pixel's t-links from the colour models;
+ *   cut         the min-cut: the first round builds the graph, the later
+ *               ones change its t-links and go on from the last flow;
+ *               updates object and rounds; 0, or -1. */
+int recon_segment_start(const image_t *img, recon_segmentation *seg);
+int recon_segment_models(recon_segmentation *seg);
+void recon_segment_data_terms(recon_segmentation *seg);
+int recon_segment_cut(recon_segmentation *seg);
 void recon_segmentation_free(recon_segmentation *seg);
 
 /* The mirror image of low-resolution pixel p across the axis, or -1 outside. */
