@@ -18,7 +18,7 @@ static void usage(FILE *f)
 {
     fprintf(f, "usage: celadon render SCENE.xml -o OUT.{exr,png,jpg} [--spp N] [--res WxH]\n"
                "                      [--geometry analytic|mesh:N] [--threads N] [--seed S]\n"
-               "                      [-D name=value]... [--aov depth,normal,albedo]\n\n"
+               "                      [--sampler NAME] [-D name=value]... [--aov depth,normal,albedo]\n\n"
                "Renders a Mitsuba 3 scene (docs/scene-format.md) with the `path` integrator.\n"
                "SORs are intersected exactly unless --geometry mesh:N revolves them into N\n"
                "angular segments traced by Embree (same sampler seeds otherwise).\n\n"
@@ -28,6 +28,8 @@ static void usage(FILE *f)
                "  --geometry G    analytic (default) or mesh:N, N >= 3\n"
                "  --threads N     OpenMP threads (default: all cores)\n"
                "  --seed S        sampler seed (default: the scene's)\n"
+               "  --sampler NAME  sampler plugin instead of the scene's, with its sample count and seed:\n"
+               "                  independent, stratified, multijitter, orthogonal, ldsampler, zsobol\n"
                "  -D name=value   sets a scene <default> parameter\n"
                "  --aov LIST      extra EXR channels: depth, normal, albedo\n"
                "Ctrl-C stops the render and writes the image it has so far.\n");
@@ -98,6 +100,11 @@ int cmd_render(int argc, char **argv)
             if (cli_parse_int(val, 0, (long long)(~0ull >> 1), &v) != 0)
                 return cli_usage_error("render", "--seed wants a non-negative integer, not '%s'", val);
             bo.seed = v;
+        } else if (!strcmp(a, "--sampler")) {
+            if (!scene_plugin_find(SCENE_SAMPLER, val))
+                return cli_usage_error("render", "--sampler wants independent, stratified, multijitter, orthogonal, "
+                                                 "ldsampler or zsobol, not '%s'", val);
+            bo.sampler = val;
         } else if (!strcmp(a, "-D")) {
             const char *eq = strchr(val, '=');
             if (!eq || eq == val || ndefs == MAX_DEFINES)

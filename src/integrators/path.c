@@ -16,6 +16,25 @@ typedef struct {
     bool hide_emitters;
 } path_data;
 
+/* The sample dimensions of the vertex at each depth, in this order from
+ * SAMPLER_DIM_INTEGRATOR + depth * DIMS_PER_VERTEX, used for the same
+ * purpose at every depth of every path whatever it does (skipped numbers are
+ * never drawn), so a stratifying sampler stratifies each (samplers.h). */
+enum {
+    DIM_LIGHT_PICK = 0,     /* 1D: which emitter */
+    DIM_LIGHT_POINT = 1,    /* 2D: where on it */
+    DIM_LIGHT_PART = 3,     /* 1D: which part (a mesh's triangle) */
+    DIM_BSDF_LOBE = 4,      /* 1D */
+    DIM_BSDF_DIRECTION = 5, /* 2D */
+    DIM_ROULETTE = 7,       /* 1D */
+    DIMS_PER_VERTEX = 8,
+};
+
+static uint32_t vertex_dim(int depth, int which)
+{
+    return (uint32_t)(SAMPLER_DIM_INTEGRATOR + depth * DIMS_PER_VERTEX + which);
+}
+
 /* A ray leaving hit toward w, lifted off the surface on w's side. */
 static ray3 spawn(const surface_hit *h, vec3 w)
 {
@@ -68,13 +87,16 @@ static rgb transmittance(const shape_list *shapes, const surface_hit *h, const e
 }
 
 static rgb next_event(const integrator_scene *sc, const surface_hit *h, const bsdf_t *b, const bsdf_query *q,
-                      sampler_stream *smp, int max_sheets)
+                      sampler_stream *smp, int depth, int max_sheets)
 {
     int n = sc->emitters->count;
+    sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_PICK));
     int k = (int)(sampler_next_1d(smp) * n);
     k = k < n ? k : n - 1;
-    double uz = sampler_next_1d(smp);
+    sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_POINT));
     vec2 uxy = sampler_next_2d(smp);
+    sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_PART));
+    double uz = sampler_next_1d(smp);
     vec3 u = v3(uxy.x, uxy.y, uz);
     emitter_sample_rec es;
     if (!emitter_sample(sc->emitters->items[k], h->p, u, &es) || !(es.pdf > 0.0) || rgb_is_black(es.value))
@@ -141,11 +163,13 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         if ((bsdf_flags(sh->bsdf) & BSDF_SMOOTH) && emitters->count > 0) {
             /* The emitter at depth + 1 + sheets must not pass max_depth - 1. */
             int max_sheets = pd->max_depth < 0 ? -1 : pd->max_depth - 2 - depth;
-            L = rgb_add(L, rgb_mul(beta, next_event(sc, &hit, sh->bsdf, &q, smp, max_sheets)));
+            L = rgb_add(L, rgb_mul(beta, next_event(sc, &hit, sh->bsdf, &q, smp, depth, max_sheets)));
         }
 
         bsdf_sample_rec bs;
+        sampler_seek(smp, vertex_dim(depth, DIM_BSDF_LOBE));
         double u1 = sampler_next_1d(smp);
+        sampler_seek(smp, vertex_dim(depth, DIM_BSDF_DIRECTION));
         vec2 u2 = sampler_next_2d(smp);
         if (!bsdf_sample(sh->bsdf, &q, u1, u2, &bs) || rgb_is_black(bs.weight))
             break;
@@ -165,6 +189,7 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         double beta_max = rgb_max(beta) * eta * eta;
         if (depth + 1 >= pd->rr_depth) {
             double survive = fmin(beta_max, 0.95);
+            sampler_seek(smp, vertex_dim(depth, DIM_ROULETTE));
             if (sampler_next_1d(smp) >= survive)
                 break;
             beta = rgb_scale(beta, 1.0 / survive);

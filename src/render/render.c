@@ -66,9 +66,9 @@ static uint64_t render_tile(const scene_t *s, film_t *film, unsigned aovs, int t
                     return n;
                 sampler_stream smp;
                 sampler_start(&s->sampler, &smp, (uint32_t)x, (uint32_t)y, (uint32_t)k);
-                /* The film position: two 1D numbers, x first. */
-                double sx = sampler_next_1d(&smp), sy = sampler_next_1d(&smp);
-                camera_ray_t cr = camera_ray(cam, x, y, sx, sy);
+                sampler_seek(&smp, SAMPLER_DIM_FILM);
+                vec2 film_pos = sampler_next_2d(&smp);
+                camera_ray_t cr = camera_ray(cam, x, y, film_pos.x, film_pos.y);
                 rgb L = integrator_li(s->integrator, &sc, &cr.ray, cr.tmin, cr.tmax, &smp, aovs ? aov : NULL);
                 pack_values(L, aov, aovs, vals);
                 film_add(film, x, y, vals, 1.0);
