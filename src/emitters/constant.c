@@ -29,7 +29,15 @@ static double constant_pdf_env(const emitter_t *e, vec3 dir)
     return warp_uniform_sphere_pdf();
 }
 
-static const emitter_ops constant_ops = {constant_sample, NULL, NULL, constant_eval_env, constant_pdf_env, NULL};
+/* A surface facing it receives pi L. */
+static void constant_bounds(const emitter_t *e, light_bounds *out)
+{
+    const constant_data *d = e->data;
+    emitter_bounds_infinite(M_PI * rgb_max(d->value), out);
+}
+
+static const emitter_ops constant_ops = {constant_sample,   NULL, NULL, constant_eval_env, constant_pdf_env,
+                                         NULL,              constant_bounds};
 
 static emitter_t *constant_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

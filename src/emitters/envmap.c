@@ -17,6 +17,7 @@
 typedef struct {
     int width, height;
     rgb *pixels;            /* linear, row 0 = the top (+y, theta = 0) */
+    double mean_max;        /* the mean over the sphere of the largest of RGB */
     distribution2d dist;    /* over (u, v) cells, luminance x sin(theta) */
     transform4 to_world, to_local;
     double scale;
@@ -42,6 +43,8 @@ static int envmap_load(envmap_data *env, const char *path, char *err, size_t err
         snprintf(err, errlen, "cannot load '%s' as an environment map", path);
         return -1;
     }
+    double weight = 0.0;
+    env->mean_max = 0.0;
     for (int y = 0; y < h; y++) {
         double sin_t = sin(M_PI * (y + 0.5) / h);
         for (int x = 0; x < w; x++) {
@@ -52,9 +55,11 @@ static int envmap_load(envmap_data *env, const char *path, char *err, size_t err
             c = rgb_make(fmax(c.r, 0.0), fmax(c.g, 0.0), fmax(c.b, 0.0));
             env->pixels[(size_t)y * w + x] = c;
             f[(size_t)y * w + x] = rgb_luminance(c) * sin_t;
+            env->mean_max += rgb_max(c) * sin_t, weight += sin_t;
         }
     }
     image_free(&img);
+    env->mean_max = weight > 0.0 ? env->mean_max / weight : 0.0;
     int rc = distribution2d_init(&env->dist, f, w, h);
     free(f);
     if (rc != 0) {
@@ -122,7 +127,15 @@ static void envmap_release(void *data)
         distribution2d_free(&env->dist);
 }
 
-static const emitter_ops envmap_ops = {envmap_sample, NULL, NULL, envmap_eval_env, envmap_pdf_env, envmap_release};
+/* A surface receives pi times the mean radiance (a uniform map's). */
+static void envmap_bounds(const emitter_t *e, light_bounds *out)
+{
+    const envmap_data *env = e->data;
+    emitter_bounds_infinite(M_PI * env->scale * env->mean_max, out);
+}
+
+static const emitter_ops envmap_ops = {envmap_sample, NULL,           NULL,         envmap_eval_env,
+                                       envmap_pdf_env, envmap_release, envmap_bounds};
 
 static emitter_t *envmap_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

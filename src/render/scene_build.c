@@ -185,6 +185,8 @@ static int build_all(struct scene *s, scene_desc *desc, const scene_options *opt
         snprintf(err, errlen, "%s", msg);
         return -1;
     }
+    if (emitter_list_commit(&s->emitters) != 0)
+        return scene_obj_error(root, err, errlen, "out of memory");
     return shape_list_commit(&s->shapes, err, errlen);
 }
 
