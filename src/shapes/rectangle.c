@@ -5,19 +5,12 @@
  * (sampling.h). */
 #include "shapes/shape_impl.h"
 
-/* The world rectangle: corner (-1,-1) and the edges to (1,-1) and (-1,1). */
-static void world_rectangle(const shape_t *sh, vec3 *corner, vec3 *eu, vec3 *ev)
-{
-    *corner = transform_point(&sh->to_world, v3(-1.0, -1.0, 0.0));
-    *eu = transform_vector(&sh->to_world, v3(2.0, 0.0, 0.0));
-    *ev = transform_vector(&sh->to_world, v3(0.0, 2.0, 0.0));
-}
-
+/* The world rectangle (solid_angle_frame): corner (-1,-1) and the edges to
+ * (1,-1) and (-1,1). */
 static double rectangle_solid_angle(const shape_t *sh, vec3 ref, spherical_rect *r)
 {
-    vec3 corner, eu, ev;
-    world_rectangle(sh, &corner, &eu, &ev);
-    double s = spherical_rect_init(r, ref, corner, eu, ev);
+    const vec3 *f = sh->solid_angle_frame;
+    double s = spherical_rect_init(r, ref, f[0], f[1], f[2]);
     return s >= SHAPE_MIN_SOLID_ANGLE ? s : 0.0;
 }
 
@@ -37,9 +30,8 @@ static double rectangle_sa_sample(const shape_t *sh, vec3 ref, vec2 u, surface_h
     double s = rectangle_solid_angle(sh, ref, &r);
     if (!(s > 0.0))
         return 0.0;
-    vec3 corner, eu, ev;
-    world_rectangle(sh, &corner, &eu, &ev);
-    vec3 d = v3_sub(spherical_rect_sample(&r, u), corner);
+    vec3 eu = sh->solid_angle_frame[1], ev = sh->solid_angle_frame[2];
+    vec3 d = v3_sub(spherical_rect_sample(&r, u), sh->solid_angle_frame[0]);
     double a = fmin(1.0, fmax(0.0, v3_dot(d, eu) / v3_dot(eu, eu)));
     double b = fmin(1.0, fmax(0.0, v3_dot(d, ev) / v3_dot(ev, ev)));
     if (a >= b)
@@ -55,9 +47,12 @@ static int rectangle_create(scene_obj *o, const shape_options *opt, const transf
                             char *err, size_t errlen)
 {
     (void)opt;
-    vec3 eu = transform_vector(to_world, v3(1.0, 0.0, 0.0)), ev = transform_vector(to_world, v3(0.0, 1.0, 0.0));
-    if (fabs(v3_dot(eu, ev)) <= 1e-9 * v3_len(eu) * v3_len(ev))
+    vec3 eu = transform_vector(to_world, v3(2.0, 0.0, 0.0)), ev = transform_vector(to_world, v3(0.0, 2.0, 0.0));
+    if (fabs(v3_dot(eu, ev)) <= 1e-9 * v3_len(eu) * v3_len(ev)) {
         sh->solid_angle = &rectangle_spherical;
+        sh->solid_angle_frame[0] = transform_point(to_world, v3(-1.0, -1.0, 0.0));
+        sh->solid_angle_frame[1] = eu, sh->solid_angle_frame[2] = ev;
+    }
     if (shape_mesh_alloc(&sh->mesh, 4, 2) != 0)
         return scene_obj_error(o, err, errlen, "<shape type=\"%s\">: out of memory", o->type);
     shape_mesh_square_face(&sh->mesh, 0, 0, 1, 2, 1.0);

@@ -87,8 +87,10 @@ struct shape {
     void *data;
     transform4 to_world;  /* every shape's (a mesh is already placed by it) */
     double det;           /* |det| of to_world's 3x3 part */
-    /* sampling by solid angle from a point (shape_sample_from), or NULL */
+    /* sampling by solid angle from a point (shape_sample_from), or NULL,
+     * and what it keeps (a rectangle: its world corner and edges) */
     const shape_solid_angle_ops *solid_angle;
+    vec3 solid_angle_frame[3];
     /* what light selection needs of an emitting shape (shape_prepare_sampling) */
     double area;          /* world */
     vec3 bounds_lo, bounds_hi;      /* world, axis-aligned */
