@@ -17,12 +17,12 @@
  * starting the program and building the scene, which the line's intercept
  * takes, is left out, as the Cycles comparison leaves Blender's out.
  *
- *   bench_efficiency [--bin CELADON] [--scene NAME]... [--res WxH] [--spp N,N,...]
- *                    [--repeat R] [--ref-spp N] [--sampler NAME] [--threads T]
+ *   bench_efficiency [--bin CELADON] [--scenes DIR] [--scene NAME]... [--res WxH]
+ *                    [--spp N,N,...] [--repeat R] [--ref-spp N] [--sampler NAME] [--threads T]
  *
  * Defaults: the binary $CELADON_BIN (else build/celadon), scenes studio,
- * cornell-sor and showcase (scenes/NAME/scene.xml, from the repository
- * root), 320x180, 4,16,64 spp, 2 seeds each, 2 threads, the scene's own
+ * cornell-sor and showcase (DIR/NAME/scene.xml, DIR = scenes, from the
+ * repository root; an older binary wants its own commit's scenes), 320x180, 4,16,64 spp, 2 seeds each, 2 threads, the scene's own
  * sampler. The reference (2048 spp, zsobol, rendered once by build/celadon
  * and kept in out/bench/efficiency/) is the same for every binary, so an
  * older binary (--bin) is measured against the same truth ("before"). */
@@ -45,7 +45,7 @@ extern char **environ;
 enum { MAX_SCENES = 8, MAX_SPP = 8, MAX_REPEAT = 8 };
 
 typedef struct {
-    const char *bin, *ref_bin, *sampler;
+    const char *bin, *ref_bin, *sampler, *scene_dir;
     const char *scenes[MAX_SCENES];
     int nscenes;
     int width, height, threads, repeat, ref_spp;
@@ -80,7 +80,7 @@ static double render(const options *o, const char *bin, const char *scene, int s
                      const char *out)
 {
     char path[512], spp_s[32], res_s[64], thr_s[32], seed_s[32];
-    snprintf(path, sizeof path, "scenes/%s/scene.xml", scene);
+    snprintf(path, sizeof path, "%s/%s/scene.xml", bin == o->ref_bin ? "scenes" : o->scene_dir, scene);
     snprintf(spp_s, sizeof spp_s, "%d", spp);
     snprintf(res_s, sizeof res_s, "%dx%d", o->width, o->height);
     snprintf(thr_s, sizeof thr_s, "%d", o->threads);
@@ -230,7 +230,7 @@ static int parse_list(const char *s, int *out, int max)
 int main(int argc, char **argv)
 {
     const char *env_bin = getenv("CELADON_BIN");
-    options o = {.bin = env_bin ? env_bin : "build/celadon", .ref_bin = "build/celadon", .width = 320,
+    options o = {.bin = env_bin ? env_bin : "build/celadon", .ref_bin = "build/celadon", .scene_dir = "scenes", .width = 320,
                  .height = 180, .threads = 2, .repeat = 2, .ref_spp = 2048, .spp = {4, 16, 64}, .nspp = 3};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -247,6 +247,8 @@ int main(int argc, char **argv)
             ok = (o.repeat = atoi(v)) >= 1 && o.repeat <= MAX_REPEAT;
         else if (ok && !strcmp(a, "--ref-spp"))
             ok = (o.ref_spp = atoi(v)) >= 1;
+        else if (ok && !strcmp(a, "--scenes"))
+            o.scene_dir = v;
         else if (ok && !strcmp(a, "--sampler"))
             o.sampler = v;
         else if (ok && !strcmp(a, "--threads"))

@@ -24,6 +24,7 @@ typedef struct {
 struct light_tree {
     tree_node *nodes;
     int n_nodes, root;  /* root -1: no finite light worth picking */
+    bool only_one;      /* one finite light, no infinite one: always it */
     int *leaf_of;       /* per emitter: its leaf, or -1 */
     double *inf_phi;    /* per emitter: phi of an infinite one, else 0 */
     double inf_total;
@@ -232,6 +233,7 @@ int emitter_list_commit(emitter_list *l)
         items[finite++] = (build_item){b, i, v3_scale(v3_add(b.lo, b.hi), 0.5)};
     }
     t->root = finite > 0 ? build(t, items, finite, -1) : -1;
+    t->only_one = finite == 1 && !(t->inf_total > 0.0);
     free(items);
     return finite > 0 && t->root < 0 ? -1 : 0;
 }
@@ -250,10 +252,14 @@ void light_tree_destroy(light_tree *t)
 
 static double below_one(double u) { return u < 0x1.fffffffffffffp-1 ? u : 0x1.fffffffffffffp-1; }
 
+/* With one light to pick, picking it where it cannot shine costs nothing
+ * its sampler would not refuse anyway: no importance is computed. */
 const emitter_t *emitter_list_pick(const emitter_list *l, const emitter_ref *ref, double u, double *pmf)
 {
     const light_tree *t = l->tree;
-    *pmf = 0.0;
+    *pmf = t->only_one ? 1.0 : 0.0;
+    if (t->only_one)
+        return l->items[t->nodes[t->root].light];
     double tree = t->root >= 0 ? importance(&t->nodes[t->root].b, ref) : 0.0, total = tree + t->inf_total;
     if (!(total > 0.0))
         return NULL;
@@ -293,14 +299,16 @@ const emitter_t *emitter_list_pick(const emitter_list *l, const emitter_ref *ref
 double emitter_list_pmf(const emitter_list *l, const emitter_ref *ref, const emitter_t *e)
 {
     const light_tree *t = l->tree;
+    int node = t->leaf_of[e->index];
+    if (node < 0 && !(t->inf_phi[e->index] > 0.0))
+        return 0.0; /* never picked: no importance needed */
+    if (t->only_one)
+        return 1.0;
     double tree = t->root >= 0 ? importance(&t->nodes[t->root].b, ref) : 0.0, total = tree + t->inf_total;
     if (!(total > 0.0))
         return 0.0;
-    if (t->inf_phi[e->index] > 0.0)
-        return t->inf_phi[e->index] / total;
-    int node = t->leaf_of[e->index];
     if (node < 0)
-        return 0.0;
+        return t->inf_phi[e->index] / total;
     double p = tree / total;
     for (int parent = t->nodes[node].parent; parent >= 0; node = parent, parent = t->nodes[node].parent) {
         const tree_node *pn = &t->nodes[parent];
