@@ -231,6 +231,8 @@ Test(light_tree, picks_as_often_as_its_pmf_says)
     rng_t rng;
     rng_seed(&rng, 5, 5);
     bool picked_somewhere[20] = {false};
+    double reuse_sum = 0.0;
+    int reuse_n = 0;
     for (int t = 0; t < 20; t++) {
         emitter_ref ref = {v3(8.0 * rng_next_double(&rng) - 4.0, 5.0 * rng_next_double(&rng) - 0.5,
                               8.0 * rng_next_double(&rng) - 4.0),
@@ -248,13 +250,15 @@ Test(light_tree, picks_as_often_as_its_pmf_says)
         enum { N = 20000 };
         double obs[21] = {0}, expect[21];
         for (int k = 0; k < N; k++) {
-            double p;
-            const emitter_t *e = emitter_list_pick(l, &ref, (k + rng_next_double(&rng)) / N, &p);
+            double p, reuse;
+            const emitter_t *e = emitter_list_pick(l, &ref, (k + rng_next_double(&rng)) / N, &p, &reuse);
             if (!e) {
                 obs[20] += 1.0;
                 continue;
             }
             cr_assert_float_eq(p, pmf[e->index], 1e-12, "pick and pmf disagree");
+            cr_assert(reuse >= 0.0 && reuse < 1.0, "remainder %g", reuse);
+            reuse_sum += reuse, reuse_n++;
             obs[e->index] += 1.0;
         }
         for (int e = 0; e < 20; e++)
@@ -265,6 +269,9 @@ Test(light_tree, picks_as_often_as_its_pmf_says)
     }
     for (int e = 0; e < 20; e++)
         cr_expect(picked_somewhere[e] || l->items[e] == l->env, "emitter %d is never picked", e);
+    /* The remainders are uniform: their mean is 1/2 within 5 sd. */
+    cr_expect_lt(fabs(reuse_sum / reuse_n - 0.5), 5.0 * sqrt(1.0 / 12.0 / reuse_n), "remainders average %g",
+                 reuse_sum / reuse_n);
     scene_destroy(s);
     render_fixture_close(&f);
 }

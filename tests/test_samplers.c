@@ -128,8 +128,8 @@ static double l2_star_discrepancy2(const vec2 *p, int n)
 
 /* The dimensions the path integrator pairs (film, a vertex's light point
  * and BSDF direction) and some far ones. */
-static const uint32_t pair_dims[] = {SAMPLER_DIM_FILM, SAMPLER_DIM_INTEGRATOR + 1, SAMPLER_DIM_INTEGRATOR + 5,
-                                     SAMPLER_DIM_INTEGRATOR + 8 * 7 + 1, 301};
+static const uint32_t pair_dims[] = {SAMPLER_DIM_FILM, SAMPLER_DIM_INTEGRATOR + 1, SAMPLER_DIM_INTEGRATOR + 4,
+                                     SAMPLER_DIM_INTEGRATOR + 7 * 7 + 1, 301};
 enum { NPAIRS = sizeof pair_dims / sizeof pair_dims[0] };
 
 static const char *const all_samplers[] = {"independent", "stratified", "multijitter",
@@ -257,7 +257,7 @@ Test(samplers, independent_discrepancy_is_random_others_lower)
         int n = (int)s.sample_count; /* orthogonal: 25 */
         double mean = 0.0;
         for (uint32_t i = 0; i < (uint32_t)pixels; i++) {
-            pixel_points(&s, i % 64, i / 64, SAMPLER_DIM_INTEGRATOR + 5, p);
+            pixel_points(&s, i % 64, i / 64, SAMPLER_DIM_INTEGRATOR + 4, p);
             mean += l2_star_discrepancy2(p, n) / pixels;
         }
         double random = (0.25 - 1.0 / 9.0) / n;
@@ -311,7 +311,7 @@ Test(samplers, dimensions_are_not_correlated)
         double a[64], b[64];
         for (uint32_t i = 0; i < 1024; i++) {
             pixel_numbers(&s, i % 32, i / 32, SAMPLER_DIM_INTEGRATOR, a);
-            pixel_numbers(&s, i % 32, i / 32, SAMPLER_DIM_INTEGRATOR + 4, b);
+            pixel_numbers(&s, i % 32, i / 32, SAMPLER_DIM_INTEGRATOR + 3, b);
             for (int k = 0; k < s.sample_count; k++, n++)
                 sx += a[k], sy += b[k], sxy += a[k] * b[k], sxx += a[k] * a[k], syy += b[k] * b[k];
         }

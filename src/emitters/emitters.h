@@ -114,9 +114,11 @@ typedef struct {
  * probability (*pmf) in proportion to its estimated contribution there:
  * infinite emitters by their phi, the others down a bounding volume
  * hierarchy of their light_bounds, each step in proportion to the two
- * children's importance (pbrt-v4's BVHLightSampler). NULL when no emitter
- * can contribute. */
-const emitter_t *emitter_list_pick(const emitter_list *l, const emitter_ref *ref, double u, double *pmf);
+ * children's importance (pbrt-v4's BVHLightSampler). *u_reuse is u's
+ * remainder within the pick, uniform in [0, 1) again and independent of
+ * which emitter was picked. NULL when no emitter can contribute. */
+const emitter_t *emitter_list_pick(const emitter_list *l, const emitter_ref *ref, double u, double *pmf,
+                                   double *u_reuse);
 /* The probability emitter_list_pick picks e at ref (what MIS weighs a
  * BSDF-sampled hit of e with). */
 double emitter_list_pmf(const emitter_list *l, const emitter_ref *ref, const emitter_t *e);

@@ -254,10 +254,12 @@ static double below_one(double u) { return u < 0x1.fffffffffffffp-1 ? u : 0x1.ff
 
 /* With one light to pick, picking it where it cannot shine costs nothing
  * its sampler would not refuse anyway: no importance is computed. */
-const emitter_t *emitter_list_pick(const emitter_list *l, const emitter_ref *ref, double u, double *pmf)
+const emitter_t *emitter_list_pick(const emitter_list *l, const emitter_ref *ref, double u, double *pmf,
+                                   double *u_reuse)
 {
     const light_tree *t = l->tree;
     *pmf = t->only_one ? 1.0 : 0.0;
+    *u_reuse = u;
     if (t->only_one)
         return l->items[t->nodes[t->root].light];
     double tree = t->root >= 0 ? importance(&t->nodes[t->root].b, ref) : 0.0, total = tree + t->inf_total;
@@ -275,6 +277,7 @@ const emitter_t *emitter_list_pick(const emitter_list *l, const emitter_ref *ref
                 break;
         }
         *pmf = t->inf_phi[last] / total;
+        *u_reuse = below_one(fmax(0.0, x - (acc - t->inf_phi[last])) / t->inf_phi[last]);
         return l->items[last];
     }
     u = below_one((u - p_inf) / (1.0 - p_inf));
@@ -293,6 +296,7 @@ const emitter_t *emitter_list_pick(const emitter_list *l, const emitter_ref *ref
         }
     }
     *pmf = p;
+    *u_reuse = u;
     return l->items[t->nodes[node].light];
 }
 

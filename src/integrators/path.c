@@ -21,13 +21,12 @@ typedef struct {
  * purpose at every depth of every path whatever it does (skipped numbers are
  * never drawn), so a stratifying sampler stratifies each (samplers.h). */
 enum {
-    DIM_LIGHT_PICK = 0,     /* 1D: which emitter */
+    DIM_LIGHT_PICK = 0,     /* 1D: which emitter, and (its remainder) which part of it (a mesh's triangle) */
     DIM_LIGHT_POINT = 1,    /* 2D: where on it */
-    DIM_LIGHT_PART = 3,     /* 1D: which part (a mesh's triangle) */
-    DIM_BSDF_LOBE = 4,      /* 1D */
-    DIM_BSDF_DIRECTION = 5, /* 2D */
-    DIM_ROULETTE = 7,       /* 1D */
-    DIMS_PER_VERTEX = 8,
+    DIM_BSDF_LOBE = 3,      /* 1D */
+    DIM_BSDF_DIRECTION = 4, /* 2D */
+    DIM_ROULETTE = 6,       /* 1D */
+    DIMS_PER_VERTEX = 7,
 };
 
 static uint32_t vertex_dim(int depth, int which)
@@ -90,13 +89,12 @@ static rgb next_event(const integrator_scene *sc, const surface_hit *h, const bs
                       sampler_stream *smp, int depth, int max_sheets)
 {
     emitter_ref ref = {h->p, h->ng};
-    double pmf;
+    double pmf, part;
     sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_PICK));
-    const emitter_t *e = emitter_list_pick(sc->emitters, &ref, sampler_next_1d(smp), &pmf);
+    const emitter_t *e = emitter_list_pick(sc->emitters, &ref, sampler_next_1d(smp), &pmf, &part);
     sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_POINT));
     vec2 uxy = sampler_next_2d(smp);
-    sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_PART));
-    vec3 u = v3(uxy.x, uxy.y, sampler_next_1d(smp));
+    vec3 u = v3(uxy.x, uxy.y, part);
     emitter_sample_rec es;
     if (!e || !emitter_sample(e, h->p, u, &es) || !(es.pdf > 0.0) || rgb_is_black(es.value))
         return rgb_gray(0.0);
