@@ -4,7 +4,9 @@
 #include <omp.h>
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "celadon/render.h"
 #include "core/core.h"
@@ -35,6 +37,13 @@ int render_aov_parse(const char *list, unsigned *mask)
             return -1;
     }
     return 0;
+}
+
+static double thread_cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* Film values of one sample: RGB, then the requested AOVs in order. */
@@ -101,6 +110,12 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
     progress_t bar;
     if (opt->progress)
         progress_begin(&bar, "render", total);
+    double *pass_cpu = calloc((size_t)threads, sizeof *pass_cpu), busy = 0.0, idle = 0.0;
+    if (!pass_cpu) {
+        film_free(film);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
     double t_start = now_seconds();
     for (int s0 = 0; s0 < spp && !stop_requested; s0 += pass_spp) {
         int s1 = s0 + pass_spp < spp ? s0 + pass_spp : spp;
@@ -109,7 +124,9 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
             if (stop_requested)
                 continue;
             int tx = (t % tiles_x) * TILE, ty = (t / tiles_x) * TILE;
+            double c0 = thread_cpu_seconds();
             uint64_t add = render_tile(s, film, opt->aovs, tx, ty, s0, s1), now;
+            pass_cpu[omp_get_thread_num()] += thread_cpu_seconds() - c0;
 #pragma omp atomic capture
             now = done += add;
             if (opt->progress && omp_get_thread_num() == 0) {
@@ -119,7 +136,13 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
                 progress_update(&bar, now, extra);
             }
         }
+        double most = 0.0;
+        for (int i = 0; i < threads; i++)
+            most = pass_cpu[i] > most ? pass_cpu[i] : most;
+        for (int i = 0; i < threads; i++)
+            busy += pass_cpu[i], idle += most - pass_cpu[i], pass_cpu[i] = 0.0;
     }
+    free(pass_cpu);
     double secs = now_seconds() - t_start;
     if (opt->progress) {
         if (!stop_requested)
@@ -134,6 +157,8 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
         stats->seconds = secs;
         stats->samples = done;
         stats->interrupted = stop_requested != 0;
+        stats->busy_cpu_seconds = busy;
+        stats->idle_cpu_seconds = idle;
     }
     stop_requested = 0;
     return 0;
