@@ -4,10 +4,11 @@
 
 CC      ?= cc
 CXX     ?= c++
-PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd
+PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd libxxhash zlib
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
-            libmicrohttpd-dev libcsv-dev chromium
+            libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
+            zlib1g-dev
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
@@ -16,12 +17,28 @@ PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lembree3 -lcsv
 WARN     := -Wall -Wextra -Werror
 CFLAGS   ?= -O2 -g
 CXXFLAGS ?= -O2 -g
-ALL_CFLAGS   = -std=c11 -D_GNU_SOURCE $(WARN) -fopenmp -Iinclude -Isrc $(PKG_CFLAGS) $(CFLAGS)
+ALL_CFLAGS   = -std=c11 -D_GNU_SOURCE $(WARN) -fopenmp -Iinclude -Isrc $(PKG_CFLAGS) $(MPI_CFLAGS) $(CFLAGS)
 ALL_CXXFLAGS = -std=c++17 $(WARN) -Iinclude -Isrc $(PKG_CFLAGS) $(CXXFLAGS)
-LDLIBS   = $(PKG_LIBS) -fopenmp -lstdc++ -lm
+LDLIBS   = $(PKG_LIBS) $(MPI_LIBS) -fopenmp -lstdc++ -lm
 SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
 LIB_C    := $(shell find src -name '*.c' ! -path 'src/cli/*' | sort)
+
+# MPI is optional (docs/distributed.md): with Open MPI's development files
+# (`make deps` installs them) `celadon render` under mpirun shares its work
+# among the ranks (src/render/distribute_mpi.c); without them it builds
+# src/render/distribute_serial.c and refuses to run as several ranks.
+# `make HAVE_MPI=0` builds without MPI where it is installed.
+ifndef HAVE_MPI
+HAVE_MPI := $(shell pkg-config --exists ompi-c 2>/dev/null && echo 1 || echo 0)
+endif
+ifeq ($(HAVE_MPI),1)
+MPI_CFLAGS := -DCELADON_HAVE_MPI $(shell pkg-config --cflags ompi-c)
+MPI_LIBS   := $(shell pkg-config --libs ompi-c)
+LIB_C      := $(filter-out src/render/distribute_serial.c,$(LIB_C))
+else
+LIB_C      := $(filter-out src/render/distribute_mpi.c,$(LIB_C))
+endif
 LIB_CXX  := $(shell find src -name '*.cpp' | sort)
 CLI_C    := $(shell find src/cli -name '*.c' | sort)
 TEST_C   := $(shell find tests -name '*.c' ! -path 'tests/tools/*' | sort)
@@ -170,13 +187,39 @@ bench-render: check-deps-stamp
 	build/bench/bench_render | tee out/bench/bench_render.txt
 
 # ---------------------------------------------------------------- demo and benchmarks
+# The test drawers of synthetic photographs: bench_recon links the vessel's,
+# the tools in tests/tools/ the scene's too.
+SYNTH_C := $(addprefix tests/support/,synth_vessel.c synth_body.c synth_profile.c synth_raster.c)
+SCENE_C := $(SYNTH_C) $(addprefix tests/support/,synth_scene.c synth_scene_layers.c synth_noise.c synth_jpeg.c)
+build/tools/%: tests/tools/%.c $(SCENE_C) build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(SCENE_C) build/opt/libceladon.a $(LDLIBS)
+
+# `make hard-cases` draws the named hard cases of tests/support/synth_scene.c
+# (the reconstruction's test photographs) into out/hard-cases/, with a contact
+# sheet and a sheet with their truth drawn on.
+.PHONY: hard-cases
+hard-cases: check-deps-stamp
+	@$(MAKE) --no-print-directory build/tools/draw_hard_cases
+	@mkdir -p out/hard-cases
+	build/tools/draw_hard_cases out/hard-cases
+
+# `make real-dev` reconstructs the real museum photographs of
+# ../shared/data/real-dev (when present) with --force into out/real-dev/, one
+# folder per photo with its overlay, and the report with every quality figure
+# in out/real-dev/report.json (docs/algorithms-recon.md, "Accuracy").
+REAL_DEV ?= ../shared/data/real-dev
+.PHONY: real-dev
+real-dev: check-deps-stamp
+	@$(MAKE) --no-print-directory build/celadon
+	@test -d $(REAL_DEV) || { echo "make real-dev: $(REAL_DEV) not found (set REAL_DEV=...)" >&2; exit 2; }
+	@rm -rf out/real-dev && mkdir -p out/real-dev
+	build/celadon reconstruct $(REAL_DEV)/*.jpg -o out/real-dev --force --json > out/real-dev.json
+	@mv out/real-dev.json out/real-dev/report.json
+
 # `make demo` reconstructs the bundled catalogue photo; `make demo-photo`
 # redraws that photo (tests/tools/draw_demo_photo.c) from its analytic vessel.
 .PHONY: demo-photo
-build/tools/draw_demo_photo: tests/tools/draw_demo_photo.c tests/support/synth_vessel.c build/opt/libceladon.a
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -o $@ tests/tools/draw_demo_photo.c tests/support/synth_vessel.c build/opt/libceladon.a $(LDLIBS)
-
 demo-photo: check-deps-stamp
 	@$(MAKE) --no-print-directory build/tools/draw_demo_photo
 	@mkdir -p scenes/demo
@@ -193,9 +236,16 @@ demo: check-deps-stamp
 BENCH_BIN := $(patsubst bench/%.c,build/bench/%,$(BENCH_C))
 # The OpenCV reference uses Debian's python3-opencv, if installed (not by deps).
 PYTHON_CV ?= /usr/bin/python3
-build/bench/bench_recon: bench/bench_recon.c tests/support/synth_vessel.c build/opt/libceladon.a
+build/bench/bench_recon: bench/bench_recon.c $(SYNTH_C) build/opt/libceladon.a
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_recon.c tests/support/synth_vessel.c build/opt/libceladon.a $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) -O3 -o $@ bench/bench_recon.c $(SYNTH_C) build/opt/libceladon.a $(LDLIBS)
+
+# The min-cut benchmark compares with igraph's max-flow (libigraph-dev); only
+# the benchmark links igraph.
+build/bench/bench_maxflow: bench/bench_maxflow.c build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(shell pkg-config --cflags igraph 2>/dev/null) -O3 -o $@ $< build/opt/libceladon.a \
+	  $(LDLIBS) $(shell pkg-config --libs igraph 2>/dev/null)
 
 bench: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon $(BENCH_BIN)

@@ -163,7 +163,7 @@ int main(int argc, char **argv)
         for (int j = 0; j < h; j++)
             for (int s = 0; s < 2; s++)
                 if (ext[s * h + j] >= 0)
-                    recon_subpixel_edge(gray, w, h, j, ext[s * h + j], s ? 1 : -1, 0.0, delta);
+                    recon_subpixel_edge(&(recon_signal){gray + (size_t)j * w, w, 1}, ext[s * h + j], s ? 1 : -1, 0.0, delta);
     });
     free(ext);
     /* The whole pipeline as the CLI, the museum and the tests run it: its

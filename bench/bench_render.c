@@ -47,7 +47,7 @@ static double timed_render(const char *scene_path, int segments, int threads)
         fprintf(stderr, "bench_render: %s\n", err);
         return -1.0;
     }
-    render_options ro = {threads, 0, 0};
+    render_options ro = {.threads = threads};
     film_t film;
     render_stats st;
     double cpu0 = cpu_seconds();

@@ -98,11 +98,12 @@ Test(film, averages_weights_and_merges)
 {
     film_t a, b;
     char err[256];
-    const film_aov aov[] = {{"depth", 1}};
+    static const char *const t[1] = {"T"};
+    const film_aov aov[] = {{"depth", 1, t}};
     cr_assert_eq(film_init(&a, 4, 3, aov, 1, err, sizeof err), 0, "%s", err);
     cr_assert_eq(film_init(&b, 4, 3, aov, 1, err, sizeof err), 0);
     cr_assert_eq(a.nchannels, 4);
-    cr_assert_str_eq(a.names[3], "depth.Y");
+    cr_assert_str_eq(a.names[3], "depth.T", "Mitsuba's name, not .Y (which EXR readers take for luminance)");
     const double s1[4] = {1, 2, 3, 10}, s2[4] = {4, 0, 0, 20};
     film_add(&a, 2, 1, s1, 1.0);
     film_add(&b, 2, 1, s2, 3.0); /* weighted 3:1 */
@@ -118,7 +119,7 @@ Test(film, averages_weights_and_merges)
             cr_assert_eq(px[i], 0.0f, "unsampled pixels are black");
     film_free(&a);
     film_free(&b);
-    const film_aov bad[] = {{"x", 2}};
+    const film_aov bad[] = {{"x", 2, NULL}};
     cr_assert_eq(film_init(&a, 4, 3, bad, 1, err, sizeof err), -1);
     cr_assert_eq(film_init(&a, 0, 3, NULL, 0, err, sizeof err), -1);
 }
@@ -127,7 +128,7 @@ Test(film, exr_float32_round_trip_is_exact)
 {
     /* 37 rows: several ZIP chunks of 16 lines, the last one partial. */
     const int w = 23, h = 37;
-    const film_aov aovs[] = {{"albedo", 3}, {"depth", 1}};
+    const film_aov aovs[] = {{"albedo", 3, NULL}, {"depth", 1, NULL}};
     film_t f;
     char err[256], path[128];
     cr_assert_eq(film_init(&f, w, h, aovs, 2, err, sizeof err), 0);

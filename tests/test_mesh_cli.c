@@ -1,6 +1,8 @@
 /* celadon mesh end to end: the binary from CELADON_BIN on a saved profile,
  * good and bad. */
 #include <criterion/criterion.h>
+#include <math.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -157,4 +159,77 @@ Test(mesh_cli, help_exits_0, .init = setup, .fini = teardown)
     char err[4096];
     cr_assert_eq(run((const char *[]){"mesh", "--help", NULL}, err, sizeof err), 0);
     cr_assert_str_empty(err);
+}
+
+/* The vertices of a binary PLY written by celadon (x y z nx ny nz s t). */
+static float *ply_vertices(const char *path, int *n)
+{
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f);
+    char line[256];
+    *n = 0;
+    while (fgets(line, sizeof line, f) && strncmp(line, "end_header", 10))
+        sscanf(line, "element vertex %d", n);
+    float *v = malloc(sizeof(float) * 8 * (size_t)*n);
+    cr_assert_eq(fread(v, sizeof(float) * 8, (size_t)*n, f), (size_t)*n);
+    fclose(f);
+    return v;
+}
+
+/* A researcher's own profile (the B-spline alone) meshes and renders; the
+ * material names the texture relative to the OBJ; --up z turns the mesh so
+ * that the axis is +z and the front faces -y. */
+Test(mesh_cli, minimal_profile_relative_texture_and_z_up, .init = setup, .fini = teardown)
+{
+    char prof[128], tex[128], obj[160], mtl[160], sub[128], ply_y[128], ply_z[128], scene[128], png[128], err[4096];
+    snprintf(prof, sizeof prof, "%s/profile.json", dir);
+    snprintf(tex, sizeof tex, "%s/texture.png", dir);
+    snprintf(sub, sizeof sub, "%s/export", dir);
+    snprintf(obj, sizeof obj, "%s/export/vase.obj", dir);
+    snprintf(mtl, sizeof mtl, "%s/export/vase.mtl", dir);
+    FILE *f = fopen(prof, "w");
+    fputs("{\"version\": 1, \"bspline\": {\"degree\": 3, \"knots\": [0, 0, 0, 0, 1, 1, 1, 1],\n"
+          "  \"control_points\": [[40, 0], [90, 60], [20, 150], [35, 200]]}}\n", f);
+    fclose(f);
+    fclose(fopen(tex, "w"));
+    cr_assert_eq(mkdir(sub, 0755), 0);
+    cr_assert_eq(run((const char *[]){"mesh", prof, "-o", obj, "--segments", "12", NULL}, err, sizeof err), 0, "%s",
+                 err);
+    cr_assert_eq(count_prefix(mtl, "map_Kd ../texture.png"), 1, "relative to the OBJ");
+
+    snprintf(ply_y, sizeof ply_y, "%s/y.ply", dir);
+    snprintf(ply_z, sizeof ply_z, "%s/z.ply", dir);
+    cr_assert_eq(run((const char *[]){"mesh", prof, "-o", ply_y, "--segments", "12", NULL}, err, sizeof err), 0);
+    cr_assert_eq(run((const char *[]){"mesh", prof, "-o", ply_z, "--segments", "12", "--up", "z", NULL}, err,
+                     sizeof err), 0, "%s", err);
+    int ny, nz;
+    float *y = ply_vertices(ply_y, &ny), *z = ply_vertices(ply_z, &nz);
+    cr_assert_eq(ny, nz);
+    float zmax = 0, front = 0;
+    for (int i = 0; i < ny; i++) {
+        const float *a = y + 8 * i, *b = z + 8 * i;
+        cr_assert(b[0] == a[0] && b[1] == -a[2] && b[2] == a[1], "vertex %d", i);
+        cr_assert(b[3] == a[3] && b[4] == -a[5] && b[5] == a[4], "normal %d", i);
+        cr_assert(b[6] == a[6] && b[7] == a[7], "uv %d", i);
+        zmax = fmaxf(zmax, b[2]);
+        if (fabsf(a[6] - 0.5f) < 1e-6f) /* the front meridian, u = 0.5 */
+            front = fminf(front, b[1]);
+    }
+    cr_assert_float_eq(zmax, 1.0f, 1e-6, "the rim at z = 1");
+    cr_assert_lt(front, 0.0f, "the front faces -y");
+    free(y);
+    free(z);
+    expect_bad((const char *[]){"mesh", prof, "-o", ply_z, "--up", "x", NULL}, "--up must be y or z", "/nonexistent");
+
+    snprintf(scene, sizeof scene, "%s/scene.xml", dir);
+    snprintf(png, sizeof png, "%s/r.png", dir);
+    f = fopen(scene, "w");
+    fputs("<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
+          "<lookat origin=\"0 0.5 -4\" target=\"0 0.5 0\" up=\"0 1 0\"/></transform></sensor>"
+          "<shape type=\"sor\"><string name=\"filename\" value=\"profile.json\"/></shape>"
+          "<emitter type=\"constant\"/></scene>\n", f);
+    fclose(f);
+    cr_assert_eq(run((const char *[]){"render", scene, "-o", png, "--res", "16x16", "--spp", "1", NULL}, err,
+                     sizeof err), 0, "%s", err);
+    cr_assert(exists(png));
 }

@@ -80,19 +80,29 @@ static accuracy run_case(const synth_params *p, const char *ext, int bits, recon
     return a;
 }
 
-static void expect_accurate(const char *what, accuracy a)
+/* Limits: what the area-based edge achieves on clean drawn images (exact up
+ * to float rounding), with a margin; a whole-pixel edge would be 0.25 px off
+ * on average and fail them. Noise, JPEG and a washed-out side get theirs. */
+typedef struct {
+    double mean, max, corner, rim;
+} limits;
+static const limits CLEAN = {0.01, 0.05, 2.0, 1.5};
+
+static void expect_within(const char *what, accuracy a, limits l)
 {
     cr_log_info("%-28s tilt err %.4f deg  profile mean %.3f max %.3f px (%d pts)  corners <= %.2f px  base %.2f "
                 "rim %.2f px",
                 what, a.tilt_err, a.mean_err, a.max_err, a.n, a.corner_err, a.base_err, a.rim_err);
     cr_expect_gt(a.n, 100, "%s: %d profile points", what, a.n);
     cr_expect_leq(a.tilt_err, 0.05, "%s: tilt error %.4f deg", what, a.tilt_err);
-    cr_expect_leq(a.mean_err, 0.25, "%s: mean profile error %.3f px", what, a.mean_err);
-    cr_expect_leq(a.max_err, 1.5, "%s: max profile error %.3f px", what, a.max_err);
-    cr_expect_leq(a.corner_err, 2.0, "%s: corner error %.2f px", what, a.corner_err);
+    cr_expect_leq(a.mean_err, l.mean, "%s: mean profile error %.3f px", what, a.mean_err);
+    cr_expect_leq(a.max_err, l.max, "%s: max profile error %.3f px", what, a.max_err);
+    cr_expect_leq(a.corner_err, l.corner, "%s: corner error %.2f px", what, a.corner_err);
     cr_expect_leq(a.base_err, 1.5, "%s: base origin error %.2f px", what, a.base_err);
-    cr_expect_leq(a.rim_err, 1.5, "%s: rim height error %.2f px", what, a.rim_err);
+    cr_expect_leq(a.rim_err, l.rim, "%s: rim height error %.2f px", what, a.rim_err);
 }
+
+static void expect_accurate(const char *what, accuracy a) { expect_within(what, a, CLEAN); }
 
 Test(recon_extract, upright_dark_on_light_vase)
 {
@@ -148,7 +158,7 @@ Test(recon_extract, jpeg_textured)
     synth_params p = synth_defaults(SYNTH_VASE, 300, 400);
     p.textured = 1;
     p.tilt_deg = 2.5;
-    expect_accurate("vase textured JPEG", run_case(&p, ".jpg", 8, NULL));
+    expect_within("vase textured JPEG", run_case(&p, ".jpg", 8, NULL), (limits){0.15, 1.5, 4.0, 1.5});
 }
 
 Test(recon_extract, textured_jar)
@@ -178,7 +188,7 @@ Test(recon_extract, sensor_noise)
     recon_result r;
     char err[256];
     cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
-    expect_accurate("bottle with noise", measure(&p, &r, 4));
+    expect_within("bottle with noise", measure(&p, &r, 4), (limits){0.03, 0.15, 2.0, 1.5});
     recon_result_free(&r);
     image_free(&img);
 }
@@ -214,7 +224,7 @@ Test(recon_extract, washed_out_side)
     char err[256];
     cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
     cr_expect_eq(r.side_used, RECON_SIDE_RIGHT);
-    expect_accurate("vase, left edge washed out", measure(&p, &r, 4));
+    expect_within("vase, left edge washed out", measure(&p, &r, 4), (limits){0.01, 0.05, 2.0, 1.6});
     recon_result_free(&r);
     image_free(&img);
 }

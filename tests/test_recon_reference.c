@@ -1,11 +1,8 @@
 /* The optimised image stages against straightforward references on random
- * inputs: the row-streamed Gaussian and Shi–Tomasi filters against direct
- * per-pixel sums in double, the word-skipping Suzuki–Abe border following
- * against a per-pixel implementation of the paper's algorithm with an int
- * label image (same borders, points, order and hierarchy), the run-based mask
- * cleaning against flood fills, Douglas–Peucker against the textbook
- * recursion with Euclidean distances, and the gray conversion against the
- * per-pixel formula. */
+ * inputs: the word-skipping Suzuki–Abe border following against a per-pixel
+ * implementation of the paper's algorithm with an int label image (same
+ * borders, points, order and hierarchy), the run-based mask cleaning against
+ * flood fills, and the gray conversion against the per-pixel formula. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdint.h>
@@ -26,67 +23,6 @@ static inline int clampi(int v, int lo, int hi) { return v < lo ? lo : (v > hi ?
 /* Sizes around the vector and word widths and the 7-row ring. */
 static const int SIZES[][2] = {{1, 1}, {2, 9}, {5, 3}, {7, 7}, {8, 8}, {9, 6}, {17, 17}, {33, 20}, {64, 41}, {101, 77}};
 enum { N_SIZES = sizeof SIZES / sizeof SIZES[0] };
-
-/* ---- Gaussian and Shi–Tomasi */
-
-Test(recon_reference, gaussian7_equals_direct_convolution)
-{
-    rng_state = 1;
-    for (int s = 0; s < N_SIZES; s++) {
-        const int w = SIZES[s][0], h = SIZES[s][1];
-        float *img = malloc((size_t)w * h * sizeof *img), *tmp = malloc((8 * (size_t)w + 6) * sizeof *tmp);
-        double *ref = malloc((size_t)w * h * sizeof *ref);
-        for (int i = 0; i < w * h; i++)
-            img[i] = (float)rnd();
-        double k[7], sum = 0;
-        for (int i = 0; i < 7; i++)
-            sum += k[i] = exp(-(i - 3) * (i - 3) / (2 * 1.4 * 1.4));
-        for (int y = 0; y < h; y++)
-            for (int x = 0; x < w; x++) {
-                double acc = 0;
-                for (int v = -3; v <= 3; v++)
-                    for (int u = -3; u <= 3; u++)
-                        acc += k[v + 3] * k[u + 3] * img[clampi(y + v, 0, h - 1) * w + clampi(x + u, 0, w - 1)];
-                ref[y * w + x] = acc / (sum * sum);
-            }
-        recon_gaussian7(img, tmp, w, h);
-        for (int i = 0; i < w * h; i++)
-            cr_assert_float_eq(img[i], ref[i], 1e-5, "%dx%d pixel %d: %g vs %g", w, h, i, img[i], ref[i]);
-        free(img);
-        free(tmp);
-        free(ref);
-    }
-}
-
-Test(recon_reference, shi_tomasi_equals_per_pixel_response)
-{
-    rng_state = 2;
-    for (int s = 0; s < N_SIZES; s++) {
-        const int w = SIZES[s][0], h = SIZES[s][1];
-        float *img = malloc((size_t)w * h * sizeof *img), *resp = malloc((size_t)w * h * sizeof *resp);
-        /* Noise, and a few bright squares (corners next to flat parts). */
-        for (int i = 0; i < w * h; i++)
-            img[i] = (float)(0.2 * rnd());
-        for (int q = 0; q < 3; q++) {
-            int x0 = (int)(rnd() * w), y0 = (int)(rnd() * h), r = 1 + (int)(rnd() * 6);
-            for (int y = y0; y < y0 + r && y < h; y++)
-                for (int x = x0; x < x0 + r && x < w; x++)
-                    img[y * w + x] += 0.8f;
-        }
-        cr_assert_eq(recon_shi_tomasi(img, w, h, resp), 0);
-        for (int y = 0; y < h; y++)
-            for (int x = 0; x < w; x++) {
-                /* The reference sums in double; the response is a difference
-                 * of two numbers of the size of the tensor's trace (up to
-                 * ~300 here), so float loses ~1e-7 of that. */
-                float ref = recon_shi_tomasi_at(img, w, h, x, y);
-                cr_assert_float_eq(resp[y * w + x], ref, 1e-5 * fmax(1, fabs(ref)) + 2e-5, "%dx%d (%d,%d): %g vs %g",
-                                   w, h, x, y, resp[y * w + x], ref);
-            }
-        free(img);
-        free(resp);
-    }
-}
 
 /* ---- Suzuki–Abe: the per-pixel algorithm with an int label image f (the
  * paper's), on the image with a one-pixel frame of zeros. */
@@ -325,68 +261,6 @@ Test(recon_reference, mask_clean_equals_flood_fills)
                 free(lab);
                 free(stack);
             }
-}
-
-/* ---- Douglas–Peucker against the textbook recursion */
-
-static double ref_seg_dist(vec2 p, vec2 a, vec2 b)
-{
-    vec2 ab = v2_sub(b, a);
-    double l2 = v2_dot(ab, ab), t = l2 > 0 ? v2_dot(v2_sub(p, a), ab) / l2 : 0;
-    t = fmax(0, fmin(1, t));
-    return v2_len(v2_sub(p, v2_add(a, v2_scale(ab, t))));
-}
-
-static void ref_dp(const vec2 *pts, int n, int i, int j, double eps, uint8_t *flag)
-{
-    double best = -1;
-    int at = -1;
-    for (int k = i + 1; k < j; k++) {
-        double d = ref_seg_dist(pts[k], pts[i], pts[j % n]);
-        if (d > best) {
-            best = d;
-            at = k;
-        }
-    }
-    if (at >= 0 && best > eps) {
-        flag[at] = 1;
-        ref_dp(pts, n, i, at, eps, flag);
-        ref_dp(pts, n, at, j, eps, flag);
-    }
-}
-
-Test(recon_reference, douglas_peucker_equals_recursion)
-{
-    rng_state = 5;
-    enum { N = 1500 };
-    static vec2 pts[N];
-    static int keep[N];
-    static uint8_t flag[N];
-    for (int rep = 0; rep < 8; rep++) {
-        /* A wobbly closed curve with noise (no exact distance ties). */
-        double f1 = 2 + (int)(rnd() * 6), a1 = 5 + 20 * rnd(), noise = 0.1 + 2 * rnd();
-        for (int i = 0; i < N; i++) {
-            double t = 2 * M_PI * i / N, r = 200 + a1 * sin(f1 * t) + noise * (rnd() - 0.5);
-            pts[i] = v2(300 + r * cos(t), 300 + 1.5 * r * sin(t));
-        }
-        const double eps = 0.3 + 3 * rnd();
-        int far = 1;
-        for (int k = 1; k < N; k++)
-            if (v2_len(v2_sub(pts[k], pts[0])) > v2_len(v2_sub(pts[far], pts[0])))
-                far = k;
-        memset(flag, 0, sizeof flag);
-        flag[0] = flag[far] = 1;
-        ref_dp(pts, N, 0, far, eps, flag);
-        ref_dp(pts, N, far, N, eps, flag);
-        int m = recon_douglas_peucker_closed(pts, N, eps, keep), mr = 0;
-        for (int k = 0; k < N; k++)
-            if (flag[k]) {
-                cr_assert_lt(mr, m, "eps %g: fewer vertices than the reference", eps);
-                cr_assert_eq(keep[mr], k, "eps %g vertex %d", eps, mr);
-                mr++;
-            }
-        cr_assert_eq(m, mr);
-    }
 }
 
 /* ---- gray conversion */

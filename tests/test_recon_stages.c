@@ -1,7 +1,7 @@
 /* The hand-written stages against independent truths: Suzuki–Abe border
  * following on hand-made masks (checked against a brute-force border set),
- * Douglas–Peucker's deviation bound, the Gaussian's normalisation and the
- * Shi–Tomasi response on an L corner versus a straight edge. */
+ * and the sub-pixel edge on rows whose pixels are the exact coverage of a
+ * straight edge at a known fractional position. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
@@ -240,96 +240,46 @@ Test(recon_border, object_on_image_frame)
 
 /* ---- Douglas–Peucker */
 
-static double seg_dist(vec2 p, vec2 a, vec2 b)
-{
-    vec2 ab = v2_sub(b, a);
-    double t = v2_dot(v2_sub(p, a), ab) / fmax(v2_dot(ab, ab), 1e-300);
-    t = fmax(0, fmin(1, t));
-    return v2_len(v2_sub(p, v2_add(a, v2_scale(ab, t))));
-}
+/* ---- the sub-pixel edge */
 
-Test(recon_dp, deviation_stays_within_eps)
+/* One row of colours crossed by the straight edge x = xe + slope (y - 0.5)
+ * (y in [0, 1) over the row): each pixel is bg + a (fg - bg), a the
+ * fraction of its area on the object's side (object left of the edge for
+ * side +1, right of it for side -1), by 4000 sub-rows (exact in x). */
+static void edge_row(float *row, int w, double xe, double slope, int side, const float fg[3], const float bg[3])
 {
-    enum { N = 720 };
-    vec2 pts[N];
-    int keep[N];
-    for (int i = 0; i < N; i++) {
-        double t = 2 * M_PI * i / N, r = 100 + 15 * sin(5 * t) + 0.4 * sin(97 * t);
-        pts[i] = v2(r * cos(t), r * sin(t));
-    }
-    const double eps[] = {0.5, 1.0, 3.0, 10.0};
-    int prev = N + 1;
-    for (int e = 0; e < 4; e++) {
-        int m = recon_douglas_peucker_closed(pts, N, eps[e], keep);
-        cr_assert_geq(m, 3);
-        cr_assert_lt(m, prev, "larger eps, fewer vertices");
-        prev = m;
-        for (int k = 0; k < m; k++) {
-            int a = keep[k], b = keep[(k + 1) % m];
-            if (k > 0)
-                cr_assert_gt(keep[k], keep[k - 1]);
-            for (int i = a + 1; i != (k + 1 == m ? N : b); i++)
-                cr_assert_leq(seg_dist(pts[i], pts[a], pts[b]), eps[e] + 1e-9, "eps %g point %d", eps[e], i);
+    for (int i = 0; i < w; i++) {
+        double a = 0;
+        for (int k = 0; k < 4000; k++) {
+            double x = xe + slope * ((k + 0.5) / 4000 - 0.5) - i; /* the edge within pixel i */
+            double left = x < 0 ? 0 : (x > 1 ? 1 : x);            /* the part of the pixel left of it */
+            a += side > 0 ? left : 1 - left;
         }
+        a /= 4000;
+        for (int c = 0; c < 3; c++)
+            row[3 * i + c] = (float)(bg[c] + a * (fg[c] - bg[c]));
     }
 }
 
-Test(recon_dp, square_keeps_its_corners)
+Test(recon_subpixel, known_fractional_edges)
 {
-    vec2 pts[40];
-    int keep[40], n = 0;
-    for (int i = 0; i < 10; i++)
-        pts[n++] = v2(i, 0);
-    for (int i = 0; i < 10; i++)
-        pts[n++] = v2(10, i);
-    for (int i = 0; i < 10; i++)
-        pts[n++] = v2(10 - i, 10);
-    for (int i = 0; i < 10; i++)
-        pts[n++] = v2(0, 10 - i);
-    int m = recon_douglas_peucker_closed(pts, n, 0.5, keep);
-    cr_assert_eq(m, 4);
-    for (int k = 0; k < 4; k++)
-        cr_assert_eq(keep[k], 10 * k);
-}
-
-/* ---- Gaussian and Shi–Tomasi */
-
-Test(recon_shi_tomasi, gaussian_is_normalised)
-{
-    enum { W = 20, H = 16 };
-    float img[W * H], tmp[W * H];
-    for (int i = 0; i < W * H; i++)
-        img[i] = 0.7f;
-    recon_gaussian7(img, tmp, W, H);
-    for (int i = 0; i < W * H; i++)
-        cr_assert_float_eq(img[i], 0.7f, 1e-5);
-}
-
-Test(recon_shi_tomasi, corner_responds_edge_does_not)
-{
-    enum { W = 40, H = 40 };
-    float img[W * H], tmp[W * H], resp[W * H];
-    /* An L of one-pixel lines: horizontal y = 20 for x >= 20, vertical x = 20 for y >= 20. */
-    memset(img, 0, sizeof img);
-    for (int i = 20; i < W; i++) {
-        img[20 * W + i] = 1;
-        img[i * W + 20] = 1;
-    }
-    recon_gaussian7(img, tmp, W, H);
-    recon_shi_tomasi(img, W, H, resp);
-    float corner = 0;
-    for (int y = 17; y <= 23; y++)
-        for (int x = 17; x <= 23; x++)
-            corner = fmaxf(corner, resp[y * W + x]);
-    /* Along the straight arms, away from the corner and the image border. */
-    float edge = 0;
-    for (int i = 28; i < 34; i++)
-        for (int d = -3; d <= 3; d++) {
-            edge = fmaxf(edge, resp[(20 + d) * W + i]);
-            edge = fmaxf(edge, resp[i * W + 20 + d]);
-        }
-    cr_assert_gt(corner, 0);
-    cr_assert_lt(edge, 1e-3f * corner, "edge %g vs corner %g", edge, corner);
-    /* The response peaks near the corner. */
-    cr_assert_float_eq(recon_shi_tomasi_at(img, W, H, 21, 21), resp[21 * W + 21], 1e-6);
+    static const float fg[3] = {0.20f, 0.50f, 0.30f}, bg[3] = {0.90f, 0.90f, 0.85f};
+    static const double xs[] = {20.0, 20.13, 20.5, 20.87, 21.0}, slopes[] = {0, 0.6, -1.7, 2.5};
+    float row[3 * 48];
+    double worst = 0;
+    for (int side = -1; side <= 1; side += 2)
+        for (size_t k = 0; k < sizeof xs / sizeof xs[0]; k++)
+            for (size_t m = 0; m < sizeof slopes / sizeof slopes[0]; m++) {
+                double xe = xs[k], sl = slopes[m];
+                edge_row(row, 48, xe, sl, side, fg, bg);
+                /* the mask's outermost object pixel: the last (first) one the
+                 * object covers at all */
+                int i0 = side > 0 ? (int)ceil(xe + 0.5 * fabs(sl)) - 1 : (int)floor(xe - 0.5 * fabs(sl));
+                recon_edge e = recon_subpixel_edge(&(recon_signal){row, 48, 3}, i0, side, sl, 0.01);
+                cr_assert(e.ok, "side %d edge %.2f slope %.1f: no edge", side, xe, sl);
+                double err = fabs(e.x - xe);
+                worst = fmax(worst, err);
+                cr_expect_leq(err, 0.01, "side %d edge %.2f slope %.1f: found at %.4f", side, xe, sl, e.x);
+            }
+    cr_log_info("sub-pixel edge: worst error %.5f px over 40 rows", worst);
 }

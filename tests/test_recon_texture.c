@@ -5,6 +5,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "celadon/recon_texture.h"
 #include "support/synth_vessel.h"
@@ -188,6 +189,38 @@ Test(recon_texture, a_profile_without_height_is_refused)
     cr_expect_eq(recon_texture_from_photo(&img, &res, &tex, err, sizeof err), -1);
     cr_expect(err[0] != 0);
     cr_expect_null(tex.rgb);
+    free_truth(&res);
+    image_free(&img);
+}
+
+/* A side washed out over the whole height (no silhouette points): the other
+ * side mirrored across the axis stands in, so the texture is the one made
+ * from both sides (the drawn vase is symmetric); with neither side there is
+ * no texture. */
+Test(recon_texture, a_missing_side_is_the_other_mirrored)
+{
+    synth_params p = striped_vase(0.0);
+    image_t img;
+    draw_striped(&p, &img);
+    recon_result res = truth_result(&p);
+    recon_texture_t both, one;
+    char err[256] = "";
+    cr_assert_eq(recon_texture_from_photo(&img, &res, &both, err, sizeof err), 0, "%s", err);
+    int n_right = res.n_silhouette[1];
+    res.n_silhouette[1] = 0;
+    cr_assert_eq(recon_texture_from_photo(&img, &res, &one, err, sizeof err), 0, "%s", err);
+    cr_expect_eq(one.width, both.width);
+    cr_expect_eq(one.height, both.height);
+    long differ = 0;
+    for (size_t i = 0; i < (size_t)one.width * one.height * 3; i++)
+        differ += abs(one.rgb[i] - both.rgb[i]) > 2;
+    cr_expect_leq(differ, (long)one.width * one.height * 3 / 100, "%ld of the texels' channels differ", differ);
+    recon_texture_free(&one);
+    res.n_silhouette[0] = 0;
+    cr_expect_eq(recon_texture_from_photo(&img, &res, &one, err, sizeof err), -1);
+    cr_expect(strstr(err, "neither") != NULL, "%s", err);
+    res.n_silhouette[1] = n_right;
+    recon_texture_free(&both);
     free_truth(&res);
     image_free(&img);
 }

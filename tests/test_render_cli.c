@@ -1,5 +1,6 @@
 /* celadon render end to end, and determinism of the render loop. */
 #include <fcntl.h>
+#include <openexr.h>
 #include <spawn.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -57,6 +58,17 @@ Test(render_cli, exr_with_aovs_and_png)
     char why[256];
     cr_assert_eq(image_probe(exr, &w, &h, &c, why, sizeof why), 0, "%s", why);
     cr_expect(w == 24 && h == 16 && c == 3 + 1 + 3 + 3, "%dx%d with %d channels", w, h, c);
+    /* the channels as Mitsuba's aov integrator names them (EXR lists them sorted) */
+    exr_context_t ctx;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    cr_assert_eq(exr_start_read(&ctx, exr, &init), EXR_ERR_SUCCESS);
+    const exr_attr_chlist_t *chl;
+    cr_assert_eq(exr_get_channels(ctx, 0, &chl), EXR_ERR_SUCCESS);
+    char names[256] = "";
+    for (int i = 0; i < chl->num_channels; i++)
+        snprintf(names + strlen(names), sizeof names - strlen(names), "%s ", chl->entries[i].name.str);
+    exr_finish(&ctx);
+    cr_expect_str_eq(names, "B G R albedo.B albedo.G albedo.R depth.T normal.X normal.Y normal.Z ");
     const char *a2[] = {"render", scene, "-o", png, "--res", "20x10", "--spp", "2", "--geometry", "mesh:64", NULL};
     cr_assert_eq(run(&f, a2, err, sizeof err), 0, "%s", err);
     cr_assert_eq(image_probe(png, &w, &h, &c, why, sizeof why), 0, "%s", why);
@@ -150,11 +162,14 @@ Test(render_cli, sigint_writes_the_partial_image)
     pid_t pid;
     cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, argv, environ), 0);
     posix_spawn_file_actions_destroy(&fa);
-    usleep(1500000);
+    /* Once it catches SIGINT (it may take seconds to start on a busy machine),
+     * let it render a moment. */
+    cr_assert(cli_wait_for_handler(pid, SIGINT, 60), "celadon never caught SIGINT");
+    usleep(500000);
     kill(pid, SIGINT);
     int status;
     cr_assert_eq(waitpid(pid, &status, 0), pid);
-    cr_assert(WIFEXITED(status), "celadon died from a signal");
+    cr_assert(WIFEXITED(status), "celadon died from signal %d", WIFSIGNALED(status) ? WTERMSIG(status) : -1);
     cr_expect_eq(WEXITSTATUS(status), 130);
     int w, h, c;
     char why[256];

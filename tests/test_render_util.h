@@ -96,7 +96,7 @@ static inline float *render_to_pixels_with(const char *scene_path, const scene_o
     char err[1024];
     scene_t *s = scene_create_from_file(scene_path, NULL, 0, bo, err, sizeof err);
     cr_assert_not_null(s, "%s", err);
-    render_options ro = {threads, aovs, 0};
+    render_options ro = {.threads = threads, .aovs = aovs};
     film_t film;
     cr_assert_eq(render_scene(s, &ro, &film, NULL, err, sizeof err), 0, "%s", err);
     *w = film.width, *h = film.height, *nch = film.nchannels;

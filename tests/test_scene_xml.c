@@ -1,7 +1,6 @@
 /* The scene parser: every supported element round-trips its values, and every
  * kind of bad input gives one error naming the exact file and line. */
 #include <criterion/criterion.h>
-#include <ftw.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,23 +9,14 @@
 
 #include "celadon/scene.h"
 #include "celadon/scene_xml.h"
+#include "support/scratch_dir.h"
 
 /* ------------------------------------------------------------- fixtures */
 static char dir[64];
 
-static void make_dir(void)
-{
-    snprintf(dir, sizeof dir, "/tmp/celadon-scene-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-}
+static void make_dir(void) { scratch_dir_make(dir, sizeof dir, "scene"); }
 
-static int rm_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
-{
-    (void)st, (void)flag, (void)ftw;
-    return remove(path);
-}
-
-static void remove_dir(void) { nftw(dir, rm_entry, 8, FTW_DEPTH | FTW_PHYS); }
+static void remove_dir(void) { scratch_dir_remove(dir); }
 
 /* Writes dir/name and returns its path (static buffer per call site not
  * needed: callers copy). */
@@ -289,7 +279,7 @@ Test(scene_xml, defaults_and_overrides)
     cr_assert_eq(scene_obj_int(scene_obj_child(sensor, SCENE_FILM), "width", 0), 6464);
     scene_desc_destroy(d);
 
-    const scene_define defs[] = {{"spp", "256"}, {"res", "3"}};
+    const scene_define defs[] = {{"spp", "256", false}, {"res", "3", false}};
     d = load_ok("p.xml", text, defs, 2);
     sensor = scene_obj_child(scene_desc_root(d), SCENE_SENSOR);
     cr_assert_eq(scene_obj_int(scene_obj_child(sensor, SCENE_SAMPLER), "sample_count", 0), 256, "-D wins");
@@ -298,12 +288,12 @@ Test(scene_xml, defaults_and_overrides)
 
     /* A parameter with no default must come from -D. */
     const char *bare = HEAD "  <shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>\n</scene>\n";
-    const scene_define r[] = {{"r", "2.5"}};
+    const scene_define r[] = {{"r", "2.5", false}};
     d = load_ok("bare.xml", bare, r, 1);
     cr_assert_eq(scene_obj_float(scene_obj_child(scene_desc_root(d), SCENE_SHAPE), "radius", 0), 2.5);
     scene_desc_destroy(d);
     load_fails("bare.xml", bare, "bare.xml", 3, "undefined parameter '$r'", NULL, 0);
-    const scene_define typo[] = {{"r", "1"}, {"rr", "2"}};
+    const scene_define typo[] = {{"r", "1", false}, {"rr", "2", false}};
     load_fails("bare.xml", bare, "bare.xml", 0, "-D rr=2: the scene has no parameter", typo, 2);
 }
 
@@ -377,7 +367,7 @@ Test(scene_xml, parse_from_memory_and_sor_shape)
         "    <float name=\"height\" value=\"0.32\"/><boolean name=\"caps\" value=\"false\"/>\n"
         "    <emitter type=\"area\"><rgb name=\"radiance\" value=\"4\"/></emitter>\n"
         "  </shape>\n"
-        "  <emitter type=\"constant\"><spectrum name=\"radiance\" value=\"0.5\"/></emitter>\n"
+        "  <emitter type=\"constant\"><rgb name=\"radiance\" value=\"0.5\"/></emitter>\n"
         "</scene>\n";
     scene_desc *d = scene_desc_create_from_text(text, strlen(text), path, NULL, 0, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "%s", err);
@@ -396,7 +386,7 @@ Test(scene_xml, malformed_xml)
     load_fails("bad.xml", HEAD "  <shape type=\"sphere\">\n  </shap>\n</scene>\n", "bad.xml", 4, "malformed XML", NULL,
                0);
     load_fails("nover.xml", "<scene>\n</scene>\n", "nover.xml", 1, "needs a 'version' attribute", NULL, 0);
-    load_fails("old.xml", "<scene version=\"0.6.0\">\n</scene>\n", "old.xml", 1, "not supported", NULL, 0);
+    load_fails("new.xml", "<scene version=\"4.0.0\">\n</scene>\n", "new.xml", 1, "not supported", NULL, 0);
     load_fails("root.xml", "<?xml version=\"1.0\"?>\n<shape type=\"sphere\"/>\n", "root.xml", 2, "root element", NULL,
                0);
     load_fails("text.xml", HEAD "  <shape type=\"sphere\">radius</shape>\n</scene>\n", "text.xml", 3,
@@ -425,8 +415,8 @@ Test(scene_xml, unknown_things)
                "  </shape>\n</scene>\n", "i.xml", 5, "at most 1 <bsdf>", NULL, 0);
     load_fails("j.xml", HEAD "  <bsdf type=\"twosided\">\n  </bsdf>\n</scene>\n", "j.xml", 3,
                "needs at least 1 nested <bsdf>", NULL, 0);
-    load_fails("k.xml", HEAD "  <spectrum name=\"x\" value=\"400:0.1, 500:0.2\"/>\n</scene>\n", "k.xml", 3,
-               "wavelength:value spectra are not supported", NULL, 0);
+    load_fails("k.xml", HEAD "  <bsdf type=\"diffuse\">\n    <spectrum name=\"reflectance\" value=\"400:0.1, 5x00:0.2\"/>\n"
+               "  </bsdf>\n</scene>\n", "k.xml", 4, "bad wavelength:value pair", NULL, 0);
     load_fails("l.xml", HEAD "  <shape type=\"obj\"/>\n</scene>\n", "l.xml", 3, "needs the parameter 'filename'",
                NULL, 0);
     load_fails("m.xml", HEAD "  <bsdf type=\"diffuse\">\n    <texture type=\"checkerboard\"/>\n  </bsdf>\n</scene>\n",
@@ -501,7 +491,7 @@ Test(scene_xml, missing_files_refs_and_cycles)
 Test(scene_xml, bundled_studio_scene)
 {
     char err[1024];
-    const scene_define defs[] = {{"spp", "4"}};
+    const scene_define defs[] = {{"spp", "4", false}};
     scene_desc *d = scene_desc_create_from_file("tests/data/scenes/studio.xml", defs, 1, scene_plugin_find, err, sizeof err);
     cr_assert_not_null(d, "%s", err);
     scene_obj *root = scene_desc_root(d), *shapes[3];

@@ -203,3 +203,25 @@ Test(texture, bad_input)
     cr_assert(strstr(err, "bad value 'border' for 'wrap_mode'"), "%s", err);
     cr_assert_null(texture_plugin_find("noise"));
 }
+
+Test(texture, rawconstant_is_its_value_as_written)
+{
+    plugin_xml fx;
+    plugin_xml_open(&fx);
+    char err[512];
+    const texture_t *v = plugin_xml_texture(
+        &fx, "<texture type=\"rawconstant\"><vector name=\"value\" value=\"0.5, 0.25, 1\"/></texture>", err, sizeof err);
+    cr_assert_not_null(v, "%s", err);
+    const texture_t *f =
+        plugin_xml_texture(&fx, "<texture type=\"rawconstant\"><float name=\"value\" value=\"0.7\"/></texture>", err,
+                           sizeof err);
+    cr_assert_not_null(f, "%s", err);
+    for (double u = 0.05; u < 3; u += 0.7) {
+        rgb a = texture_eval(v, v2(u, 1 - u)), b = texture_eval(f, v2(u, u));
+        cr_assert(a.r == 0.5 && a.g == 0.25 && a.b == 1.0, "a normal map's flat value, not sRGB-decoded");
+        cr_assert(b.r == 0.7 && b.g == 0.7 && b.b == 0.7);
+    }
+    cr_assert_null(plugin_xml_texture(&fx, "<texture type=\"rawconstant\"/>", err, sizeof err));
+    cr_assert_not_null(strstr(err, "needs the parameter 'value'"), "%s", err);
+    plugin_xml_close(&fx);
+}

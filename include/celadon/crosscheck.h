@@ -27,6 +27,7 @@
 
 #include <stddef.h>
 
+#include "celadon/parts.h"
 #include "celadon/scene.h"
 
 typedef struct {
@@ -40,6 +41,8 @@ typedef struct {
     int geo_grid;              /* k: primary rays per pixel side of the geometry metrics */
     int fit_from;              /* the fits use the N >= fit_from (0: every N); at least two must be */
     int progress;              /* 1: one line per render on stderr */
+    const char *const *part_dirs; /* npart_dirs > 0: crosscheck_run merges each render from the parts in */
+    int npart_dirs;               /* these folders (crosscheck_render_part's) instead of rendering it */
 } crosscheck_params;
 
 typedef struct {
@@ -114,6 +117,15 @@ double crosscheck_local_slope(const crosscheck_row *rows, int i, int metric);
 int crosscheck_run(const crosscheck_params *p, const char *outdir, crosscheck_result *res, char *err,
                    size_t errlen);
 void crosscheck_result_free(crosscheck_result *res);
+
+/* The cross-check's renders shared out as parts (parts.h), for a job
+ * scheduler: part `part` of the analytic render and of each meshed one,
+ * written into outdir (which must exist) as analytic.exr and mesh-N.exr,
+ * part EXRs. crosscheck_run with part_dirs naming every part's folder then
+ * merges them and measures. Returns 0; -2 for bad input (as crosscheck_run,
+ * or more parts than samples) with one line in err; -1 for other failures. */
+int crosscheck_render_part(const crosscheck_params *p, render_part part, const char *outdir, char *err,
+                           size_t errlen);
 
 /* report.json at path, and the log-log plot of every metric with its fitted
  * line and an N^-2 reference (plot_width x plot_height PNG). Return 0 or -1

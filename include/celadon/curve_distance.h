@@ -22,4 +22,10 @@ double curve_point_distance_near(const bspline_t *c, vec2 p, double u_guess, dou
 void curve_polyline_hausdorff(const bspline_t *c, const vec2 *poly, int n, double *curve_to_polyline,
                               double *polyline_to_curve);
 
+/* The same with the curve side restricted to the parameters [u_lo, u_hi]
+ * (clamped to the curve's domain): the curve over a piece of the polyline,
+ * where the polyline has gaps that the curve bridges. */
+void curve_range_polyline_hausdorff(const bspline_t *c, double u_lo, double u_hi, const vec2 *poly, int n,
+                                    double *curve_to_polyline, double *polyline_to_curve);
+
 #endif

@@ -13,11 +13,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* An extra output: channels is 1 (written as "<name>.Y") or 3
- * ("<name>.R", "<name>.G", "<name>.B"). */
+/* An extra output: channels is 1 or 3, written as "<name>.<suffix>" with
+ * one suffix per channel ("T" for a depth, "X", "Y", "Z" for a vector, as
+ * Mitsuba's `aov` integrator names them), or, without suffixes, as
+ * "<name>.Y" or "<name>.R", "<name>.G", "<name>.B". */
 typedef struct {
     const char *name;
     int channels;
+    const char *const *suffixes; /* NULL: Y or R, G, B */
 } film_aov;
 
 typedef struct {
@@ -59,5 +62,14 @@ uint8_t film_srgb8(double linear);
  * scanline OpenEXR with ZIP compression, atomically. Returns 0 or -1. */
 int exr_write_float(const char *path, int width, int height, int nch, const char *const *names,
                     const float *pixels, char *err, size_t errlen);
+
+/* A string attribute of an EXR header, e.g. {"celadon.part", "2/4"}. */
+typedef struct {
+    const char *name, *value;
+} film_attr;
+
+/* exr_write_float with nattrs string attributes added to the header. */
+int exr_write_float_attrs(const char *path, int width, int height, int nch, const char *const *names,
+                          const float *pixels, const film_attr *attrs, int nattrs, char *err, size_t errlen);
 
 #endif

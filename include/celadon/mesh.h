@@ -44,6 +44,12 @@ int mesh_revolve(const bspline_t *profile, const double *u_rings, int n_rings, d
                  unsigned caps, mesh_t *out);
 void mesh_free(mesh_t *m);
 
+/* Turns the mesh into Z-up coordinates for tools that expect them (Blender,
+ * 3ds Max): (x, y, z) -> (x, -z, y) for positions and normals, a rotation
+ * of +90 degrees about x; the axis becomes +z and the front meridian, which
+ * faced the camera along +z, faces -y (Blender's front view). */
+void mesh_to_z_up(mesh_t *m);
+
 /* Exporters. All write atomically (whole file or nothing) and return 0, or -1
  * with a one-line reason in err. */
 

@@ -21,8 +21,8 @@ typedef struct {
 
 /* How the mask was made. */
 typedef enum {
-    RECON_MASK_ALPHA = 0,      /* alpha channel, background transparent */
-    RECON_MASK_BACKGROUND,     /* automatic: |gray - background model| above an Otsu threshold */
+    RECON_MASK_GRAPH_CUT = 0,  /* automatic: colour models of object and backdrop, min-cut with a symmetry prior */
+    RECON_MASK_ALPHA,          /* alpha channel, background transparent */
     RECON_MASK_GRAY_BELOW,     /* forced threshold, object darker than the background */
     RECON_MASK_GRAY_ABOVE      /* forced threshold, object lighter than the background */
 } recon_mask_mode;
@@ -31,25 +31,51 @@ typedef enum {
 typedef enum {
     RECON_OK = 0,
     RECON_ERR_NO_OBJECT,
-    RECON_ERR_TOUCHES_BORDER,
-    RECON_ERR_CORNERS,
+    RECON_ERR_SHAPE, /* two objects, no height between base and rim, lying down */
     RECON_ERR_SIZE,
     RECON_ERR_INTERNAL /* allocation failure and the like: exit code 1 */
 } recon_status;
+
+/* Parts of the photographed object that are not the vessel's surface of
+ * revolution, and what the profile does over their rows. */
+typedef enum {
+    RECON_PART_SHADOW = 0,  /* a floor shadow joined to the foot (cut off) */
+    RECON_PART_STAND,       /* a stand or plinth under the foot (cut off) */
+    RECON_PART_HANDLE,      /* a part on one side with background behind it (a handle's loop) */
+    RECON_PART_ASYMMETRY,   /* a run of rows where one side departs from the body (a lug, a spout, a chip) */
+    RECON_PART_KIND_COUNT
+} recon_part_kind;
+
+typedef enum {
+    RECON_PROFILE_NONE = 0, /* the rows lie outside the profile (below the foot) */
+    RECON_PROFILE_LEFT,     /* the profile takes the left outline there */
+    RECON_PROFILE_RIGHT,    /* ... the right outline */
+    RECON_PROFILE_BRIDGED   /* neither: the B-spline bridges the rows */
+} recon_profile_source;
+
+typedef struct {
+    recon_part_kind what;
+    int row0, row1;   /* image rows spanned, inclusive */
+    int side;         /* -1 left, +1 right, 0 both */
+    recon_profile_source profile;
+} recon_excluded;
+
+enum { RECON_MAX_EXCLUDED = 16 };
+
+/* Names used in profile.json and messages. */
+const char *recon_part_name(recon_part_kind k);
+const char *recon_profile_source_name(recon_profile_source s);
 
 typedef struct {
     int width, height;
     uint8_t *mask;           /* width*height, 1 = vessel: largest object, closed (radius 4), holes
                                 and rows filled, floor shadow trimmed at the foot */
     recon_mask_mode mask_mode;
-    int threshold_used;      /* 0..255: on gray when forced, on |gray - background| when automatic;
-                                -1 when the mask came from alpha */
+    int threshold_used;      /* 0..255 gray threshold when forced; -1 otherwise */
     int dropped_objects;     /* other connected objects removed from the mask */
     int holes_filled;        /* background regions enclosed by the object, filled */
     int n_contour;
     vec2 *contour;           /* outer border, pixel centres, as traced (closed, no repeat) */
-    int n_approx;
-    vec2 *approx;            /* Douglas–Peucker approximation of the contour */
     vec2 corners[CORNER_COUNT]; /* snapped to the original contour */
     vec2 pca_mean;
     vec2 pca_axes[2];        /* unit eigenvectors, major first */
@@ -64,8 +90,19 @@ typedef struct {
     vec2 *silhouette[2];     /* at most one point per pixel row (y = row centre, x the sub-pixel
                                 outline), rim corner row to base corner row, top to bottom */
     int n_polyline;
-    vec2 *polyline;          /* (r, h), px, on side_used: (r, 0), the sub-pixel outline points with
-                                0 < h < H in increasing h, (r, H); H = rim corners' height */
+    vec2 *polyline;          /* (r, h), px: (r, 0), the sub-pixel outline points with 0 < h < H in
+                                increasing h, (r, H); H = rim corners' height. Taken on side_used,
+                                except over the rows of excluded parts (see excluded[].profile) */
+    uint8_t *polyline_bridge; /* per polyline point: 1 when the rows up to the next point were left out
+                                 (the B-spline bridges them) */
+    int n_excluded;
+    recon_excluded excluded[RECON_MAX_EXCLUDED];
+    /* Confidence figures (the quality gate, include/celadon/reconstruct.h) */
+    unsigned border_contact; /* bit 0 top, 1 bottom, 2 left, 3 right: the vessel touches that border */
+    double lr_disagreement;  /* mean |r_left - r_right| over the profile rows where both sides are kept,
+                                as a fraction of the largest radius */
+    double excluded_fraction; /* fraction of the profile's rows taken from one side only or bridged */
+    double r_max;            /* largest radius of the polyline, px */
     double ms_image_processing;
 } recon_result;
 

@@ -7,8 +7,14 @@
  *                        the --lod meshes, overlay.png: all or nothing
  *
  * Exit-code semantics of the returned status: 0 ok, 2 bad input (the photo
- * cannot be reconstructed: err says why in one line, without the file name),
- * 1 internal failure (out of memory, cannot write). */
+ * cannot be reconstructed, or the result fails the quality gate: err says why
+ * in one line, without the file name), 1 internal failure (out of memory,
+ * cannot write).
+ *
+ * The quality gate: every run measures the figures below; a figure over its
+ * limit refuses the photo (status 2, err names the figure and its value),
+ * unless opt->force is set: then the run goes on and quality.passed is 0.
+ * docs/algorithms-recon.md ("Quality gate") explains the limits. */
 #ifndef CELADON_RECONSTRUCT_H
 #define CELADON_RECONSTRUCT_H
 
@@ -22,12 +28,27 @@
 
 enum { RECONSTRUCT_MAX_LODS = 8 };
 
+/* The limits of the quality gate. */
+#define RECONSTRUCT_MAX_HAUSDORFF_PX 2.33   /* the paper's worst B-spline fit (Table 1) */
+#define RECONSTRUCT_MAX_LR_DISAGREEMENT 0.02 /* mean |r_left - r_right| / r_max on rows both sides keep */
+#define RECONSTRUCT_MAX_EXCLUDED_FRACTION 0.5 /* profile rows taken from one side only or bridged */
+
+typedef struct {
+    double hausdorff_px;      /* the larger one-sided Hausdorff distance between curve and polyline */
+    double lr_disagreement;   /* see RECONSTRUCT_MAX_LR_DISAGREEMENT */
+    double excluded_fraction;
+    unsigned border_contact;  /* the vessel touches the image border: bits 1 top, 2 bottom, 4 left, 8 right */
+    int passed;
+    char failed[400];         /* the figures over their limits, one line ("" when passed) */
+} reconstruct_quality;
+
 typedef struct {
     recon_options recon;   /* image stages: threshold, side */
     double smoothing_px;   /* largest distance of a profile point from the B-spline */
     int segments;          /* angular segments of model.obj/.ply */
     int lods[RECONSTRUCT_MAX_LODS], n_lods; /* extra meshes model_N.* */
     int mouth_cap;         /* close the mouth with a disc (the base is always closed) */
+    int force;             /* write the outputs even when the quality gate fails */
 } reconstruct_options;
 
 /* The defaults of `celadon reconstruct`: automatic threshold and side, 1 px
@@ -51,6 +72,7 @@ typedef struct {
     int n_domains;
     double err_curve_to_polyline, err_polyline_to_curve; /* one-sided Hausdorff, px */
     recon_texture_t texture;
+    reconstruct_quality quality;
     reconstruct_mesh_stats mesh, lods[RECONSTRUCT_MAX_LODS]; /* filled by reconstruct_write */
     reconstruct_timings ms;
 } reconstruction;

@@ -19,6 +19,8 @@ typedef struct {
     int threads;       /* 0: OpenMP's default */
     unsigned aovs;     /* RENDER_AOV_* mask: extra film channels, in that order */
     int progress;      /* 1: progress bar on a TTY and a summary line on stderr */
+    int sample_begin, sample_end; /* render samples [begin, end) of every pixel (a part of the
+                                     render, parts.h); 0, 0: all of the sampler's */
 } render_options;
 
 typedef struct {
@@ -29,7 +31,7 @@ typedef struct {
      * idle machine: at the end of each pass the threads wait for the one
      * with the most work, so the sum over passes of (most - each thread's)
      * CPU time is what a core would wait (a measure of the tile schedule
-     * that the machine's load does not inflate). */
+     * that the machine's load does not inflate). Under MPI, this rank's. */
     double busy_cpu_seconds;
     double idle_cpu_seconds;
 } render_stats;
@@ -39,9 +41,12 @@ typedef struct {
 int render_aov_parse(const char *list, unsigned *mask);
 
 /* Renders into film (initialised here with the scene's size and the AOVs;
- * film_free it). Samples are taken in passes over all pixels, so a render
- * stopped early leaves every pixel with a consistent, noisier average.
- * Returns 0, or -1 with a reason in err. */
+ * film_free it). Samples are taken in about eight passes over all pixels, so
+ * a render stopped after the first pass leaves every pixel with a
+ * consistent, noisier average; stopped during the first pass, the pixels not
+ * reached yet have no samples (film_develop gives them 0).
+ * Returns 0, or -1 with a reason in err (also for a sample range outside
+ * [0, spp] or empty). */
 int render_scene(const scene_t *s, const render_options *opt, film_t *film, render_stats *stats, char *err,
                  size_t errlen);
 

@@ -57,6 +57,11 @@ void scene_destroy(scene_t *s);
 void scene_film_size(const scene_t *s, int *width, int *height);
 int scene_spp(const scene_t *s);
 uint64_t scene_seed(const scene_t *s);
+/* A 64-bit hash (XXH3) of what the scene was built from: its description
+ * as read (defaults and -D applied), the contents of every file it names,
+ * and the film size, spp and SOR geometry it was built with; not the seed.
+ * Two builds of the same scene files with the same options agree on it. */
+uint64_t scene_digest(const scene_t *s);
 /* Triangles traced (meshes, and SORs under mesh:N), for reports. */
 long long scene_triangle_count(const scene_t *s);
 

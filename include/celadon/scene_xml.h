@@ -154,8 +154,15 @@ const scene_plugin_decl *scene_plugin_table_find(const scene_plugin_decl *const 
     }
 
 /* ------------------------------------------------------------- reading */
-/* A -D name=value override; it takes precedence over <default>. */
-typedef struct { const char *name, *value; } scene_define;
+/* A -D name=value override; it takes precedence over <default>. A fallback
+ * is the other way round: the value of $name only where the scene declares
+ * no <default> for it, and no error when the scene does not use it
+ * (`celadon render --spp N` is the fallback for $spp, which Mitsuba's own
+ * scenes leave to the command line). */
+typedef struct {
+    const char *name, *value;
+    bool fallback;
+} scene_define;
 
 /* Reads a scene file, checking it against the declarations plugins gives.
  * Returns NULL on error with one line "file:line: what" in err. An override

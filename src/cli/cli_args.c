@@ -5,8 +5,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+static int quiet;
+
+void cli_set_quiet(int q) { quiet = q; }
+
 int cli_usage_error(const char *cmd, const char *fmt, const char *arg)
 {
+    if (quiet)
+        return 2;
     fprintf(stderr, "celadon %s: ", cmd);
     fprintf(stderr, fmt, arg);
     fprintf(stderr, " (try celadon %s --help)\n", cmd);

@@ -23,7 +23,7 @@ static void usage(FILE *f)
 {
     fprintf(f, "usage: celadon crosscheck SCENE.xml --segments N1,N2,... -o DIR [--spp N] [--res WxH]\n"
                "                          [--threads N] [--seed S] [--grid K] [--fit-from N]\n"
-               "                          [-D name=value]...\n\n"
+               "                          [-D name=value]... [--part K/N | --merge PARTDIR...]\n\n"
                "Renders the scene with its SORs intersected exactly and revolved into each N\n"
                "angular segments (same sampler seeds), and measures how the meshed images and\n"
                "first hits converge to the analytic ones (docs/crosscheck.md). DIR receives\n"
@@ -37,7 +37,10 @@ static void usage(FILE *f)
                "  --grid K        K x K primary rays per pixel for the geometry metrics (default 4)\n"
                "  --fit-from N    fit the slopes over the segment counts >= N only (default: all),\n"
                "                  e.g. to leave out coarse meshes outside the asymptotic range\n"
-               "  -D name=value   sets a scene <default> parameter\n");
+               "  -D name=value   sets a scene <default> parameter\n"
+               "  --part K/N      render only the K-th of N shares of every render's samples into\n"
+               "                  DIR (analytic.exr, mesh-N.exr parts: docs/distributed.md)\n"
+               "  --merge DIR...  merge the renders from the folders of all N parts, then measure\n");
 }
 
 /* "16,64,256": strictly increasing counts from 3 to 1000000. */
@@ -65,8 +68,9 @@ static int remove_entry(const char *path, const struct stat *sb, int flag, struc
 
 static void remove_tree(const char *dir) { nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
 
-/* 0: dir does not exist; 1: empty; 2: holds a report.json (an earlier
- * crosscheck); -1: something else is there. */
+/* 0: dir does not exist; 1: empty; 2: holds a report.json or an
+ * analytic.exr (an earlier crosscheck, or part of one); -1: something else
+ * is there. */
 static int out_dir_state(const char *dir)
 {
     struct stat st;
@@ -82,7 +86,7 @@ static int out_dir_state(const char *dir)
     while ((e = readdir(d)))
         if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
             entries++;
-            report |= !strcmp(e->d_name, "report.json");
+            report |= !strcmp(e->d_name, "report.json") || !strcmp(e->d_name, "analytic.exr");
         }
     closedir(d);
     return !entries ? 1 : report ? 2 : -1;
@@ -120,7 +124,7 @@ static int install(const char staging[4200], const char *dir, int state)
     return 0;
 }
 
-static int run(crosscheck_params *p, const char *dir)
+static int run(crosscheck_params *p, render_part part, const char *dir)
 {
     int state = out_dir_state(dir);
     if (state < 0) {
@@ -132,13 +136,14 @@ static int run(crosscheck_params *p, const char *dir)
         fprintf(stderr, "celadon crosscheck: cannot create a folder next to %s: %s\n", dir, strerror(errno));
         return 2;
     }
-    crosscheck_result res;
-    int rc = crosscheck_run(p, staging, &res, err, sizeof err);
-    if (rc == 0) {
+    crosscheck_result res = {0};
+    int rc = part.n ? crosscheck_render_part(p, part, staging, err, sizeof err)
+                    : crosscheck_run(p, staging, &res, err, sizeof err);
+    if (rc == 0 && !part.n) {
         snprintf(path, sizeof path, "%s/report.json", staging);
         rc = crosscheck_write_report(&res, p, path, err, sizeof err);
     }
-    if (rc == 0) {
+    if (rc == 0 && !part.n) {
         snprintf(path, sizeof path, "%s/convergence.png", staging);
         rc = crosscheck_write_plot(&res, path, PLOT_W, PLOT_H, err, sizeof err);
     }
@@ -149,6 +154,9 @@ static int run(crosscheck_params *p, const char *dir)
     if (rc != 0) {
         remove_tree(staging);
         fprintf(stderr, "celadon: %s\n", err);
+    } else if (part.n) {
+        printf("crosscheck: wrote part %d/%d of the analytic and the %d meshed renders into %s\n", part.k, part.n,
+               p->nsegments, dir);
     } else {
         printf("crosscheck: %dx%d, %d spp, analytic %.2f s; slopes", res.width, res.height, res.spp,
                res.analytic_seconds);
@@ -175,8 +183,11 @@ static int run(crosscheck_params *p, const char *dir)
 
 int cmd_crosscheck(int argc, char **argv)
 {
-    const char *dir = NULL;
-    int segments[MAX_SEGMENTS], nseg = 0;
+    const char *dir = NULL, **part_dirs = calloc((size_t)argc, sizeof *part_dirs);
+    int segments[MAX_SEGMENTS], nseg = 0, merge = 0, nextra = 0;
+    render_part part = {0, 0};
+    if (!part_dirs)
+        return 1;
     scene_define defs[MAX_DEFINES];
     crosscheck_params p = {.defs = defs, .build = scene_options_default(), .segments = segments, .geo_grid = 4,
                            .progress = 1};
@@ -189,8 +200,11 @@ int cmd_crosscheck(int argc, char **argv)
             rc = 0;
         } else if (a[0] != '-' || !a[1]) {
             if (p.scene_path)
-                rc = cli_usage_error("crosscheck", "unexpected argument '%s'", a);
-            p.scene_path = a;
+                part_dirs[nextra++] = a;
+            else
+                p.scene_path = a;
+        } else if (!strcmp(a, "--merge")) {
+            merge = 1;
         } else if (!val) {
             rc = cli_usage_error("crosscheck", "option %s needs a value", a);
         } else if (i++, !strcmp(a, "-o")) {
@@ -224,6 +238,9 @@ int cmd_crosscheck(int argc, char **argv)
             if (cli_parse_int(val, 3, 1000000, &v) != 0)
                 rc = cli_usage_error("crosscheck", "--fit-from wants a segment count from 3 to 1000000, not '%s'", val);
             p.fit_from = (int)v;
+        } else if (!strcmp(a, "--part")) {
+            if (render_part_parse(val, &part) != 0)
+                rc = cli_usage_error("crosscheck", "--part wants K/N with 1 <= K <= N <= 1000000, not '%s'", val);
         } else if (!strcmp(a, "-D")) {
             const char *eq = strchr(val, '=');
             if (!eq || eq == val || p.ndefs == MAX_DEFINES)
@@ -231,7 +248,7 @@ int cmd_crosscheck(int argc, char **argv)
             else if (!(defs[p.ndefs].name = strndup(val, (size_t)(eq - val))))
                 rc = 1;
             else
-                defs[p.ndefs++].value = eq + 1;
+                defs[p.ndefs].fallback = false, defs[p.ndefs++].value = eq + 1;
         } else {
             rc = cli_usage_error("crosscheck", "unknown option '%s'", a);
         }
@@ -243,11 +260,19 @@ int cmd_crosscheck(int argc, char **argv)
             rc = cli_usage_error("crosscheck", "%s", "missing --segments N1,N2,...");
         else if (!dir || !*dir)
             rc = cli_usage_error("crosscheck", "%s", "missing -o DIR");
+        else if (nextra && !merge)
+            rc = cli_usage_error("crosscheck", "unexpected argument '%s'", part_dirs[0]);
+        else if (merge && !nextra)
+            rc = cli_usage_error("crosscheck", "%s", "--merge wants the folders of the parts");
+        else if (merge && part.n)
+            rc = cli_usage_error("crosscheck", "%s", "--part renders a part, --merge merges them: not both");
     }
     if (rc < 0) {
         p.nsegments = nseg;
-        rc = run(&p, dir);
+        p.part_dirs = part_dirs, p.npart_dirs = nextra;
+        rc = run(&p, part, dir);
     }
+    free(part_dirs);
     for (int i = 0; i < p.ndefs; i++)
         free((char *)defs[i].name);
     return rc;

@@ -13,7 +13,8 @@
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: celadon mesh PROFILE.json -o OUT.{obj,ply} [--segments N] [--height H] [--mouth-cap]\n\n"
+    fprintf(f, "usage: celadon mesh PROFILE.json -o OUT.{obj,ply} [--segments N] [--height H] [--mouth-cap]\n"
+               "                    [--up y|z]\n\n"
                "Revolves the profile's B-spline into a triangle mesh: one ring per curvature\n"
                "domain of the profile, N angular segments, the rim at height H (Y up, base at 0),\n"
                "texture coordinates as in the texture the reconstruction wrote. The base is\n"
@@ -22,7 +23,9 @@ static void usage(FILE *f)
                "                  beside the profile) or .ply (binary, with normals and uv)\n"
                "  --segments N    angular segments, 3 to 1000000 (default 360)\n"
                "  --height H      rim height in scene units (default 1)\n"
-               "  --mouth-cap     add a disc closing the mouth\n");
+               "  --mouth-cap     add a disc closing the mouth\n"
+               "  --up y|z        the axis of the vessel: y (default; Mitsuba, glTF, most viewers)\n"
+               "                  or z (Blender, 3ds Max): the front then faces -y\n");
 }
 
 /* The folder part of path with a trailing slash ("" for a bare name). */
@@ -38,9 +41,33 @@ static const char *extension(const char *path)
     return dot && (!slash || dot > slash) ? dot : "";
 }
 
+/* The path of file relative to the folder dir, both canonical absolute
+ * paths: "texture.png", "../photos/texture.png". */
+static void relative_path(const char *dir, const char *file, char *out, size_t len)
+{
+    size_t i = 0, dl = strlen(dir);
+    while (dir[i] && dir[i] == file[i])
+        i++;
+    size_t common; /* where file's part below the shared folders starts */
+    if (dir[i] == '\0' && file[i] == '/')
+        common = i + 1; /* dir holds file */
+    else {
+        while (i > 0 && file[i - 1] != '/')
+            i--;
+        common = i;
+    }
+    out[0] = '\0';
+    const char *rest = common < dl ? dir + common : ""; /* dir's folders below the shared ones */
+    for (const char *p = rest; *rest && p; p = strchr(p + 1, '/'))
+        strncat(out, "../", len - strlen(out) - 1);
+    strncat(out, file + common, len - strlen(out) - 1);
+}
+
 /* Writes OUT.mtl next to the OBJ when the profile has a texture.png beside
- * it; fills mtl_name (for mtllib) and mtl_path, or leaves them empty.
- * Returns 0, or -1 after telling the user why the material was not written. */
+ * it; fills mtl_name (for mtllib) and mtl_path, or leaves them empty. The
+ * material names the texture relative to the OBJ, so the two can move
+ * together. Returns 0, or -1 after telling the user why the material was not
+ * written. */
 static int write_material(const char *profile_path, const char *out, char *mtl_name, char *mtl_path, size_t len)
 {
     char tex_dir[4096], out_dir[4096], tex[4200], tex_ref[4200];
@@ -50,14 +77,13 @@ static int write_material(const char *profile_path, const char *out, char *mtl_n
     if (access(tex, R_OK) != 0)
         return 0;
     folder_of(out, out_dir, sizeof out_dir);
-    /* Beside the OBJ the bare name works; elsewhere the absolute path does. */
     char *abs = realpath(tex, NULL), *abs_out_dir = realpath(out_dir[0] ? out_dir : ".", NULL);
-    char *abs_tex_dir = realpath(tex_dir[0] ? tex_dir : ".", NULL);
-    int same = abs_out_dir && abs_tex_dir && !strcmp(abs_out_dir, abs_tex_dir);
-    snprintf(tex_ref, sizeof tex_ref, "%s", same || !abs ? "texture.png" : abs);
+    if (abs && abs_out_dir)
+        relative_path(abs_out_dir, abs, tex_ref, sizeof tex_ref);
+    else
+        snprintf(tex_ref, sizeof tex_ref, "%s", tex);
     free(abs);
     free(abs_out_dir);
-    free(abs_tex_dir);
 
     const char *ext = extension(out);
     const char *base = strrchr(out, '/') ? strrchr(out, '/') + 1 : out;
@@ -76,19 +102,24 @@ int cmd_mesh(int argc, char **argv)
     const char *profile_path = NULL, *out = NULL;
     long segments = 360;
     double height = 1.0;
-    int mouth_cap = 0;
+    int mouth_cap = 0, z_up = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         char *end;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             usage(stdout);
             return 0;
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--segments") || !strcmp(a, "--height")) {
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--segments") || !strcmp(a, "--height") || !strcmp(a, "--up")) {
             if (i + 1 >= argc)
                 return cli_usage_error("mesh", "%s needs a value", a);
             const char *v = argv[++i];
             if (!strcmp(a, "-o"))
                 out = v;
+            else if (!strcmp(a, "--up")) {
+                if (strcmp(v, "y") && strcmp(v, "z"))
+                    return cli_usage_error("mesh", "--up must be y or z, not '%s'", v);
+                z_up = !strcmp(v, "z");
+            }
             else if (!strcmp(a, "--segments")) {
                 errno = 0;
                 segments = strtol(v, &end, 10);
@@ -134,6 +165,8 @@ int cmd_mesh(int argc, char **argv)
         return 2;
     }
     profile_free(&p);
+    if (z_up)
+        mesh_to_z_up(&m);
 
     int rc;
     char mtl_name[4200] = "", mtl_path[4200] = "";

@@ -31,10 +31,11 @@ typedef struct {
     int width, height;
     double tilt_deg;
     const char *side;
-    int threshold_used, dropped_objects, holes_filled;
-    int contour_points, approx_points, polyline_points, control_points, domains;
+    int threshold_used, dropped_objects, holes_filled, excluded;
+    int contour_points, polyline_points, control_points, domains;
     reconstruct_mesh_stats mesh, lods[RECONSTRUCT_MAX_LODS];
     double err_curve_to_polyline, err_polyline_to_curve;
+    reconstruct_quality quality;
     reconstruct_timings ms;
 } report;
 
@@ -56,6 +57,8 @@ static void usage(FILE *f)
             "  --mouth-cap          close the mouth with a disc (the base is always closed)\n"
             "  --smoothing PX       largest distance of a profile point from the fitted\n"
             "                       B-spline, pixels (default 1)\n"
+            "  --force              write the outputs even when the result fails the quality gate\n"
+            "                       (a warning line; profile.json records \"quality\": {\"passed\": false})\n"
             "  --json               print the report as JSON on stdout (an array for several photos)\n"
             "  -h, --help           this text\n\n"
             "exit status: 0 all photos done, 2 bad input or usage (the other photos are still\n"
@@ -91,12 +94,13 @@ static int parse_lods(const char *s, reconstruct_options *o)
 /* Returns -1 to continue, otherwise the exit code. */
 static int parse_options(int argc, char **argv, options *o)
 {
-    enum { OPT_THRESHOLD = 256, OPT_SIDE, OPT_SEGMENTS, OPT_LOD, OPT_MOUTH_CAP, OPT_JSON, OPT_SMOOTHING };
+    enum { OPT_THRESHOLD = 256, OPT_SIDE, OPT_SEGMENTS, OPT_LOD, OPT_MOUTH_CAP, OPT_JSON, OPT_SMOOTHING, OPT_FORCE };
     static const struct option longopts[] = {
         {"output", required_argument, NULL, 'o'},      {"threshold", required_argument, NULL, OPT_THRESHOLD},
         {"side", required_argument, NULL, OPT_SIDE},   {"segments", required_argument, NULL, OPT_SEGMENTS},
         {"lod", required_argument, NULL, OPT_LOD},     {"mouth-cap", no_argument, NULL, OPT_MOUTH_CAP},
         {"json", no_argument, NULL, OPT_JSON},         {"smoothing", required_argument, NULL, OPT_SMOOTHING},
+        {"force", no_argument, NULL, OPT_FORCE},
         {"help", no_argument, NULL, 'h'},              {NULL, 0, NULL, 0},
     };
     *o = (options){.pipeline = reconstruct_options_default()};
@@ -132,6 +136,9 @@ static int parse_options(int argc, char **argv, options *o)
             break;
         case OPT_MOUTH_CAP:
             o->pipeline.mouth_cap = 1;
+            break;
+        case OPT_FORCE:
+            o->pipeline.force = 1;
             break;
         case OPT_JSON:
             o->json = 1;
@@ -192,8 +199,9 @@ static void reconstruct_one(const options *o, report *rep)
         rep->threshold_used = x->threshold_used;
         rep->dropped_objects = x->dropped_objects;
         rep->holes_filled = x->holes_filled;
+        rep->excluded = x->n_excluded;
+        rep->quality = r.quality;
         rep->contour_points = x->n_contour;
-        rep->approx_points = x->n_approx;
         rep->polyline_points = x->n_polyline;
         rep->control_points = r.curve.n_ctrl;
         rep->domains = r.n_domains;
@@ -210,17 +218,20 @@ static void print_summary(const report *r)
 {
     fprintf(stderr,
             "%s -> %s/\n"
-            "  axis tilt %.2f deg, profile from the %s side, threshold %d, %d other object%s dropped\n"
+            "  axis tilt %.2f deg, profile from the %s side, %d part%s excluded, %d other object%s dropped\n"
             "  %d contour points -> %d control points, %d domains; Hausdorff curve->polyline %.2f px, "
             "polyline->curve %.2f px\n"
             "  mesh %d vertices, %d faces (%d segments)\n"
             "  %.1f ms: decode %.1f, image processing %.1f, B-spline %.1f, domains %.1f, errors %.1f, texture %.1f, "
             "mesh %.1f, overlay %.1f, writing %.1f\n",
-            r->photo, r->out, r->tilt_deg, r->side, r->threshold_used, r->dropped_objects,
+            r->photo, r->out, r->tilt_deg, r->side, r->excluded, r->excluded == 1 ? "" : "s", r->dropped_objects,
             r->dropped_objects == 1 ? "" : "s", r->contour_points, r->control_points, r->domains,
             r->err_curve_to_polyline, r->err_polyline_to_curve, r->mesh.vertices, r->mesh.faces, r->mesh.segments,
             r->ms.total, r->ms.decode, r->ms.image, r->ms.bspline, r->ms.domains, r->ms.hausdorff, r->ms.texture,
             r->ms.mesh, r->ms.overlay, r->ms.write);
+    if (!r->quality.passed)
+        fprintf(stderr, "celadon: warning: %s: written with --force although the quality gate failed: %s\n", r->photo,
+                r->quality.failed);
 }
 
 static json_t *mesh_json(const reconstruct_mesh_stats *m)
@@ -244,14 +255,19 @@ static json_t *report_json(const options *o, const report *r)
         "mesh", r->ms.mesh, "overlay", r->ms.overlay, "write", r->ms.write, "total", r->ms.total);
     json_t *errors = json_pack("{s:f, s:f}", "curve_to_polyline", r->err_curve_to_polyline, "polyline_to_curve",
                                r->err_polyline_to_curve);
+    json_t *quality = json_pack("{s:b, s:f, s:f, s:f, s:i, s:s}", "passed", r->quality.passed, "hausdorff_px",
+                                r->quality.hausdorff_px, "lr_disagreement", r->quality.lr_disagreement,
+                                "excluded_fraction", r->quality.excluded_fraction, "border_contact",
+                                (int)r->quality.border_contact, "failed", r->quality.failed);
     return json_pack("{s:s, s:b, s:s, s:i, s:i, s:f, s:s, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, "
-                     "s:o, s:o, s:o}",
+                     "s:o, s:o, s:o, s:o}",
                      "photo", r->photo, "ok", 1, "output", r->out, "width", r->width, "height", r->height,
                      "tilt_deg", r->tilt_deg, "side", r->side, "threshold", r->threshold_used, "dropped_objects",
-                     r->dropped_objects, "holes_filled", r->holes_filled, "contour_points", r->contour_points, "approx_points", r->approx_points,
-                     "polyline_points", r->polyline_points, "control_points", r->control_points, "domains",
-                     r->domains, "segments", r->mesh.segments, "vertices", r->mesh.vertices, "faces", r->mesh.faces,
-                     "error_px", errors, "timings_ms", timings, "lods", lods);
+                     r->dropped_objects, "holes_filled", r->holes_filled, "excluded_parts", r->excluded,
+                     "contour_points", r->contour_points, "polyline_points", r->polyline_points, "control_points",
+                     r->control_points, "domains", r->domains, "segments", r->mesh.segments, "vertices",
+                     r->mesh.vertices, "faces", r->mesh.faces, "error_px", errors, "quality", quality, "timings_ms",
+                     timings, "lods", lods);
 }
 
 /* Output folders: DIR itself for one photo; DIR/STEM for several, with

@@ -1,5 +1,7 @@
 /* celadon render: a Mitsuba 3 scene rendered with the path tracer to EXR
- * (float32, optional AOV channels) or PNG/JPEG (sRGB, 8-bit). */
+ * (float32, optional AOV channels) or PNG/JPEG (sRGB, 8-bit); under mpirun
+ * shared among the ranks (distribute.h), as one part of several (parts.h),
+ * and over a range of frames. */
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
@@ -7,33 +9,53 @@
 #include <string.h>
 #include <strings.h>
 
+#include "celadon/distribute.h"
+#include "celadon/parts.h"
 #include "celadon/render.h"
 #include "celadon/scene.h"
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 
-enum { MAX_DEFINES = 64 };
+enum { MAX_DEFINES = 64, MAX_FRAMES = 1000000 };
 
 static void usage(FILE *f)
 {
     fprintf(f, "usage: celadon render SCENE.xml -o OUT.{exr,png,jpg} [--spp N] [--res WxH]\n"
                "                      [--geometry analytic|mesh:N] [--threads N] [--seed S]\n"
-               "                      [--sampler NAME] [-D name=value]... [--aov depth,normal,albedo]\n\n"
+               "                      [--sampler NAME] [-D name=value]... [--aov depth,normal,albedo]\n"
+               "                      [--part K/N] [--frames A:B[:S]]\n\n"
                "Renders a Mitsuba 3 scene (docs/scene-format.md) with the `path` integrator.\n"
                "SORs are intersected exactly unless --geometry mesh:N revolves them into N\n"
                "angular segments traced by Embree (same sampler seeds otherwise).\n\n"
                "  -o OUT          .exr (float32 RGB + AOV channels) or .png/.jpg (sRGB 8-bit)\n"
-               "  --spp N         samples per pixel (default: the scene's sampler)\n"
+               "  --spp N         samples per pixel (default: the scene's sampler); also the\n"
+               "                  value of $spp where the scene has no <default> for it\n"
                "  --res WxH       film size (default: the scene's film)\n"
                "  --geometry G    analytic (default) or mesh:N, N >= 3\n"
-               "  --threads N     OpenMP threads (default: all cores)\n"
+               "  --threads N     OpenMP threads (default: all cores; per rank under mpirun)\n"
                "  --seed S        sampler seed (default: the scene's)\n"
                "  --sampler NAME  sampler plugin instead of the scene's, with its sample count and seed:\n"
                "                  independent, stratified, multijitter, orthogonal, ldsampler, zsobol\n"
                "  -D name=value   sets a scene <default> parameter\n"
                "  --aov LIST      extra EXR channels: depth, normal, albedo\n"
+               "  --part K/N      render the K-th of N shares of the samples into OUT.exr, for\n"
+               "                  `celadon merge` (docs/distributed.md)\n"
+               "  --frames A:B:S  render frames A, A+S, ... below B (S defaults to 1), setting\n"
+               "                  -D frame=F; each # run in OUT becomes the zero-padded frame\n"
+               "Under mpirun (or srun) the ranks share the work and rank 0 writes OUT.\n"
                "Ctrl-C stops the render and writes the image it has so far.\n");
 }
+
+typedef struct {
+    const char *scene_path, *out;
+    scene_options bo;
+    render_options ro;
+    scene_define defs[MAX_DEFINES + 2]; /* + $spp's fallback + the frame's */
+    int ndefs;
+    const char *spp; /* --spp's text, or NULL */
+    render_part part; /* n == 0: the whole render */
+    int frame_from, frame_to, frame_step, frames; /* frames == 0: no --frames */
+} render_args;
 
 static int output_kind_ok(const char *path, int *is_exr)
 {
@@ -44,129 +66,261 @@ static int output_kind_ok(const char *path, int *is_exr)
     return *is_exr || !strcasecmp(dot, ".png") || !strcasecmp(dot, ".jpg") || !strcasecmp(dot, ".jpeg");
 }
 
-static void on_sigint(int sig)
+/* "A:B" or "A:B:S": frames A, A+S, ... below B. */
+static int parse_frames(const char *s, render_args *a)
+{
+    int from, to, step = 1, n = 0;
+    if (sscanf(s, "%d:%d%n", &from, &to, &n) != 2)
+        return -1;
+    if (s[n] == ':') {
+        int m = 0;
+        if (sscanf(s + n + 1, "%d%n", &step, &m) != 1)
+            return -1;
+        n += 1 + m;
+    }
+    if (s[n] || step < 1 || to <= from || ((long long)to - from + step - 1) / step > MAX_FRAMES)
+        return -1;
+    a->frame_from = from, a->frame_to = to, a->frame_step = step;
+    a->frames = (int)(((long long)to - from + step - 1) / step);
+    return 0;
+}
+
+/* Parses the options; -1 to go on, else the exit code. */
+static int parse_args(int argc, char **argv, render_args *a)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        long long v;
+        if (!strcmp(arg, "-h") || !strcmp(arg, "--help")) {
+            usage(stdout);
+            return 0;
+        }
+        if (arg[0] != '-' || !arg[1]) {
+            if (a->scene_path)
+                return cli_usage_error("render", "unexpected argument '%s'", arg);
+            a->scene_path = arg;
+            continue;
+        }
+        if (!val)
+            return cli_usage_error("render", "option %s needs a value", arg);
+        i++;
+        if (!strcmp(arg, "-o")) {
+            a->out = val;
+        } else if (!strcmp(arg, "--spp")) {
+            if (cli_parse_int(val, 1, 1 << 24, &v) != 0)
+                return cli_usage_error("render", "--spp wants an integer from 1 to 16777216, not '%s'", val);
+            a->bo.spp = (int)v;
+            a->spp = val;
+        } else if (!strcmp(arg, "--res")) {
+            int w, h, n = 0;
+            if (sscanf(val, "%dx%d%n", &w, &h, &n) != 2 || val[n] || w < 1 || h < 1 || w > 65536 || h > 65536)
+                return cli_usage_error("render", "--res wants WxH with sizes from 1 to 65536, not '%s'", val);
+            a->bo.width = w, a->bo.height = h;
+        } else if (!strcmp(arg, "--geometry")) {
+            if (!strcmp(val, "analytic"))
+                a->bo.mesh_segments = 0;
+            else if (!strncmp(val, "mesh:", 5) && cli_parse_int(val + 5, 3, 1000000, &v) == 0)
+                a->bo.mesh_segments = (int)v;
+            else
+                return cli_usage_error("render", "--geometry wants analytic or mesh:N with N from 3 to 1000000, not '%s'", val);
+        } else if (!strcmp(arg, "--threads")) {
+            if (cli_parse_int(val, 1, 1024, &v) != 0)
+                return cli_usage_error("render", "--threads wants an integer from 1 to 1024, not '%s'", val);
+            a->ro.threads = (int)v;
+        } else if (!strcmp(arg, "--seed")) {
+            if (cli_parse_int(val, 0, (long long)(~0ull >> 1), &v) != 0)
+                return cli_usage_error("render", "--seed wants a non-negative integer, not '%s'", val);
+            a->bo.seed = v;
+        } else if (!strcmp(arg, "--sampler")) {
+            if (!scene_plugin_find(SCENE_SAMPLER, val))
+                return cli_usage_error("render", "--sampler wants independent, stratified, multijitter, orthogonal, "
+                                                 "ldsampler or zsobol, not '%s'", val);
+            a->bo.sampler = val;
+        } else if (!strcmp(arg, "-D")) {
+            const char *eq = strchr(val, '=');
+            if (!eq || eq == val || a->ndefs == MAX_DEFINES)
+                return cli_usage_error("render", "-D wants name=value, not '%s'", val);
+            char *name = strndup(val, (size_t)(eq - val));
+            if (!name)
+                return 1;
+            a->defs[a->ndefs++] = (scene_define){name, eq + 1, false};
+        } else if (!strcmp(arg, "--aov")) {
+            if (render_aov_parse(val, &a->ro.aovs) != 0)
+                return cli_usage_error("render", "--aov wants a list of depth, normal, albedo, not '%s'", val);
+        } else if (!strcmp(arg, "--part")) {
+            if (render_part_parse(val, &a->part) != 0)
+                return cli_usage_error("render", "--part wants K/N with 1 <= K <= N <= 1000000, not '%s'", val);
+        } else if (!strcmp(arg, "--frames")) {
+            if (parse_frames(val, a) != 0)
+                return cli_usage_error("render", "--frames wants A:B or A:B:S with A < B and S >= 1, not '%s'", val);
+        } else {
+            return cli_usage_error("render", "unknown option '%s'", arg);
+        }
+    }
+    /* --spp N is also $spp where the scene leaves it to the command line. */
+    int has_spp = 0;
+    for (int i = 0; i < a->ndefs; i++)
+        has_spp |= !strcmp(a->defs[i].name, "spp");
+    if (a->spp && !has_spp && !(a->defs[a->ndefs++] = (scene_define){strdup("spp"), a->spp, true}).name)
+        return 1;
+    int is_exr = 0;
+    if (!a->scene_path)
+        return cli_usage_error("render", "%s", "missing SCENE.xml");
+    if (!a->out)
+        return cli_usage_error("render", "%s", "missing -o OUT");
+    if (!output_kind_ok(a->out, &is_exr))
+        return cli_usage_error("render", "output '%s' must end in .exr, .png, .jpg or .jpeg", a->out);
+    if (a->ro.aovs && !is_exr)
+        return cli_usage_error("render", "--aov needs an .exr output, not '%s'", a->out);
+    if (a->part.n && !is_exr)
+        return cli_usage_error("render", "--part writes an .exr (its header names the part), not '%s'", a->out);
+    if (a->frames && !strchr(a->out, '#'))
+        return cli_usage_error("render", "--frames needs a run of # in the output name for the frame, not '%s'",
+                               a->out);
+    for (int i = 0; i < a->ndefs && a->frames; i++)
+        if (!strcmp(a->defs[i].name, "frame"))
+            return cli_usage_error("render", "%s", "--frames sets -D frame itself");
+    return -1;
+}
+
+/* The output name of frame f: each run of # replaced by f, zero-padded to
+ * the run's length. */
+static void frame_path(const char *pattern, int frame, char *out, size_t outlen)
+{
+    size_t n = 0;
+    for (const char *p = pattern; *p && n + 1 < outlen;) {
+        size_t run = strspn(p, "#");
+        if (run) {
+            n += (size_t)snprintf(out + n, outlen - n, "%0*d", (int)run, frame);
+            p += run;
+        } else {
+            out[n++] = *p++;
+        }
+        if (n >= outlen)
+            n = outlen - 1;
+    }
+    out[n] = '\0';
+}
+
+static void on_stop(int sig)
 {
     (void)sig;
     render_request_stop();
 }
 
-int cmd_render(int argc, char **argv)
+/* Writes the image (or the part) of a finished render: 0, 1 on failure, 130
+ * when the render was interrupted. */
+static int write_result(const render_args *a, const scene_t *scene, const film_t *film, const render_stats *st,
+                        const char *out)
 {
-    const char *scene_path = NULL, *out = NULL;
-    scene_options bo = scene_options_default();
-    render_options ro = {0, 0, 1};
-    scene_define defs[MAX_DEFINES];
-    int ndefs = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
-        long long v;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            return 0;
-        }
-        if (a[0] != '-' || !a[1]) {
-            if (scene_path)
-                return cli_usage_error("render", "unexpected argument '%s'", a);
-            scene_path = a;
-            continue;
-        }
-        if (!val)
-            return cli_usage_error("render", "option %s needs a value", a);
-        i++;
-        if (!strcmp(a, "-o")) {
-            out = val;
-        } else if (!strcmp(a, "--spp")) {
-            if (cli_parse_int(val, 1, 1 << 24, &v) != 0)
-                return cli_usage_error("render", "--spp wants an integer from 1 to 16777216, not '%s'", val);
-            bo.spp = (int)v;
-        } else if (!strcmp(a, "--res")) {
-            int w, h, n = 0;
-            if (sscanf(val, "%dx%d%n", &w, &h, &n) != 2 || val[n] || w < 1 || h < 1 || w > 65536 || h > 65536)
-                return cli_usage_error("render", "--res wants WxH with sizes from 1 to 65536, not '%s'", val);
-            bo.width = w, bo.height = h;
-        } else if (!strcmp(a, "--geometry")) {
-            if (!strcmp(val, "analytic"))
-                bo.mesh_segments = 0;
-            else if (!strncmp(val, "mesh:", 5) && cli_parse_int(val + 5, 3, 1000000, &v) == 0)
-                bo.mesh_segments = (int)v;
-            else
-                return cli_usage_error("render", "--geometry wants analytic or mesh:N with N from 3 to 1000000, not '%s'", val);
-        } else if (!strcmp(a, "--threads")) {
-            if (cli_parse_int(val, 1, 1024, &v) != 0)
-                return cli_usage_error("render", "--threads wants an integer from 1 to 1024, not '%s'", val);
-            ro.threads = (int)v;
-        } else if (!strcmp(a, "--seed")) {
-            if (cli_parse_int(val, 0, (long long)(~0ull >> 1), &v) != 0)
-                return cli_usage_error("render", "--seed wants a non-negative integer, not '%s'", val);
-            bo.seed = v;
-        } else if (!strcmp(a, "--sampler")) {
-            if (!scene_plugin_find(SCENE_SAMPLER, val))
-                return cli_usage_error("render", "--sampler wants independent, stratified, multijitter, orthogonal, "
-                                                 "ldsampler or zsobol, not '%s'", val);
-            bo.sampler = val;
-        } else if (!strcmp(a, "-D")) {
-            const char *eq = strchr(val, '=');
-            if (!eq || eq == val || ndefs == MAX_DEFINES)
-                return cli_usage_error("render", "-D wants name=value, not '%s'", val);
-            char *name = strndup(val, (size_t)(eq - val));
-            if (!name)
-                return 1;
-            defs[ndefs++] = (scene_define){name, eq + 1};
-        } else if (!strcmp(a, "--aov")) {
-            if (render_aov_parse(val, &ro.aovs) != 0)
-                return cli_usage_error("render", "--aov wants a list of depth, normal, albedo, not '%s'", val);
-        } else {
-            return cli_usage_error("render", "unknown option '%s'", a);
-        }
-    }
-    int rc = 2, is_exr = 0;
-    if (!scene_path)
-        rc = cli_usage_error("render", "%s", "missing SCENE.xml");
-    else if (!out)
-        rc = cli_usage_error("render", "%s", "missing -o OUT");
-    else if (!output_kind_ok(out, &is_exr))
-        rc = cli_usage_error("render", "output '%s' must end in .exr, .png, .jpg or .jpeg", out);
-    else if (ro.aovs && !is_exr)
-        rc = cli_usage_error("render", "--aov needs an .exr output, not '%s'", out);
-    else
-        rc = -1;
-    if (rc >= 0) {
-        for (int i = 0; i < ndefs; i++)
-            free((char *)defs[i].name);
-        return rc;
-    }
-
-    /* From here Ctrl-C asks for the image so far (an empty one while loading). */
-    struct sigaction sa, old;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, &old);
     char err[2048];
-    scene_t *scene = scene_create_from_file(scene_path, defs, ndefs, &bo, err, sizeof err);
-    for (int i = 0; i < ndefs; i++)
-        free((char *)defs[i].name);
-    if (!scene) {
-        fprintf(stderr, "celadon: %s\n", err);
-        return 2;
-    }
-    film_t film;
-    render_stats st;
-    rc = render_scene(scene, &ro, &film, &st, err, sizeof err) == 0 ? 0 : 1;
-    sigaction(SIGINT, &old, NULL);
-    scene_destroy(scene);
+    int rc = a->part.n ? render_part_write(film, scene, a->part, !st->interrupted, out, err, sizeof err)
+                       : film_write(film, out, err, sizeof err);
     if (rc != 0) {
         fprintf(stderr, "celadon: %s\n", err);
-        return rc;
+        return 1;
     }
-    if (film_write(&film, out, err, sizeof err) != 0) {
-        fprintf(stderr, "celadon: %s\n", err);
+    if (st->interrupted) {
+        fprintf(stderr, "celadon: interrupted; wrote the partial %s %s\n", a->part.n ? "part" : "image", out);
+        return 130;
+    }
+    return 0;
+}
+
+/* Builds the scene on every rank and renders it; rank 0 writes out. */
+static int render_one(render_args *a, const distribute_job *job, const char *out)
+{
+    char err[2048];
+    scene_t *scene = scene_create_from_file(a->scene_path, a->defs, a->ndefs, &a->bo, err, sizeof err);
+    int s0 = 0, s1 = 0;
+    if (scene && a->part.n && render_part_samples(a->part, scene_spp(scene), &s0, &s1) != 0) {
+        snprintf(err, sizeof err, "%s: part %d/%d of a render of %d spp gets no samples: use at most %d parts",
+                 a->scene_path, a->part.k, a->part.n, scene_spp(scene), scene_spp(scene));
+        scene_destroy(scene);
+        scene = NULL;
+    }
+    int failed = distribute_first_failure(scene != NULL);
+    if (failed >= 0) {
+        if (failed == job->rank && failed != 0)
+            fprintf(stderr, "celadon: rank %d: %s\n", job->rank, err);
+        else if (failed == job->rank)
+            fprintf(stderr, "celadon: %s\n", err);
+        scene_destroy(scene);
+        return 2;
+    }
+    a->ro.sample_begin = s0, a->ro.sample_end = s1;
+    film_t film;
+    render_stats st;
+    int rc = distribute_render(scene, &a->ro, &film, &st, err, sizeof err);
+    if (rc != 0) {
+        if (err[0])
+            fprintf(stderr, "celadon: %s\n", err);
         rc = 1;
-    } else if (st.interrupted) {
-        fprintf(stderr, "celadon: interrupted; wrote the partial image %s\n", out);
-        rc = 130;
+    } else {
+        if (job->rank == 0) {
+            rc = write_result(a, scene, &film, &st, out);
+            film_free(&film);
+        }
+        /* Every rank ends (or goes on to the next frame) with rank 0. */
+        if (distribute_first_failure(job->rank != 0 || rc == 0) >= 0 && job->rank != 0)
+            rc = st.interrupted ? 130 : 1;
     }
-    film_free(&film);
+    scene_destroy(scene);
+    return rc;
+}
+
+/* Every frame in turn (or the one render), until one fails or is stopped. */
+static int render_frames(render_args *a, const distribute_job *job)
+{
+    if (!a->frames)
+        return render_one(a, job, a->out);
+    int rc = 0;
+    for (int i = 0; i < a->frames && rc == 0; i++) {
+        int f = a->frame_from + i * a->frame_step;
+        char value[16], out[4096];
+        snprintf(value, sizeof value, "%d", f);
+        frame_path(a->out, f, out, sizeof out);
+        a->defs[a->ndefs] = (scene_define){"frame", value, false};
+        a->ndefs++;
+        rc = render_one(a, job, out);
+        a->ndefs--;
+    }
+    return rc;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    render_args a = {.bo = scene_options_default()};
+    distribute_job job;
+    char err[1024];
+    if (distribute_begin(&job, err, sizeof err) != 0) {
+        if (err[0])
+            fprintf(stderr, "celadon: %s\n", err);
+        distribute_end();
+        return 2;
+    }
+    cli_set_quiet(job.rank != 0); /* every rank would print the same usage error */
+    a.ro.progress = job.rank == 0;
+    int rc = parse_args(argc, argv, &a);
+    if (rc < 0) {
+        /* From here Ctrl-C asks for the image so far (an empty one while
+         * loading); under mpirun, which turns Ctrl-C into SIGTERM to every
+         * rank, SIGTERM does too. */
+        struct sigaction sa, old_int, old_term;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_stop;
+        sigemptyset(&sa.sa_mask);
+        sigaction(SIGINT, &sa, &old_int);
+        if (job.size > 1)
+            sigaction(SIGTERM, &sa, &old_term);
+        rc = render_frames(&a, &job);
+        sigaction(SIGINT, &old_int, NULL);
+        if (job.size > 1)
+            sigaction(SIGTERM, &old_term, NULL);
+    }
+    for (int i = 0; i < a.ndefs; i++)
+        free((char *)a.defs[i].name);
+    distribute_end();
     return rc;
 }

@@ -18,6 +18,14 @@ void progress_begin(progress_t *p, const char *label, uint64_t total)
     p->t_start = now_seconds();
     p->t_last_draw = 0.0;
     p->enabled = isatty(STDERR_FILENO);
+    p->lines = 0;
+    p->last_tenth = 0;
+}
+
+void progress_begin_lines(progress_t *p, const char *label, uint64_t total)
+{
+    progress_begin(p, label, total);
+    p->lines = !p->enabled;
 }
 
 static void format_duration(double s, char *buf, size_t n)
@@ -29,8 +37,24 @@ static void format_duration(double s, char *buf, size_t n)
         snprintf(buf, n, "%ldm%02lds", secs / 60, secs % 60);
 }
 
+/* A line at each tenth of the way (not at the end: the summary follows). */
+static void progress_line(progress_t *p, uint64_t done, const char *extra)
+{
+    int tenth = (int)(10.0 * (double)done / (double)p->total);
+    if (tenth <= p->last_tenth || tenth >= 10)
+        return;
+    p->last_tenth = tenth;
+    double elapsed = now_seconds() - p->t_start, frac = (double)done / (double)p->total;
+    char eta[32];
+    format_duration(elapsed * (1.0 - frac) / frac, eta, sizeof eta);
+    fprintf(stderr, "%s: %d%% ETA %s %s\n", p->label, 10 * tenth, eta, extra ? extra : "");
+    fflush(stderr);
+}
+
 void progress_update(progress_t *p, uint64_t done, const char *extra)
 {
+    if (p->lines)
+        progress_line(p, done, extra);
     if (!p->enabled)
         return;
     double t = now_seconds();

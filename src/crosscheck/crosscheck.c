@@ -41,15 +41,37 @@ static scene_t *load(const crosscheck_params *p, int segments, char *err, size_t
     return scene_create_from_file(p->scene_path, p->defs, p->ndefs, &so, err, errlen);
 }
 
-/* Renders s, writes outdir/stem.exr and .png, returns the RGB pixels. */
-static float *render_and_write(const scene_t *s, const crosscheck_params *p, const char *outdir, const char *stem,
-                               double *seconds, char *err, size_t errlen)
+/* Merges the parts of render `stem` from p->part_dirs (crosscheck_render_part's
+ * folders) into film. */
+static int merge_parts(const crosscheck_params *p, const scene_t *s, const char *stem, film_t *film, char *err,
+                       size_t errlen)
 {
-    render_options ro = {p->threads, 0, 0};
+    char(*paths)[4200] = malloc(sizeof *paths * (size_t)p->npart_dirs);
+    const char **list = malloc(sizeof *list * (size_t)p->npart_dirs);
+    if (!paths || !list)
+        abort();
+    for (int i = 0; i < p->npart_dirs; i++) {
+        snprintf(paths[i], sizeof paths[i], "%s/%s.exr", p->part_dirs[i], stem);
+        list[i] = paths[i];
+    }
+    int rc = render_parts_merge(list, p->npart_dirs, s, film, err, errlen);
+    free(paths);
+    free(list);
+    return rc;
+}
+
+/* Renders s (or merges its parts), writes outdir/stem.exr and .png, returns
+ * the RGB pixels; NULL with *rc -2 for refused parts, -1 otherwise. */
+static float *render_and_write(const scene_t *s, const crosscheck_params *p, const char *outdir, const char *stem,
+                               double *seconds, int *rc, char *err, size_t errlen)
+{
+    render_options ro = {.threads = p->threads};
     film_t film;
-    render_stats st;
-    if (render_scene(s, &ro, &film, &st, err, errlen) != 0)
+    render_stats st = {0};
+    *rc = p->npart_dirs > 0 ? merge_parts(p, s, stem, &film, err, errlen) : render_scene(s, &ro, &film, &st, err, errlen);
+    if (*rc != 0)
         return NULL;
+    *rc = -1;
     *seconds = st.seconds;
     float *px = malloc(sizeof *px * 3 * (size_t)film.width * (size_t)film.height);
     char path[4200];
@@ -67,9 +89,34 @@ static float *render_and_write(const scene_t *s, const crosscheck_params *p, con
         free(px);
         return NULL;
     }
-    if (p->progress)
+    if (p->progress && p->npart_dirs > 0)
+        fprintf(stderr, "crosscheck: %s: merged from %d parts\n", stem, p->npart_dirs);
+    else if (p->progress)
         fprintf(stderr, "crosscheck: %s: %.2f s\n", stem, *seconds);
     return px;
+}
+
+/* Renders part `part` of s into outdir/stem.exr. */
+static int render_part_into(const scene_t *s, const crosscheck_params *p, render_part part, const char *outdir,
+                            const char *stem, char *err, size_t errlen)
+{
+    render_options ro = {.threads = p->threads};
+    if (render_part_samples(part, scene_spp(s), &ro.sample_begin, &ro.sample_end) != 0) {
+        snprintf(err, errlen, "%s: part %d/%d of a render of %d spp gets no samples: use at most %d parts",
+                 p->scene_path, part.k, part.n, scene_spp(s), scene_spp(s));
+        return -2;
+    }
+    film_t film;
+    render_stats st;
+    if (render_scene(s, &ro, &film, &st, err, errlen) != 0)
+        return -1;
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s.exr", outdir, stem);
+    int rc = render_part_write(&film, s, part, !st.interrupted, path, err, errlen);
+    film_free(&film);
+    if (rc == 0 && p->progress)
+        fprintf(stderr, "crosscheck: %s part %d/%d: %.2f s\n", stem, part.k, part.n, st.seconds);
+    return rc;
 }
 
 static void image_metrics(const float *a, const float *m, size_t n, crosscheck_row *row)
@@ -244,7 +291,7 @@ int crosscheck_run(const crosscheck_params *p, const char *outdir, crosscheck_re
         snprintf(err, errlen, "out of memory");
         goto done;
     }
-    img_a = render_and_write(an, p, outdir, "analytic", &res->analytic_seconds, err, errlen);
+    img_a = render_and_write(an, p, outdir, "analytic", &res->analytic_seconds, &rc, err, errlen);
     if (!img_a)
         goto done;
     size_t nval = 3 * (size_t)res->width * (size_t)res->height;
@@ -258,7 +305,7 @@ int crosscheck_run(const crosscheck_params *p, const char *outdir, crosscheck_re
         }
         char stem[32];
         snprintf(stem, sizeof stem, "mesh-%d", row->segments);
-        float *img_m = render_and_write(me, p, outdir, stem, &row->seconds, err, errlen);
+        float *img_m = render_and_write(me, p, outdir, stem, &row->seconds, &rc, err, errlen);
         if (img_m) {
             image_metrics(img_a, img_m, nval, row);
             geometry_metrics(an, me, p, row, &res->sor_rays);
@@ -276,6 +323,25 @@ int crosscheck_run(const crosscheck_params *p, const char *outdir, crosscheck_re
 done:
     free(img_a);
     scene_destroy(an);
+    return rc;
+}
+
+int crosscheck_render_part(const crosscheck_params *p, render_part part, const char *outdir, char *err,
+                           size_t errlen)
+{
+    if (check_params(p, err, errlen) != 0)
+        return -2;
+    int rc = 0;
+    for (int i = -1; i < p->nsegments && rc == 0; i++) {
+        scene_t *s = load(p, i < 0 ? 0 : p->segments[i], err, errlen);
+        if (!s)
+            return -2;
+        char stem[32] = "analytic";
+        if (i >= 0)
+            snprintf(stem, sizeof stem, "mesh-%d", p->segments[i]);
+        rc = render_part_into(s, p, part, outdir, stem, err, errlen);
+        scene_destroy(s);
+    }
     return rc;
 }
 

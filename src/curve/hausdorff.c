@@ -168,6 +168,12 @@ static int reserve(double **a, double **b, double **c, int *cap, int n)
 void curve_polyline_hausdorff(const bspline_t *c, const vec2 *poly, int n, double *curve_to_polyline,
                               double *polyline_to_curve)
 {
+    curve_range_polyline_hausdorff(c, -INFINITY, INFINITY, poly, n, curve_to_polyline, polyline_to_curve);
+}
+
+void curve_range_polyline_hausdorff(const bspline_t *c, double u_lo, double u_hi, const vec2 *poly, int n,
+                                    double *curve_to_polyline, double *polyline_to_curve)
+{
     *curve_to_polyline = *polyline_to_curve = NAN;
     double *cu = NULL, *val = NULL, *par = NULL, *step = NULL;
     vec2 *cp = NULL;
@@ -181,13 +187,19 @@ void curve_polyline_hausdorff(const bspline_t *c, const vec2 *poly, int n, doubl
         goto done;
     context x = {c, &pg, &cg, cu, {0, 0}, {0, 0}};
 
-    /* Curve side. The arc between dense samples exceeds its chord by far
-     * less than the 1% margin given to the Lipschitz bound. */
-    for (int i = 0; i < m; i++) {
+    /* Curve side, over the samples in [u_lo, u_hi]. The arc between dense
+     * samples exceeds its chord by far less than the 1% margin given to the
+     * Lipschitz bound. */
+    int i0 = 0, i1 = m;
+    while (i0 < m && cu[i0] < u_lo)
+        i0++;
+    while (i1 > i0 && cu[i1 - 1] > u_hi)
+        i1--;
+    for (int i = i0; i < i1; i++) {
         val[i] = segment_tree_nearest(&pg, cp[i], NULL, NULL);
-        step[i] = i + 1 < m ? 1.01 * v2_len(v2_sub(cp[i + 1], cp[i])) : 0.0;
+        step[i] = i + 1 < i1 ? 1.01 * v2_len(v2_sub(cp[i + 1], cp[i])) : 0.0;
     }
-    double c2p = polished_max(curve_side, &x, cu, val, step, m, 0.0);
+    double c2p = i1 > i0 ? polished_max(curve_side, &x, cu + i0, val + i0, step + i0, i1 - i0, 0.0) : 0.0;
 
     /* Polyline side, one segment at a time (a lone point is a segment of length 0). */
     double p2c = 0.0, poly_len = 0.0;

@@ -180,3 +180,13 @@ int mesh_revolve(const bspline_t *profile, const double *u_rings, int n_rings, d
     free(tu);
     return 0;
 }
+
+void mesh_to_z_up(mesh_t *m)
+{
+    for (int i = 0; i < m->n_verts; i++) {
+        float *p = &m->pos[3 * i], *n = &m->nrm[3 * i];
+        float py = p[1], ny = n[1];
+        p[1] = -p[2], p[2] = py;
+        n[1] = -n[2], n[2] = ny;
+    }
+}

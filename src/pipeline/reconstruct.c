@@ -2,6 +2,7 @@
  * Hausdorff errors -> texture. See include/celadon/reconstruct.h. */
 #include "celadon/reconstruct.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +28,75 @@ reconstruct_options reconstruct_options_default(void)
 }
 
 static double ms_since(double t0) { return 1e3 * (now_seconds() - t0); }
+
+/* The Hausdorff distances between the curve and the polyline's pieces: the
+ * rows left out (a handle, bridged) are not part of the outline, so neither
+ * the chord across them nor the curve over them is measured. The curve's
+ * parameter is the polyline's normalised chord length (curve_fit.h). */
+static void bridged_hausdorff(reconstruction *r)
+{
+    const vec2 *p = r->extract.polyline;
+    const uint8_t *bridge = r->extract.polyline_bridge;
+    int n = r->extract.n_polyline;
+    double total = 0, at = 0;
+    for (int i = 0; i + 1 < n; i++)
+        total += v2_len(v2_sub(p[i + 1], p[i]));
+    r->err_curve_to_polyline = r->err_polyline_to_curve = 0;
+    for (int a = 0; a < n;) {
+        int b = a;
+        double u0 = total > 0 ? at / total : 0;
+        while (b + 1 < n && !(bridge && bridge[b])) {
+            at += v2_len(v2_sub(p[b + 1], p[b]));
+            b++;
+        }
+        /* The curve leaves a piece's end toward the bridge: its parameter
+         * (chord length) locates the end to within a pixel or two, so the
+         * curve side stops 2 px short of an end next to a bridge. */
+        double u1 = total > 0 ? at / total : 1, margin = total > 0 ? 2.0 / total : 0;
+        if (a > 0)
+            u0 += margin;
+        if (b + 1 < n && bridge && bridge[b])
+            u1 -= margin;
+        double c2p, p2c;
+        curve_range_polyline_hausdorff(&r->curve, u0, u1 > u0 ? u1 : u0, p + a, b - a + 1, &c2p, &p2c);
+        r->err_curve_to_polyline = fmax(r->err_curve_to_polyline, c2p);
+        r->err_polyline_to_curve = fmax(r->err_polyline_to_curve, p2c);
+        if (b + 1 < n)
+            at += v2_len(v2_sub(p[b + 1], p[b]));
+        a = b + 1;
+    }
+}
+
+/* The quality figures and their verdict. */
+static void assess(reconstruction *r)
+{
+    reconstruct_quality *q = &r->quality;
+    q->hausdorff_px = fmax(r->err_curve_to_polyline, r->err_polyline_to_curve);
+    q->lr_disagreement = r->extract.lr_disagreement;
+    q->excluded_fraction = r->extract.excluded_fraction;
+    q->border_contact = r->extract.border_contact;
+    size_t len = 0;
+    q->failed[0] = '\0';
+#define FAILED(...) len += (size_t)snprintf(q->failed + len, len < sizeof q->failed ? sizeof q->failed - len : 0, __VA_ARGS__)
+    if (q->border_contact) {
+        static const char *edge[4] = {"top", "bottom", "left", "right"};
+        for (int k = 0; k < 4; k++)
+            if (q->border_contact & (1u << k))
+                FAILED("%sthe vessel touches the %s image border", len ? "; " : "", edge[k]);
+        FAILED(" (leave a margin around the vessel)");
+    }
+    if (!(q->lr_disagreement <= RECONSTRUCT_MAX_LR_DISAGREEMENT))
+        FAILED("%sleft and right outlines disagree by %.1f%% of the largest radius (limit %.0f%%)", len ? "; " : "",
+               100 * q->lr_disagreement, 100 * RECONSTRUCT_MAX_LR_DISAGREEMENT);
+    if (!(q->excluded_fraction <= RECONSTRUCT_MAX_EXCLUDED_FRACTION))
+        FAILED("%s%.0f%% of the profile's rows are one-sided or bridged (limit %.0f%%)", len ? "; " : "",
+               100 * q->excluded_fraction, 100 * RECONSTRUCT_MAX_EXCLUDED_FRACTION);
+    if (!(q->hausdorff_px <= RECONSTRUCT_MAX_HAUSDORFF_PX))
+        FAILED("%sthe B-spline is %.2f px from the outline (Hausdorff; limit %.2f px)", len ? "; " : "",
+               q->hausdorff_px, RECONSTRUCT_MAX_HAUSDORFF_PX);
+#undef FAILED
+    q->passed = len == 0;
+}
 
 static int fail(int code, char *err, size_t errlen, const char *what)
 {
@@ -58,9 +128,13 @@ int reconstruct_photo(const char *path, const reconstruct_options *opt, reconstr
         return fail(1, err, errlen, "cannot split the curve into domains");
     r->ms.domains = ms_since(t0);
     t0 = now_seconds();
-    curve_polyline_hausdorff(&r->curve, r->extract.polyline, r->extract.n_polyline, &r->err_curve_to_polyline,
-                             &r->err_polyline_to_curve);
+    bridged_hausdorff(r);
     r->ms.hausdorff = ms_since(t0);
+    assess(r);
+    if (!r->quality.passed && !opt->force) {
+        snprintf(err, errlen, "quality gate: %s; --force writes the result anyway", r->quality.failed);
+        return 2;
+    }
 
     t0 = now_seconds();
     if (recon_texture_from_photo(&r->photo, &r->extract, &r->texture, err, errlen) != 0)
@@ -94,6 +168,22 @@ void reconstruction_profile(const reconstruction *r, const char *source, profile
     p->ms_bspline = r->ms.bspline + r->ms.domains;
     p->ms_texture = r->ms.texture;
     p->ms_mesh = r->ms.mesh;
+    p->n_excluded = x->n_excluded;
+    for (int i = 0; i < x->n_excluded && i < (int)(sizeof p->excluded / sizeof p->excluded[0]); i++) {
+        const recon_excluded *e = &x->excluded[i];
+        snprintf(p->excluded[i].what, sizeof p->excluded[i].what, "%s", recon_part_name(e->what));
+        p->excluded[i].rows[0] = e->row0;
+        p->excluded[i].rows[1] = e->row1;
+        p->excluded[i].side = e->side;
+        snprintf(p->excluded[i].profile, sizeof p->excluded[i].profile, "%s", recon_profile_source_name(e->profile));
+    }
+    const reconstruct_quality *q = &r->quality;
+    p->quality.present = 1;
+    p->quality.passed = q->passed;
+    p->quality.hausdorff_px = q->hausdorff_px;
+    p->quality.lr_disagreement = q->lr_disagreement;
+    p->quality.excluded_fraction = q->excluded_fraction;
+    p->quality.border_contact = q->border_contact;
 }
 
 void reconstruction_free(reconstruction *r)

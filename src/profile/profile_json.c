@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "celadon/curve_domains.h"
 #include "core/core.h"
 
 enum { PROFILE_VERSION = 1 };
@@ -54,6 +55,34 @@ static json_t *corners_json(const profile_t *p)
     return o;
 }
 
+/* "excluded" (always, possibly empty) and "quality" (when recorded). */
+static int add_reconstruction_notes(json_t *root, const profile_t *p)
+{
+    json_t *ex = json_array();
+    for (int i = 0; ex && i < p->n_excluded; i++) {
+        const char *side = p->excluded[i].side < 0 ? "left" : (p->excluded[i].side > 0 ? "right" : "both");
+        if (json_array_append_new(ex, json_pack("{s:s, s:[i, i], s:s, s:s}", "what", p->excluded[i].what, "rows",
+                                                p->excluded[i].rows[0], p->excluded[i].rows[1], "side", side,
+                                                "profile", p->excluded[i].profile)) != 0) {
+            json_decref(ex);
+            ex = NULL;
+        }
+    }
+    if (!ex || json_object_set_new(root, "excluded", ex) != 0)
+        return -1;
+    if (!p->quality.present)
+        return 0;
+    json_t *border = json_array();
+    static const char *edge[4] = {"top", "bottom", "left", "right"};
+    for (int k = 0; border && k < 4; k++)
+        if (p->quality.border_contact & (1u << k))
+            json_array_append_new(border, json_string(edge[k]));
+    json_t *q = json_pack("{s:b, s:f, s:f, s:f, s:o}", "passed", p->quality.passed, "hausdorff_px",
+                          p->quality.hausdorff_px, "lr_disagreement", p->quality.lr_disagreement,
+                          "excluded_fraction", p->quality.excluded_fraction, "border_contact", border);
+    return q && json_object_set_new(root, "quality", q) == 0 ? 0 : -1;
+}
+
 int profile_write_json(const char *path, const profile_t *p, char *err, size_t errlen)
 {
     const char *bad = bspline_validate(&p->curve);
@@ -79,6 +108,10 @@ int profile_write_json(const char *path, const profile_t *p, char *err, size_t e
         "stats", "contour_points", p->contour_points, "control_points", p->curve.n_ctrl, "domains", p->n_domains,
         "timings_ms", "image_processing", p->ms_image_processing, "bspline", p->ms_bspline, "texture",
         p->ms_texture, "mesh", p->ms_mesh);
+    if (root && add_reconstruction_notes(root, p) != 0) {
+        json_decref(root);
+        root = NULL;
+    }
     if (!root) {
         snprintf(err, errlen, "cannot write %s: a value is not finite or a string is not UTF-8", path);
         return -1;
@@ -205,6 +238,8 @@ static int read_reals(reader *r, json_t *a, const char *path, double *out)
     return 0;
 }
 
+/* The photo and the frame the profile was measured in: optional (a
+ * researcher's own profile has none of it), checked when present. */
 static int read_header(reader *r, json_t *root, profile_t *p)
 {
     json_t *v = member(r, root, "version", "version");
@@ -213,58 +248,69 @@ static int read_header(reader *r, json_t *root, profile_t *p)
     if (!json_is_integer(v) || json_integer_value(v) != PROFILE_VERSION)
         return fail(r, "unsupported version (this reader knows version %d)", PROFILE_VERSION);
 
-    json_t *src = get_object(r, root, "source");
-    if (!src)
-        return -1;
-    json_t *path = member(r, src, "path", "source.path");
-    if (!path)
-        return -1;
-    if (!json_is_string(path) || json_string_length(path) >= sizeof p->source_path)
-        return fail(r, "'source.path' must be a string shorter than %zu bytes", sizeof p->source_path);
-    snprintf(p->source_path, sizeof p->source_path, "%s", json_string_value(path));
-    if (get_count(r, src, "width", "source.width", &p->source_width) ||
-        get_count(r, src, "height", "source.height", &p->source_height))
-        return -1;
-
-    json_t *axis = get_object(r, root, "axis");
-    if (!axis || get_pair(r, axis, "origin", "axis.origin", &p->axis_origin) ||
-        get_pair(r, axis, "direction", "axis.direction", &p->axis_direction) ||
-        get_number(r, axis, "tilt_deg", "axis.tilt_deg", &p->tilt_deg))
-        return -1;
-    if (fabs(v2_len(p->axis_direction) - 1.0) > 1e-6)
-        return fail(r, "'axis.direction' must be a unit vector");
-
-    json_t *corners = get_object(r, root, "corners");
-    if (!corners)
-        return -1;
-    for (int k = 0; k < CORNER_COUNT; k++) {
-        char name[32];
-        snprintf(name, sizeof name, "corners.%s", corner_names[k]);
-        if (get_pair(r, corners, corner_names[k], name, &p->corners[k]) != 0)
+    if (json_object_get(root, "source")) {
+        json_t *src = get_object(r, root, "source");
+        if (!src)
+            return -1;
+        json_t *path = member(r, src, "path", "source.path");
+        if (!path)
+            return -1;
+        if (!json_is_string(path) || json_string_length(path) >= sizeof p->source_path)
+            return fail(r, "'source.path' must be a string shorter than %zu bytes", sizeof p->source_path);
+        snprintf(p->source_path, sizeof p->source_path, "%s", json_string_value(path));
+        if (get_count(r, src, "width", "source.width", &p->source_width) ||
+            get_count(r, src, "height", "source.height", &p->source_height))
             return -1;
     }
 
-    json_t *side = member(r, root, "side", "side");
-    if (!side)
-        return -1;
-    if (!json_is_string(side) || (strcmp(json_string_value(side), "left") && strcmp(json_string_value(side), "right")))
-        return fail(r, "'side' must be \"left\" or \"right\"");
-    snprintf(p->side, sizeof p->side, "%s", json_string_value(side));
+    p->axis_direction = v2(0, -1);
+    if (json_object_get(root, "axis")) {
+        json_t *axis = get_object(r, root, "axis");
+        if (!axis || get_pair(r, axis, "origin", "axis.origin", &p->axis_origin) ||
+            get_pair(r, axis, "direction", "axis.direction", &p->axis_direction) ||
+            get_number(r, axis, "tilt_deg", "axis.tilt_deg", &p->tilt_deg))
+            return -1;
+        if (fabs(v2_len(p->axis_direction) - 1.0) > 1e-6)
+            return fail(r, "'axis.direction' must be a unit vector");
+    }
+
+    if (json_object_get(root, "corners")) {
+        json_t *corners = get_object(r, root, "corners");
+        if (!corners)
+            return -1;
+        for (int k = 0; k < CORNER_COUNT; k++) {
+            char name[32];
+            snprintf(name, sizeof name, "corners.%s", corner_names[k]);
+            if (get_pair(r, corners, corner_names[k], name, &p->corners[k]) != 0)
+                return -1;
+        }
+    }
+
+    snprintf(p->side, sizeof p->side, "right");
+    json_t *side = json_object_get(root, "side");
+    if (side) {
+        if (!json_is_string(side) ||
+            (strcmp(json_string_value(side), "left") && strcmp(json_string_value(side), "right")))
+            return fail(r, "'side' must be \"left\" or \"right\"");
+        snprintf(p->side, sizeof p->side, "%s", json_string_value(side));
+    }
     return 0;
 }
 
 static int read_curve(reader *r, json_t *root, profile_t *p)
 {
     int n;
-    json_t *poly = get_array(r, root, "polyline", "polyline", 2, &n);
-    if (!poly)
-        return -1;
-    p->polyline = malloc((size_t)n * sizeof *p->polyline);
-    if (!p->polyline)
-        return fail(r, "out of memory");
-    p->n_polyline = n;
-    if (read_pairs(r, poly, "polyline", p->polyline) != 0)
-        return -1;
+    if (json_object_get(root, "polyline")) { /* the measured profile: optional */
+        json_t *poly = get_array(r, root, "polyline", "polyline", 2, &n);
+        if (!poly)
+            return -1;
+        p->polyline = malloc((size_t)n * sizeof *p->polyline);
+        if (!p->polyline)
+            return fail(r, "out of memory");
+        p->n_polyline = n;
+        if (read_pairs(r, poly, "polyline", p->polyline) != 0)
+            return -1;
+    }
 
     json_t *bs = get_object(r, root, "bspline");
     if (!bs)
@@ -292,6 +338,12 @@ static int read_curve(reader *r, json_t *root, profile_t *p)
     if (p->curve.knots[0] != 0.0 || p->curve.knots[nk - 1] != 1.0)
         return fail(r, "invalid B-spline: the parameter must run from 0 to 1");
 
+    if (!json_object_get(root, "domains")) { /* computed as the reconstruction computes them */
+        if (curve_domains_by_curvature_variation(&p->curve, PROFILE_DOMAIN_TOL_PX, PROFILE_DOMAIN_TOL_DEG,
+                                                 &p->domains, &p->n_domains) != 0)
+            return fail(r, "cannot compute the curvature domains of the B-spline");
+        return 0;
+    }
     json_t *dom = get_array(r, root, "domains", "domains", 2, &n);
     if (!dom)
         return -1;
@@ -309,28 +361,35 @@ static int read_curve(reader *r, json_t *root, profile_t *p)
     return 0;
 }
 
+/* The reconstruction's report: optional, checked when present; nothing
+ * reads it back but the tests and people. */
 static int read_report(reader *r, json_t *root, profile_t *p)
 {
-    json_t *e = get_object(r, root, "error_px");
-    if (!e || get_number(r, e, "curve_to_polyline", "error_px.curve_to_polyline", &p->err_curve_to_polyline) ||
-        get_number(r, e, "polyline_to_curve", "error_px.polyline_to_curve", &p->err_polyline_to_curve))
-        return -1;
-    if (p->err_curve_to_polyline < 0.0 || p->err_polyline_to_curve < 0.0)
-        return fail(r, "'error_px' distances must not be negative");
-    json_t *st = get_object(r, root, "stats");
-    int ctrl, dom;
-    if (!st || get_count(r, st, "contour_points", "stats.contour_points", &p->contour_points) ||
-        get_count(r, st, "control_points", "stats.control_points", &ctrl) ||
-        get_count(r, st, "domains", "stats.domains", &dom))
-        return -1;
-    if (ctrl != p->curve.n_ctrl || dom != p->n_domains)
-        return fail(r, "'stats' disagrees with the bspline and domains it describes");
-    json_t *t = get_object(r, root, "timings_ms");
-    if (!t || get_number(r, t, "image_processing", "timings_ms.image_processing", &p->ms_image_processing) ||
-        get_number(r, t, "bspline", "timings_ms.bspline", &p->ms_bspline) ||
-        get_number(r, t, "texture", "timings_ms.texture", &p->ms_texture) ||
-        get_number(r, t, "mesh", "timings_ms.mesh", &p->ms_mesh))
-        return -1;
+    if (json_object_get(root, "error_px")) {
+        json_t *e = get_object(r, root, "error_px");
+        if (!e ||
+            get_number(r, e, "curve_to_polyline", "error_px.curve_to_polyline", &p->err_curve_to_polyline) ||
+            get_number(r, e, "polyline_to_curve", "error_px.polyline_to_curve", &p->err_polyline_to_curve))
+            return -1;
+        if (p->err_curve_to_polyline < 0.0 || p->err_polyline_to_curve < 0.0)
+            return fail(r, "'error_px' distances must not be negative");
+    }
+    if (json_object_get(root, "stats")) {
+        json_t *st = get_object(r, root, "stats");
+        int ctrl, dom;
+        if (!st || get_count(r, st, "contour_points", "stats.contour_points", &p->contour_points) ||
+            get_count(r, st, "control_points", "stats.control_points", &ctrl) ||
+            get_count(r, st, "domains", "stats.domains", &dom))
+            return -1;
+    }
+    if (json_object_get(root, "timings_ms")) {
+        json_t *t = get_object(r, root, "timings_ms");
+        if (!t || get_number(r, t, "image_processing", "timings_ms.image_processing", &p->ms_image_processing) ||
+            get_number(r, t, "bspline", "timings_ms.bspline", &p->ms_bspline) ||
+            get_number(r, t, "texture", "timings_ms.texture", &p->ms_texture) ||
+            get_number(r, t, "mesh", "timings_ms.mesh", &p->ms_mesh))
+            return -1;
+    }
     return 0;
 }
 

@@ -1,5 +1,6 @@
-/* recon_extract: photo -> mask -> contour -> corners -> axis -> sub-pixel
- * silhouette -> profile polyline. See include/celadon/recon.h. */
+/* recon_extract: photo -> vessel mask -> contour -> axis -> sub-pixel
+ * outlines -> caps -> parts -> profile polyline. See include/celadon/recon.h
+ * and docs/algorithms-recon.md. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -11,7 +12,8 @@
 #include "core/core.h"
 #include "recon/recon_internal.h"
 
-static const char *CORNER_NAME[CORNER_COUNT] = {"rim left", "rim right", "base left", "base right"};
+/* The largest lean of a vessel's axis from the image's vertical. */
+#define MAX_TILT_DEG 30.0
 
 static recon_status fail(recon_status st, char *err, size_t errlen, const char *fmt, ...)
 {
@@ -30,18 +32,31 @@ vec2 recon_profile_to_image(vec2 axis_origin, vec2 axis_direction, double r, dou
     return v2_add(axis_origin, v2_add(v2_scale(right, side_sign * r), v2_scale(axis_direction, h)));
 }
 
+const char *recon_part_name(recon_part_kind k)
+{
+    static const char *names[RECON_PART_KIND_COUNT] = {"shadow", "stand", "handle", "asymmetry"};
+    return k >= 0 && k < RECON_PART_KIND_COUNT ? names[k] : "unknown";
+}
+
+const char *recon_profile_source_name(recon_profile_source s)
+{
+    static const char *names[] = {"none", "left", "right", "bridged"};
+    return s >= RECON_PROFILE_NONE && s <= RECON_PROFILE_BRIDGED ? names[s] : "unknown";
+}
+
 /* Frees the arrays and clears their pointers and counts; scalars stay. */
 static void free_arrays(recon_result *res)
 {
     free(res->mask);
     free(res->contour);
-    free(res->approx);
     free(res->silhouette[0]);
     free(res->silhouette[1]);
     free(res->polyline);
+    free(res->polyline_bridge);
+    res->polyline_bridge = NULL;
     res->mask = NULL;
-    res->contour = res->approx = res->polyline = res->silhouette[0] = res->silhouette[1] = NULL;
-    res->n_contour = res->n_approx = res->n_polyline = res->n_silhouette[0] = res->n_silhouette[1] = 0;
+    res->contour = res->polyline = res->silhouette[0] = res->silhouette[1] = NULL;
+    res->n_contour = res->n_polyline = res->n_silhouette[0] = res->n_silhouette[1] = 0;
 }
 
 void recon_result_free(recon_result *res)
@@ -50,31 +65,22 @@ void recon_result_free(recon_result *res)
     memset(res, 0, sizeof *res);
 }
 
-static const char *border_touched(const uint8_t *m, int w, int h)
+/* Bits of the image borders the mask touches: 1 top, 2 bottom, 4 left, 8 right. */
+static unsigned border_contact(const uint8_t *m, int w, int h)
 {
+    unsigned b = 0;
     for (int i = 0; i < w; i++) {
-        if (m[i])
-            return "top";
-        if (m[(size_t)(h - 1) * w + i])
-            return "bottom";
+        b |= m[i] ? 1u : 0u;
+        b |= m[(size_t)(h - 1) * w + i] ? 2u : 0u;
     }
     for (int j = 0; j < h; j++) {
-        if (m[(size_t)j * w])
-            return "left";
-        if (m[(size_t)j * w + w - 1])
-            return "right";
+        b |= m[(size_t)j * w] ? 4u : 0u;
+        b |= m[(size_t)j * w + w - 1] ? 8u : 0u;
     }
-    return NULL;
+    return b;
 }
 
-/* Midpoint of two corners (a rim or a base pair). */
-static vec2 pair_midpoint(const vec2 *corners, int a, int b)
-{
-    return v2_scale(v2_add(corners[a], corners[b]), 0.5);
-}
-
-/* Quantile of v[0..n) (GSL's linear-time selection, in a copy in tmp:
- * sorting for one quantile would cost n log n). */
+/* Quantile of v[0..n) (GSL's linear-time selection, in a copy in tmp). */
 static double quantile(const double *v, int n, double q, double *tmp)
 {
     if (n <= 0)
@@ -83,10 +89,12 @@ static double quantile(const double *v, int n, double q, double *tmp)
     return gsl_stats_select(tmp, 1, (size_t)n, (size_t)(q * (n - 1) + 0.5));
 }
 
-/* Drops points more than 1 px from the median x of their 7-row neighbourhood
- * (a decoration or a highlight spoiling one row's ramp); an outline is smooth
- * at that scale, and the median of a straight run is its centre value. */
-static int drop_outliers(vec2 *pts, double *contrast, int n)
+/* Drops points more than 1 px (plus a third of the local slope, dx per row:
+ * a near-horizontal outline is measured less precisely per row) from their
+ * 7-row neighbourhood's robust line: the median of x_j - s (j - k) over the
+ * window, s the slope across it. A decoration or a highlight spoiling one
+ * row's ramp is dropped; a steep but smooth outline is kept. */
+static int drop_outliers(vec2 *pts, double *contrast, uint8_t *gap, int n)
 {
     if (n < 7)
         return n;
@@ -95,20 +103,22 @@ static int drop_outliers(vec2 *pts, double *contrast, int n)
         return n;
     for (int k = 0; k < n; k++) {
         int a = k < 3 ? 0 : (k + 3 >= n ? n - 7 : k - 3);
+        double slope = (pts[a + 6].x - pts[a].x) / (pts[a + 6].y - pts[a].y);
         double v[7]; /* insertion-sorted: qsort's call overhead dominates for 7 */
         for (int i = 0; i < 7; i++) {
-            double x = pts[a + i].x;
+            double x = pts[a + i].x - slope * (pts[a + i].y - pts[k].y);
             int q = i;
             for (; q > 0 && v[q - 1] > x; q--)
                 v[q] = v[q - 1];
             v[q] = x;
         }
-        dev[k] = fabs(pts[k].x - v[3]);
+        dev[k] = fabs(pts[k].x - v[3]) - fabs(slope) / 3;
     }
     int m = 0;
     for (int k = 0; k < n; k++)
         if (dev[k] <= 1.0) {
             pts[m] = pts[k];
+            gap[m] = gap[k];
             contrast[m++] = contrast[k];
         }
     free(dev);
@@ -116,13 +126,32 @@ static int drop_outliers(vec2 *pts, double *contrast, int n)
 }
 
 /* Sub-pixel outline of one side (-1 left, +1 right) on rows j0..j1; ext[j]
- * is the mask's outermost object pixel of row j on that side (-1: none).
- * Fills pts and contrast; returns the count. */
-static int trace_side(const float *gray, const int *ext, int w, int h, int j0, int j1, int side, double delta,
-                      vec2 *pts, double *contrast)
+ * is the body's outermost pixel of row j on that side (-1: none), outer[j]
+ * the object's. Fills pts, contrast and gap (object again beyond a gap);
+ * returns the count. */
+/* Row j of the signal the outline is measured on: the photo's colours in
+ * [0, 1] (a gray photo's one channel), or the alpha-based gray when the mask
+ * came from alpha. buf: width * 3 floats. */
+static recon_signal signal_row(const image_t *img, const float *gray, int alpha, int j, float *buf)
 {
+    const int w = img->width, c = img->channels, colour = c >= 3 && !alpha;
+    if (alpha || c < 3)
+        return (recon_signal){alpha ? gray + (size_t)j * w : (gray + (size_t)j * w), w, 1};
+    const float *p = img->data + (size_t)j * w * c;
+    for (int i = 0; i < w; i++)
+        for (int k = 0; k < 3; k++) {
+            float v = p[(size_t)i * c + k];
+            buf[3 * i + k] = v > 0 ? (v < 1 ? v : 1) : 0;
+        }
+    return (recon_signal){buf, w, colour ? 3 : 1};
+}
+
+static int trace_side(const image_t *img, const float *gray, int alpha, const int *ext, const int *outer, int side,
+                      double delta, vec2 *pts, double *contrast, uint8_t *gap, float *buf)
+{
+    const int w = img->width, h = img->height;
     int n = 0;
-    for (int j = j0 < 0 ? 0 : j0; j <= j1 && j < h; j++) {
+    for (int j = 0; j < h; j++) {
         if (ext[j] < 0)
             continue;
         /* The outline's slope (dx per row) from the neighbouring rows: the
@@ -132,13 +161,29 @@ static int trace_side(const float *gray, const int *ext, int w, int h, int j0, i
             slope = fabs((double)(ext[j - 1] - ext[j]));
         if (j + 1 < h && ext[j + 1] >= 0)
             slope = fmax(slope, fabs((double)(ext[j + 1] - ext[j])));
-        recon_edge e = recon_subpixel_edge(gray, w, h, j, ext[j], side, slope, delta);
+        /* The search counts as object what differs from the backdrop by a
+         * quarter of this row's step (the pixel 3 px inside against the one
+         * 12 px outside) or by delta (the noise), whichever is more: JPEG
+         * ringing beside a strong edge is not the edge. */
+        recon_signal sig = signal_row(img, gray, alpha, j, buf);
+        int in = ext[j] - 3 * side, outp = ext[j] + 12 * side;
+        double d = delta;
+        if (in >= 0 && in < w && outp >= 0 && outp < w) {
+            double d2 = 0;
+            for (int c = 0; c < sig.channels; c++) {
+                double t = sig.row[(size_t)in * sig.channels + c] - sig.row[(size_t)outp * sig.channels + c];
+                d2 += t * t;
+            }
+            d = fmax(d, 0.25 * sqrt(d2));
+        }
+        recon_edge e = recon_subpixel_edge(&sig, ext[j], side, slope, d);
         if (!e.ok)
             continue;
+        gap[n] = outer[j] != ext[j];
         pts[n] = v2(e.x, j + 0.5);
         contrast[n++] = e.contrast;
     }
-    return drop_outliers(pts, contrast, n);
+    return drop_outliers(pts, contrast, gap, n);
 }
 
 /* Roughness of an outline: median |second difference| of x over its middle. */
@@ -148,6 +193,258 @@ static double roughness(const vec2 *p, int n, double *tmp, double *tmp2)
     for (int k = n / 10 + 1; k < n - n / 10 - 1; k++)
         tmp[m++] = fabs(p[k + 1].x - 2 * p[k].x + p[k - 1].x);
     return quantile(tmp, m, 0.5, tmp2);
+}
+
+/* ---- the vessel's mask */
+
+/* The vessel's mask by segmentation: low-resolution min-cut, the vessel among
+ * its objects, a stand or shadow cut off at the foot, the full-resolution
+ * band. Sets the start axis, the excluded parts found, and the edge search's
+ * noise delta. */
+static recon_status segment_vessel(const image_t *img, recon_result *res, vec2 *origin, vec2 *dir, double *delta,
+                                   char *err, size_t errlen)
+{
+    recon_segmentation seg;
+    int src = recon_segment(img, &seg);
+    recon_status st = RECON_OK;
+    if (src < 0) {
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
+        goto out;
+    }
+    if (src > 0) {
+        st = fail(RECON_ERR_NO_OBJECT, err, errlen, "no object found: nothing in the photo stands out from its backdrop");
+        goto out;
+    }
+    recon_excluded stand;
+    char why[256];
+    st = recon_select_object(seg.object, seg.w, seg.h, &res->dropped_objects, &stand, why, sizeof why);
+    if (st != RECON_OK) {
+        fail(st, err, errlen, "%s", why);
+        goto out;
+    }
+    if (stand.row1 > 0) {
+        stand.row0 *= seg.factor;
+        stand.row1 = (stand.row1 + 1) * seg.factor - 1;
+        res->excluded[res->n_excluded++] = stand;
+    }
+    /* The axis of the vessel alone, for the support cut's symmetry test. */
+    seg.have_axis = recon_mask_axis(seg.object, seg.w, seg.h, &seg.axis_x0, &seg.axis_slope) == 0;
+    if (recon_cut_support(&seg, seg.object, res->excluded, RECON_MAX_EXCLUDED, &res->n_excluded) != 0 ||
+        recon_colour_model_prepare(&seg.model) != 0) {
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
+        goto out;
+    }
+    if (recon_mask_axis(seg.object, seg.w, seg.h, &seg.axis_x0, &seg.axis_slope) != 0) {
+        st = fail(RECON_ERR_NO_OBJECT, err, errlen, "no object found: the object is too small");
+        goto out;
+    }
+    if (recon_refine_mask(img, &seg, seg.object, res->mask) != 0) {
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
+        goto out;
+    }
+    /* The axis at full resolution: x = f x0 + slope y. */
+    double f = seg.factor;
+    *dir = v2_norm(v2(-seg.axis_slope, -1));
+    *origin = v2(f * seg.axis_x0 + seg.axis_slope * img->height, img->height);
+    /* The edge search starts where a pixel differs from the backdrop by four
+     * noise sigmas of its gray (Rec.601 weights on the residual covariance). */
+    static const double wg[3] = {0.299, 0.587, 0.114};
+    double var = 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            var += wg[i] * wg[j] * seg.model.backdrop.cov[3 * i + j];
+    *delta = fmax(4 * sqrt(var), 3.0 / 255);
+out:
+    recon_segmentation_free(&seg);
+    return st;
+}
+
+/* Fills the holes of the vessel's mask except its windows: a hole entirely on
+ * one side of the axis whose mirror image is mostly background is the loop of
+ * a handle (the body continues behind it), whereas a hole inside the body (a
+ * decoration as light as the backdrop) has the body around its mirror image. */
+static int fill_holes_but_windows(uint8_t *mask, int w, int h, vec2 origin, vec2 dir)
+{
+    uint8_t *inv = malloc((size_t)w * h);
+    int *lab = malloc((size_t)w * h * sizeof *lab);
+    long *area = NULL;
+    if (!inv || !lab) {
+        free(inv);
+        free(lab);
+        return -1;
+    }
+    for (size_t p = 0; p < (size_t)w * h; p++)
+        inv[p] = !mask[p];
+    int n = recon_mask_label(inv, w, h, lab, &area);
+    if (n < 0) {
+        free(inv);
+        free(lab);
+        return -1;
+    }
+    /* per component: touches the border, sides seen, mirrored pixels on background */
+    long *stat = calloc((size_t)(n + 1) * 4, sizeof *stat);
+    if (!stat) {
+        free(area);
+        free(inv);
+        free(lab);
+        return -1;
+    }
+    vec2 nrm = v2(-dir.y, dir.x);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int c = lab[(size_t)y * w + x];
+            if (!c)
+                continue;
+            long *s = stat + 4 * c;
+            if (x == 0 || y == 0 || x == w - 1 || y == h - 1)
+                s[0] = 1;
+            vec2 p = v2(x + 0.5, y + 0.5);
+            double r = v2_dot(v2_sub(p, origin), nrm);
+            s[r < 0 ? 1 : 2] = 1;
+            vec2 q = v2_sub(p, v2_scale(nrm, 2 * r));
+            int qx = (int)floor(q.x), qy = (int)floor(q.y);
+            s[3] += qx < 0 || qy < 0 || qx >= w || qy >= h || !mask[(size_t)qy * w + qx];
+        }
+    for (size_t p = 0; p < (size_t)w * h; p++) {
+        int c = lab[p];
+        if (!c || stat[4 * c])
+            continue;
+        int window = !(stat[4 * c + 1] && stat[4 * c + 2]) && stat[4 * c + 3] > area[c] / 2;
+        if (!window)
+            mask[p] = 1;
+    }
+    free(stat);
+    free(area);
+    free(inv);
+    free(lab);
+    return 0;
+}
+
+/* A surface of revolution meets every row in one interval around its axis:
+ * where a row has object on both sides of the axis but not at it (a
+ * highlight as light as the backdrop in the middle of a foot), the gap
+ * between the two is filled. Gaps off the axis (a handle's loop) stay. */
+static void fill_across_axis(uint8_t *mask, int w, int h, vec2 origin, vec2 dir)
+{
+    /* Only below the first row the body holds the axis in: above it, object
+     * on both sides is not the body (two handles rising above the rim). */
+    int j0 = h, j1 = -1;
+    for (int j = 0; j < h; j++) {
+        int c = (int)floor(origin.x + (j + 0.5 - origin.y) * dir.x / dir.y);
+        if (j0 == h && c >= 0 && c < w && mask[(size_t)j * w + c])
+            j0 = j;
+        if (memchr(mask + (size_t)j * w, 1, (size_t)w))
+            j1 = j;
+    }
+    for (int j = j0; j <= j1; j++) {
+        uint8_t *m = mask + (size_t)j * w;
+        int c = (int)floor(origin.x + (j + 0.5 - origin.y) * dir.x / dir.y);
+        if (c < 0 || c >= w || m[c])
+            continue;
+        int l = c, r = c;
+        while (l >= 0 && !m[l])
+            l--;
+        while (r < w && !m[r])
+            r++;
+        if (l >= 0 && r < w)
+            memset(m + l + 1, 1, (size_t)(r - l - 1));
+    }
+}
+
+/* Per row, the body's outermost pixel on each side (the run of the mask that
+ * contains the axis, across gaps of up to 2 px) and the object's. ext: [0,h)
+ * left body, [h,2h) right body, [2h,3h) left object, [3h,4h) right object;
+ * -1 where the row has none. */
+static void row_extents(const uint8_t *mask, int w, int h, vec2 origin, vec2 dir, int *ext)
+{
+    for (int j = 0; j < h; j++) {
+        const uint8_t *m = mask + (size_t)j * w, *a = memchr(m, 1, (size_t)w);
+        for (int k = 0; k < 4; k++)
+            ext[k * h + j] = -1;
+        if (!a)
+            continue;
+        ext[2 * h + j] = (int)(a - m);
+        ext[3 * h + j] = (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m);
+        /* the axis crosses row j at x = origin.x + (j + 0.5 - origin.y) dx/dy */
+        double xc = origin.x + (j + 0.5 - origin.y) * dir.x / dir.y;
+        int c = (int)floor(xc);
+        if (c < 0 || c >= w || !m[c])
+            continue; /* the row does not cross the body at the axis */
+        for (int s = 0; s < 2; s++) {
+            int step = s ? 1 : -1, x = c;
+            for (;;) {
+                int nx = x + step;
+                while (nx >= 0 && nx < w && m[nx])
+                    x = nx, nx += step;
+                int g = 1;
+                while (g <= 3 && x + g * step >= 0 && x + g * step < w && !m[x + g * step])
+                    g++;
+                if (g <= 3 && x + g * step >= 0 && x + g * step < w)
+                    x += g * step; /* a gap of up to 2 px: still the body */
+                else
+                    break;
+            }
+            ext[s * h + j] = x;
+        }
+    }
+}
+
+/* ---- the profile */
+
+/* Points of one side's outline in the axis frame, between the base and the
+ * rim, sorted by height. */
+static int outline_points(const vec2 *sil, const uint8_t *gap, int n, vec2 origin, vec2 dir, int side, double H,
+                          recon_outline_point *out)
+{
+    vec2 nrm = v2(-dir.y, dir.x);
+    int m = 0;
+    for (int k = n - 1; k >= 0; k--) { /* rows run top to bottom: backwards is base to rim */
+        vec2 q = v2_sub(sil[k], origin);
+        double h = v2_dot(q, dir);
+        if (h <= 0 || h >= H || (m > 0 && h <= out[m - 1].h))
+            continue;
+        out[m++] = (recon_outline_point){h, side * v2_dot(q, nrm), sil[k].y, gap[k]};
+    }
+    return m;
+}
+
+/* A ledge (a lip's underside, a foot's step) runs nearly horizontally
+ * between two rows: the row samples are far apart there, and the B-spline,
+ * held only at the rows, would round it off far from the outline. Such a
+ * segment (not a bridge) gets a point every pixel along it. */
+static int is_ledge(vec2 a, vec2 b) { return fabs(b.x - a.x) > 2 * fabs(b.y - a.y) && fabs(b.x - a.x) > 1.5; }
+
+static int densify_polyline(recon_result *res)
+{
+    const vec2 *p = res->polyline;
+    const uint8_t *br = res->polyline_bridge;
+    int n = res->n_polyline, total = n;
+    for (int i = 0; i + 1 < n; i++)
+        if (!br[i] && is_ledge(p[i], p[i + 1]))
+            total += (int)ceil(v2_len(v2_sub(p[i + 1], p[i]))) - 1;
+    vec2 *q = malloc((size_t)total * sizeof *q);
+    uint8_t *qb = calloc((size_t)total, 1);
+    if (!q || !qb) {
+        free(q);
+        free(qb);
+        return -1;
+    }
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        q[m] = p[i];
+        qb[m++] = br[i];
+        if (i + 1 == n || br[i] || !is_ledge(p[i], p[i + 1]))
+            continue;
+        int k = (int)ceil(v2_len(v2_sub(p[i + 1], p[i])));
+        for (int j = 1; j < k; j++)
+            q[m++] = v2_lerp(p[i], p[i + 1], (double)j / k);
+    }
+    free(res->polyline);
+    free(res->polyline_bridge);
+    res->polyline = q;
+    res->polyline_bridge = qb;
+    res->n_polyline = m;
+    return 0;
 }
 
 recon_status recon_extract(const image_t *img, const recon_options *opt, recon_result *res, char *err,
@@ -169,42 +466,50 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     float *gray = malloc(n * sizeof *gray);
     res->mask = malloc(n);
     recon_border_set bs = {0};
-    int *keep = NULL, *ext = NULL;
+    int *ext = NULL;
     double *con = NULL;
+    uint8_t *gaps = NULL;
+    recon_outline_point *pts = NULL;
+    float *rowbuf = NULL;
     if (!gray || !res->mask) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
 
-    /* 1. Mask: threshold; largest object, holes and rows filled; closing
-     * (radius 4); floor shadow trimmed at the foot. */
+    /* 1. The vessel's mask: alpha or a forced threshold, cleaned as before;
+     * otherwise the segmentation. */
+    vec2 origin = v2(0, 0), dir = v2(0, -1);
+    double delta = 0.05;
     res->mask_mode = recon_mask_threshold(img, opt ? opt->threshold : -1, gray, res->mask, &res->threshold_used);
-    long area = recon_mask_clean(res->mask, w, h, &res->dropped_objects, &res->holes_filled);
-    if (area > 0 && recon_mask_close(res->mask, w, h, 4))
-        area = -1;
-    if (area < 0) {
-        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
-        goto out;
-    }
-    if (area > 0 && res->mask_mode == RECON_MASK_BACKGROUND &&
-        recon_mask_trim_soft(res->mask, gray, w, h, res->threshold_used / 255.0f)) {
-        /* Trimming may leave thin slivers and pieces: an opening of radius 1
-         * removes the slivers, then the largest object is kept again. */
-        int dropped2, holes2;
-        area = recon_mask_open(res->mask, w, h, 1) ? -1 : recon_mask_clean(res->mask, w, h, &dropped2, &holes2);
+    if (res->mask_mode == RECON_MASK_GRAPH_CUT) {
+        st = segment_vessel(img, res, &origin, &dir, &delta, err, errlen);
+        if (st != RECON_OK)
+            goto out;
+    } else {
+        long area = recon_mask_clean(res->mask, w, h, &res->dropped_objects, &res->holes_filled);
+        if (area > 0 && recon_mask_close(res->mask, w, h, 4))
+            area = -1;
         if (area < 0) {
             st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
             goto out;
         }
+        if (area == 0) {
+            st = fail(RECON_ERR_NO_OBJECT, err, errlen, "no object found (threshold %d)", res->threshold_used);
+            goto out;
+        }
+        /* Half the threshold (at least 3/255) separates object from
+         * background noise and JPEG ringing. */
+        delta = res->mask_mode == RECON_MASK_ALPHA ? 0.05 : fmax(0.5 * res->threshold_used, 3.0) / 255;
+        double x0, slope;
+        if (recon_mask_axis(res->mask, w, h, &x0, &slope) == 0) {
+            dir = v2_norm(v2(-slope, -1));
+            origin = v2(x0 + slope * h, h);
+        }
     }
-    if (area == 0) {
-        st = fail(RECON_ERR_NO_OBJECT, err, errlen, "no object found (threshold %d)", res->threshold_used);
-        goto out;
-    }
-    const char *edge = border_touched(res->mask, w, h);
-    if (edge) {
-        st = fail(RECON_ERR_TOUCHES_BORDER, err, errlen,
-                  "the object touches the %s image border; leave a margin around the vessel", edge);
+    res->border_contact = border_contact(res->mask, w, h);
+    fill_across_axis(res->mask, w, h, origin, dir);
+    if (fill_holes_but_windows(res->mask, w, h, origin, dir) != 0) {
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
 
@@ -216,8 +521,7 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     const recon_border *ob = &bs.borders[0];
     int nc = ob->count;
     res->contour = malloc((size_t)nc * sizeof *res->contour);
-    keep = malloc((size_t)nc * sizeof *keep);
-    if (!res->contour || !keep) {
+    if (!res->contour) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
@@ -226,93 +530,37 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
         res->contour[i] = v2(p[0] + 0.5, p[1] + 0.5);
     }
     res->n_contour = nc;
-
-    /* 3. Douglas–Peucker with eps = 1 px: removes the pixel staircase and
-     * keeps every real bend, so smooth arcs become chains of small turns and
-     * the corner tests below can tell them from corners. */
-    const double eps = 1.0;
-    res->n_approx = recon_douglas_peucker_closed(res->contour, nc, eps, keep);
-    res->approx = malloc((size_t)(res->n_approx > 0 ? res->n_approx : 1) * sizeof *res->approx);
-    if (!res->approx) {
-        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
-        goto out;
-    }
-    for (int k = 0; k < res->n_approx; k++)
-        res->approx[k] = res->contour[keep[k]];
-
     recon_pca(res->contour, nc, &res->pca_mean, res->pca_axes, res->pca_eigenvalues);
-    /* The axis of revolution is the eigenvector nearer the image vertical
-     * (photos are upright), pointing up. */
-    vec2 up = fabs(res->pca_axes[0].y) >= fabs(res->pca_axes[1].y) ? res->pca_axes[0] : res->pca_axes[1];
-    if (up.y > 0)
-        up = v2_scale(up, -1);
-    int cidx[CORNER_COUNT];
-    int found = recon_find_corners(res->contour, nc, keep, res->n_approx, res->pca_mean, up, cidx);
-    if (found != 0xF) {
-        char names[96] = "";
-        for (int q = 0; q < CORNER_COUNT; q++)
-            if (!(found & (1 << q))) {
-                strcat(names, names[0] ? ", " : "");
-                strcat(names, CORNER_NAME[q]);
-            }
-        st = fail(RECON_ERR_CORNERS, err, errlen, "cannot find the four outline corners: missing %s", names);
-        goto out;
-    }
-    for (int q = 0; q < CORNER_COUNT; q++)
-        res->corners[q] = res->contour[cidx[q]];
 
-    /* 4. Axis: the line through the corner pairs' midpoints when both pairs
-     * are perpendicular to it (within 4°); otherwise the PCA axis through the
-     * contour's mean. Either is only the start of the symmetry fit (step 6). */
-    vec2 m_rim = pair_midpoint(res->corners, CORNER_RIM_LEFT, CORNER_RIM_RIGHT);
-    vec2 m_base = pair_midpoint(res->corners, CORNER_BASE_LEFT, CORNER_BASE_RIGHT);
-    vec2 dir_c = v2_norm(v2_sub(m_rim, m_base));
-    vec2 rim_pair = v2_norm(v2_sub(res->corners[CORNER_RIM_RIGHT], res->corners[CORNER_RIM_LEFT]));
-    vec2 base_pair = v2_norm(v2_sub(res->corners[CORNER_BASE_RIGHT], res->corners[CORNER_BASE_LEFT]));
-    const double perp_tol = sin(4 * M_PI / 180);
-    int corners_ok = v2_len(v2_sub(m_rim, m_base)) >= 2 && fabs(v2_dot(rim_pair, dir_c)) < perp_tol &&
-                     fabs(v2_dot(base_pair, dir_c)) < perp_tol && v2_dot(dir_c, up) > 0;
-    vec2 starts_o[2] = {m_base, v2_add(res->pca_mean, v2_scale(up, v2_dot(v2_sub(m_base, res->pca_mean), up)))};
-    vec2 starts_d[2] = {dir_c, up};
-    int first = corners_ok ? 0 : 1;
-    vec2 origin = starts_o[first], dir = starts_d[first];
-
-    /* 5. Sub-pixel outlines on both sides, rim corner row to base corner row. */
-    ext = malloc((size_t)2 * h * sizeof *ext);
-    if (!ext) {
+    /* 3. Sub-pixel outlines of the body on both sides, every row. */
+    ext = malloc((size_t)4 * h * sizeof *ext);
+    con = malloc((size_t)h * 4 * sizeof *con);
+    gaps = malloc((size_t)h * 2);
+    pts = malloc((size_t)h * 2 * sizeof *pts);
+    rowbuf = malloc((size_t)w * 3 * sizeof *rowbuf);
+    if (!ext || !con || !gaps || !pts || !rowbuf) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
-    for (int j = 0; j < h; j++) {
-        const uint8_t *m = res->mask + (size_t)j * w, *p = memchr(m, 1, (size_t)w);
-        ext[j] = p ? (int)(p - m) : -1;
-        ext[h + j] = p ? (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m) : -1;
-    }
-    int cap = h;
-    con = malloc((size_t)cap * 4 * sizeof *con);
-    if (!con) {
-        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
-        goto out;
-    }
-    double *tmp = con + 2 * cap, median[2];
+    row_extents(res->mask, w, h, origin, dir, ext);
+    double *tmp = con + 2 * h, median[2];
     for (int s = 0; s < 2; s++) {
-        int side = s ? 1 : -1;
-        vec2 rc = res->corners[s ? CORNER_RIM_RIGHT : CORNER_RIM_LEFT];
-        vec2 bc = res->corners[s ? CORNER_BASE_RIGHT : CORNER_BASE_LEFT];
-        int j0 = (int)floor(fmin(rc.y, bc.y)), j1 = (int)floor(fmax(rc.y, bc.y));
-        res->silhouette[s] = malloc((size_t)cap * sizeof(vec2));
+        res->silhouette[s] = malloc((size_t)h * sizeof(vec2));
         if (!res->silhouette[s]) {
             st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
             goto out;
         }
-        /* Half the mask threshold (at least 3/255) separates object from
-         * background noise and JPEG ringing. */
-        double delta = res->mask_mode == RECON_MASK_ALPHA ? 0.05 : fmax(0.5 * res->threshold_used, 3.0) / 255;
-        int m = trace_side(gray, ext + (size_t)s * h, w, h, j0, j1, side, delta, res->silhouette[s], con + s * cap);
+        int m = trace_side(img, gray, res->mask_mode == RECON_MASK_ALPHA, ext + (size_t)s * h,
+                           ext + (size_t)(2 + s) * h, s ? 1 : -1, delta, res->silhouette[s], con + s * h,
+                           gaps + s * h, rowbuf);
         res->n_silhouette[s] = m;
-        res->edge_contrast[s] = quantile(con + s * cap, m, 0.1, tmp);
-        res->edge_noise_px[s] = roughness(res->silhouette[s], m, tmp, tmp + cap);
-        median[s] = quantile(con + s * cap, m, 0.5, tmp);
+        res->edge_contrast[s] = quantile(con + s * h, m, 0.1, tmp);
+        res->edge_noise_px[s] = roughness(res->silhouette[s], m, tmp, tmp + h);
+        median[s] = quantile(con + s * h, m, 0.5, tmp);
+    }
+    if (res->n_silhouette[0] < 3 || res->n_silhouette[1] < 3) {
+        st = fail(RECON_ERR_NO_OBJECT, err, errlen, "the object's outline could not be measured on both sides");
+        goto out;
     }
     /* Rows whose edge contrast is under a quarter of the better side's
      * typical contrast are washed out (a highlight on the edge, a glaze as
@@ -321,19 +569,26 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
         double floor_c = 0.25 * fmax(median[0], median[1]);
         int m = 0;
         for (int k = 0; k < res->n_silhouette[s]; k++)
-            if (con[s * cap + k] >= floor_c)
+            if (con[s * h + k] >= floor_c) {
+                gaps[s * h + m] = gaps[s * h + k];
                 res->silhouette[s][m++] = res->silhouette[s][k];
+            }
         res->n_silhouette[s] = m;
     }
 
-    /* 6. Refine the axis by left/right symmetry on the middle 90% of the
-     * height, from the preferred start, else from the other one. A side
-     * whose typical edge contrast is under half the other's may be washed
-     * out in part (a highlight along it). */
+    /* 4. The axis: the mirror symmetry of the whole outline, from the robust
+     * start. A side whose typical edge contrast is under half the other's
+     * may be washed out in part (a highlight along it). */
+    double hb = INFINITY, ht = -INFINITY;
+    for (int s = 0; s < 2; s++)
+        for (int k = 0; k < res->n_silhouette[s]; k++) {
+            double hh = v2_dot(v2_sub(res->silhouette[s][k], origin), dir);
+            hb = fmin(hb, hh);
+            ht = fmax(ht, hh);
+        }
     int washed = 0, suspect = median[0] < 0.5 * median[1] ? 1 : (median[1] < 0.5 * median[0] ? -1 : 0);
-    for (int k = 0; k < 2 && !res->axis_from_symmetry; k++) {
-        vec2 o = starts_o[first ^ k], d = starts_d[first ^ k];
-        double hb = v2_dot(v2_sub(m_base, o), d), ht = v2_dot(v2_sub(m_rim, o), d);
+    {
+        vec2 o = origin, d = dir;
         if (recon_axis_symmetry(res->silhouette[0], res->n_silhouette[0], res->silhouette[1], res->n_silhouette[1],
                                 &o, &d, hb + 0.05 * (ht - hb) + 2, ht - 0.05 * (ht - hb) - 2, suspect,
                                 res->edge_noise_px[suspect > 0] / 1.65, &washed)) {
@@ -342,37 +597,57 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
             res->axis_from_symmetry = 1;
         }
     }
+
+    /* 5. The caps: where the outline meets its top and bottom, on each side. */
+    int base_is_cut = 0;
+    for (int i = 0; i < res->n_excluded; i++)
+        base_is_cut |= res->excluded[i].what == RECON_PART_STAND || res->excluded[i].what == RECON_PART_SHADOW;
+    if (recon_find_caps(res->contour, nc, origin, dir, base_is_cut, res->corners) != 0) {
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
+        goto out;
+    }
     /* The washed-out side's corners are wrong with its outline: mirror the
-     * clean side's across the refined axis (the outline is symmetric). */
-    if (washed) { /* set only when the symmetry fit succeeded */
+     * clean side's across the axis (the outline is symmetric). */
+    if (washed) {
         static const int pairs[2][2] = {{CORNER_RIM_LEFT, CORNER_RIM_RIGHT}, {CORNER_BASE_LEFT, CORNER_BASE_RIGHT}};
-        int clean = washed > 0 ? 1 : 0; /* index of the clean side in a pair */
+        int clean = washed > 0 ? 1 : 0;
         for (int q = 0; q < 2; q++) {
             vec2 c = res->corners[pairs[q][clean]];
             vec2 foot = v2_add(origin, v2_scale(dir, v2_dot(v2_sub(c, origin), dir)));
             res->corners[pairs[q][1 - clean]] = v2_sub(v2_scale(foot, 2), c);
         }
-        m_rim = pair_midpoint(res->corners, CORNER_RIM_LEFT, CORNER_RIM_RIGHT);
-        m_base = pair_midpoint(res->corners, CORNER_BASE_LEFT, CORNER_BASE_RIGHT);
     }
-    char why[160];
-    if (!recon_check_vessel(res->corners, dir, res->contour, nc, ext, h, why, sizeof why)) {
-        st = fail(RECON_ERR_CORNERS, err, errlen, "not a vessel's outline: %s", why);
+    double h_base = 0.5 * (v2_dot(v2_sub(res->corners[CORNER_BASE_LEFT], origin), dir) +
+                           v2_dot(v2_sub(res->corners[CORNER_BASE_RIGHT], origin), dir));
+    origin = v2_add(origin, v2_scale(dir, h_base));
+    double H = 0.5 * (v2_dot(v2_sub(res->corners[CORNER_RIM_LEFT], origin), dir) +
+                      v2_dot(v2_sub(res->corners[CORNER_RIM_RIGHT], origin), dir));
+    if (!(H > 2)) {
+        st = fail(RECON_ERR_SHAPE, err, errlen, "the outline has no height between its base and its rim");
         goto out;
     }
-    /* Origin: the base pair's midpoint projected onto the axis (h = 0). */
-    origin = v2_add(origin, v2_scale(dir, v2_dot(v2_sub(m_base, origin), dir)));
-    double H = v2_dot(v2_sub(m_rim, origin), dir);
     res->axis_origin = origin;
     res->axis_direction = dir;
     res->tilt_deg = atan2(dir.x, -dir.y) * 180 / M_PI;
+    /* A vessel stands on its foot: an axis more than 30 degrees from the
+     * image's vertical is an object lying down or a photo turned on its side,
+     * whose base and rim the caps would not find. */
+    if (fabs(res->tilt_deg) > MAX_TILT_DEG) {
+        st = fail(RECON_ERR_SHAPE, err, errlen,
+                  "the object's axis leans %.0f degrees from the image's vertical (at most %.0f): photograph the vessel "
+                  "upright, or rotate the photo",
+                  res->tilt_deg, MAX_TILT_DEG);
+        goto out;
+    }
 
-    /* 7. Side: the requested one, or the one whose edge has the better
+    /* 6. Side: the requested one, or the one whose edge has the better
      * contrast-to-noise (a highlight on the edge lowers the contrast there). */
     int s = 1;
     recon_side want = opt ? opt->side : RECON_SIDE_AUTO;
     if (want == RECON_SIDE_LEFT)
         s = 0;
+    else if (want == RECON_SIDE_AUTO && washed)
+        s = washed > 0; /* the clean side */
     else if (want == RECON_SIDE_AUTO) {
         double q0 = res->edge_contrast[0] / (res->edge_noise_px[0] + 0.05);
         double q1 = res->edge_contrast[1] / (res->edge_noise_px[1] + 0.05);
@@ -380,38 +655,64 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     }
     res->side_used = s ? RECON_SIDE_RIGHT : RECON_SIDE_LEFT;
 
-    /* 8. Polyline (r, h), base to rim: the sub-pixel points with 0 < h < H
-     * (rows run top to bottom, so backwards), closed by the end heights. */
-    int m = res->n_silhouette[s];
-    res->polyline = malloc((size_t)(m + 2) * sizeof *res->polyline);
-    if (!res->polyline) {
+    /* 7. Parts: where the two sides disagree, the side that continues the
+     * body, or a bridge; where they agree, their mean. */
+    recon_outline_point *mp = pts, *op = pts + h;
+    int nm = outline_points(res->silhouette[s], gaps + s * h, res->n_silhouette[s], origin, dir, s ? 1 : -1, H, mp);
+    int no = outline_points(res->silhouette[1 - s], gaps + (1 - s) * h, res->n_silhouette[1 - s], origin, dir,
+                            s ? -1 : 1, H, op);
+    double rmax = 0;
+    for (int i = 0; i < nm; i++)
+        rmax = fmax(rmax, mp[i].r);
+    double tol = fmax(2.0, 0.02 * rmax);
+    /* A washed-out side is not compared (its outline lies inside the true
+     * one): the profile is the clean side's, its parts found on it alone. */
+    res->r_max = rmax;
+    if (recon_resolve_parts(mp, nm, op, washed ? 0 : no, s, tol, res->excluded, RECON_MAX_EXCLUDED, &res->n_excluded,
+                                       &res->lr_disagreement, &res->excluded_fraction) != 0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
-    vec2 right = v2(-dir.y, dir.x);
-    int np = 0;
-    for (int k = m - 1; k >= 0; k--) {
-        vec2 q = v2_sub(res->silhouette[s][k], origin);
-        double r = (s ? 1 : -1) * v2_dot(q, right), hh = v2_dot(q, dir);
-        if (hh <= 0 || hh >= H || (np > 1 && hh <= res->polyline[np - 1].y))
-            continue;
-        if (np == 0)
-            res->polyline[np++] = v2(r, 0);
-        res->polyline[np++] = v2(r, hh);
-    }
-    if (np < 3) {
-        st = fail(RECON_ERR_CORNERS, err, errlen, "the outline between the corners is too short (%d points)", np);
+
+    /* 8. Polyline (r, h), base to rim, closed by the end heights. */
+    res->polyline = malloc((size_t)(nm + 2) * sizeof *res->polyline);
+    res->polyline_bridge = calloc((size_t)nm + 2, 1);
+    if (!res->polyline || !res->polyline_bridge) {
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }
+    int np = 0;
+    for (int i = 0; i < nm; i++) {
+        if (isnan(mp[i].r)) {
+            if (np > 0)
+                res->polyline_bridge[np - 1] = 1;
+            continue;
+        }
+        if (np == 0) {
+            /* the base: rows missing up to the first point are bridged */
+            res->polyline_bridge[np] = mp[i].h > 3;
+            res->polyline[np++] = v2(mp[i].r, 0);
+        }
+        res->polyline[np++] = v2(mp[i].r, mp[i].h);
+    }
+    if (np < 3) {
+        st = fail(RECON_ERR_SHAPE, err, errlen, "the outline between the base and the rim is too short (%d points)",
+                  np);
+        goto out;
+    }
+    res->polyline_bridge[np - 1] = res->polyline_bridge[np - 1] || H - res->polyline[np - 1].y > 3;
     res->polyline[np] = v2(res->polyline[np - 1].x, H);
-    np++;
-    res->n_polyline = np;
+    res->n_polyline = np + 1;
+    if (densify_polyline(res) != 0)
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
 
 out:
     free(gray);
-    free(keep);
     free(ext);
     free(con);
+    free(gaps);
+    free(pts);
+    free(rowbuf);
     recon_border_set_free(&bs);
     if (st != RECON_OK)
         free_arrays(res);

@@ -108,6 +108,40 @@ static void fill_rect(canvas *cv, int x0, int y0, int x1, int y1, const uint8_t 
         }
 }
 
+/* Colours of the excluded parts, by kind (recon_part_kind). */
+static const uint8_t part_colours[RECON_PART_KIND_COUNT][3] = {
+    [RECON_PART_SHADOW] = {86, 180, 233}, [RECON_PART_STAND] = {0, 158, 115},
+    [RECON_PART_HANDLE] = {240, 228, 66}, [RECON_PART_ASYMMETRY] = {213, 94, 0},
+};
+
+/* Tints an excluded part: its rows, on its side of the axis (both for side
+ * 0). A part of the vessel's mask (a handle) tints the mask's pixels; a part
+ * cut off the mask (a stand, a shadow) tints its rows faintly, within a
+ * quarter of the vessel's width beside it. */
+static void tint_part(canvas *cv, const recon_result *res, const recon_excluded *e)
+{
+    const uint8_t *col = part_colours[e->what];
+    int cut_off = e->what == RECON_PART_STAND || e->what == RECON_PART_SHADOW;
+    double bx0 = INFINITY, bx1 = -INFINITY;
+    for (int i = 0; i < res->n_contour; i++)
+        bx0 = fmin(bx0, res->contour[i].x), bx1 = fmax(bx1, res->contour[i].x);
+    double margin = 0.25 * (bx1 - bx0);
+    vec2 o = res->axis_origin, d = res->axis_direction, nrm = v2(-d.y, d.x);
+    for (int y = e->row0 < 0 ? 0 : e->row0; y <= e->row1 && y < cv->h; y++)
+        for (int x = 0; x < cv->w; x++) {
+            double r = v2_dot(v2_sub(v2(x + 0.5, y + 0.5), o), nrm);
+            if ((e->side < 0 && r > 0) || (e->side > 0 && r < 0))
+                continue;
+            int on_object = res->mask && res->mask[(size_t)y * cv->w + x];
+            if (cut_off ? x < bx0 - margin || x > bx1 + margin : !on_object)
+                continue;
+            uint8_t *p = cv->rgb + 3 * ((size_t)y * cv->w + x);
+            float a = cut_off ? 0.3f : 0.45f;
+            for (int k = 0; k < 3; k++)
+                p[k] = (uint8_t)lrintf(p[k] + a * (col[k] - p[k]));
+        }
+}
+
 /* A 5x7 pixel font for the legend: rows top to bottom, bit 4 = leftmost column. */
 static const uint8_t *glyph(char ch)
 {
@@ -174,7 +208,15 @@ static void draw_legend(canvas *cv, const recon_result *res, double width)
     char info[2][32];
     snprintf(info[0], sizeof info[0], "TILT %.2f DEG", res->tilt_deg);
     snprintf(info[1], sizeof info[1], "SIDE %s", res->side_used == RECON_SIDE_LEFT ? "LEFT" : "RIGHT");
-    int rows = OVERLAY_LAYER_COUNT + 2;
+    int kinds[RECON_PART_KIND_COUNT], nk = 0;
+    for (int k = 0; k < RECON_PART_KIND_COUNT; k++) {
+        int present = 0;
+        for (int i = 0; i < res->n_excluded; i++)
+            present |= res->excluded[i].what == (recon_part_kind)k;
+        if (present)
+            kinds[nk++] = k;
+    }
+    int rows = OVERLAY_LAYER_COUNT + nk + 2;
     int box_w = pad * 3 + swatch + 14 * 6 * s, box_h = pad * 2 + rows * line;
     if (box_w > cv->w || box_h > cv->h)
         return; /* too small a photo for a legend */
@@ -194,8 +236,18 @@ static void draw_legend(canvas *cv, const recon_result *res, double width)
     fill_rect(cv, x0, y0, x0 + box_w, y0 + box_h, white, 0.85f);
     for (int i = 0; i < rows; i++) {
         int y = y0 + pad + i * line, tx = x0 + 2 * pad + swatch;
-        if (i >= OVERLAY_LAYER_COUNT) {
-            draw_text(cv, tx, y + s, s, info[i - OVERLAY_LAYER_COUNT], ink);
+        if (i >= OVERLAY_LAYER_COUNT + nk) {
+            draw_text(cv, tx, y + s, s, info[i - OVERLAY_LAYER_COUNT - nk], ink);
+            continue;
+        }
+        if (i >= OVERLAY_LAYER_COUNT) { /* an excluded kind: a swatch of its tint */
+            int k = kinds[i - OVERLAY_LAYER_COUNT];
+            char name[32];
+            snprintf(name, sizeof name, "%s", recon_part_name((recon_part_kind)k));
+            for (char *c = name; *c; c++)
+                *c = (char)(*c >= 'a' && *c <= 'z' ? *c - 32 : *c);
+            fill_rect(cv, x0 + pad, y + s, x0 + pad + swatch, y + 8 * s, part_colours[k], 0.8f);
+            draw_text(cv, tx, y + s, s, name, ink);
             continue;
         }
         vec2 mid = v2(x0 + pad + 0.5 * swatch, y + 4.5 * s);
@@ -232,6 +284,8 @@ uint8_t *overlay_render(const image_t *photo, const recon_result *res, const bsp
         }
     double width = overlay_line_width(cv.w, cv.h);
 
+    for (int i = 0; i < res->n_excluded; i++)
+        tint_part(&cv, res, &res->excluded[i]);
     cover_polyline(&cv, res->contour, res->n_contour, 1, width);
     composite(&cv, overlay_colours[OVERLAY_CONTOUR]);
 
@@ -248,17 +302,19 @@ uint8_t *overlay_render(const image_t *photo, const recon_result *res, const bsp
     }
     composite(&cv, overlay_colours[OVERLAY_PCA]);
 
-    /* The curve as a polyline of about two points per pixel of height. */
-    int side = res->side_used == RECON_SIDE_LEFT ? -1 : 1;
+    /* The curve as a polyline of about two points per pixel of height, on
+     * both sides: the outline the revolved profile has. */
     double lo = curve->knots[0], hi = curve->knots[bspline_n_knots(curve) - 1];
     int steps = 64 + 2 * (int)fmin(1e5, fmax(0.0, H));
-    vec2 prev = {0, 0};
-    for (int i = 0; i <= steps; i++) {
-        vec2 rh = bspline_eval(curve, lo + (hi - lo) * i / steps);
-        vec2 p = recon_profile_to_image(res->axis_origin, res->axis_direction, rh.x, rh.y, side);
-        if (i > 0)
-            cover_segment(&cv, prev, p, width);
-        prev = p;
+    for (int side = -1; side <= 1; side += 2) {
+        vec2 prev = {0, 0};
+        for (int i = 0; i <= steps; i++) {
+            vec2 rh = bspline_eval(curve, lo + (hi - lo) * i / steps);
+            vec2 p = recon_profile_to_image(res->axis_origin, res->axis_direction, rh.x, rh.y, side);
+            if (i > 0)
+                cover_segment(&cv, prev, p, side == (res->side_used == RECON_SIDE_LEFT ? -1 : 1) ? width : 0.5 * width);
+            prev = p;
+        }
     }
     composite(&cv, overlay_colours[OVERLAY_CURVE]);
 

@@ -106,15 +106,22 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
         snprintf(err, errlen, "texture: out of memory");
         goto done;
     }
+    int missing[2];
     for (int k = 0; k < 2; k++) {
         silhouette_on_rows(res->silhouette[k], res->n_silhouette[k], res->axis_origin, res->axis_direction, H, rows,
                            k ? 1 : -1, s_row[k], hit[k]);
-        if (fill_missing_rows(s_row[k], hit[k], rows) != 0) {
-            snprintf(err, errlen, "texture: the %s silhouette does not reach the profile's heights",
-                     k ? "right" : "left");
-            goto done;
-        }
+        missing[k] = fill_missing_rows(s_row[k], hit[k], rows) != 0;
     }
+    if (missing[0] && missing[1]) {
+        snprintf(err, errlen, "texture: neither silhouette reaches the profile's heights");
+        goto done;
+    }
+    /* A side washed out over its whole height: the other side's mirror image
+     * (the vessel is symmetric about its axis). */
+    for (int k = 0; k < 2; k++)
+        if (missing[k])
+            for (int j = 0; j < rows; j++)
+                s_row[k][j] = -s_row[1 - k][j];
     double widest = 0.0;
     for (int j = 0; j < rows; j++)
         widest = fmax(widest, s_row[1][j] - s_row[0][j]);

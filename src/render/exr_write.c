@@ -4,17 +4,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/core.h"
 #include "celadon/film.h"
-
-/* The library reports details through a callback; keep the last one. */
-static _Thread_local char exr_message[256];
-
-static void remember_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
-{
-    (void)ctxt;
-    snprintf(exr_message, sizeof exr_message, "%s", msg ? msg : exr_get_default_error_message(code));
-}
+#include "core/core.h"
+#include "render/exr_error.h"
 
 /* Encodes every chunk of the part; channel pointers into the interleaved
  * buffer are matched by name since the file stores channels sorted. */
@@ -64,11 +56,17 @@ static exr_result_t write_chunks(exr_context_t ctx, int part, int width, int hei
 int exr_write_float(const char *path, int width, int height, int nch, const char *const *names,
                     const float *pixels, char *err, size_t errlen)
 {
+    return exr_write_float_attrs(path, width, height, nch, names, pixels, NULL, 0, err, errlen);
+}
+
+int exr_write_float_attrs(const char *path, int width, int height, int nch, const char *const *names,
+                          const float *pixels, const film_attr *attrs, int nattrs, char *err, size_t errlen)
+{
     char tmp[4200];
     atomic_temp_name(path, tmp, sizeof tmp);
-    exr_message[0] = '\0';
+    exr_error_clear();
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = remember_error;
+    init.error_handler_fn = exr_error_remember;
     exr_context_t ctx = NULL;
     int part = 0;
     exr_result_t rv = exr_start_write(&ctx, tmp, EXR_WRITE_FILE_DIRECTLY, &init);
@@ -78,6 +76,8 @@ int exr_write_float(const char *path, int width, int height, int nch, const char
         rv = exr_initialize_required_attr_simple(ctx, part, width, height, EXR_COMPRESSION_ZIP);
     for (int c = 0; c < nch && rv == EXR_ERR_SUCCESS; c++)
         rv = exr_add_channel(ctx, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+    for (int a = 0; a < nattrs && rv == EXR_ERR_SUCCESS; a++)
+        rv = exr_attr_set_string(ctx, part, attrs[a].name, attrs[a].value);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_write_header(ctx);
     if (rv == EXR_ERR_SUCCESS)
@@ -94,7 +94,6 @@ int exr_write_float(const char *path, int width, int height, int nch, const char
     if (rv == EXR_ERR_SUCCESS)
         snprintf(err, errlen, "%s: cannot rename into place: %s", path, strerror(rename_errno));
     else
-        snprintf(err, errlen, "%s: cannot write EXR: %s", path,
-                 exr_message[0] ? exr_message : exr_get_default_error_message(rv));
+        snprintf(err, errlen, "%s: cannot write EXR: %s", path, exr_error_text(rv));
     return -1;
 }

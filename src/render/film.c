@@ -43,13 +43,15 @@ int film_init(film_t *f, int width, int height, const film_aov *aovs, int naovs,
     f->weight = calloc((size_t)width * height, sizeof(double));
     if (!f->names || !f->sum || !f->weight)
         abort();
-    static const char *rgb[3] = {"R", "G", "B"};
+    static const char *const rgb_names[3] = {"R", "G", "B"};
     int k = 0;
     for (int c = 0; c < 3; c++)
-        f->names[k++] = dup_name("", rgb[c]);
+        f->names[k++] = dup_name("", rgb_names[c]);
     for (int a = 0; a < naovs; a++)
-        for (int c = 0; c < aovs[a].channels; c++)
-            f->names[k++] = dup_name(aovs[a].name, aovs[a].channels == 1 ? "Y" : rgb[c]);
+        for (int c = 0; c < aovs[a].channels; c++) {
+            const char *suffix = aovs[a].suffixes ? aovs[a].suffixes[c] : aovs[a].channels == 1 ? "Y" : rgb_names[c];
+            f->names[k++] = dup_name(aovs[a].name, suffix);
+        }
     return 0;
 }
 

@@ -1,15 +1,15 @@
 /* The render loop: passes of samples over 16x16 tiles shared out to OpenMP
  * threads, each pixel sample with its own stream of the sampler, a progress
- * bar, and a stop request (SIGINT) honoured after the sample in progress. */
+ * bar, and a stop request (SIGINT) honoured after the sample in progress.
+ * render_scene is the one-process driver; render_loop.h gives the pieces to
+ * the others (distribute_mpi.c). */
 #include <omp.h>
 #include <signal.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-#include "celadon/render.h"
-#include "core/core.h"
+#include "render/render_loop.h"
 #include "render/scene_impl.h"
 
 enum { TILE = 16 };
@@ -86,80 +86,120 @@ static uint64_t render_tile(const scene_t *s, film_t *film, unsigned aovs, int t
     return n;
 }
 
+int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, size_t errlen)
+{
+    /* The channels as Mitsuba's aov integrator names them. */
+    static const char *const t[1] = {"T"}, *const xyz[3] = {"X", "Y", "Z"}, *const rgb[3] = {"R", "G", "B"};
+    film_aov list[3];
+    int naov = 0;
+    if (aovs & RENDER_AOV_DEPTH)
+        list[naov++] = (film_aov){"depth", 1, t};
+    if (aovs & RENDER_AOV_NORMAL)
+        list[naov++] = (film_aov){"normal", 3, xyz};
+    if (aovs & RENDER_AOV_ALBEDO)
+        list[naov++] = (film_aov){"albedo", 3, rgb};
+    return film_init(film, s->camera.width, s->camera.height, list, naov, err, errlen);
+}
+
+void render_sample_range(const scene_t *s, const render_options *opt, int *s0, int *s1)
+{
+    int all = opt->sample_begin == 0 && opt->sample_end == 0;
+    *s0 = all ? 0 : opt->sample_begin;
+    *s1 = all ? scene_spp(s) : opt->sample_end;
+}
+
+int render_thread_count(const render_options *opt)
+{
+    return opt->threads > 0 ? opt->threads : omp_get_max_threads();
+}
+
+bool render_stop_requested(void) { return stop_requested != 0; }
+void render_stop_clear(void) { stop_requested = 0; }
+
+void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, int s0, int s1, int y0, int y1,
+                    render_tally *tally)
+{
+    const camera_t *cam = &s->camera;
+    int tiles_x = (cam->width + TILE - 1) / TILE, ty0 = y0 / TILE, tiles_y = (y1 + TILE - 1) / TILE - ty0;
+    int ntiles = tiles_x * tiles_y, team = 1;
+    double busy = 0.0, most = 0.0;
+#pragma omp parallel num_threads(threads) reduction(+ : busy) reduction(max : most)
+    {
+        double mine = 0.0; /* this thread's CPU seconds in tiles */
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < ntiles; t++) {
+            if (stop_requested)
+                continue;
+            int tx = (t % tiles_x) * TILE, ty = (ty0 + t / tiles_x) * TILE;
+            double c0 = thread_cpu_seconds();
+            uint64_t add = render_tile(s, film, aovs, tx, ty, s0, s1);
+            mine += thread_cpu_seconds() - c0;
+            uint64_t now = atomic_fetch_add(&tally->taken, add) + add;
+            if (tally->bar && omp_get_thread_num() == 0) {
+                char extra[64];
+                double el = now_seconds() - tally->t_start;
+                snprintf(extra, sizeof extra, "%.2f Msamples/s", el > 0 ? 1e-6 * (double)now / el : 0.0);
+                progress_update(tally->bar, now, extra);
+            }
+        }
+        busy += mine, most = mine;
+#pragma omp master
+        team = omp_get_num_threads();
+    }
+    /* Every thread waits at the end of the pass for the one with the most. */
+    tally->busy_cpu_seconds += busy;
+    tally->idle_cpu_seconds += team * most - busy;
+}
+
+void render_print_summary(const scene_t *s, const render_options *opt, const render_stats *st, const char *who)
+{
+    const camera_t *cam = &s->camera;
+    int s0, s1;
+    render_sample_range(s, opt, &s0, &s1);
+    char share[64] = "";
+    if (s1 - s0 != scene_spp(s))
+        snprintf(share, sizeof share, " (samples %d-%d of %d)", s0, s1 - 1, scene_spp(s));
+    double secs = st->seconds;
+    fprintf(stderr, "render: %dx%d, %d spp%s, %s: %.2f s, %.2f Msamples/s%s\n", cam->width, cam->height, s1 - s0,
+            share, who, secs, secs > 0 ? 1e-6 * (double)st->samples / secs : 0.0,
+            st->interrupted ? " (interrupted: partial image)" : "");
+}
+
 int render_scene(const scene_t *s, const render_options *opt, film_t *film, render_stats *stats, char *err,
                  size_t errlen)
 {
     const camera_t *cam = &s->camera;
-    film_aov list[3];
-    int naov = 0;
-    if (opt->aovs & RENDER_AOV_DEPTH)
-        list[naov++] = (film_aov){"depth", 1};
-    if (opt->aovs & RENDER_AOV_NORMAL)
-        list[naov++] = (film_aov){"normal", 3};
-    if (opt->aovs & RENDER_AOV_ALBEDO)
-        list[naov++] = (film_aov){"albedo", 3};
-    if (film_init(film, cam->width, cam->height, list, naov, err, errlen) != 0)
+    int s0, s1;
+    render_sample_range(s, opt, &s0, &s1);
+    if (s0 < 0 || s1 > scene_spp(s) || s0 >= s1) {
+        snprintf(err, errlen, "samples %d to %d are not a range of the scene's %d", s0, s1, scene_spp(s));
         return -1;
-    int spp = scene_spp(s);
-    int tiles_x = (cam->width + TILE - 1) / TILE, tiles_y = (cam->height + TILE - 1) / TILE;
-    int ntiles = tiles_x * tiles_y;
+    }
+    if (render_film_init(s, opt->aovs, film, err, errlen) != 0)
+        return -1;
     /* About eight passes, so an interrupted render has every pixel sampled. */
-    int pass_spp = spp < 8 ? 1 : (spp + 7) / 8;
-    int threads = opt->threads > 0 ? opt->threads : omp_get_max_threads();
-    uint64_t total = (uint64_t)spp * (uint64_t)cam->width * (uint64_t)cam->height, done = 0;
+    int spp = s1 - s0, pass_spp = spp < 8 ? 1 : (spp + 7) / 8;
+    int threads = render_thread_count(opt);
     progress_t bar;
+    render_tally tally = {.bar = opt->progress ? &bar : NULL, .t_start = now_seconds()};
     if (opt->progress)
-        progress_begin(&bar, "render", total);
-    double *pass_cpu = calloc((size_t)threads, sizeof *pass_cpu), busy = 0.0, idle = 0.0;
-    if (!pass_cpu) {
-        film_free(film);
-        snprintf(err, errlen, "out of memory");
-        return -1;
-    }
-    double t_start = now_seconds();
-    for (int s0 = 0; s0 < spp && !stop_requested; s0 += pass_spp) {
-        int s1 = s0 + pass_spp < spp ? s0 + pass_spp : spp;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-        for (int t = 0; t < ntiles; t++) {
-            if (stop_requested)
-                continue;
-            int tx = (t % tiles_x) * TILE, ty = (t / tiles_x) * TILE;
-            double c0 = thread_cpu_seconds();
-            uint64_t add = render_tile(s, film, opt->aovs, tx, ty, s0, s1), now;
-            pass_cpu[omp_get_thread_num()] += thread_cpu_seconds() - c0;
-#pragma omp atomic capture
-            now = done += add;
-            if (opt->progress && omp_get_thread_num() == 0) {
-                char extra[64];
-                double el = now_seconds() - t_start;
-                snprintf(extra, sizeof extra, "%.2f Msamples/s", el > 0 ? 1e-6 * (double)now / el : 0.0);
-                progress_update(&bar, now, extra);
-            }
-        }
-        double most = 0.0;
-        for (int i = 0; i < threads; i++)
-            most = pass_cpu[i] > most ? pass_cpu[i] : most;
-        for (int i = 0; i < threads; i++)
-            busy += pass_cpu[i], idle += most - pass_cpu[i], pass_cpu[i] = 0.0;
-    }
-    free(pass_cpu);
-    double secs = now_seconds() - t_start;
+        progress_begin(&bar, "render", (uint64_t)spp * (uint64_t)cam->width * (uint64_t)cam->height);
+    for (int p0 = s0; p0 < s1 && !stop_requested; p0 += pass_spp)
+        render_samples(s, threads, opt->aovs, film, p0, p0 + pass_spp < s1 ? p0 + pass_spp : s1, 0, cam->height,
+                       &tally);
+    render_stats st = {now_seconds() - tally.t_start, atomic_load(&tally.taken), stop_requested != 0,
+                       tally.busy_cpu_seconds, tally.idle_cpu_seconds};
     if (opt->progress) {
-        if (!stop_requested)
+        if (!st.interrupted)
             progress_end(&bar);
         else if (bar.enabled)
             fputc('\n', stderr);
-        fprintf(stderr, "render: %dx%d, %d spp, %d threads: %.2f s, %.2f Msamples/s%s\n", cam->width, cam->height,
-                spp, threads, secs, secs > 0 ? 1e-6 * (double)done / secs : 0.0,
-                stop_requested ? " (interrupted: partial image)" : "");
+        char who[32];
+        snprintf(who, sizeof who, "%d thread%s", threads, threads > 1 ? "s" : "");
+        render_print_summary(s, opt, &st, who);
     }
-    if (stats) {
-        stats->seconds = secs;
-        stats->samples = done;
-        stats->interrupted = stop_requested != 0;
-        stats->busy_cpu_seconds = busy;
-        stats->idle_cpu_seconds = idle;
-    }
-    stop_requested = 0;
+    if (stats)
+        *stats = st;
+    render_stop_clear();
     return 0;
 }

@@ -74,6 +74,7 @@ static int build_sampler(struct scene *s, scene_obj *sensor, const scene_options
         s->sampler.seed = scene_own.seed;
         type = named->decl.type;
     }
+    s->sampler.plugin = type;
     if (opt->spp > 0)
         s->sampler.sample_count = opt->spp;
     if (opt->seed >= 0)
@@ -126,13 +127,14 @@ static int add_emitter(struct scene *s, scene_obj *o, emitter_t *e, char *err, s
     return 0;
 }
 
-/* The shape of o, its BSDF (Mitsuba's default when it names none) and its
- * area emitter. */
-static int build_shape(struct scene *s, scene_obj *o, const scene_options *opt, char *err, size_t errlen)
+/* The shape of a leaf, its BSDF (Mitsuba's default when it names none) and
+ * its area emitter. */
+static int build_shape(struct scene *s, const shape_leaf *leaf, const scene_options *opt, char *err, size_t errlen)
 {
+    scene_obj *o = leaf->obj;
     shape_t *sh = &s->shapes.items[s->shapes.count];
     shape_options so = {opt->mesh_segments};
-    if (shape_create(o, &so, sh, err, errlen) != 0)
+    if (shape_create(o, leaf->placed ? &leaf->outer : NULL, &so, sh, err, errlen) != 0)
         return -1;
     s->shapes.count++;
     scene_obj *bo = scene_obj_child(o, SCENE_BSDF);
@@ -147,6 +149,29 @@ static int build_shape(struct scene *s, scene_obj *o, const scene_options *opt, 
         return -1;
     sh->emitter = e;
     return 0;
+}
+
+/* Every shape of the scene, instances expanded into their groups' shapes. */
+static int build_shapes(struct scene *s, scene_obj *root, const scene_options *opt, char *err, size_t errlen)
+{
+    int n = 0, cap = 0;
+    shape_leaf *leaves = NULL;
+    for (int i = 0; i < root->nchildren; i++) {
+        scene_obj *o = root->children[i];
+        int k = o->cls == SCENE_SHAPE ? shape_leaves(o, NULL, 0, err, errlen) : 0;
+        if (k < 0 || (k > 0 && n + k > cap && !(leaves = realloc(leaves, sizeof *leaves * (size_t)(cap = 2 * (n + k)))))) {
+            free(leaves);
+            return k < 0 ? -1 : scene_obj_error(root, err, errlen, "out of memory");
+        }
+        if (k > 0)
+            n += shape_leaves(o, leaves + n, k, err, errlen);
+    }
+    s->shapes.items = calloc((size_t)n + 1, sizeof *s->shapes.items);
+    int rc = s->shapes.items ? 0 : scene_obj_error(root, err, errlen, "out of memory");
+    for (int i = 0; i < n && rc == 0; i++)
+        rc = build_shape(s, &leaves[i], opt, err, errlen);
+    free(leaves);
+    return rc;
 }
 
 /* An emitter outside any shape; at most one environment. */
@@ -170,13 +195,8 @@ static int build_all(struct scene *s, scene_desc *desc, const scene_options *opt
     if (build_integrator(s, root, err, errlen) != 0 || build_sensor(s, root, opt, err, errlen) != 0 ||
         build_shared(s, root, err, errlen) != 0)
         return -1;
-    int n = scene_obj_children(root, SCENE_SHAPE, NULL, 0);
-    s->shapes.items = calloc((size_t)n + 1, sizeof *s->shapes.items);
-    if (!s->shapes.items)
-        return scene_obj_error(root, err, errlen, "out of memory");
-    for (int i = 0; i < root->nchildren; i++)
-        if (root->children[i]->cls == SCENE_SHAPE && build_shape(s, root->children[i], opt, err, errlen) != 0)
-            return -1;
+    if (build_shapes(s, root, opt, err, errlen) != 0)
+        return -1;
     for (int i = 0; i < root->nchildren; i++)
         if (root->children[i]->cls == SCENE_EMITTER && build_emitter(s, root->children[i], err, errlen) != 0)
             return -1;
@@ -209,6 +229,7 @@ scene_t *scene_create(scene_desc *desc, const scene_options *opt, char *err, siz
         scene_destroy(s);
         return NULL;
     }
+    s->digest = scene_digest_compute(desc, s, opt->mesh_segments);
     return s;
 }
 

@@ -20,6 +20,10 @@ struct scene {
     emitter_list emitters; /* area emitters in shape order, then the others in document order */
     bsdf_set bsdfs;
     texture_set textures;
+    uint64_t digest; /* scene_digest */
 };
+
+/* The digest of a scene built from desc (scene_digest.c). */
+uint64_t scene_digest_compute(const scene_desc *desc, const struct scene *s, int mesh_segments);
 
 #endif

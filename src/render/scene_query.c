@@ -12,6 +12,7 @@ void scene_film_size(const scene_t *s, int *width, int *height)
 
 int scene_spp(const scene_t *s) { return (int)s->sampler.sample_count; }
 uint64_t scene_seed(const scene_t *s) { return s->sampler.seed; }
+uint64_t scene_digest(const scene_t *s) { return s->digest; }
 
 long long scene_triangle_count(const scene_t *s)
 {

@@ -43,6 +43,7 @@ enum {
 /* A scene's sampler: its plugin and settings, read-only while rendering. */
 typedef struct {
     const sampler_ops *ops;
+    const char *plugin;     /* its plugin's name (the scene's, or the one the options name) */
     long long sample_count; /* samples per pixel (rounded by sampler_prepare) */
     uint64_t seed;
     bool jitter;            /* stratified, multijitter, orthogonal: random offsets within the cells */

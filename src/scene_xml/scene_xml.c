@@ -112,20 +112,40 @@ static scene_prop *find_prop(const scene_obj *o, const char *name)
     return NULL;
 }
 
-/* Resolves a file name against the folder of the file that mentions it. */
-static char *resolve_path(const char *from_file, const char *name)
+/* name in the folder dir; "." stays implicit. */
+static char *join_path(const char *dir, const char *name)
 {
-    if (name[0] == '/')
+    if (name[0] == '/' || strcmp(dir, ".") == 0)
         return xstrdup(name);
-    char *tmp = xstrdup(from_file);
-    const char *dir = dirname(tmp);
     size_t n = strlen(dir) + strlen(name) + 2;
     char *r = xrealloc(NULL, n);
-    if (strcmp(dir, ".") == 0)
-        snprintf(r, n, "%s", name);
-    else
-        snprintf(r, n, "%s/%s", dir, name);
+    snprintf(r, n, "%s/%s", dir, name);
+    return r;
+}
+
+static char *folder_of(const char *file)
+{
+    char *tmp = xstrdup(file);
+    char *dir = xstrdup(dirname(tmp));
     free(tmp);
+    return dir;
+}
+
+char *scene_resolve_path(scene_ctx *c, const char *from_file, const char *name)
+{
+    char *first = folder_of(from_file), *r = join_path(first, name);
+    free(first);
+    struct stat st;
+    if (name[0] == '/' || stat(r, &st) == 0)
+        return r;
+    for (int i = -1; i < c->npaths; i++) {
+        char *alt = join_path(i < 0 ? c->scene_dir : c->paths[i], name);
+        if (stat(alt, &st) == 0) {
+            free(r);
+            return alt;
+        }
+        free(alt);
+    }
     return r;
 }
 
@@ -147,6 +167,10 @@ static int add_prop(scene_ctx *c, scene_obj *o, scene_prop *p)
     describe(o, what, sizeof what);
     const scene_plugin_decl *sp = c->plugins(o->cls, o->type);
     const scene_param_decl *par = schema_param_find(sp, p->name);
+    if (!par && scene_param_obsolete(o->cls, p->name)) {
+        scene_prop_clear(p);
+        return 0;
+    }
     int rc = 0;
     const scene_prop *dup = find_prop(o, p->name);
     if (!par) {
@@ -162,7 +186,7 @@ static int add_prop(scene_ctx *c, scene_obj *o, scene_prop *p)
         rc = scene_fail(c, p->line, "bad value '%s' for '%s' of %s (one of: %s)", p->value.s, p->name, what,
                         par->choices);
     } else if (p->type == SCENE_STRING && (par->flags & PARAM_FILE)) {
-        char *path = resolve_path(p->file, p->value.s);
+        char *path = scene_resolve_path(c, p->file, p->value.s);
         rc = check_file(c, p->line, p->value.s, path);
         free(p->value.s);
         p->value.s = path;
@@ -319,7 +343,7 @@ static int parse_include(scene_ctx *c, const xmlNode *n, scene_obj *parent)
     char *name;
     if (scene_check_attrs(c, n, "filename") != 0 || scene_attr_req(c, n, "filename", &name) != 0)
         return -1;
-    char *path = resolve_path(c->file, name);
+    char *path = scene_resolve_path(c, c->file, name);
     char canon[PATH_MAX];
     char *buf = NULL;
     size_t len = 0;
@@ -345,6 +369,29 @@ static int parse_include(scene_ctx *c, const xmlNode *n, scene_obj *parent)
     return rc;
 }
 
+/* <path value="folder"/>: one more folder to look for files in, relative
+ * to the file that names it (or found as a file name is); it must exist. */
+static int parse_path(scene_ctx *c, const xmlNode *n)
+{
+    char *value;
+    if (scene_check_attrs(c, n, "value") != 0 || scene_attr_req(c, n, "value", &value) != 0)
+        return -1;
+    char *path = scene_resolve_path(c, c->file, value);
+    struct stat st;
+    int rc = 0;
+    if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        rc = scene_fail(c, scene_line(n), "<path>: folder '%s' not found (%s)", value, path);
+        free(path);
+    } else {
+        c->paths = xrealloc(c->paths, sizeof(char *) * (size_t)(c->npaths + 1));
+        memmove(c->paths + 1, c->paths, sizeof(char *) * (size_t)c->npaths);
+        c->paths[0] = path;
+        c->npaths++;
+    }
+    free(value);
+    return rc;
+}
+
 static int parse_default(scene_ctx *c, const xmlNode *n)
 {
     char *name = NULL, *value = NULL;
@@ -357,10 +404,14 @@ static int parse_default(scene_ctx *c, const xmlNode *n)
         for (int i = 0; i < c->nparams; i++)
             if (strcmp(c->params[i].name, name) == 0)
                 p = &c->params[i];
-        if (!p) { /* an earlier -D or <default> wins */
+        if (!p) { /* an earlier -D or <default> wins over this one, which wins over a fallback */
             c->params = xrealloc(c->params, sizeof(scene_param) * (size_t)(c->nparams + 1));
             p = &c->params[c->nparams++];
-            *p = (scene_param){xstrdup(name), xstrdup(value), 0, 0, 0};
+            *p = (scene_param){xstrdup(name), xstrdup(value), 0, 0, 0, 0};
+        } else if (p->fallback) {
+            free(p->value);
+            p->value = xstrdup(value);
+            p->fallback = 0;
         }
         p->declared = 1;
     }
@@ -384,6 +435,16 @@ static int parse_ref(scene_ctx *c, const xmlNode *n, scene_obj *parent)
 
 static int parse_children(scene_ctx *c, const xmlNode *n, scene_obj *o, int file_scene_level);
 
+/* An object with an id at the top level that the scene itself cannot hold
+ * (a sampler, a film, an area emitter, ...) is only declared there, for
+ * <ref>s to place it, as in Mitsuba; unreferenced, it is not used. */
+static int declared_only(scene_ctx *c, const scene_obj *parent, const scene_obj *o)
+{
+    if (parent->cls != SCENE_SCENE || !o->id)
+        return 0;
+    return !schema_child_find(c->plugins(SCENE_SCENE, "scene"), o->cls) || c->plugins(o->cls, o->type)->host != SCENE_SCENE;
+}
+
 static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_obj *parent)
 {
     int line = scene_line(n);
@@ -393,7 +454,9 @@ static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_o
         scene_attr(c, n, "id", &id) != 0 || scene_attr(c, n, "name", &name) != 0)
         goto done;
     if (!c->plugins(cls, type)) {
-        scene_fail(c, line, "unknown plugin '%s' for <%s>", type, scene_class_name(cls));
+        const char *why = scene_plugin_refusal(cls, type);
+        scene_fail(c, line, "unknown plugin '%s' for <%s>%s%s%s", type, scene_class_name(cls), why ? " (" : "",
+                   why ? why : "", why ? ")" : "");
         goto done;
     }
     if (id) {
@@ -407,7 +470,7 @@ static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_o
     o->id = id;
     o->name = name;
     id = name = NULL;
-    if (parse_children(c, n, o, 0) != 0 || attach(c, parent, o, o->name, line) != 0)
+    if (parse_children(c, n, o, 0) != 0 || (!declared_only(c, parent, o) && attach(c, parent, o, o->name, line) != 0))
         goto done;
     rc = 0;
 done:
@@ -426,6 +489,11 @@ static int parse_element(scene_ctx *c, const xmlNode *n, scene_obj *o, int file_
             return scene_fail(c, scene_line(n), "<default> must be a direct child of <scene>");
         return parse_default(c, n);
     }
+    if (strcmp(tag, "path") == 0) {
+        if (!file_scene_level)
+            return scene_fail(c, scene_line(n), "<path> must be a direct child of <scene>");
+        return parse_path(c, n);
+    }
     if (strcmp(tag, "include") == 0)
         return parse_include(c, n, o);
     if (strcmp(tag, "ref") == 0)
@@ -434,7 +502,7 @@ static int parse_element(scene_ctx *c, const xmlNode *n, scene_obj *o, int file_
         return parse_object(c, n, (scene_class)cls, o);
     if (scene_is_property_tag(tag)) {
         scene_prop p;
-        if (scene_parse_property(c, n, &p) != 0) {
+        if (scene_parse_property(c, n, o->cls, &p) != 0) {
             scene_prop_clear(&p);
             return -1;
         }
@@ -461,8 +529,8 @@ static int parse_children(scene_ctx *c, const xmlNode *n, scene_obj *o, int file
     return 0;
 }
 
-/* "major.minor.patch"; scenes before Mitsuba 2 used other parameter names. */
-static int check_version(scene_ctx *c, const xmlNode *root)
+/* "major.minor.patch"; a scene before Mitsuba 2 is upgraded in place. */
+static int check_version(scene_ctx *c, xmlNode *root)
 {
     char *v;
     if (scene_check_attrs(c, root, "version") != 0 || scene_attr_req(c, root, "version", &v) != 0)
@@ -470,12 +538,12 @@ static int check_version(scene_ctx *c, const xmlNode *root)
     int major, minor, patch, end = 0;
     int ok = sscanf(v, "%d.%d.%d%n", &major, &minor, &patch, &end) == 3 && v[end] == '\0';
     int rc = 0;
-    if (!ok)
+    if (!ok || major < 0 || minor < 0 || patch < 0)
         rc = scene_fail(c, scene_line(root), "bad scene version '%s' (expected e.g. \"3.0.0\")", v);
-    else if (major < 2 || major > 3)
-        rc = scene_fail(c, scene_line(root),
-                        "scene version '%s' is not supported (Mitsuba 2 or 3 scenes only; "
-                        "older ones use camelCase parameter names)", v);
+    else if (major > 3)
+        rc = scene_fail(c, scene_line(root), "scene version '%s' is not supported (Mitsuba 0.5 to 3 scenes)", v);
+    else if (major < 2)
+        scene_upgrade_v1(root);
     free(v);
     return rc;
 }
@@ -498,7 +566,7 @@ static int parse_document(scene_ctx *c, const char *xml, size_t len, const char 
         msg[strcspn(msg, "\n")] = '\0';
         rc = scene_fail(c, e ? e->line : 0, "malformed XML: %s", msg);
     } else {
-        const xmlNode *root = xmlDocGetRootElement(doc);
+        xmlNode *root = xmlDocGetRootElement(doc);
         if (!root)
             rc = scene_fail(c, 0, "empty document");
         else if (strcmp((const char *)root->name, "scene") != 0)
@@ -526,8 +594,9 @@ static int finish(scene_ctx *c)
         scene_obj *target = find_id(c->d, r->id);
         if (!target)
             return scene_fail(c, r->line, "<ref id=\"%s\">: no object has this id", r->id);
-        if (target->cls == SCENE_SHAPE)
-            return scene_fail(c, r->line, "<ref id=\"%s\">: shapes cannot be referenced (no instancing)", r->id);
+        if (target->cls == SCENE_SHAPE && strcmp(target->type, "shapegroup") != 0)
+            return scene_fail(c, r->line, "<ref id=\"%s\">: only a shapegroup can be referenced (by an instance)",
+                              r->id);
         if (attach(c, r->parent, target, r->name, r->line) != 0)
             return -1;
     }
@@ -564,10 +633,12 @@ static scene_desc *load(const char *xml, size_t len, const char *path, const sce
             if (strcmp(c.params[j].name, defs[i].name) == 0)
                 rc = scene_fail(&c, 0, "-D %s given twice", defs[i].name);
         c.params = xrealloc(c.params, sizeof(scene_param) * (size_t)(c.nparams + 1));
-        c.params[c.nparams++] = (scene_param){xstrdup(defs[i].name), xstrdup(defs[i].value), 1, 0, 0};
+        c.params[c.nparams++] = (scene_param){xstrdup(defs[i].name), xstrdup(defs[i].value), !defs[i].fallback, 0, 0,
+                                              defs[i].fallback};
     }
     char canon[PATH_MAX];
     c.stack[c.depth++] = xstrdup(realpath(path, canon) ? canon : path);
+    c.scene_dir = folder_of(path);
     if (rc == 0)
         rc = parse_document(&c, xml, len, path, NULL);
     if (rc == 0)
@@ -588,6 +659,10 @@ static scene_desc *load(const char *xml, size_t len, const char *path, const sce
     }
     while (c.depth > 0)
         free(c.stack[--c.depth]);
+    for (int i = 0; i < c.npaths; i++)
+        free(c.paths[i]);
+    free(c.paths);
+    free(c.scene_dir);
     free(c.params);
     free(c.refs);
     if (rc != 0) {

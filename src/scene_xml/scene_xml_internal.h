@@ -21,6 +21,7 @@ typedef struct {
     int from_cli; /* given as -D (wins over <default>) */
     int used;     /* substituted somewhere */
     int declared; /* named by a <default> */
+    int fallback; /* a fallback define, until a <default> replaces it */
 } scene_param;
 
 typedef struct {
@@ -40,6 +41,10 @@ typedef struct {
     char *stack[SCENE_MAX_INCLUDE_DEPTH]; /* canonical paths of the files being read */
     int depth;
     const char *file; /* the file being read (interned) */
+    char *scene_dir;  /* the folder of the scene file itself */
+    char **paths;     /* the folders <path> added, latest first */
+    int npaths;
+    int line_hint;    /* the line of the element being read, for messages about its parts */
     char *err;
     size_t errlen;
     int failed;
@@ -64,12 +69,37 @@ int scene_parse_double(const char *s, double *out);
  * count, or -1 on a bad token or more than max. */
 int scene_parse_list(const char *s, double *out, int max);
 
-/* Parses a property element (<float>, <rgb>, <transform>, ...) into p
- * (name, type, value, file, line). Returns 0 or -1. */
-int scene_parse_property(scene_ctx *c, const xmlNode *n, scene_prop *p);
+/* Parses a property element (<float>, <rgb>, <transform>, ...) of an object
+ * of class owner into p (name, type, value, file, line). Returns 0 or -1. */
+int scene_parse_property(scene_ctx *c, const xmlNode *n, scene_class owner, scene_prop *p);
+/* A <spectrum> element of an object of class owner into p, as an RGB
+ * (scene_xml_spectrum.c). Returns 0 or -1. */
+int scene_parse_spectrum(scene_ctx *c, const xmlNode *n, scene_class owner, scene_prop *p);
+
+/* Where a file name is looked for (docs/scene-format.md, "Paths"): the
+ * folder of from_file (the file that names it), the scene file's folder,
+ * then each <path> folder, the latest first. Returns the first candidate
+ * that exists, or the first candidate when none does (the caller's open or
+ * stat then reports it); malloc'd. */
+char *scene_resolve_path(scene_ctx *c, const char *from_file, const char *name);
 /* Whether tag names a property element. */
 int scene_is_property_tag(const char *tag);
 void scene_prop_clear(scene_prop *p);
+
+/* ------------------------------------------------------- older scenes */
+/* Upgrades the document under root, of a Mitsuba before 2.0, in place
+ * (scene_xml_upgrade.c). */
+void scene_upgrade_v1(xmlNode *root);
+/* in as snake_case the way Mitsuba 3 converts camelCase: an upper-case run
+ * after a lower-case letter becomes "_" and the run in lower case. */
+void scene_snake_case(const char *in, char *out, size_t outlen);
+/* Whether parameter name of class cls is one Mitsuba 3 ignores and the
+ * reader drops. */
+int scene_param_obsolete(scene_class cls, const char *name);
+/* Why a Mitsuba plugin celadon does not have is refused, when it is one of
+ * those refused by name (polarized, spectral-only, dropped by Mitsuba 3),
+ * or NULL. */
+const char *scene_plugin_refusal(scene_class cls, const char *type);
 
 /* ------------------------------------------------ reading the declarations */
 const scene_param_decl *schema_param_find(const scene_plugin_decl *p, const char *name);

@@ -390,24 +390,12 @@ static int parse_value(scene_ctx *c, const xmlNode *n, scene_prop *p, const char
         p->value.rgb = (scene_rgb){v[0], v[1], v[2]};
         return 0;
     }
-    case SCENE_SPECTRUM: {
-        double v;
-        if (strchr(value, ':'))
-            return scene_fail(c, line,
-                              "<spectrum name=\"%s\">: wavelength:value spectra are not supported "
-                              "(celadon renders in RGB); use <rgb> or a single value",
-                              p->name);
-        if (scene_parse_double(value, &v) != 0)
-            return scene_fail(c, line, "bad value '%s' for <spectrum name=\"%s\"> (a single number)", value, p->name);
-        p->value.rgb = (scene_rgb){v, v, v};
-        return 0;
-    }
     default:
         return scene_fail(c, line, "internal: <%s> has no scalar value", tag);
     }
 }
 
-int scene_parse_property(scene_ctx *c, const xmlNode *n, scene_prop *p)
+int scene_parse_property(scene_ctx *c, const xmlNode *n, scene_class owner, scene_prop *p)
 {
     const char *tag = (const char *)n->name;
     memset(p, 0, sizeof *p);
@@ -417,8 +405,8 @@ int scene_parse_property(scene_ctx *c, const xmlNode *n, scene_prop *p)
         if (strcmp(tag, property_tags[t]) == 0)
             p->type = (scene_prop_type)t;
 
-    if (p->type == SCENE_SPECTRUM && xmlHasProp(n, (const xmlChar *)"filename"))
-        return scene_fail(c, p->line, "<spectrum filename=...> (measured spectra) is not supported; use <rgb>");
+    if (p->type == SCENE_SPECTRUM)
+        return scene_parse_spectrum(c, n, owner, p);
     const char *allowed = p->type == SCENE_TRANSFORM                          ? "name"
                           : (p->type == SCENE_POINT || p->type == SCENE_VECTOR) ? "name|value|x|y|z"
                                                                                 : "name|value";

@@ -18,13 +18,15 @@ static double det3(const transform4 *t)
            m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
 }
 
-int shape_create(scene_obj *o, const shape_options *opt, shape_t *sh, char *err, size_t errlen)
+int shape_create(scene_obj *o, const transform4 *outer, const shape_options *opt, shape_t *sh, char *err,
+                 size_t errlen)
 {
     memset(sh, 0, sizeof *sh);
     sh->file = o->file;
     sh->line = o->line;
     sh->flip_normals = scene_obj_bool(o, "flip_normals", false);
-    transform4 to_world = scene_obj_transform(o, "to_world");
+    transform4 own = scene_obj_transform(o, "to_world");
+    transform4 to_world = outer ? transform_compose(outer, &own) : own;
     const shape_plugin *plugin = shape_plugin_find(o->type);
     if (!plugin)
         return scene_obj_error(o, err, errlen, "unsupported shape '%s'", o->type);

@@ -12,6 +12,9 @@
     X(shape, sphere)                     \
     X(shape, cylinder)                   \
     X(shape, sor)                        \
+    X(shape, serialized)                 \
+    X(shape, shapegroup)                 \
+    X(shape, instance)                   \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(shape, SHAPE_PLUGINS)

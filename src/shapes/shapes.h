@@ -103,9 +103,25 @@ typedef struct {
     int mesh_segments; /* 0: SORs analytic; N >= 3: revolved into N angular segments */
 } shape_options;
 
-/* Builds the geometry of a <shape> object into sh (its bsdf and emitter are
- * the scene build's): 0, or -1 with "file:line: problem" in err. */
-int shape_create(scene_obj *o, const shape_options *opt, shape_t *sh, char *err, size_t errlen);
+/* A shape to build: a <shape> object and, for a shape of an instanced
+ * group, the instance's transform that places it beyond its own to_world. */
+typedef struct {
+    scene_obj *obj;
+    bool placed;      /* a shape of a group, placed by an instance */
+    transform4 outer; /* the instance's to_world */
+} shape_leaf;
+
+/* The shapes a top-level <shape> object stands for (instance.c): itself;
+ * nothing for a shapegroup; for an instance, the shapes of its group under
+ * the instance's to_world. Writes up to max of them to out and returns how
+ * many there are, or -1 with "file:line: problem" in err. */
+int shape_leaves(scene_obj *o, shape_leaf *out, int max, char *err, size_t errlen);
+
+/* Builds the geometry of a <shape> object, placed by outer · to_world (or
+ * to_world when outer is NULL), into sh (its bsdf and emitter are the scene build's): 0, or -1 with
+ * "file:line: problem" in err. */
+int shape_create(scene_obj *o, const transform4 *outer, const shape_options *opt, shape_t *sh, char *err,
+                 size_t errlen);
 /* Frees what shape_create allocated. */
 void shape_free(shape_t *sh);
 

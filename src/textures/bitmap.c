@@ -114,6 +114,7 @@ static texture_t *bitmap_create(scene_obj *o, char *err, size_t errlen)
     bool raw = scene_obj_bool(o, "raw", false);
     const char *filter = scene_obj_string(o, "filter_type", "bilinear");
     const char *wrap = scene_obj_string(o, "wrap_mode", "repeat");
+    (void)scene_obj_string(o, "format", "auto"); /* texels are kept as floats whatever the storage asked for */
     uv_transform to_uv = texture_to_uv_param(o);
     image_t img;
     char why[256];
@@ -144,6 +145,7 @@ static const scene_param_decl bitmap_params[] = {
     {"raw", PARAM_BOOL, 0, NULL},
     {"filter_type", PARAM_STRING, 0, "nearest|bilinear"},
     {"wrap_mode", PARAM_STRING, 0, "repeat|mirror|clamp"},
+    {"format", PARAM_STRING, 0, "auto|variant|float16|fp16|uint8"},
     {"to_uv", PARAM_TRANSFORM, 0, NULL},
     {NULL, 0, 0, NULL},
 };

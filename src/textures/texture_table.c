@@ -6,6 +6,7 @@
 #define TEXTURE_PLUGINS(X)               \
     X(texture, bitmap)                   \
     X(texture, checkerboard)             \
+    X(texture, rawconstant)              \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(texture, TEXTURE_PLUGINS)

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 extern char **environ;
 
@@ -38,32 +39,37 @@ static char *slurp_and_remove(const char *path)
     return buf;
 }
 
-cli_result cli_run(const char *scratch_dir, const char *const *args)
+cli_result cli_run_argv(const char *scratch_dir, const char *const *argv)
 {
     char out_path[512], err_path[512];
     snprintf(out_path, sizeof out_path, "%s/cli-stdout.txt", scratch_dir);
     snprintf(err_path, sizeof err_path, "%s/cli-stderr.txt", scratch_dir);
-    char *argv[64];
-    int n = 0;
-    argv[n++] = (char *)cli_bin();
-    for (; *args && n < 63; args++)
-        argv[n++] = (char *)*args;
-    argv[n] = NULL;
-
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
     posix_spawn_file_actions_addopen(&fa, 1, out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_addopen(&fa, 2, err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     pid_t pid;
-    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, argv, environ), 0, "cannot start %s", argv[0]);
+    cr_assert_eq(posix_spawnp(&pid, argv[0], &fa, NULL, (char *const *)argv, environ), 0, "cannot start %s",
+                 argv[0]);
     posix_spawn_file_actions_destroy(&fa);
     int status;
     cr_assert_eq(waitpid(pid, &status, 0), pid);
     cli_result r = {0, slurp_and_remove(out_path), slurp_and_remove(err_path)};
-    cr_assert(WIFEXITED(status), "celadon died from signal %d; stderr: %s", WIFSIGNALED(status) ? WTERMSIG(status) : 0,
-              r.err);
+    cr_assert(WIFEXITED(status), "%s died from signal %d; stderr: %s", argv[0],
+              WIFSIGNALED(status) ? WTERMSIG(status) : 0, r.err);
     r.status = WEXITSTATUS(status);
     return r;
+}
+
+cli_result cli_run(const char *scratch_dir, const char *const *args)
+{
+    const char *argv[64];
+    int n = 0;
+    argv[n++] = cli_bin();
+    for (; *args && n < 63; args++)
+        argv[n++] = *args;
+    argv[n] = NULL;
+    return cli_run_argv(scratch_dir, argv);
 }
 
 void cli_result_free(cli_result *r)
@@ -71,4 +77,31 @@ void cli_result_free(cli_result *r)
     free(r->out);
     free(r->err);
     r->out = r->err = NULL;
+}
+
+int cli_count_lines(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += *s == '\n';
+    return n;
+}
+
+int cli_wait_for_handler(int pid, int sig, double limit)
+{
+    char path[64], line[256];
+    snprintf(path, sizeof path, "/proc/%d/status", pid);
+    for (double t = 0; t < limit; t += 0.02) {
+        FILE *f = fopen(path, "r");
+        unsigned long long caught = 0;
+        while (f && fgets(line, sizeof line, f))
+            if (sscanf(line, "SigCgt: %llx", &caught) == 1)
+                break;
+        if (f)
+            fclose(f);
+        if (caught & (1ull << (sig - 1)))
+            return 1;
+        usleep(20000);
+    }
+    return 0;
 }

@@ -16,6 +16,17 @@ const char *cli_bin(void);
  * through files in scratch_dir. Fails the test if the child is killed by a
  * signal (a crash is never an acceptable answer to any input). */
 cli_result cli_run(const char *scratch_dir, const char *const *args);
+/* The same for any program: argv[0] is looked up in PATH (e.g. mpirun). */
+cli_result cli_run_argv(const char *scratch_dir, const char *const *argv);
 void cli_result_free(cli_result *r);
+
+/* Waits (at most limit seconds) until process pid has a handler for
+ * signal sig (Linux: SigCgt in /proc/PID/status), so that a test's signal
+ * is not the default action on a process still starting up. Returns 1 when
+ * it has one. */
+int cli_wait_for_handler(int pid, int sig, double limit);
+
+/* The number of lines of printed text s (its newlines). */
+int cli_count_lines(const char *s);
 
 #endif

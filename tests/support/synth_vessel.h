@@ -13,7 +13,9 @@
  * (i + 0.5, j + 0.5). Drawing is anti-aliased by area coverage: each pixel is
  * split into `subrows` horizontal lines; on each the vessel's exact x-interval
  * (root-polished to 1e-9 px) is clipped to the pixel, so coverage is exact
- * along x and a midpoint rule along y.
+ * along x and a midpoint rule along y. This is the level-camera case of
+ * synth_body.h and synth_raster.h; synth_scene.h composes whole photographs
+ * (backdrops, shadows, stands, handles, lids, elevated cameras) from them.
  *
  * Usage:
  *     synth_params p = synth_defaults(SYNTH_VASE, 300, 400);
@@ -33,7 +35,8 @@
 #include "celadon/profile.h"
 #include "celadon/vecmath.h"
 
-/* Profiles, in units of the height H (t = h/H in [0, 1]):
+/* The four shapes, in units of the height H (t = h/H in [0, 1]); they are the
+ * first four synth_profile values (synth_profile.c holds the formulas):
  *  VASE    r = 0.17 + 0.09 sin(2π(0.85 t + 0.08)): belly, narrow neck, flared mouth
  *  BOWL    r = 0.50 + 0.70 t - 0.25 t²: wide and flaring, wider than tall
  *  BOTTLE  r = 0.08 + 0.17 (1 - tanh((t - 0.6)/0.07))/2: round body, narrow neck

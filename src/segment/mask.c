@@ -1,88 +1,27 @@
-/* The object mask: alpha, or a threshold on the distance to a background
- * model (automatic, either polarity), or a forced gray threshold. */
+/* The gray signal and the masks that need no segmentation (alpha, a forced
+ * gray threshold), and the cleaning of masks: components, holes, morphology. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "recon/recon_internal.h"
+#include "segment/segment.h"
+
+/* On x86-64 the build targets the baseline (SSE2); the whole-row filter
+ * loops also get an AVX2 clone, picked at load time when the CPU has it
+ * (GCC/Clang function multiversioning). No FMA: both clones round alike. */
+#if defined(__x86_64__) && defined(__GNUC__)
+#define RECON_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define RECON_VECTOR_CLONES
+#endif
 
 /* Clamps a signal value to [0, 1]; NaN (HDR or broken files) becomes 0. */
 static inline float finite01(float v) { return v > 0 ? (v < 1 ? v : 1) : 0; }
-
-/* Median of 5 values (the border curves are denoised with it). */
-static float median5(float a, float b, float c, float d, float e)
-{
-    float v[5] = {a, b, c, d, e};
-    for (int i = 1; i < 5; i++)
-        for (int k = i; k > 0 && v[k - 1] > v[k]; k--) {
-            float t = v[k];
-            v[k] = v[k - 1];
-            v[k - 1] = t;
-        }
-    return v[2];
-}
-
-/* Gray values along one image border (stride apart), median-of-5 filtered. */
-static void border_curve(const float *gray, int n, size_t stride, float *out)
-{
-    for (int i = 0; i < n; i++) {
-        float v[5];
-        for (int k = -2; k <= 2; k++) {
-            int q = i + k < 0 ? 0 : (i + k >= n ? n - 1 : i + k);
-            v[k + 2] = gray[(size_t)q * stride];
-        }
-        out[i] = median5(v[0], v[1], v[2], v[3], v[4]);
-    }
-}
 
 static int cmp_float(const void *a, const void *b)
 {
     float x = *(const float *)a, y = *(const float *)b;
     return (x > y) - (x < y);
-}
-
-/* Noise of the background: robust sigma of neighbour differences along the
- * top and bottom borders (MAD * 1.4826 / sqrt 2). */
-static double border_noise(const float *gray, int w, int h)
-{
-    int n = 2 * (w - 1);
-    float *d = malloc((size_t)n * sizeof *d);
-    if (!d)
-        return 0;
-    for (int i = 0; i + 1 < w; i++) {
-        d[i] = fabsf(gray[i + 1] - gray[i]);
-        d[w - 1 + i] = fabsf(gray[(size_t)(h - 1) * w + i + 1] - gray[(size_t)(h - 1) * w + i]);
-    }
-    qsort(d, (size_t)n, sizeof *d, cmp_float);
-    double s = d[n / 2] * 1.4826 / sqrt(2.0);
-    free(d);
-    return s;
-}
-
-/* Otsu's threshold on a histogram of nb bins; returns the bin index t such
- * that classes are [0, t] and (t, nb). */
-static int otsu_bin(const long *hist, int nb)
-{
-    double total = 0, sum = 0;
-    for (int i = 0; i < nb; i++) {
-        total += hist[i];
-        sum += (double)i * hist[i];
-    }
-    double wb = 0, sb = 0, best = -1;
-    int bt = 0;
-    for (int t = 0; t < nb - 1; t++) {
-        wb += hist[t];
-        sb += (double)t * hist[t];
-        double wf = total - wb;
-        if (wb <= 0 || wf <= 0)
-            continue;
-        double mb = sb / wb, mf = (sum - sb) / wf, v = wb * wf * (mb - mf) * (mb - mf);
-        if (v > best) {
-            best = v;
-            bt = t;
-        }
-    }
-    return bt;
 }
 
 /* Gray (Rec.601 luminance of the encoded values, or the first channel) of
@@ -106,12 +45,13 @@ RECON_VECTOR_CLONES static void gray_row(const float *restrict px, int c, int n,
     }
 }
 
-RECON_VECTOR_CLONES recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *gray, uint8_t *mask,
-                                     int *threshold_used)
+RECON_VECTOR_CLONES recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *gray,
+                                                         uint8_t *mask, int *threshold_used)
 {
     const int w = img->width, h = img->height, c = img->channels;
     const size_t n = (size_t)w * h, row = (size_t)w * c;
     const float *px = img->data;
+    *threshold_used = -1;
 
     /* Alpha is the mask when most of the border is transparent. */
     if (img->has_alpha && c >= 2) {
@@ -125,118 +65,38 @@ RECON_VECTOR_CLONES recon_mask_mode recon_mask_threshold(const image_t *img, int
                 gray[i] = finite01(px[i * c + c - 1]);
                 mask[i] = gray[i] >= 0.5f;
             }
-            *threshold_used = -1;
             return RECON_MASK_ALPHA;
         }
     }
+    for (int j = 0; j < h; j++)
+        gray_row(px + (size_t)j * row, c, w, gray + (size_t)j * w);
+    if (threshold < 0)
+        return RECON_MASK_GRAPH_CUT;
 
-    /* Background model: the Coons patch of the four (denoised) border curves,
-     * exact for backdrops that vary linearly or along one direction only.
-     * The border's gray comes first; the rest of the image is converted row
-     * by row below, in the same pass that measures it. */
-    float *top = malloc(((size_t)2 * w + 4 * h) * sizeof *top);
-    if (!top) {
-        memset(mask, 0, n);
-        *threshold_used = 0;
-        return RECON_MASK_BACKGROUND;
-    }
-    float *bot = top + w, *left = bot + w, *right = left + h, *col_l = right + h, *col_r = col_l + h;
-    gray_row(px, c, w, gray);
-    gray_row(px + (size_t)(h - 1) * row, c, w, gray + (size_t)(h - 1) * w);
-    for (int j = 0; j < h; j++) {
-        gray_row(px + (size_t)j * row, c, 1, col_l + j);
-        gray_row(px + (size_t)j * row + (size_t)(w - 1) * c, c, 1, col_r + j);
-    }
-    border_curve(gray, w, 1, top);
-    border_curve(gray + (size_t)(h - 1) * w, w, 1, bot);
-    border_curve(col_l, h, 1, left);
-    border_curve(col_r, h, 1, right);
-
-    if (threshold >= 0) {
-        /* Forced: polarity from the border's median against the threshold. */
-        float *b = malloc(((size_t)2 * w + 2 * h) * sizeof *b);
-        float med = top[0];
-        if (b) {
-            memcpy(b, top, ((size_t)2 * w + 2 * h) * sizeof *b);
-            qsort(b, (size_t)2 * w + 2 * h, sizeof *b, cmp_float);
-            med = b[w + h];
-            free(b);
-        }
-        free(top);
-        float t = threshold / 255.0f;
-        int below = med > t;
-        for (int j = 0; j < h; j++) {
-            float *restrict g = gray + (size_t)j * w;
-            uint8_t *restrict m = mask + (size_t)j * w;
-            gray_row(px + (size_t)j * row, c, w, g);
-#pragma omp simd
-            for (int i = 0; i < w; i++)
-                m[i] = below ? g[i] < t : g[i] > t;
-        }
-        *threshold_used = threshold;
-        return below ? RECON_MASK_GRAY_BELOW : RECON_MASK_GRAY_ABOVE;
-    }
-
-    /* Distance to the background model, its histogram, Otsu. The distance is
-     * written into mask as 0..255 first, then thresholded in place. */
-    enum { NB = 256 };
-    uint32_t sub[4][NB] = {{0}}; /* interleaved: shorter increment chains */
-    const float c00 = top[0], c10 = top[w - 1], c01 = bot[0], c11 = bot[w - 1];
-    const float iu = w > 1 ? 1.0f / (w - 1) : 0, iv = h > 1 ? 1.0f / (h - 1) : 0;
-    for (int j = 0; j < h; j++) {
-        float *restrict g = gray + (size_t)j * w;
-        uint8_t *restrict m = mask + (size_t)j * w;
-        gray_row(px + (size_t)j * row, c, w, g);
-        /* The patch on row j is P[i] + alpha + beta u, u = i/(w-1). */
-        float v = j * iv, l = left[j], r = right[j];
-        float k0 = (1 - v) * c00 + v * c01, k1 = (1 - v) * (c10 - c00) + v * (c11 - c01);
-        float alpha = l - k0, beta = (r - l - k1) * iu;
-        const float *restrict tp = top, *restrict bt = bot;
-#pragma omp simd
+    /* Forced: the polarity from the border's median gray against the threshold. */
+    float *b = malloc(((size_t)2 * w + 2 * h) * sizeof *b);
+    float med = gray[0];
+    if (b) {
+        size_t k = 0;
         for (int i = 0; i < w; i++) {
-            float bgm = (1 - v) * tp[i] + v * bt[i] + alpha + beta * i;
-            float d = fabsf(g[i] - bgm) * 255.0f + 0.5f;
-            m[i] = (uint8_t)(int)(d < 255.0f ? d : 255.0f);
+            b[k++] = gray[i];
+            b[k++] = gray[(size_t)(h - 1) * w + i];
         }
-        int i = 0;
-        for (; i + 15 < w; i += 16) {
-            /* Sixteen equal distances (a flat stretch of backdrop) count at
-             * once; otherwise one by one into four interleaved tables. */
-            uint64_t a, b, same = 0x0101010101010101ull * m[i];
-            memcpy(&a, m + i, sizeof a);
-            memcpy(&b, m + i + 8, sizeof b);
-            if (a == same && b == same) {
-                sub[0][m[i]] += 16;
-                continue;
-            }
-            for (int k = 0; k < 16; k += 4) {
-                sub[0][m[i + k]]++;
-                sub[1][m[i + k + 1]]++;
-                sub[2][m[i + k + 2]]++;
-                sub[3][m[i + k + 3]]++;
-            }
+        for (int j = 0; j < h; j++) {
+            b[k++] = gray[(size_t)j * w];
+            b[k++] = gray[(size_t)j * w + w - 1];
         }
-        for (; i < w; i++)
-            sub[0][m[i]]++;
+        qsort(b, k, sizeof *b, cmp_float);
+        med = b[k / 2];
+        free(b);
     }
-    long hist[NB];
-    for (int k = 0; k < NB; k++)
-        hist[k] = (long)sub[0][k] + sub[1][k] + sub[2][k] + sub[3][k];
-    free(top);
-    /* Otsu separates background from object; half of it keeps the object's
-     * outline pixels that are close to the background (anti-aliasing, light
-     * glazes), and a floor of four noise sigmas keeps noise out. */
-    int t = otsu_bin(hist, NB);
-    double floor_t = fmax(4 * 255 * border_noise(gray, w, h), 2.0);
-    int tu = (int)fmax(ceil(0.5 * t), floor_t);
-    if (tu > 254)
-        tu = 254;
-    const uint8_t tb = (uint8_t)tu;
+    float t = threshold / 255.0f;
+    int below = med > t;
 #pragma omp simd
     for (size_t i = 0; i < n; i++)
-        mask[i] = mask[i] > tb;
-    *threshold_used = tu;
-    return RECON_MASK_BACKGROUND;
+        mask[i] = below ? gray[i] < t : gray[i] > t;
+    *threshold_used = threshold;
+    return below ? RECON_MASK_GRAY_BELOW : RECON_MASK_GRAY_ABOVE;
 }
 
 /* ---- closing and opening of a row-convex mask */
@@ -369,12 +229,10 @@ static int label_runs(const uint8_t *mask, int w, int h, uint8_t value, int conn
     return nr;
 }
 
-long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *holes_filled)
+/* Runs of 1s of a mask, an upper bound: one per row more than there are
+ * runs, so it also bounds the runs of 0s. */
+static size_t run_capacity(const uint8_t *mask, int w, int h)
 {
-    *dropped_objects = 0;
-    *holes_filled = 0;
-    /* Runs of 1s plus runs of 0s: each row has at most one more run of one
-     * value than of the other, so this bounds both labellings. */
     size_t ones = 0;
     for (int j = 0; j < h; j++) {
         const uint8_t *m = mask + (size_t)j * w, *end = m + w;
@@ -383,7 +241,46 @@ long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *ho
             p = q < end ? memchr(q, 1, (size_t)(end - q)) : NULL;
         }
     }
-    size_t cap = ones + (size_t)h;
+    return ones + (size_t)h;
+}
+
+int recon_mask_label(const uint8_t *mask, int w, int h, int *lab, long **area_out)
+{
+    size_t cap = run_capacity(mask, w, h);
+    run_t *runs = malloc(cap * sizeof *runs);
+    int *parent = malloc(cap * sizeof *parent), *id = malloc(cap * sizeof *id);
+    long *area = calloc(cap + 1, sizeof *area);
+    int n = -1;
+    if (!runs || !parent || !id || !area)
+        goto out;
+    int nr = label_runs(mask, w, h, 1, 1, runs, parent);
+    n = 0;
+    for (int k = 0; k < nr; k++)
+        if (runs[k].label == k)
+            id[k] = ++n;
+    memset(lab, 0, (size_t)w * h * sizeof *lab);
+    for (int k = 0; k < nr; k++) {
+        int c = id[runs[k].label];
+        int *row = lab + (size_t)runs[k].row * w;
+        for (int x = runs[k].x0; x < runs[k].x1; x++)
+            row[x] = c;
+        area[c] += runs[k].x1 - runs[k].x0;
+    }
+    *area_out = area;
+    area = NULL;
+out:
+    free(runs);
+    free(parent);
+    free(id);
+    free(area);
+    return n;
+}
+
+long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *holes_filled)
+{
+    *dropped_objects = 0;
+    *holes_filled = 0;
+    size_t cap = run_capacity(mask, w, h);
     run_t *runs = malloc(cap * sizeof *runs);
     int *parent = malloc(cap * sizeof *parent);
     long *area = calloc(cap, sizeof *area);
@@ -442,54 +339,4 @@ long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *ho
     free(parent);
     free(area);
     return kept;
-}
-
-/* A sharp step across pixel i of a row, at least step over two pixels. */
-static int sharp(const float *g, int w, int i, float step)
-{
-    return i < 1 || i + 1 >= w || fabsf(g[i - 1] - g[i + 1]) >= step;
-}
-
-int recon_mask_trim_soft(uint8_t *mask, const float *gray, int w, int h, float step)
-{
-    int top = -1, bottom = -1;
-    for (int j = 0; j < h; j++)
-        if (memchr(mask + (size_t)j * w, 1, (size_t)w)) {
-            bottom = j;
-            if (top < 0)
-                top = j;
-        }
-    if (top < 0)
-        return 0;
-    int trimmed = 0, plo = -1, phi = -1;
-    for (int j = bottom - (bottom - top) / 8; j <= bottom; j++) {
-        uint8_t *m = mask + (size_t)j * w;
-        const float *g = gray + (size_t)j * w;
-        const uint8_t *pa = memchr(m, 1, (size_t)w);
-        if (!pa)
-            continue;
-        int a = (int)(pa - m), b = (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m);
-        /* An end that juts out more than 3 px past the row above moves
-         * inward to the first sharp step (none: it stays). */
-        int l = a, r = b;
-        if (phi >= 0 && b > phi + 3) {
-            while (r > a && !sharp(g, w, r, step))
-                r--;
-            if (r <= a)
-                r = b;
-        }
-        if (plo >= 0 && a < plo - 3) {
-            while (l < r && !sharp(g, w, l, step))
-                l++;
-            if (l >= r)
-                l = a;
-        }
-        if (l > a || r < b)
-            trimmed = 1;
-        memset(m + a, 0, (size_t)(l - a));
-        memset(m + r + 1, 0, (size_t)(b - r));
-        plo = l;
-        phi = r;
-    }
-    return trimmed;
 }

@@ -1,0 +1,78 @@
+/* celadon merge: the parts of a render (celadon render --part K/N) summed
+ * into its image, once they are checked to belong together and be complete. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "celadon/parts.h"
+#include "cli/cli_args.h"
+#include "cli/commands.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: celadon merge PART.exr... -o OUT.{exr,png,jpg}\n\n"
+               "Sums the parts of a render (celadon render --part K/N, any order) into its\n"
+               "image, the same as one process would have rendered up to float rounding.\n"
+               "Refuses, naming the file or the missing shares, a set that is not all N\n"
+               "parts of one render (same scene, files, options and seed), each once and\n"
+               "complete (docs/distributed.md).\n\n"
+               "  -o OUT    .exr (float32 RGB + the AOV channels) or .png/.jpg (sRGB 8-bit)\n");
+}
+
+static int output_kind_ok(const char *path)
+{
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    if (!dot || (slash && dot < slash))
+        return 0;
+    return !strcasecmp(dot, ".exr") || !strcasecmp(dot, ".png") || !strcasecmp(dot, ".jpg") ||
+           !strcasecmp(dot, ".jpeg");
+}
+
+int cmd_merge(int argc, char **argv)
+{
+    const char *out = NULL;
+    const char **parts = calloc((size_t)argc, sizeof *parts);
+    if (!parts)
+        return 1;
+    int n = 0, rc = -1;
+    for (int i = 1; i < argc && rc < 0; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            rc = 0;
+        } else if (!strcmp(a, "-o")) {
+            if (i + 1 == argc)
+                rc = cli_usage_error("merge", "option %s needs a value", a);
+            else
+                out = argv[++i];
+        } else if (a[0] == '-' && a[1]) {
+            rc = cli_usage_error("merge", "unknown option '%s'", a);
+        } else {
+            parts[n++] = a;
+        }
+    }
+    if (rc < 0 && !out)
+        rc = cli_usage_error("merge", "%s", "missing -o OUT");
+    else if (rc < 0 && !output_kind_ok(out))
+        rc = cli_usage_error("merge", "output '%s' must end in .exr, .png, .jpg or .jpeg", out);
+    else if (rc < 0 && n == 0)
+        rc = cli_usage_error("merge", "%s", "no PART.exr given");
+    if (rc < 0) {
+        film_t film;
+        char err[2048];
+        int m = render_parts_merge(parts, n, NULL, &film, err, sizeof err);
+        if (m == 0) {
+            rc = film_write(&film, out, err, sizeof err) == 0 ? 0 : 1;
+            film_free(&film);
+        } else {
+            rc = m == -2 ? 2 : 1;
+        }
+        if (rc != 0)
+            fprintf(stderr, "celadon: %s\n", err);
+        else
+            fprintf(stderr, "merge: %d parts into %s\n", n, out);
+    }
+    free(parts);
+    return rc;
+}

@@ -1,0 +1,34 @@
+/* The backdrop of a catalogue photograph as a smooth colour field: a sweep,
+ * a vignetted wall, a lit floor. A tensor-product cubic B-spline surface per
+ * channel, fitted robustly to the pixels known to be backdrop and bent as
+ * little as possible where none are (behind the object). */
+#ifndef CELADON_SEGMENT_BACKDROP_H
+#define CELADON_SEGMENT_BACKDROP_H
+
+#include <stdint.h>
+
+enum { RECON_BACKDROP_MAX_GRID = 16 };
+
+typedef struct {
+    int grid;            /* control points per side (4..RECON_BACKDROP_MAX_GRID) */
+    int width, height;   /* the image it models */
+    double coef[RECON_BACKDROP_MAX_GRID * RECON_BACKDROP_MAX_GRID][3];
+    double cov[9];       /* covariance of the residuals of the backdrop pixels (noise, texture, misfit) */
+} recon_backdrop;
+
+/* Fits the surface to the pixels of rgb (w*h*3) where use[p] is set, taking
+ * every step-th pixel in x and y; Tukey-weighted least squares repeated
+ * `rounds` times, so objects that slipped into `use` (a stand at the border,
+ * a frame line) weigh nothing. The smoothness penalty on second differences
+ * of the control points decides where there is no data. Returns 0, or -1
+ * when fewer than grid^2 pixels are usable or out of memory. */
+int recon_backdrop_fit(recon_backdrop *b, const float *rgb, int w, int h, const uint8_t *use, int step, int grid,
+                       int rounds);
+
+/* The modelled backdrop colour at the continuous position (x, y). */
+void recon_backdrop_at(const recon_backdrop *b, double x, double y, double out[3]);
+
+/* The modelled backdrop colour of every pixel of row y (out: w*3). */
+void recon_backdrop_row(const recon_backdrop *b, int y, float *out);
+
+#endif

@@ -1,0 +1,449 @@
+/* Boykov–Kolmogorov max-flow (Boykov & Kolmogorov, "An experimental
+ * comparison of min-cut/max-flow algorithms for energy minimization in
+ * vision", PAMI 2004): a search tree S grows from the source and a tree T
+ * from the sink through unsaturated links; where they touch, the path
+ * source..S..T..sink is augmented by its bottleneck; the nodes cut off from
+ * their tree by a saturated link (orphans) look for a new parent in their
+ * tree with a valid origin, or become free. It stops when no active node can
+ * grow: S is then exactly the set of nodes reachable from the source.
+ *
+ * Layout: the n-links are kept as added (edges[]) and laid out at solve time
+ * as arcs sorted by their tail (first[i] .. first[i+1]), each arc with the
+ * index of its reverse arc; a node's links are contiguous in memory. The
+ * layout costs about as much as a search on an easy graph, so a round that
+ * changes only the t-links keeps it and restores the arcs' capacities from
+ * cap0[] instead. A t-link pair is held as one signed residual (tr_cap > 0:
+ * source -> node, < 0: node -> sink) after pushing min(cap_source, cap_sink)
+ * straight through.
+ *
+ * Capacities are doubles, not floats: float arcs (12 bytes instead of 16)
+ * were no faster on the benchmark's graphs (the search waits on scattered
+ * nodes, not on arc bytes), and doubles keep integer capacities exact up to
+ * 2^53 and the flow, a sum of ~1e5 terms, to ~1e-16 instead of ~1e-8. A
+ * bottleneck subtracted from itself leaves an exact zero either way, so a
+ * saturated link is recognised exactly. */
+#include "segment/maxflow.h"
+
+#include <assert.h>
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* values of mf_node.parent other than an arc index */
+enum { PARENT_NONE = -1, PARENT_TERMINAL = -2, PARENT_ORPHAN = -3 };
+
+typedef struct {
+    int head;    /* the node the arc points to */
+    int sister;  /* the reverse arc */
+    double rcap; /* residual capacity, >= 0 */
+} mf_arc;
+
+typedef struct {
+    double tr_cap; /* residual t-link: > 0 from the source, < 0 to the sink */
+    int parent;    /* arc from this node to its parent in its tree, or PARENT_* */
+    int ts;        /* the augmentation count at which dist was last known exact */
+    int dist;      /* links to the tree's terminal (valid at ts) */
+    unsigned char in_sink_tree;
+    unsigned char queued; /* in the active queue */
+} mf_node;
+
+typedef struct {
+    int i, j;
+    double cap_ij, cap_ji;
+} mf_edge;
+
+/* A FIFO of node indices; each node is in it at most once, so n slots do. */
+typedef struct {
+    int *slot;
+    int size, head, count;
+} mf_queue;
+
+struct maxflow_graph {
+    int n, max_edges, n_edges;
+    mf_node *nodes;
+    mf_edge *edges;
+    int *first; /* n + 1 */
+    mf_arc *arcs;
+    double *cap0;  /* each arc's capacity as added */
+    int laid_out;  /* first, arcs and cap0 hold the layout of edges[] */
+    mf_queue active, orphans;
+    double flow;
+    int time;
+    int solved;
+};
+
+static void queue_push(mf_queue *q, int v)
+{
+    int k = q->head + q->count++;
+    q->slot[k >= q->size ? k - q->size : k] = v;
+}
+
+static int queue_pop(mf_queue *q)
+{
+    int v = q->slot[q->head];
+    q->head = q->head + 1 == q->size ? 0 : q->head + 1;
+    q->count--;
+    return v;
+}
+
+maxflow_graph *maxflow_create(int n_nodes, int max_edges)
+{
+    assert(n_nodes >= 0 && max_edges >= 0);
+    if (max_edges > INT_MAX / 2) /* arcs are indexed by int */
+        return NULL;
+    maxflow_graph *g = calloc(1, sizeof *g);
+    if (!g)
+        return NULL;
+    g->n = n_nodes;
+    g->max_edges = max_edges;
+    /* +1: malloc(0) may return NULL */
+    g->nodes = malloc(((size_t)n_nodes + 1) * sizeof *g->nodes);
+    g->edges = malloc(((size_t)max_edges + 1) * sizeof *g->edges);
+    g->first = malloc(((size_t)n_nodes + 1) * sizeof *g->first);
+    g->arcs = malloc((2 * (size_t)max_edges + 1) * sizeof *g->arcs);
+    g->cap0 = malloc((2 * (size_t)max_edges + 1) * sizeof *g->cap0);
+    g->active.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
+    g->orphans.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
+    if (!g->nodes || !g->edges || !g->first || !g->arcs || !g->cap0 || !g->active.slot || !g->orphans.slot) {
+        maxflow_destroy(g);
+        return NULL;
+    }
+    g->active.size = g->orphans.size = n_nodes;
+    maxflow_reset(g);
+    return g;
+}
+
+void maxflow_destroy(maxflow_graph *g)
+{
+    if (!g)
+        return;
+    free(g->nodes);
+    free(g->edges);
+    free(g->first);
+    free(g->arcs);
+    free(g->cap0);
+    free(g->active.slot);
+    free(g->orphans.slot);
+    free(g);
+}
+
+void maxflow_reset_terminals(maxflow_graph *g)
+{
+    for (int i = 0; i < g->n; i++)
+        g->nodes[i].tr_cap = 0;
+    g->flow = 0;
+    g->solved = 0;
+}
+
+void maxflow_reset(maxflow_graph *g)
+{
+    maxflow_reset_terminals(g);
+    g->n_edges = 0;
+    g->laid_out = 0;
+}
+
+void maxflow_add_terminals(maxflow_graph *g, int node, double cap_source, double cap_sink)
+{
+    assert(!g->solved && node >= 0 && node < g->n);
+    assert(cap_source >= 0 && cap_sink >= 0 && isfinite(cap_source) && isfinite(cap_sink));
+    /* the node's earlier residual joins the new capacities; the common part
+     * of the two flows straight from the source to the sink */
+    double r = g->nodes[node].tr_cap;
+    if (r > 0)
+        cap_source += r;
+    else
+        cap_sink -= r;
+    g->flow += cap_source < cap_sink ? cap_source : cap_sink;
+    g->nodes[node].tr_cap = cap_source - cap_sink;
+}
+
+void maxflow_add_edge(maxflow_graph *g, int i, int j, double cap_ij, double cap_ji)
+{
+    assert(!g->solved && i >= 0 && i < g->n && j >= 0 && j < g->n);
+    assert(cap_ij >= 0 && cap_ji >= 0 && isfinite(cap_ij) && isfinite(cap_ji));
+    if (i == j || (cap_ij == 0 && cap_ji == 0))
+        return;
+    assert(g->n_edges < g->max_edges);
+    g->edges[g->n_edges++] = (mf_edge){i, j, cap_ij, cap_ji};
+    g->laid_out = 0;
+}
+
+/* Lays the edges out as arcs grouped by tail (a counting sort). */
+static void build_arcs(maxflow_graph *g)
+{
+    int *first = g->first;
+    memset(first, 0, ((size_t)g->n + 1) * sizeof *first);
+    for (int e = 0; e < g->n_edges; e++) {
+        first[g->edges[e].i]++;
+        first[g->edges[e].j]++;
+    }
+    /* first[i] = end of node i's arcs; filling backwards moves it to the start */
+    for (int i = 1; i <= g->n; i++)
+        first[i] += first[i - 1];
+    for (int e = g->n_edges - 1; e >= 0; e--) {
+        const mf_edge *ed = &g->edges[e];
+        int a = --first[ed->i], b = --first[ed->j];
+        g->arcs[a] = (mf_arc){ed->j, b, ed->cap_ij};
+        g->arcs[b] = (mf_arc){ed->i, a, ed->cap_ji};
+        g->cap0[a] = ed->cap_ij;
+        g->cap0[b] = ed->cap_ji;
+    }
+    g->laid_out = 1;
+}
+
+/* The layout as built, with the flow of the last solve removed. */
+static void restore_arcs(maxflow_graph *g)
+{
+    for (int a = 0; a < 2 * g->n_edges; a++)
+        g->arcs[a].rcap = g->cap0[a];
+}
+
+/* Every node with a t-link residual is a child of its terminal and active;
+ * the rest are free. */
+static void init_trees(maxflow_graph *g)
+{
+    g->active.head = g->active.count = 0;
+    g->orphans.head = g->orphans.count = 0;
+    g->time = 0;
+    for (int i = 0; i < g->n; i++) {
+        mf_node *v = &g->nodes[i];
+        v->ts = 0;
+        v->dist = 1;
+        v->queued = 0;
+        if (v->tr_cap != 0) {
+            v->parent = PARENT_TERMINAL;
+            v->in_sink_tree = v->tr_cap < 0;
+            v->queued = 1;
+            queue_push(&g->active, i);
+        } else {
+            v->parent = PARENT_NONE;
+            v->in_sink_tree = 0;
+        }
+    }
+}
+
+static void activate(maxflow_graph *g, int i)
+{
+    if (!g->nodes[i].queued) {
+        g->nodes[i].queued = 1;
+        queue_push(&g->active, i);
+    }
+}
+
+/* The next active node that is still in a tree, or -1. */
+static int next_active(maxflow_graph *g)
+{
+    while (g->active.count) {
+        int i = queue_pop(&g->active);
+        g->nodes[i].queued = 0;
+        if (g->nodes[i].parent != PARENT_NONE)
+            return i;
+    }
+    return -1;
+}
+
+static void make_orphan(maxflow_graph *g, int i)
+{
+    g->nodes[i].parent = PARENT_ORPHAN;
+    queue_push(&g->orphans, i);
+}
+
+/* Residual capacity of arc a in the direction a tree grows: away from the
+ * source in S, toward the sink in T (where it is the reverse arc's). */
+static double grow_cap(const maxflow_graph *g, int a, int sink_tree)
+{
+    return sink_tree ? g->arcs[g->arcs[a].sister].rcap : g->arcs[a].rcap;
+}
+
+/* Growth: node i (in a tree) takes every free neighbour it reaches through an
+ * unsaturated arc as a child, and re-parents neighbours of its tree that were
+ * farther from the terminal (a shorter path, as in Kolmogorov's
+ * implementation). Returns the arc where i's tree touches the other tree,
+ * oriented from S to T, or -1. */
+static int grow(maxflow_graph *g, int i)
+{
+    const mf_node *vi = &g->nodes[i];
+    const int sink_tree = vi->in_sink_tree;
+    for (int a = g->first[i]; a < g->first[i + 1]; a++) {
+        if (grow_cap(g, a, sink_tree) <= 0)
+            continue;
+        mf_node *vj = &g->nodes[g->arcs[a].head];
+        if (vj->parent == PARENT_NONE) {
+            vj->in_sink_tree = (unsigned char)sink_tree;
+            vj->parent = g->arcs[a].sister;
+            vj->ts = vi->ts;
+            vj->dist = vi->dist + 1;
+            activate(g, g->arcs[a].head);
+        } else if (vj->in_sink_tree != sink_tree) {
+            return sink_tree ? g->arcs[a].sister : a;
+        } else if (vj->ts <= vi->ts && vj->dist > vi->dist) {
+            vj->parent = g->arcs[a].sister;
+            vj->ts = vi->ts;
+            vj->dist = vi->dist + 1;
+        }
+    }
+    return -1;
+}
+
+static double min2(double a, double b)
+{
+    return a < b ? a : b; /* fmin is a library call (NaN rules); capacities are never NaN */
+}
+
+/* Augmentation along source -> S .. u -> v .. T -> sink, `mid` the arc u -> v.
+ * Nodes whose parent link saturates become orphans. */
+static void augment(maxflow_graph *g, int mid)
+{
+    mf_arc *arcs = g->arcs;
+    mf_node *nodes = g->nodes;
+    const int u = arcs[arcs[mid].sister].head, v = arcs[mid].head;
+    double b = arcs[mid].rcap;
+    int i;
+    for (i = u; nodes[i].parent != PARENT_TERMINAL; i = arcs[nodes[i].parent].head)
+        b = min2(b, arcs[arcs[nodes[i].parent].sister].rcap);
+    b = min2(b, nodes[i].tr_cap);
+    for (i = v; nodes[i].parent != PARENT_TERMINAL; i = arcs[nodes[i].parent].head)
+        b = min2(b, arcs[nodes[i].parent].rcap);
+    b = min2(b, -nodes[i].tr_cap);
+
+    arcs[mid].rcap -= b;
+    arcs[arcs[mid].sister].rcap += b;
+    /* In S flow runs parent -> child (the sister of the parent arc), in T
+     * child -> parent (the parent arc). The bottleneck leaves an exact 0. */
+    for (i = u;;) {
+        int p = nodes[i].parent;
+        if (p == PARENT_TERMINAL) {
+            nodes[i].tr_cap -= b;
+            if (nodes[i].tr_cap == 0)
+                make_orphan(g, i);
+            break;
+        }
+        arcs[p].rcap += b;
+        arcs[arcs[p].sister].rcap -= b;
+        if (arcs[arcs[p].sister].rcap == 0)
+            make_orphan(g, i);
+        i = arcs[p].head;
+    }
+    for (i = v;;) {
+        int p = nodes[i].parent;
+        if (p == PARENT_TERMINAL) {
+            nodes[i].tr_cap += b;
+            if (nodes[i].tr_cap == 0)
+                make_orphan(g, i);
+            break;
+        }
+        arcs[arcs[p].sister].rcap += b;
+        arcs[p].rcap -= b;
+        if (arcs[p].rcap == 0)
+            make_orphan(g, i);
+        i = arcs[p].head;
+    }
+    g->flow += b;
+}
+
+/* Distance of tree node j from its terminal through parents, or INT_MAX when
+ * its chain ends at an orphan. A valid chain is stamped with the current time
+ * and exact distances, so later walks stop there. */
+static int origin_distance(maxflow_graph *g, int j)
+{
+    mf_node *nodes = g->nodes;
+    int d = 0;
+    for (int k = j;; k = g->arcs[nodes[k].parent].head) {
+        if (nodes[k].ts == g->time) {
+            d += nodes[k].dist;
+            break;
+        }
+        if (nodes[k].parent == PARENT_ORPHAN)
+            return INT_MAX;
+        d++;
+        if (nodes[k].parent == PARENT_TERMINAL) {
+            nodes[k].ts = g->time;
+            nodes[k].dist = 1;
+            break;
+        }
+    }
+    int dk = d;
+    for (int k = j; nodes[k].ts != g->time; k = g->arcs[nodes[k].parent].head) {
+        nodes[k].ts = g->time;
+        nodes[k].dist = dk--;
+    }
+    return d;
+}
+
+/* Adoption of orphan i: the closest neighbour of its tree with a valid origin
+ * and an unsaturated link toward i becomes its parent. Without one, i becomes
+ * free: its children become orphans, and its tree's neighbours that could
+ * grow into it again become active. */
+static void adopt(maxflow_graph *g, int i)
+{
+    mf_node *vi = &g->nodes[i];
+    const int sink_tree = vi->in_sink_tree;
+    int best = -1, best_d = INT_MAX;
+    /* a neighbour j can be i's parent when it could grow into i: the link
+     * j -> i in S, i -> j in T, i.e. the reverse of grow_cap of i's arc */
+    for (int a = g->first[i]; a < g->first[i + 1]; a++) {
+        if (grow_cap(g, a, !sink_tree) <= 0)
+            continue;
+        const mf_node *vj = &g->nodes[g->arcs[a].head];
+        if (vj->parent == PARENT_NONE || vj->in_sink_tree != sink_tree)
+            continue;
+        int d = origin_distance(g, g->arcs[a].head);
+        if (d < best_d) {
+            best_d = d;
+            best = a;
+        }
+    }
+    if (best >= 0) {
+        vi->parent = best;
+        vi->ts = g->time;
+        vi->dist = best_d + 1;
+        return;
+    }
+    vi->parent = PARENT_NONE;
+    for (int a = g->first[i]; a < g->first[i + 1]; a++) {
+        int j = g->arcs[a].head;
+        const mf_node *vj = &g->nodes[j];
+        if (vj->parent == PARENT_NONE || vj->in_sink_tree != sink_tree)
+            continue;
+        if (grow_cap(g, a, !sink_tree) > 0)
+            activate(g, j);
+        if (vj->parent >= 0 && g->arcs[vj->parent].head == i)
+            make_orphan(g, j);
+    }
+}
+
+double maxflow_solve(maxflow_graph *g)
+{
+    if (g->solved)
+        return g->flow;
+    if (g->laid_out)
+        restore_arcs(g);
+    else
+        build_arcs(g);
+    init_trees(g);
+    /* A node that found a path stays current: it may touch the other tree
+     * through more of its arcs. */
+    int current = -1;
+    for (;;) {
+        int i = current >= 0 && g->nodes[current].parent != PARENT_NONE ? current : next_active(g);
+        if (i < 0)
+            break;
+        int mid = grow(g, i);
+        current = mid >= 0 ? i : -1;
+        if (mid < 0)
+            continue;
+        g->time++;
+        augment(g, mid);
+        while (g->orphans.count)
+            adopt(g, queue_pop(&g->orphans));
+    }
+    g->solved = 1;
+    return g->flow;
+}
+
+int maxflow_source_side(const maxflow_graph *g, int node)
+{
+    assert(g->solved && node >= 0 && node < g->n);
+    return g->nodes[node].parent != PARENT_NONE && !g->nodes[node].in_sink_tree;
+}

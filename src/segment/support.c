@@ -1,0 +1,292 @@
+/* recon_cut_support: where the vessel's foot ends. A floor shadow joined to
+ * the foot, or a stand under it, belongs to the segmentation's object but not
+ * to the vessel. Each is a hypothesis tested by a second min-cut inside the
+ * object, between seeds that are surely vessel (the upper body around the
+ * axis) and seeds of the hypothesised part; the cut settles where it is
+ * cheapest, across a narrowing (a waist is short) and along a change of
+ * colour (contrast-sensitive links are weak there), with the colour models of
+ * the two seed sets deciding the pixels between. Then the evidence decides:
+ *
+ *   shadow   seeds: the object's lowest pixels that have no mirror image in it
+ *            (a shadow is darker floor on one side). Accepted when most of
+ *            what the cut takes mirrors onto the backdrop.
+ *   stand    seeds: where the object runs into the bottom of the photo. A stand
+ *            is a separate body: accepted when the cut follows an edge; a
+ *            cut through an even body means the vessel itself runs off the
+ *            photo, which the quality gate refuses.
+ *
+ * A stand that stops short of the border is not looked for: from the outline
+ * and colours alone it is not told from a foot ring or a pedestal foot in
+ * another colour (tried: a ledge test cut a lidded jar in half at a band).
+ *
+ * See recon_internal.h. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "segment/maxflow.h"
+#include "segment/segment.h"
+
+/* Seeds are hard: a capacity no cut can afford. */
+#define HARD 1e9
+enum { SEED_COMPONENTS = 3 };
+/* A cut follows an edge when, on average over its links, the neighbours
+ * across it differ by as much as exp(-beta d^2) <= 0.3, i.e. by about 1.5
+ * times the image's typical neighbour difference (beta is 1 / (2 <d^2>)). */
+#define EDGE_LINK_MAX 0.3
+
+typedef enum { HYPO_SHADOW, HYPO_STAND } hypothesis;
+
+/* The mask dilated by a (2r+1)^2 square. */
+static void dilate(const uint8_t *m, int w, int h, int r, uint8_t *out)
+{
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            uint8_t v = 0;
+            for (int j = y - r; j <= y + r && !v; j++)
+                for (int i = x - r; i <= x + r && !v; i++)
+                    v = i >= 0 && j >= 0 && i < w && j < h && m[(size_t)j * w + i];
+            out[(size_t)y * w + x] = v;
+        }
+}
+
+/* The object's rows span [*top, *bottom]; 0, or -1 when it has none. */
+static int row_span(const uint8_t *m, int w, int h, int *top, int *bottom)
+{
+    *top = h;
+    *bottom = -1;
+    for (int y = 0; y < h; y++)
+        if (memchr(m + (size_t)y * w, 1, (size_t)w)) {
+            *top = y < *top ? y : *top;
+            *bottom = y;
+        }
+    return *bottom >= 0 ? 0 : -1;
+}
+
+/* Marks the seeds of a hypothesis; returns their count, or -1. */
+static int part_seeds(const recon_segmentation *seg, const uint8_t *m, hypothesis hyp, uint8_t *seed)
+{
+    const int w = seg->w, h = seg->h;
+    int top, bottom, n = 0;
+    memset(seed, 0, (size_t)w * h);
+    if (row_span(m, w, h, &top, &bottom) != 0)
+        return 0;
+    uint8_t *dil = NULL;
+    if (hyp == HYPO_SHADOW) {
+        if (!seg->have_axis)
+            return 0;
+        if (!(dil = malloc((size_t)w * h)))
+            return -1;
+        dilate(m, w, h, 2, dil);
+    }
+    int low = bottom - (bottom - top) / 8;
+    for (int y = top; y <= bottom; y++)
+        for (int x = 0; x < w; x++) {
+            int p = y * w + x;
+            if (!m[p])
+                continue;
+            if (hyp == HYPO_STAND)
+                seed[p] = y >= h - 2;
+            else if (y >= low) {
+                int q = recon_segment_mirror(seg, p);
+                seed[p] = q < 0 || !dil[q];
+            }
+            n += seed[p];
+        }
+    free(dil);
+    return n;
+}
+
+/* The vessel's seeds: the upper half of the object, within a quarter of the
+ * row's width of the axis (and not a part seed). */
+static int vessel_seeds(const recon_segmentation *seg, const uint8_t *m, const uint8_t *part, uint8_t *seed,
+                        int *idx)
+{
+    const int w = seg->w, h = seg->h;
+    int top, bottom, n = 0;
+    memset(seed, 0, (size_t)w * h);
+    if (row_span(m, w, h, &top, &bottom) != 0)
+        return 0;
+    for (int y = top; y <= top + (bottom - top) / 2; y++) {
+        const uint8_t *row = m + (size_t)y * w, *a = memchr(row, 1, (size_t)w);
+        if (!a)
+            continue;
+        int l = (int)(a - row), r = (int)((const uint8_t *)memrchr(row, 1, (size_t)w) - row);
+        double c = seg->have_axis ? seg->axis_x0 + seg->axis_slope * (y + 0.5) : 0.5 * (l + r + 1);
+        double half = 0.25 * (r - l + 1);
+        for (int x = l; x <= r; x++)
+            if (row[x] && fabs(x + 0.5 - c) < half && !part[(size_t)y * w + x]) {
+                seed[(size_t)y * w + x] = 1;
+                idx[n++] = y * w + x;
+            }
+    }
+    return n;
+}
+
+/* The min-cut between the seeds inside the object m: on return sup holds the
+ * part (the sink side's pixels connected to its seeds), *edge the mean of
+ * exp(-beta d^2) over the links the cut crosses (0: a sharp colour edge, 1:
+ * none). Fits the part's colour model into *part_gmm (sets *colours). Returns
+ * the part's pixel count, or -1. */
+static long seeded_cut(const recon_segmentation *seg, const uint8_t *m, const uint8_t *pseed, uint8_t *sup,
+                       double *edge, recon_gmm *part_gmm, int *colours)
+{
+    const int w = seg->w, h = seg->h;
+    const size_t n = (size_t)w * h;
+    uint8_t *vseed = malloc(n);
+    int *idx = malloc(n * 2 * sizeof *idx), *lab = NULL;
+    long *area = NULL, count = -1;
+    maxflow_graph *g = maxflow_create((int)n, (int)(4 * n));
+    recon_gmm vessel;
+    if (!vseed || !idx || !g)
+        goto out;
+    int nv = vessel_seeds(seg, m, pseed, vseed, idx), np = 0, *pidx = idx + n;
+    for (size_t p = 0; p < n; p++)
+        if (pseed[p])
+            pidx[np++] = (int)p;
+    *colours = recon_gmm_fit(&vessel, seg->rgb, idx, nv, SEED_COMPONENTS, 2) == 0 &&
+               recon_gmm_fit(part_gmm, seg->rgb, pidx, np, SEED_COMPONENTS, 2) == 0;
+    static const int off[4][2] = {{1, 0}, {0, 1}, {1, 1}, {-1, 1}};
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int p = y * w + x;
+            if (!m[p])
+                continue;
+            if (vseed[p])
+                maxflow_add_terminals(g, p, HARD, 0);
+            else if (pseed[p])
+                maxflow_add_terminals(g, p, 0, HARD);
+            else if (*colours) {
+                double cv = -recon_gmm_log_density(&vessel, seg->rgb + 3 * (size_t)p);
+                double cs = -recon_gmm_log_density(part_gmm, seg->rgb + 3 * (size_t)p);
+                double lo = cv < cs ? cv : cs;
+                maxflow_add_terminals(g, p, cs - lo, cv - lo);
+            }
+            for (int k = 0; k < 4; k++) {
+                int qx = x + off[k][0], qy = y + off[k][1];
+                if (qx < 0 || qx >= w || qy >= h || !m[qy * w + qx])
+                    continue;
+                double wt = recon_segment_link(seg, p, qy * w + qx, k >= 2);
+                maxflow_add_edge(g, p, qy * w + qx, wt, wt);
+            }
+        }
+    maxflow_solve(g);
+    for (size_t p = 0; p < n; p++)
+        sup[p] = m[p] && !maxflow_source_side(g, (int)p);
+    lab = idx; /* reused: n ints */
+    int nc = recon_mask_label(sup, w, h, lab, &area);
+    if (nc < 0)
+        goto out;
+    uint8_t *keep = calloc((size_t)nc + 1, 1);
+    if (!keep)
+        goto out;
+    for (size_t p = 0; p < n; p++)
+        if (pseed[p] && lab[p])
+            keep[lab[p]] = 1;
+    count = 0;
+    for (size_t p = 0; p < n; p++) {
+        sup[p] = lab[p] && keep[lab[p]];
+        count += sup[p];
+    }
+    free(keep);
+    /* The links across the cut: between the part and the rest of the object. */
+    double s = 0;
+    long links = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int p = y * w + x;
+            for (int k = 0; k < 4 && m[p]; k++) {
+                int qx = x + off[k][0], qy = y + off[k][1], q = qy * w + qx;
+                if (qx < 0 || qx >= w || qy >= h || !m[q] || sup[p] == sup[q])
+                    continue;
+                s += recon_segment_link(seg, p, q, 0) / recon_segment_link(seg, p, p, 0);
+                links++;
+            }
+        }
+    *edge = links ? s / links : 1;
+out:
+    maxflow_destroy(g);
+    free(area);
+    free(idx);
+    free(vseed);
+    return count;
+}
+
+/* Does the cut-off part pass its hypothesis's test? A shadow has no mirror
+ * image: most of its pixels mirror onto the backdrop (a symmetric part
+ * mirrors onto itself: a stand, not a shadow). A stand is another body: the
+ * cut follows an edge. */
+static int accepted(const recon_segmentation *seg, hypothesis hyp, const uint8_t *m, const uint8_t *sup,
+                    double edge)
+{
+    if (hyp == HYPO_STAND)
+        return edge <= EDGE_LINK_MAX;
+    long part = 0, unmirrored = 0;
+    for (int p = 0; p < seg->w * seg->h; p++) {
+        if (!sup[p])
+            continue;
+        int q = recon_segment_mirror(seg, p);
+        part++;
+        unmirrored += q < 0 || !m[q];
+    }
+    return 2 * unmirrored > part;
+}
+
+int recon_cut_support(recon_segmentation *seg, uint8_t *m, recon_excluded *parts, int max_parts, int *n_parts)
+{
+    const int w = seg->w, h = seg->h;
+    const size_t n = (size_t)w * h;
+    uint8_t *seed = malloc(n * 2), *sup = seed ? seed + n : NULL;
+    int rc = -1, top, bottom;
+    if (!seed)
+        return -1;
+    int border = 0;
+    for (int x = 0; x < w && !border; x++)
+        border = m[(size_t)(h - 1) * w + x];
+    /* shadow first; then a stand at the border */
+    hypothesis order[2] = {HYPO_SHADOW, HYPO_STAND};
+    for (int k = 0; k < 1 + border; k++) {
+        if (row_span(m, w, h, &top, &bottom) != 0 || bottom - top < 8)
+            break;
+        int ns = part_seeds(seg, m, order[k], seed);
+        if (ns < 0)
+            goto out;
+        if (ns == 0)
+            continue;
+        double edge;
+        recon_gmm part_gmm;
+        int colours;
+        long count = seeded_cut(seg, m, seed, sup, &edge, &part_gmm, &colours);
+        if (count < 0)
+            goto out;
+        if (count == 0 || !accepted(seg, order[k], m, sup, edge))
+            continue;
+        int y0 = h, y1 = -1;
+        double side_sum = 0;
+        for (size_t p = 0; p < n; p++)
+            if (sup[p]) {
+                m[p] = 0;
+                int y = (int)(p / w);
+                y0 = y < y0 ? y : y0;
+                y1 = y > y1 ? y : y1;
+                double c = seg->have_axis ? seg->axis_x0 + seg->axis_slope * (y + 0.5) : w / 2.0;
+                side_sum += (p % w + 0.5 - c) > 0 ? 1 : -1;
+            }
+        if (order[k] != HYPO_SHADOW && colours) { /* a stand's colours are not the vessel's */
+            seg->model.support = part_gmm;
+            seg->model.have_support = 1;
+        }
+        if (*n_parts < max_parts)
+            parts[(*n_parts)++] = (recon_excluded){
+                .what = order[k] == HYPO_SHADOW ? RECON_PART_SHADOW : RECON_PART_STAND,
+                .row0 = y0 * seg->factor,
+                .row1 = (y1 + 1) * seg->factor - 1,
+                .side = order[k] != HYPO_SHADOW || fabs(side_sum) < 0.5 * count ? 0 : (side_sum > 0 ? 1 : -1),
+                .profile = RECON_PROFILE_NONE,
+            };
+    }
+    rc = 0;
+out:
+    free(seed);
+    return rc;
+}

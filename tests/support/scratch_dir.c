@@ -1,0 +1,20 @@
+#include "scratch_dir.h"
+
+#include <criterion/criterion.h>
+#include <ftw.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+void scratch_dir_make(char *dir, size_t len, const char *tag)
+{
+    snprintf(dir, len, "/tmp/celadon-%s-XXXXXX", tag);
+    cr_assert_not_null(mkdtemp(dir), "%s", dir);
+}
+
+static int rm_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+void scratch_dir_remove(const char *dir) { nftw(dir, rm_entry, 8, FTW_DEPTH | FTW_PHYS); }
