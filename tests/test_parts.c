@@ -53,21 +53,34 @@ static void render_part_file(const render_fixture *f, const char *scene, int k, 
     cr_assert_eq(run_celadon(f, args, err, sizeof err), 0, "%s", err);
 }
 
+/* The one-process render into single.exr and its n parts into part1.exr ...
+ * (paths into p), all with the extra options. */
+static void render_single_and_parts(const render_fixture *f, const char *scene, int n, const char *const *extra,
+                                    char *single, size_t single_len, char (*p)[256])
+{
+    char err[4096];
+    const char *args[24] = {"render", scene, "-o", fixture_path(f, "single.exr", single, single_len), "--threads",
+                            "2"};
+    int a = 6;
+    for (const char *const *e = extra; *e; e++)
+        args[a++] = *e;
+    args[a] = NULL;
+    cr_assert_eq(run_celadon(f, args, err, sizeof err), 0, "%s", err);
+    for (int k = 1; k <= n; k++) {
+        char name[32];
+        snprintf(name, sizeof name, "part%d.exr", k);
+        render_part_file(f, scene, k, n, name, extra);
+        fixture_path(f, name, p[k - 1], sizeof p[k - 1]);
+    }
+}
+
 /* Four parts merged, in any order, give the one-process render. */
 Test(parts, four_parts_merged_are_the_single_render, .timeout = 300)
 {
     render_fixture f;
     char scene[256], single[256], merged[256], shuffled[256], p[4][256], err[4096];
     render_fixture_with_scene(&f, "plum", orbit_xml, scene, sizeof scene);
-    const char *a1[] = {"render", scene, "-o", fixture_path(&f, "single.exr", single, sizeof single), "--threads",
-                        "2", "--aov", "depth", NULL};
-    cr_assert_eq(run_celadon(&f, a1, err, sizeof err), 0, "%s", err);
-    for (int k = 1; k <= 4; k++) {
-        char name[32];
-        snprintf(name, sizeof name, "part%d.exr", k);
-        render_part_file(&f, scene, k, 4, name, (const char *[]){"--aov", "depth", NULL});
-        fixture_path(&f, name, p[k - 1], sizeof p[k - 1]);
-    }
+    render_single_and_parts(&f, scene, 4, (const char *[]){"--aov", "depth", NULL}, single, sizeof single, p);
     const char *m1[] = {"merge", p[0], p[1], p[2], p[3], "-o", fixture_path(&f, "merged.exr", merged, sizeof merged),
                         NULL};
     cr_assert_eq(run_celadon(&f, m1, err, sizeof err), 0, "%s", err);
@@ -95,15 +108,7 @@ Test(parts, parts_of_a_zsobol_render_merge_to_the_single_render, .timeout = 300)
     render_fixture f;
     char scene[256], single[256], merged[256], p[3][256], err[4096];
     render_fixture_with_scene(&f, "plum", orbit_xml, scene, sizeof scene);
-    const char *a1[] = {"render", scene, "-o", fixture_path(&f, "single.exr", single, sizeof single),
-                        "--sampler", "zsobol", "--threads", "2", NULL};
-    cr_assert_eq(run_celadon(&f, a1, err, sizeof err), 0, "%s", err);
-    for (int k = 1; k <= 3; k++) {
-        char name[32];
-        snprintf(name, sizeof name, "part%d.exr", k);
-        render_part_file(&f, scene, k, 3, name, (const char *[]){"--sampler", "zsobol", NULL});
-        fixture_path(&f, name, p[k - 1], sizeof p[k - 1]);
-    }
+    render_single_and_parts(&f, scene, 3, (const char *[]){"--sampler", "zsobol", NULL}, single, sizeof single, p);
     const char *m[] = {"merge", p[0], p[1], p[2], "-o", fixture_path(&f, "merged.exr", merged, sizeof merged), NULL};
     cr_assert_eq(run_celadon(&f, m, err, sizeof err), 0, "%s", err);
     image_t a = read_image(single), b = read_image(merged);

@@ -35,13 +35,20 @@ static sampler_t make_sampler(const char *type, const char *params, long long co
     return s;
 }
 
+/* The stream of sample k of a pixel, at dimension dim. */
+static sampler_stream stream_at(const sampler_t *s, uint32_t px, uint32_t py, uint32_t k, uint32_t dim)
+{
+    sampler_stream st;
+    sampler_start(s, &st, px, py, k);
+    sampler_seek(&st, dim);
+    return st;
+}
+
 /* The 2D points of dimensions (dim, dim + 1) of every sample of a pixel. */
 static void pixel_points(const sampler_t *s, uint32_t px, uint32_t py, uint32_t dim, vec2 *pts)
 {
     for (uint32_t k = 0; k < (uint32_t)s->sample_count; k++) {
-        sampler_stream st;
-        sampler_start(s, &st, px, py, k);
-        sampler_seek(&st, dim);
+        sampler_stream st = stream_at(s, px, py, k, dim);
         pts[k] = sampler_next_2d(&st);
     }
 }
@@ -49,9 +56,7 @@ static void pixel_points(const sampler_t *s, uint32_t px, uint32_t py, uint32_t 
 static void pixel_numbers(const sampler_t *s, uint32_t px, uint32_t py, uint32_t dim, double *x)
 {
     for (uint32_t k = 0; k < (uint32_t)s->sample_count; k++) {
-        sampler_stream st;
-        sampler_start(s, &st, px, py, k);
-        sampler_seek(&st, dim);
+        sampler_stream st = stream_at(s, px, py, k, dim);
         x[k] = sampler_next_1d(&st);
     }
 }
