@@ -2,7 +2,7 @@
  * tree as read (defaults and -D applied, file names resolved), the contents
  * of every file a parameter names (meshes, profiles, textures, maps), and
  * what the build made of the options that change the image (film size, spp,
- * SOR geometry). Parts of a render compare it to tell whether they rendered
+ * the sampler plugin, SOR geometry). Parts of a render compare it to tell whether they rendered
  * the same scene (parts.h). */
 #include <stdio.h>
 #include <string.h>
@@ -79,6 +79,7 @@ uint64_t scene_digest_compute(const scene_desc *desc, const struct scene *s, int
     add_object(h, scene_desc_root(desc));
     const long long o[4] = {s->camera.width, s->camera.height, s->sampler.sample_count, mesh_segments};
     add(h, o, sizeof o);
+    add_str(h, s->sampler.plugin);
     uint64_t d = XXH3_64bits_digest(h);
     XXH3_freeState(h);
     return d;
