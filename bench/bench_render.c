@@ -1,10 +1,13 @@
 /* Rendering benchmark (docs/BENCHMARKS.md, "Rendering"): the showcase scene
  * at 640x360 with 16 spp, its SORs analytic and revolved into 360 segments,
- * on 1 and 2 threads (seconds and Msamples/s), then the cross-check error
- * table of the same scene at N = 16, 64, 256, 1024.
+ * on 1 and 2 threads (seconds and Msamples/s, and the share of the threads'
+ * time an idle machine would spend waiting for the last tile of a pass:
+ * render_stats), then the cross-check error table of the same scene at
+ * N = 16, 64, 256, 1024.
  *
- *   bench_render [SCENE.xml]   (default scenes/showcase/scene.xml; run from the
- *                               repository root; images go to out/bench/) */
+ *   bench_render [SCENE.xml] [--threads-only]
+ *       (default scenes/showcase/scene.xml; run from the repository root;
+ *       images go to out/bench/; --threads-only: no cross-check) */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -59,18 +62,26 @@ static double timed_render(const char *scene_path, int segments, int threads)
     film_free(&film);
     char geo[32];
     snprintf(geo, sizeof geo, segments ? "mesh:%d" : "analytic", segments);
-    printf("| %-9s | %7d | %9lld | %7.2f | %10.3f | %11.2f | %14.3f |\n", geo, threads, tris, st.seconds,
-           1e-6 * (double)st.samples / st.seconds, cpu, 1e-6 * (double)st.samples / cpu);
+    printf("| %-9s | %7d | %9lld | %7.2f | %10.3f | %11.2f | %14.3f | %8.3f%% |\n", geo, threads, tris, st.seconds,
+           1e-6 * (double)st.samples / st.seconds, cpu, 1e-6 * (double)st.samples / cpu,
+           100.0 * st.idle_cpu_seconds / (st.busy_cpu_seconds + st.idle_cpu_seconds));
     fflush(stdout);
     return st.seconds;
 }
 
 int main(int argc, char **argv)
 {
-    const char *scene = argc > 1 ? argv[1] : "scenes/showcase/scene.xml";
+    const char *scene = "scenes/showcase/scene.xml";
+    int threads_only = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--threads-only"))
+            threads_only = 1;
+        else
+            scene = argv[i];
+    }
     printf("scene %s, %dx%d, %d spp\n\n", scene, WIDTH, HEIGHT, SPP);
-    printf("| geometry  | threads | triangles | seconds | Msamples/s | CPU seconds | Msamples/CPU-s |\n");
-    printf("|-----------|---------|-----------|---------|------------|-------------|----------------|\n");
+    printf("| geometry  | threads | triangles | seconds | Msamples/s | CPU seconds | Msamples/CPU-s | tile wait |\n");
+    printf("|-----------|---------|-----------|---------|------------|-------------|----------------|-----------|\n");
     double t[2][2];
     for (int th = 1; th <= 2; th++)
         for (int g = 0; g < 2; g++)
@@ -78,6 +89,8 @@ int main(int argc, char **argv)
                 return 1;
     printf("\nanalytic / meshed time: %.2f (1 thread), %.2f (2 threads)\n\n", t[0][0] / t[0][1],
            t[1][0] / t[1][1]);
+    if (threads_only)
+        return 0;
 
     static const int segments[] = {16, 64, 256, 1024};
     crosscheck_params p = {.scene_path = scene, .build = build_options(0), .threads = 2, .segments = segments,

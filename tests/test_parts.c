@@ -54,21 +54,34 @@ static void render_part_file(const render_fixture *f, const char *scene, int k, 
     cr_assert_eq(run_celadon(f, args, err, sizeof err), 0, "%s", err);
 }
 
+/* The one-process render into single.exr and its n parts into part1.exr ...
+ * (paths into p), all with the extra options. */
+static void render_single_and_parts(const render_fixture *f, const char *scene, int n, const char *const *extra,
+                                    char *single, size_t single_len, char (*p)[256])
+{
+    char err[4096];
+    const char *args[24] = {"render", scene, "-o", fixture_path(f, "single.exr", single, single_len), "--threads",
+                            "2"};
+    int a = 6;
+    for (const char *const *e = extra; *e; e++)
+        args[a++] = *e;
+    args[a] = NULL;
+    cr_assert_eq(run_celadon(f, args, err, sizeof err), 0, "%s", err);
+    for (int k = 1; k <= n; k++) {
+        char name[32];
+        snprintf(name, sizeof name, "part%d.exr", k);
+        render_part_file(f, scene, k, n, name, extra);
+        fixture_path(f, name, p[k - 1], sizeof p[k - 1]);
+    }
+}
+
 /* Four parts merged, in any order, give the one-process render. */
 Test(parts, four_parts_merged_are_the_single_render, .timeout = 300)
 {
     render_fixture f;
     char scene[256], single[256], merged[256], shuffled[256], p[4][256], err[4096];
     render_fixture_with_scene(&f, "plum", orbit_xml, scene, sizeof scene);
-    const char *a1[] = {"render", scene, "-o", fixture_path(&f, "single.exr", single, sizeof single), "--threads",
-                        "2", "--aov", "depth", NULL};
-    cr_assert_eq(run_celadon(&f, a1, err, sizeof err), 0, "%s", err);
-    for (int k = 1; k <= 4; k++) {
-        char name[32];
-        snprintf(name, sizeof name, "part%d.exr", k);
-        render_part_file(&f, scene, k, 4, name, (const char *[]){"--aov", "depth", NULL});
-        fixture_path(&f, name, p[k - 1], sizeof p[k - 1]);
-    }
+    render_single_and_parts(&f, scene, 4, (const char *[]){"--aov", "depth", NULL}, single, sizeof single, p);
     const char *m1[] = {"merge", p[0], p[1], p[2], p[3], "-o", fixture_path(&f, "merged.exr", merged, sizeof merged),
                         NULL};
     cr_assert_eq(run_celadon(&f, m1, err, sizeof err), 0, "%s", err);
@@ -132,14 +145,7 @@ Test(parts, merged_parts_keep_the_pixel_format_filter_and_metadata, .timeout = 3
     render_fixture f;
     char scene[256], single[256], merged[256], p[3][256], err[4096];
     render_fixture_with_scene(&f, "plum", xyza_xml, scene, sizeof scene);
-    const char *a1[] = {"render", scene, "-o", fixture_path(&f, "single.exr", single, sizeof single), NULL};
-    cr_assert_eq(run_celadon(&f, a1, err, sizeof err), 0, "%s", err);
-    for (int k = 1; k <= 3; k++) {
-        char name[32];
-        snprintf(name, sizeof name, "part%d.exr", k);
-        render_part_file(&f, scene, k, 3, name, NULL);
-        fixture_path(&f, name, p[k - 1], sizeof p[k - 1]);
-    }
+    render_single_and_parts(&f, scene, 3, (const char *[]){NULL}, single, sizeof single, p);
     const char *m1[] = {"merge", p[2], p[0], p[1], "-o", fixture_path(&f, "merged.exr", merged, sizeof merged),
                         NULL};
     cr_assert_eq(run_celadon(&f, m1, err, sizeof err), 0, "%s", err);
@@ -153,6 +159,24 @@ Test(parts, merged_parts_keep_the_pixel_format_filter_and_metadata, .timeout = 3
     cr_expect_str_eq(hm, hs);
     cr_expect_not_null(strstr(hs, "spp 12 "), "%s", hs);
     image_free(&s), image_free(&m);
+    render_fixture_close(&f);
+}
+
+/* A sampler whose numbers depend on the sample's index (zsobol: Owen-scrambled
+ * Sobol points across the pixel's samples) gives the same image in parts:
+ * each part takes its samples by their global index. */
+Test(parts, parts_of_a_zsobol_render_merge_to_the_single_render, .timeout = 300)
+{
+    render_fixture f;
+    char scene[256], single[256], merged[256], p[3][256], err[4096];
+    render_fixture_with_scene(&f, "plum", orbit_xml, scene, sizeof scene);
+    render_single_and_parts(&f, scene, 3, (const char *[]){"--sampler", "zsobol", NULL}, single, sizeof single, p);
+    const char *m[] = {"merge", p[0], p[1], p[2], "-o", fixture_path(&f, "merged.exr", merged, sizeof merged), NULL};
+    cr_assert_eq(run_celadon(&f, m, err, sizeof err), 0, "%s", err);
+    image_t a = read_image(single), b = read_image(merged);
+    double worst;
+    cr_expect(same_within_rounding(&a, &b, &worst), "merged zsobol parts differ from the single render by %g", worst);
+    image_free(&a), image_free(&b);
     render_fixture_close(&f);
 }
 
@@ -239,17 +263,19 @@ Test(parts, scene_digest_follows_the_scene_and_its_files)
     render_write_file(&f, "spaced.xml", loose, spaced, sizeof spaced);
     free(loose);
     scene_options o = scene_options_default();
-    uint64_t d[6];
+    uint64_t d[8];
     const scene_define frame = {"frame", "5", false};
-    scene_options res = o, seed = o;
+    scene_options res = o, seed = o, other_sampler = o, own_sampler = o;
     res.width = 32, res.height = 24;
     seed.seed = 77;
+    other_sampler.sampler = "zsobol", own_sampler.sampler = "independent"; /* the scene's is independent */
     struct {
         const char *path;
         const scene_define *defs;
         const scene_options *opt;
-    } cases[5] = {{scene, NULL, &o}, {spaced, NULL, &o}, {scene, &frame, &o}, {scene, NULL, &res}, {scene, NULL, &seed}};
-    for (int i = 0; i < 5; i++) {
+    } cases[7] = {{scene, NULL, &o},    {spaced, NULL, &o},         {scene, &frame, &o},      {scene, NULL, &res},
+                  {scene, NULL, &seed}, {scene, NULL, &other_sampler}, {scene, NULL, &own_sampler}};
+    for (int i = 0; i < 7; i++) {
         scene_t *s = scene_create_from_file(cases[i].path, cases[i].defs, cases[i].defs != NULL, cases[i].opt, err,
                                             sizeof err);
         cr_assert_not_null(s, "%s", err);
@@ -260,13 +286,15 @@ Test(parts, scene_digest_follows_the_scene_and_its_files)
     render_write_profile(&f, "profile.json", "cylinder");
     scene_t *s = scene_create_from_file(scene, NULL, 0, &o, err, sizeof err);
     cr_assert_not_null(s, "%s", err);
-    d[5] = scene_digest(s);
+    d[7] = scene_digest(s);
     scene_destroy(s);
     cr_expect_eq(d[0], d[1], "a comment and other whitespace changed the digest");
     cr_expect_neq(d[0], d[2], "-D frame=5 kept the digest");
     cr_expect_neq(d[0], d[3], "another film size kept the digest");
     cr_expect_eq(d[0], d[4], "the seed, which parts record apart, changed the digest");
-    cr_expect_neq(d[0], d[5], "another profile.json kept the digest");
+    cr_expect_neq(d[0], d[5], "--sampler zsobol kept the digest");
+    cr_expect_eq(d[0], d[6], "--sampler naming the scene's own sampler changed the digest");
+    cr_expect_neq(d[0], d[7], "another profile.json kept the digest");
     render_fixture_close(&f);
 }
 

@@ -115,22 +115,35 @@ Test(render_cli, bad_input_exits_2_with_one_line_and_no_file)
     /* The rings follow N: a million segments would need billions of triangles. */
     expect_refused(&f, tiny_xml, (const char *[]){"--geometry", "mesh:1000000", NULL}, "use fewer segments");
     expect_refused(&f, tiny_xml, (const char *[]){"--res", "10by10", NULL}, "--res");
+    expect_refused(&f, tiny_xml, (const char *[]){"--sampler", "sobol", NULL}, "--sampler");
+    /* 2^24 - 1 samples round up past the limit 2^24 to a prime's square. */
+    expect_refused(&f, tiny_xml, (const char *[]){"--sampler", "orthogonal", "--spp", "16777215", NULL},
+                   "rounds up to");
     render_fixture_close(&f);
 }
 
+/* Every sampler: the same seed gives the same bits on 1 and 2 threads,
+ * another seed another image. */
 Test(render_determinism, same_seed_same_image_any_thread_count)
 {
     render_fixture f;
     char scene[256];
     render_fixture_with_scene(&f, "plum", tiny_xml, scene, sizeof scene);
-    int w, h, nch;
-    float *a = render_to_pixels(scene, 0, 5, 1, 0, &w, &h, &nch);
-    float *b = render_to_pixels(scene, 0, 5, 2, 0, &w, &h, &nch);
-    float *c = render_to_pixels(scene, 0, 6, 2, 0, &w, &h, &nch);
-    size_t n = (size_t)w * h * nch;
-    cr_expect_eq(memcmp(a, b, n * sizeof *a), 0, "seed 5 on 1 and 2 threads differ");
-    cr_expect_neq(memcmp(a, c, n * sizeof *a), 0, "seeds 5 and 6 give the same image");
-    free(a), free(b), free(c);
+    const char *samplers[] = {"independent", "stratified", "multijitter", "orthogonal", "ldsampler", "zsobol"};
+    for (int i = 0; i < 6; i++) {
+        scene_options bo = scene_options_default();
+        bo.sampler = samplers[i];
+        bo.seed = 5;
+        int w, h, nch;
+        float *a = render_to_pixels_with(scene, &bo, 1, 0, &w, &h, &nch);
+        float *b = render_to_pixels_with(scene, &bo, 2, 0, &w, &h, &nch);
+        bo.seed = 6;
+        float *c = render_to_pixels_with(scene, &bo, 2, 0, &w, &h, &nch);
+        size_t n = (size_t)w * h * nch;
+        cr_expect_eq(memcmp(a, b, n * sizeof *a), 0, "%s: seed 5 on 1 and 2 threads differ", samplers[i]);
+        cr_expect_neq(memcmp(a, c, n * sizeof *a), 0, "%s: seeds 5 and 6 give the same image", samplers[i]);
+        free(a), free(b), free(c);
+    }
     render_fixture_close(&f);
 }
 

@@ -68,3 +68,45 @@ Test(render_furnace, diffuse_sor_meshed) { furnace("sor", sor_params, diffuse1, 
 Test(render_furnace, glass_sphere) { furnace("sphere", sphere_params, glass, 0, 64, 0.18, 0.01); }
 Test(render_furnace, glass_sor_analytic) { furnace("sor", sor_params, glass, 0, 64, 0.18, 0.01); }
 Test(render_furnace, glass_sor_meshed) { furnace("sor", sor_params, glass, 256, 64, 0.18, 0.01); }
+
+/* The deep-path furnace: inside a closed box whose walls emit L_e = 1 and
+ * reflect diffusely with albedo 0.9, the radiance is L_e / (1 - 0.9) = 10
+ * everywhere (the Neumann series L_e (1 + 0.9 + 0.9^2 + ...)). Paths
+ * average ten bounces and Russian roulette starts at the first (rr_depth
+ * 1): without its 1/q compensation the image would come out at about 5.3.
+ * Each sample sums a geometric number of terms (sd about 9.5): at 256 spp
+ * a pixel's mean is good to 0.6 and the image's to 0.07. */
+Test(render_furnace, closed_box_with_roulette_from_the_first_bounce)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    char path[256];
+    render_write_file(&f, "scene.xml",
+                      "<scene version=\"3.0.0\">\n"
+                      "  <integrator type=\"path\"><integer name=\"rr_depth\" value=\"1\"/></integrator>\n"
+                      "  <sensor type=\"perspective\"><float name=\"fov\" value=\"60\"/>\n"
+                      "    <transform name=\"to_world\"><lookat origin=\"0.2, -0.1, 0.3\" target=\"0, 0, -1\" "
+                      "up=\"0, 1, 0\"/></transform>\n"
+                      "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"256\"/></sampler>\n"
+                      "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" "
+                      "value=\"8\"/></film>\n"
+                      "  </sensor>\n"
+                      "  <shape type=\"cube\"><boolean name=\"flip_normals\" value=\"true\"/>\n"
+                      "    <bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.9\"/></bsdf>\n"
+                      "    <emitter type=\"area\"><rgb name=\"radiance\" value=\"1\"/></emitter></shape>\n"
+                      "</scene>\n",
+                      path, sizeof path);
+    int w, h, nch;
+    float *px = render_to_pixels(path, 0, 11, 2, 0, &w, &h, &nch);
+    double sum = 0.0, worst = 0.0;
+    for (int i = 0; i < w * h; i++)
+        for (int c = 0; c < 3; c++) {
+            sum += px[i * nch + c];
+            worst = fmax(worst, fabs(px[i * nch + c] - 10.0));
+        }
+    double mean = sum / (3.0 * w * h);
+    cr_expect_float_eq(mean, 10.0, 0.25, "mean %g, want 10", mean);
+    cr_expect_leq(worst, 3.0, "a pixel is off by %g", worst);
+    free(px);
+    render_fixture_close(&f);
+}

@@ -4,11 +4,16 @@
  *   point light, intensity I at height d:      E = I / d^2
  *   directional light, irradiance E0 along -y: E = E0
  *   disk of radiance L, radius R at height h:  E = pi L R^2 / (h^2 + R^2)
- *   sphere of radiance L, radius R, centre at distance d: E = pi L (R/d)^2
- * and the envmap's orientation and sampling density. */
+ *   sphere of radiance L, radius R, centre at distance d: E = pi L (R/d)^2 cos
+ *   rectangle of radiance L parallel to the plane: E = pi L F, F its form
+ *   factor (inclusion-exclusion of corner-anchored rectangles)
+ * and the envmap's orientation, sampling density and lighting. Many lights
+ * at once check the light tree's picks against the MIS weights: the sum of
+ * their closed forms comes out only if both use the same probabilities. */
 #include "celadon/film.h"
 #include "celadon/rng.h"
 #include "support/plugin_xml.h"
+#include "test_bsdf_support.h"
 #include "test_render_util.h"
 
 static const char *plane_fmt =
@@ -16,7 +21,7 @@ static const char *plane_fmt =
     "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"2\"/></integrator>\n"
     "  <sensor type=\"perspective\"><float name=\"fov\" value=\"1\"/>\n"
     "    <transform name=\"to_world\"><lookat origin=\"0, 0.5, 0\" target=\"0, 0, 0\" up=\"0, 0, -1\"/></transform>\n"
-    "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"64\"/></sampler>\n"
+    "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"%d\"/></sampler>\n"
     "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/></film>\n"
     "  </sensor>\n"
     "  <shape type=\"rectangle\"><transform name=\"to_world\"><rotate x=\"1\" angle=\"-90\"/><scale value=\"10\"/></transform>\n"
@@ -24,12 +29,13 @@ static const char *plane_fmt =
     "  %s\n"
     "</scene>\n";
 
-static double plane_radiance(const char *emitter)
+/* The mean radiance of the plane's pixels at spp samples per pixel. */
+static double plane_radiance_spp(const char *emitter, int spp)
 {
     render_fixture f;
     render_fixture_open(&f);
-    char xml[4096], path[256];
-    snprintf(xml, sizeof xml, plane_fmt, emitter);
+    char xml[16384], path[256];
+    snprintf(xml, sizeof xml, plane_fmt, spp, emitter);
     render_write_file(&f, "scene.xml", xml, path, sizeof path);
     int w, h, nch;
     float *px = render_to_pixels(path, 0, 3, 2, 0, &w, &h, &nch);
@@ -40,6 +46,8 @@ static double plane_radiance(const char *emitter)
     render_fixture_close(&f);
     return sum / (w * h);
 }
+
+static double plane_radiance(const char *emitter) { return plane_radiance_spp(emitter, 64); }
 
 Test(render_lights, point_and_directional)
 {
@@ -140,6 +148,56 @@ Test(render_lights, tilted_area_lights_against_a_brute_force_hemisphere, .timeou
     }
 }
 
+/* The form factor from a point to the rectangle [0,a] x [0,b] parallel to
+ * its plane at height h, the corner above the point. */
+static double corner_form_factor(double a, double b, double h)
+{
+    double x = a / h, y = b / h;
+    return (x / sqrt(1.0 + x * x) * atan(y / sqrt(1.0 + x * x)) + y / sqrt(1.0 + y * y) * atan(x / sqrt(1.0 + y * y))) /
+           (2.0 * M_PI);
+}
+
+/* A 2 x 1.2 rectangle light facing down at height 0.6 above the origin,
+ * its centre off to the side (spherical rectangles, large solid angle). */
+Test(render_lights, rectangle_light)
+{
+    const double rho = 0.8, L = 2.0, h = 0.6, x0 = -0.4, x1 = 1.6, z0 = -0.3, z1 = 0.9;
+    double lr = plane_radiance_spp("<shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"1\" y=\"0.6\"/>"
+                               "<rotate x=\"1\" angle=\"90\"/><translate x=\"0.6\" y=\"0.6\" z=\"0.3\"/></transform>"
+                               "<emitter type=\"area\"><rgb name=\"radiance\" value=\"2\"/></emitter></shape>",
+                               1024);
+    /* [x0,x1] x [z0,z1] = four corner rectangles around the origin. */
+    double F = corner_form_factor(x1, z1, h) + corner_form_factor(-x0, z1, h) + corner_form_factor(x1, -z0, h) +
+               corner_form_factor(-x0, -z0, h);
+    double want = rho / M_PI * M_PI * L * F;
+    cr_expect_float_eq(lr, want, 0.01 * want, "rectangle: %g, want %g", lr, want);
+}
+
+/* Twelve sphere lights of different sizes and radiances, near and far,
+ * some large and close (where BSDF sampling takes a real share of the MIS
+ * weight), and an environment: E = sum of pi L_i (R_i/d_i)^2 cos(theta_i)
+ * (each sphere wholly above the plane) + pi L_env. */
+Test(render_lights, many_lights_through_the_light_tree)
+{
+    const double rho = 0.8, env = 0.05;
+    char body[8192];
+    int n = snprintf(body, sizeof body, "<emitter type=\"constant\"><rgb name=\"radiance\" value=\"%g\"/></emitter>", env);
+    double e = M_PI * env;
+    for (int i = 0; i < 12; i++) {
+        double r = 0.05 + 0.04 * i, L = 1.0 + (i * 7 % 5), a = 0.5236 * i;
+        vec3 c = v3((0.3 + 0.25 * i) * cos(a), r + 0.02 + 0.15 * (i % 4), (0.3 + 0.25 * i) * sin(a));
+        double d = v3_len(c);
+        e += M_PI * (L - env) * (r / d) * (r / d) * (c.y / d); /* it hides that much environment */
+        n += snprintf(body + n, sizeof body - (size_t)n,
+                      "<shape type=\"sphere\"><point name=\"center\" value=\"%.17g, %.17g, %.17g\"/>"
+                      "<float name=\"radius\" value=\"%.17g\"/><emitter type=\"area\">"
+                      "<rgb name=\"radiance\" value=\"%g\"/></emitter></shape>",
+                      c.x, c.y, c.z, r, L);
+    }
+    double l = plane_radiance_spp(body, 1024), want = rho / M_PI * e;
+    cr_expect_float_eq(l, want, 0.01 * want, "twelve spheres: %g, want %g", l, want);
+}
+
 /* A 4x2 envmap with a distinct value per texel: Mitsuba's convention puts
  * the top row around +y, u = 0 at -z, u = 0.25 at +x, u = 0.5 at +z. The
  * direction of (u, v) is (sin t sin p, cos t, -sin t cos p), p = 2 pi u,
@@ -187,6 +245,34 @@ Test(render_lights, envmap_orientation_and_density)
         integral += emitter_pdf_env(env, w) * 4.0 * M_PI / N;
     }
     cr_expect_float_eq(integral, 1.0, 0.03, "density integrates to %g", integral);
+    /* The histogram of sampled directions over the texels matches the
+     * density MIS weighs them with: texel (c, r) should get N times the
+     * integral of emitter_pdf_env over it, pdf(centre) 2 pi^2 sin(theta) / 8
+     * (the density is constant per texel in (u, v), whose area element is
+     * d omega / (2 pi^2 sin theta)). */
+    double obs[8] = {0}, expect[8];
+    for (int i = 0; i < N; i++) {
+        emitter_sample_rec es;
+        cr_assert(emitter_sample(env, v3(0, 0, 0), v3((i + 0.5) / N, rng_next_double(&rng), 0.0), &es));
+        double phi = atan2(es.wi.x, -es.wi.z), theta = acos(fmax(-1.0, fmin(1.0, es.wi.y)));
+        phi = phi < 0.0 ? phi + 2.0 * M_PI : phi;
+        int c = (int)(phi / (2.0 * M_PI) * 4), r = (int)(theta / M_PI * 2);
+        obs[(r < 2 ? r : 1) * 4 + (c < 4 ? c : 3)] += 1.0;
+    }
+    for (int r = 0; r < 2; r++)
+        for (int c = 0; c < 4; c++) {
+            double theta = M_PI * (r + 0.5) / 2, phi = 2.0 * M_PI * (c + 0.5) / 4;
+            vec3 d = v3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
+            expect[r * 4 + c] = N * emitter_pdf_env(env, d) * 2.0 * M_PI * M_PI * sin(theta) / 8.0;
+        }
+    double p = chi2_pvalue_counts(obs, expect, 8, NULL);
+    cr_expect_gt(p, chi2_threshold(), "texel histogram: chi-square p = %g", p);
+    /* And a plane under it, NEE of the map and BSDF sampling weighed by
+     * MIS: the upper hemisphere is row 0, E = (pi/4) (1 + 2 + 3 + 4). */
+    char body[512];
+    snprintf(body, sizeof body, "<emitter type='envmap'><string name='filename' value='%s'/></emitter>", path);
+    double lp = plane_radiance_spp(body, 256), want = 0.8 / M_PI * M_PI / 4.0 * 10.0;
+    cr_expect_float_eq(lp, want, 0.01 * want, "plane under the envmap: %g, want %g", lp, want);
     plugin_xml_close(&fx);
     render_fixture_close(&f);
 }

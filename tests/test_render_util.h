@@ -88,16 +88,13 @@ static inline void render_fixture_with_scene(render_fixture *f, const char *whic
     render_write_file(f, "scene.xml", xml, scene, scenelen);
 }
 
-/* Loads and renders a scene file to averaged float pixels (nchannels per
- * pixel, malloc'd). */
-static inline float *render_to_pixels(const char *scene_path, int mesh_segments, long long seed, int threads,
-                                      unsigned aovs, int *w, int *h, int *nch)
+/* Loads and renders a scene file with the options bo to averaged float
+ * pixels (nchannels per pixel, malloc'd). */
+static inline float *render_to_pixels_with(const char *scene_path, const scene_options *bo, int threads,
+                                           unsigned aovs, int *w, int *h, int *nch)
 {
     char err[1024];
-    scene_options bo = scene_options_default();
-    bo.mesh_segments = mesh_segments;
-    bo.seed = seed;
-    scene_t *s = scene_create_from_file(scene_path, NULL, 0, &bo, err, sizeof err);
+    scene_t *s = scene_create_from_file(scene_path, NULL, 0, bo, err, sizeof err);
     cr_assert_not_null(s, "%s", err);
     render_options ro = {.threads = threads, .aovs = aovs};
     film_t film;
@@ -109,6 +106,16 @@ static inline float *render_to_pixels(const char *scene_path, int mesh_segments,
     film_free(&film);
     scene_destroy(s);
     return px;
+}
+
+/* The same with the SORs meshed into mesh_segments (0: analytic) and seed. */
+static inline float *render_to_pixels(const char *scene_path, int mesh_segments, long long seed, int threads,
+                                      unsigned aovs, int *w, int *h, int *nch)
+{
+    scene_options bo = scene_options_default();
+    bo.mesh_segments = mesh_segments;
+    bo.seed = seed;
+    return render_to_pixels_with(scene_path, &bo, threads, aovs, w, h, nch);
 }
 
 #endif

@@ -27,6 +27,14 @@ typedef struct {
     double seconds;
     uint64_t samples;   /* camera samples traced */
     int interrupted;    /* 1 when render_request_stop() cut the render short */
+    /* The threads' CPU seconds in tiles, and the idle time they imply on an
+     * idle machine: at the end of each pass (each colour of tiles of a pass,
+     * with a splatting filter) the threads wait for the one with the most
+     * work, so the sum over those of (most - each thread's)
+     * CPU time is what a core would wait (a measure of the tile schedule
+     * that the machine's load does not inflate). Under MPI, this rank's. */
+    double busy_cpu_seconds;
+    double idle_cpu_seconds;
 } render_stats;
 
 /* Parses "depth,normal,albedo" (any subset, any order) into a mask; -1 for an

@@ -21,5 +21,14 @@ uint32_t rng_next_bounded(rng_t *r, uint32_t bound);
 /* The stream for one pixel sample of a render with a global seed: distinct
  * (seed, px, py, sample) give decorrelated streams. */
 rng_t rng_for_sample(uint64_t seed, uint32_t px, uint32_t py, uint32_t sample);
+/* SplitMix64's finaliser: a bijective 64-bit mixer that spreads structured
+ * keys (pixel coordinates, sample numbers, dimensions) into hash values. */
+static inline uint64_t rng_mix64(uint64_t z)
+{
+    z += 0x9E3779B97F4A7C15ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
 
 #endif

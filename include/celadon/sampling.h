@@ -28,6 +28,24 @@ double warp_uniform_cone_pdf(vec3 w, double cos_max);
  * the reference triangle (divide by the triangle's area for an area density). */
 vec2 warp_square_to_uniform_triangle(vec2 u);
 
+/* Uniform sampling of the solid angle a rectangle subtends from a point
+ * (Urena, Fajardo & King 2013, "An area-preserving parametrization for
+ * spherical rectangles"): the rectangle corner + a edge_u + b edge_v,
+ * (a, b) in [0,1]^2, edge_u and edge_v orthogonal. */
+typedef struct {
+    vec3 o, x, y, z;              /* the reference point and the rectangle's frame (z away from o) */
+    double x0, x1, y0, y1, z0;    /* the rectangle in that frame, seen from o */
+    double b0, b1, k;             /* the parametrization's constants */
+    double solid_angle;
+} spherical_rect;
+
+/* Sets r up for the rectangle seen from o; returns its solid angle (0 when
+ * o lies in its plane). */
+double spherical_rect_init(spherical_rect *r, vec3 o, vec3 corner, vec3 edge_u, vec3 edge_v);
+/* The point of the rectangle whose direction from o is u's image under the
+ * area-preserving map: uniform in solid angle (density 1 / solid_angle). */
+vec3 spherical_rect_sample(const spherical_rect *r, vec2 u);
+
 /* Veach's power heuristic (beta = 2): weight of a sample from strategy f. */
 double mis_power_heuristic(double pdf_f, double pdf_g);
 

@@ -31,6 +31,7 @@ typedef struct {
     int spp;             /* sampler sample_count */
     long long seed;      /* sampler seed; < 0 keeps the scene's */
     int mesh_segments;   /* 0: SORs analytic; N >= 3: revolved into N angular segments */
+    const char *sampler; /* a sampler plugin to use instead of the scene's (its sample count and seed kept); NULL keeps it */
 } scene_options;
 
 /* Every field at "keep the scene's own". */

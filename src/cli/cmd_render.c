@@ -22,7 +22,7 @@ static void usage(FILE *f)
 {
     fprintf(f, "usage: celadon render SCENE.xml -o OUT.{exr,png,jpg} [--spp N] [--res WxH]\n"
                "                      [--geometry analytic|mesh:N] [--threads N] [--seed S]\n"
-               "                      [-D name=value]... [--aov depth,normal,albedo]\n"
+               "                      [--sampler NAME] [-D name=value]... [--aov depth,normal,albedo]\n"
                "                      [--part K/N] [--frames A:B[:S]]\n\n"
                "Renders a Mitsuba 3 scene (docs/scene-format.md) with its integrator (`path`\n"
                "by default).\n"
@@ -36,6 +36,8 @@ static void usage(FILE *f)
                "  --geometry G    analytic (default) or mesh:N, N >= 3\n"
                "  --threads N     OpenMP threads (default: all cores; per rank under mpirun)\n"
                "  --seed S        sampler seed (default: the scene's)\n"
+               "  --sampler NAME  sampler plugin instead of the scene's, with its sample count and seed:\n"
+               "                  independent, stratified, multijitter, orthogonal, ldsampler, zsobol\n"
                "  -D name=value   sets a scene <default> parameter\n"
                "  --aov LIST      extra EXR channels: depth, normal, albedo\n"
                "  --part K/N      render the K-th of N shares of the samples into OUT.exr, for\n"
@@ -132,6 +134,11 @@ static int parse_args(int argc, char **argv, render_args *a)
             if (cli_parse_int(val, 0, (long long)(~0ull >> 1), &v) != 0)
                 return cli_usage_error("render", "--seed wants a non-negative integer, not '%s'", val);
             a->bo.seed = v;
+        } else if (!strcmp(arg, "--sampler")) {
+            if (!scene_plugin_find(SCENE_SAMPLER, val))
+                return cli_usage_error("render", "--sampler wants independent, stratified, multijitter, orthogonal, "
+                                                 "ldsampler or zsobol, not '%s'", val);
+            a->bo.sampler = val;
         } else if (!strcmp(arg, "-D")) {
             const char *eq = strchr(val, '=');
             if (!eq || eq == val || a->ndefs == MAX_DEFINES)

@@ -1,6 +1,7 @@
 /* Mitsuba's `area` emitter: a shape's surface radiates `radiance` (a color or
- * a texture over the shape's uv) from its front side only. Sampling picks a
- * point by area on the shape and converts to solid angle. */
+ * a texture over the shape's uv) from its front side only. Sampling asks the
+ * shape for a point seen from the reference point (by solid angle where the
+ * shape can, by area otherwise: shape_sample_from). */
 #include <stdio.h>
 
 #include "emitters/emitter_impl.h"
@@ -18,23 +19,22 @@ static rgb area_radiance(const area_data *d, vec2 uv)
 static int area_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_sample_rec *out)
 {
     surface_hit h;
-    double pdf_area;
-    shape_sample_area(e->shape, u, &h, &pdf_area);
+    double pdf;
+    shape_sample_from(e->shape, ref, u, &h, &pdf);
     vec3 d = v3_sub(h.p, ref);
     double dist2 = v3_dot(d, d);
-    if (!(dist2 > 0.0) || !(pdf_area > 0.0))
+    if (!(dist2 > 0.0) || !(pdf > 0.0))
         return 0;
     double dist = sqrt(dist2);
     vec3 wi = v3_scale(d, 1.0 / dist);
-    double cos_l = -v3_dot(h.ng, wi);
-    if (cos_l <= 0.0)
+    if (v3_dot(h.ng, wi) >= 0.0) /* its back */
         return 0;
     out->wi = wi;
     out->dist = dist;
     out->p = h.p;
     out->n = h.ng;
     out->eps = h.eps;
-    out->pdf = pdf_area * dist2 / cos_l;
+    out->pdf = pdf;
     out->value = area_radiance(e->data, h.uv);
     out->delta = false;
     return 1;
@@ -47,14 +47,24 @@ static rgb area_eval_hit(const emitter_t *e, const surface_hit *hit, vec3 dir)
 
 static double area_pdf_hit(const emitter_t *e, vec3 ref, const surface_hit *hit, vec3 dir)
 {
-    double cos_l = -v3_dot(hit->ng, dir);
-    if (cos_l <= 0.0)
-        return 0.0;
-    vec3 d = v3_sub(hit->p, ref);
-    return shape_pdf_area(e->shape, hit) * v3_dot(d, d) / cos_l;
+    return v3_dot(hit->ng, dir) < 0.0 ? shape_pdf_from(e->shape, ref, hit) : 0.0;
 }
 
-static const emitter_ops area_ops = {area_sample, area_eval_hit, area_pdf_hit, NULL, NULL, NULL};
+/* phi: the radiance (a texture's mean) times the shape's largest projected
+ * area: its area when flat, a quarter of it when its normals turn every way
+ * (Cauchy: a convex body's mean projected area is a quarter of its
+ * surface), in between A cos(theta_o) but at least A / 4. */
+static void area_bounds(const emitter_t *e, light_bounds *out)
+{
+    const area_data *d = e->data;
+    const shape_t *sh = e->shape;
+    double radiance = rgb_max(d->texture ? texture_mean(d->texture) : d->value);
+    double projected = sh->area * fmax(0.25, sh->normal_cos);
+    *out = (light_bounds){.lo = sh->bounds_lo, .hi = sh->bounds_hi, .axis = sh->normal_axis,
+                          .cos_theta_o = sh->normal_cos, .cos_theta_e = 0.0, .phi = radiance * projected};
+}
+
+static const emitter_ops area_ops = {area_sample, area_eval_hit, area_pdf_hit, NULL, NULL, NULL, area_bounds};
 
 static emitter_t *area_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

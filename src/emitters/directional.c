@@ -19,7 +19,13 @@ static int directional_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_samp
     return 1;
 }
 
-static const emitter_ops directional_ops = {directional_sample, NULL, NULL, NULL, NULL, NULL};
+static void directional_bounds(const emitter_t *e, light_bounds *out)
+{
+    const directional_data *d = e->data;
+    emitter_bounds_infinite(rgb_max(d->irradiance), out);
+}
+
+static const emitter_ops directional_ops = {directional_sample, NULL, NULL, NULL, NULL, NULL, directional_bounds};
 
 static emitter_t *directional_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

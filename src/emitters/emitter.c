@@ -33,6 +33,21 @@ double emitter_pdf_env(const emitter_t *e, vec3 dir)
     return e->ops->pdf_env(e, dir);
 }
 
+void emitter_bounds(const emitter_t *e, light_bounds *out)
+{
+    e->ops->bounds(e, out);
+}
+
+void emitter_bounds_infinite(double phi, light_bounds *out)
+{
+    *out = (light_bounds){.infinite = true, .axis = v3(0, 0, 1), .cos_theta_o = -1.0, .cos_theta_e = -1.0, .phi = phi};
+}
+
+void emitter_bounds_point(vec3 p, double phi, light_bounds *out)
+{
+    *out = (light_bounds){.lo = p, .hi = p, .axis = v3(0, 0, 1), .cos_theta_o = -1.0, .cos_theta_e = 0.0, .phi = phi};
+}
+
 emitter_t *emitter_alloc(const scene_obj *o, const emitter_ops *ops, const void *data, size_t data_size, char *err,
                          size_t errlen)
 {
@@ -82,6 +97,7 @@ int emitter_list_add(emitter_list *l, emitter_t *e)
     if (!a)
         return -1;
     l->items = a;
+    e->index = l->count;
     a[l->count++] = e;
     return 0;
 }
@@ -91,5 +107,6 @@ void emitter_list_free(emitter_list *l)
     for (int i = 0; i < l->count; i++)
         emitter_destroy(l->items[i]);
     free(l->items);
+    light_tree_destroy(l->tree);
     *l = (emitter_list){0};
 }

@@ -20,13 +20,24 @@ typedef struct {
     double (*pdf_env)(const emitter_t *e, vec3 dir);
     /* Frees what data points to (not data itself); may be NULL. */
     void (*release)(void *data);
+    /* What light selection needs (emitters.h): required. */
+    void (*bounds)(const emitter_t *e, light_bounds *out);
 } emitter_ops;
 
 struct emitter {
     const emitter_ops *ops;
     const shape_t *shape; /* surface emitters: the shape that radiates */
     void *data;           /* the plugin's, allocated with the emitter */
+    int index;            /* in its emitter_list */
 };
+
+/* Frees what emitter_list_commit built (NULL: nothing). */
+void light_tree_destroy(light_tree *t);
+
+/* The bounds of a light at infinity giving irradiance phi. */
+void emitter_bounds_infinite(double phi, light_bounds *out);
+/* The bounds of a point light of intensity phi at p. */
+void emitter_bounds_point(vec3 p, double phi, light_bounds *out);
 
 /* One allocation holding the emitter and a copy of the data_size bytes at
  * data; NULL when out of memory, with err naming o. */

@@ -4,8 +4,14 @@
  * (sin t sin p, cos t, -sin t cos p) for image coordinates
  * (u, v) = (p / 2pi, t / pi), so the top row looks along +y.
  * Lookups are nearest-texel (piecewise constant), and importance sampling
- * draws texels from a 2D piecewise-constant distribution of luminance x
- * sin(theta), which makes sample and density agree exactly. */
+ * draws texels from a 2D piecewise-constant distribution of
+ * max(0, luminance - its mean over the sphere) x sin(theta), which makes
+ * sample and density agree exactly. Subtracting the mean is MIS
+ * compensation (Karlik et al. 2019, as pbrt-v4 does): BSDF sampling, weighed
+ * in by MIS, already covers the map's uniform part well, so emitter samples
+ * go where the map is brighter than that; the density is zero elsewhere,
+ * where MIS then gives BSDF samples their full weight. A uniform map is
+ * never picked for next-event estimation at all (phi 0, like `constant`). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,6 +23,7 @@
 typedef struct {
     int width, height;
     rgb *pixels;            /* linear, row 0 = the top (+y, theta = 0) */
+    double excess;          /* the mean over the sphere of max(0, luminance - its mean) */
     distribution2d dist;    /* over (u, v) cells, luminance x sin(theta) */
     transform4 to_world, to_local;
     double scale;
@@ -42,6 +49,7 @@ static int envmap_load(envmap_data *env, const char *path, char *err, size_t err
         snprintf(err, errlen, "cannot load '%s' as an environment map", path);
         return -1;
     }
+    double mean = 0.0, weight = 0.0;
     for (int y = 0; y < h; y++) {
         double sin_t = sin(M_PI * (y + 0.5) / h);
         for (int x = 0; x < w; x++) {
@@ -51,10 +59,20 @@ static int envmap_load(envmap_data *env, const char *path, char *err, size_t err
                 c = rgb_srgb_to_linear(c);
             c = rgb_make(fmax(c.r, 0.0), fmax(c.g, 0.0), fmax(c.b, 0.0));
             env->pixels[(size_t)y * w + x] = c;
-            f[(size_t)y * w + x] = rgb_luminance(c) * sin_t;
+            mean += rgb_luminance(c) * sin_t, weight += sin_t;
         }
     }
     image_free(&img);
+    mean = weight > 0.0 ? mean / weight : 0.0;
+    env->excess = 0.0;
+    for (int y = 0; y < h; y++) {
+        double sin_t = sin(M_PI * (y + 0.5) / h);
+        for (int x = 0; x < w; x++) {
+            double e = fmax(0.0, rgb_luminance(env->pixels[(size_t)y * w + x]) - mean);
+            f[(size_t)y * w + x] = e * sin_t;
+            env->excess += e * sin_t / weight;
+        }
+    }
     int rc = distribution2d_init(&env->dist, f, w, h);
     free(f);
     if (rc != 0) {
@@ -122,7 +140,16 @@ static void envmap_release(void *data)
         distribution2d_free(&env->dist);
 }
 
-static const emitter_ops envmap_ops = {envmap_sample, NULL, NULL, envmap_eval_env, envmap_pdf_env, envmap_release};
+/* What a surface facing the map receives beyond its uniform part: pi times
+ * the mean excess (0 for a uniform map). */
+static void envmap_bounds(const emitter_t *e, light_bounds *out)
+{
+    const envmap_data *env = e->data;
+    emitter_bounds_infinite(M_PI * env->scale * env->excess, out);
+}
+
+static const emitter_ops envmap_ops = {envmap_sample, NULL,           NULL,         envmap_eval_env,
+                                       envmap_pdf_env, envmap_release, envmap_bounds};
 
 static emitter_t *envmap_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

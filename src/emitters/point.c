@@ -25,7 +25,13 @@ static int point_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_sample_rec
     return 1;
 }
 
-static const emitter_ops point_ops = {point_sample, NULL, NULL, NULL, NULL, NULL};
+static void point_bounds(const emitter_t *e, light_bounds *out)
+{
+    const point_data *d = e->data;
+    emitter_bounds_point(d->position, rgb_max(d->intensity), out);
+}
+
+static const emitter_ops point_ops = {point_sample, NULL, NULL, NULL, NULL, NULL, point_bounds};
 
 static emitter_t *point_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

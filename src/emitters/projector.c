@@ -43,7 +43,17 @@ static int projector_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_sample
     return 1;
 }
 
-static const emitter_ops projector_ops = {projector_sample, NULL, NULL, NULL, NULL, NULL};
+/* For light selection, a point light of the projector's intensity along
+ * its axis (pi scale times the texture's mean) shining every way, as the
+ * spot's (spot.c). */
+static void projector_bounds(const emitter_t *e, light_bounds *out)
+{
+    const projector_data *s = e->data;
+    rgb e_mean = s->texture ? texture_mean(s->texture) : s->irradiance;
+    emitter_bounds_point(transform_point(&s->to_world, v3(0, 0, 0)), M_PI * s->scale * rgb_max(e_mean), out);
+}
+
+static const emitter_ops projector_ops = {projector_sample, NULL, NULL, NULL, NULL, NULL, projector_bounds};
 
 static emitter_t *projector_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

@@ -44,7 +44,18 @@ static int spot_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_sample_rec 
     return 1;
 }
 
-static const emitter_ops spot_ops = {spot_sample, NULL, NULL, NULL, NULL, NULL};
+/* For light selection, a point light of the beam's intensity (the texture's
+ * mean across it) shining every way: its cone is not bounded here, since
+ * under a to_world that is no similarity the beam's world cone is not the
+ * local one. */
+static void spot_bounds(const emitter_t *e, light_bounds *out)
+{
+    const spot_data *s = e->data;
+    rgb value = s->texture ? rgb_mul(s->intensity, texture_mean(s->texture)) : s->intensity;
+    emitter_bounds_point(transform_point(&s->to_world, v3(0, 0, 0)), rgb_max(value), out);
+}
+
+static const emitter_ops spot_ops = {spot_sample, NULL, NULL, NULL, NULL, NULL, spot_bounds};
 
 static emitter_t *spot_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

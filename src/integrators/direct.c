@@ -112,8 +112,12 @@ static rgb direct_li(const integrator_t *in, const integrator_scene *sc, const r
     if (!found)
         return L;
     bsdf_query q = shape_bsdf_query(&hit, ray.d, TRANSPORT_RADIANCE);
+    /* The same dimensions for the same purpose in every sample (samplers.h):
+     * 4 per emitter sample, then 3 per BSDF sample. */
+    sampler_seek(smp, SAMPLER_DIM_INTEGRATOR);
     if ((bsdf_flags(hit.shape->bsdf) & BSDF_SMOOTH) && sc->emitters->count > 0)
         L = rgb_add(L, emitter_strategy(d, sc, &hit, &q, smp));
+    sampler_seek(smp, (uint32_t)(SAMPLER_DIM_INTEGRATOR + 4 * d->emitter_samples));
     L = rgb_add(L, bsdf_strategy(d, sc, &hit, &q, smp));
     if (!isfinite(L.r) || !isfinite(L.g) || !isfinite(L.b))
         return rgb_gray(0.0);

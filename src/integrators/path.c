@@ -4,7 +4,7 @@
  * cross thin sheets (thindielectric: light passes undeviated) weighted by
  * their transmittance, where Mitsuba stops them; paths sampled straight
  * through a sheet are weighted against that estimator (docs/rendering.md). Emitters
- * are chosen uniformly. max_depth counts path segments (1: emitters seen
+ * are picked by their estimated contribution (emitter_list_pick). max_depth counts path segments (1: emitters seen
  * directly, 2: direct lighting, -1: unbounded); Russian roulette starts once
  * depth >= rr_depth with survival probability min(max(beta) eta^2, 0.95). */
 #include <math.h>
@@ -15,6 +15,24 @@ typedef struct {
     int max_depth, rr_depth;
     bool hide_emitters;
 } path_data;
+
+/* The sample dimensions of the vertex at each depth, in this order from
+ * SAMPLER_DIM_INTEGRATOR + depth * DIMS_PER_VERTEX, used for the same
+ * purpose at every depth of every path whatever it does (skipped numbers are
+ * never drawn), so a stratifying sampler stratifies each (samplers.h). */
+enum {
+    DIM_LIGHT_PICK = 0,     /* 1D: which emitter, and (its remainder) which part of it (a mesh's triangle) */
+    DIM_LIGHT_POINT = 1,    /* 2D: where on it */
+    DIM_BSDF_LOBE = 3,      /* 1D */
+    DIM_BSDF_DIRECTION = 4, /* 2D */
+    DIM_ROULETTE = 6,       /* 1D */
+    DIMS_PER_VERTEX = 7,
+};
+
+static uint32_t vertex_dim(int depth, int which)
+{
+    return (uint32_t)(SAMPLER_DIM_INTEGRATOR + depth * DIMS_PER_VERTEX + which);
+}
 
 /* A ray leaving hit toward w, lifted off the surface on w's side. */
 static ray3 spawn(const surface_hit *h, vec3 w)
@@ -68,16 +86,17 @@ static rgb transmittance(const shape_list *shapes, const surface_hit *h, const e
 }
 
 static rgb next_event(const integrator_scene *sc, const surface_hit *h, const bsdf_t *b, const bsdf_query *q,
-                      sampler_stream *smp, int max_sheets)
+                      sampler_stream *smp, int depth, int max_sheets)
 {
-    int n = sc->emitters->count;
-    int k = (int)(sampler_next_1d(smp) * n);
-    k = k < n ? k : n - 1;
-    double uz = sampler_next_1d(smp);
+    emitter_ref ref = {h->p, h->ng};
+    double pmf, part;
+    sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_PICK));
+    const emitter_t *e = emitter_list_pick(sc->emitters, &ref, sampler_next_1d(smp), &pmf, &part);
+    sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_POINT));
     vec2 uxy = sampler_next_2d(smp);
-    vec3 u = v3(uxy.x, uxy.y, uz);
+    vec3 u = v3(uxy.x, uxy.y, part);
     emitter_sample_rec es;
-    if (!emitter_sample(sc->emitters->items[k], h->p, u, &es) || !(es.pdf > 0.0) || rgb_is_black(es.value))
+    if (!e || !emitter_sample(e, h->p, u, &es) || !(es.pdf > 0.0) || rgb_is_black(es.value))
         return rgb_gray(0.0);
     vec3 wo = frame3_to_local(h->sh, es.wi);
     rgb f = bsdf_eval(b, q, wo);
@@ -86,7 +105,7 @@ static rgb next_event(const integrator_scene *sc, const surface_hit *h, const bs
     rgb tr = transmittance(sc->shapes, h, &es, max_sheets);
     if (rgb_is_black(tr))
         return rgb_gray(0.0);
-    double pdf_l = es.pdf / n;
+    double pdf_l = es.pdf * pmf;
     double w = es.delta ? 1.0 : mis_power_heuristic(pdf_l, bsdf_pdf(b, q, wo));
     return rgb_scale(rgb_mul(rgb_mul(f, tr), es.value), w / pdf_l);
 }
@@ -100,8 +119,7 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
     double eta = 1.0, prev_pdf = 1.0, t0 = tmin, t1 = tmax;
     bool prev_delta = true;
     ray3 ray = *ray0;
-    vec3 prev_p = ray.o;
-    double sel = emitters->count > 0 ? 1.0 / emitters->count : 0.0;
+    emitter_ref prev = {ray.o, v3(0.0, 0.0, 0.0)}; /* the last scattering vertex, as NEE saw it */
     if (aov) {
         for (int i = 0; i < INTEGRATOR_AOV_COUNT; i++)
             aov[i] = 0.0;
@@ -114,7 +132,9 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         if (!found) {
             if (emitters->env && show) {
                 const emitter_t *e = emitters->env;
-                double w = prev_delta ? 1.0 : mis_power_heuristic(prev_pdf, sel * emitter_pdf_env(e, ray.d));
+                double w = prev_delta ? 1.0
+                                      : mis_power_heuristic(prev_pdf, emitter_list_pmf(emitters, &prev, e) *
+                                                                          emitter_pdf_env(e, ray.d));
                 L = rgb_add(L, rgb_scale(rgb_mul(beta, emitter_eval_env(e, ray.d)), w));
             }
             break;
@@ -126,8 +146,9 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             const emitter_t *e = sh->emitter;
             rgb le = emitter_eval_hit(e, &hit, ray.d);
             if (!rgb_is_black(le)) {
-                double w =
-                    prev_delta ? 1.0 : mis_power_heuristic(prev_pdf, sel * emitter_pdf_hit(e, prev_p, &hit, ray.d));
+                double w = prev_delta ? 1.0
+                                      : mis_power_heuristic(prev_pdf, emitter_list_pmf(emitters, &prev, e) *
+                                                                          emitter_pdf_hit(e, prev.p, &hit, ray.d));
                 L = rgb_add(L, rgb_scale(rgb_mul(beta, le), w));
             }
         }
@@ -141,11 +162,13 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         if ((bsdf_flags(sh->bsdf) & BSDF_SMOOTH) && emitters->count > 0) {
             /* The emitter at depth + 1 + sheets must not pass max_depth - 1. */
             int max_sheets = pd->max_depth < 0 ? -1 : pd->max_depth - 2 - depth;
-            L = rgb_add(L, rgb_mul(beta, next_event(sc, &hit, sh->bsdf, &q, smp, max_sheets)));
+            L = rgb_add(L, rgb_mul(beta, next_event(sc, &hit, sh->bsdf, &q, smp, depth, max_sheets)));
         }
 
         bsdf_sample_rec bs;
+        sampler_seek(smp, vertex_dim(depth, DIM_BSDF_LOBE));
         double u1 = sampler_next_1d(smp);
+        sampler_seek(smp, vertex_dim(depth, DIM_BSDF_DIRECTION));
         vec2 u2 = sampler_next_2d(smp);
         bool sampled = bsdf_sample(sh->bsdf, &q, u1, u2, &bs);
         if (aov && !(bs.sampled_type & BSDF_NULL)) /* a surface, not a null one: covered */
@@ -160,7 +183,7 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         if (!(bs.sampled_type & BSDF_STRAIGHT_TRANSMISSION)) {
             prev_delta = (bs.sampled_type & BSDF_DELTA) != 0;
             prev_pdf = bs.pdf;
-            prev_p = hit.p;
+            prev = (emitter_ref){hit.p, hit.ng};
         }
         ray = spawn(&hit, v3_norm(frame3_to_world(hit.sh, bs.wo)));
         t0 = 0.0, t1 = INFINITY;
@@ -168,6 +191,7 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         double beta_max = rgb_max(beta) * eta * eta;
         if (depth + 1 >= pd->rr_depth) {
             double survive = fmin(beta_max, 0.95);
+            sampler_seek(smp, vertex_dim(depth, DIM_ROULETTE));
             if (sampler_next_1d(smp) >= survive)
                 break;
             beta = rgb_scale(beta, 1.0 / survive);

@@ -38,20 +38,11 @@ uint32_t rng_next_bounded(rng_t *r, uint32_t bound)
     }
 }
 
-/* SplitMix64 finaliser: a bijective 64-bit mixer, used to spread structured keys. */
-static uint64_t mix64(uint64_t z)
-{
-    z += 0x9E3779B97F4A7C15ULL;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-}
-
 rng_t rng_for_sample(uint64_t seed, uint32_t px, uint32_t py, uint32_t sample)
 {
     uint64_t pixel = ((uint64_t)py << 32) | px;
-    uint64_t key = mix64(seed ^ mix64(pixel));
+    uint64_t key = rng_mix64(seed ^ rng_mix64(pixel));
     rng_t r;
-    rng_seed(&r, mix64(key ^ sample), key + sample);
+    rng_seed(&r, rng_mix64(key ^ sample), key + sample);
     return r;
 }

@@ -82,6 +82,59 @@ vec2 warp_square_to_uniform_triangle(vec2 u)
     return u;
 }
 
+static inline double clamp(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }
+
+double spherical_rect_init(spherical_rect *r, vec3 o, vec3 corner, vec3 edge_u, vec3 edge_v)
+{
+    double lu = v3_len(edge_u), lv = v3_len(edge_v);
+    r->o = o;
+    r->x = v3_scale(edge_u, 1.0 / lu);
+    r->y = v3_scale(edge_v, 1.0 / lv);
+    r->z = v3_cross(r->x, r->y);
+    vec3 d = v3_sub(corner, o);
+    r->x0 = v3_dot(d, r->x), r->y0 = v3_dot(d, r->y), r->z0 = v3_dot(d, r->z);
+    if (r->z0 > 0.0) { /* the frame's z points from the rectangle toward o */
+        r->z0 = -r->z0;
+        r->z = v3_neg(r->z);
+    }
+    r->x1 = r->x0 + lu, r->y1 = r->y0 + lv;
+    r->solid_angle = 0.0;
+    if (!(r->z0 < 0.0))
+        return 0.0;
+    /* The planes through o and each edge have the normals n0 = (0, z0, -y0),
+     * n1 = (-z0, 0, x1), n2 = (0, -z0, y1), n3 = (z0, 0, -x0) (over their
+     * lengths); the spherical rectangle's internal angles are
+     * acos(-n_i . n_(i+1)), written out below. */
+    double z2 = r->z0 * r->z0;
+    double ax0 = sqrt(z2 + r->x0 * r->x0), ax1 = sqrt(z2 + r->x1 * r->x1);
+    double ay0 = sqrt(z2 + r->y0 * r->y0), ay1 = sqrt(z2 + r->y1 * r->y1);
+    double g0 = acos(clamp(r->y0 * r->x1 / (ay0 * ax1), -1.0, 1.0));
+    double g1 = acos(clamp(-r->x1 * r->y1 / (ax1 * ay1), -1.0, 1.0));
+    double g2 = acos(clamp(r->x0 * r->y1 / (ay1 * ax0), -1.0, 1.0));
+    double g3 = acos(clamp(-r->x0 * r->y0 / (ax0 * ay0), -1.0, 1.0));
+    r->b0 = -r->y0 / ay0, r->b1 = r->y1 / ay1; /* n0.z, n2.z */
+    r->k = 2.0 * M_PI - g2 - g3;
+    r->solid_angle = g0 + g1 - r->k > 0.0 ? g0 + g1 - r->k : 0.0;
+    return r->solid_angle;
+}
+
+vec3 spherical_rect_sample(const spherical_rect *r, vec2 u)
+{
+    /* u.x picks the x where the solid angle to its left is u.x S ... */
+    double au = u.x * r->solid_angle + r->k, sin_au, cos_au;
+    sincos(au, &sin_au, &cos_au);
+    double fu = (cos_au * r->b0 - r->b1) / sin_au;
+    double cu = clamp((fu > 0.0 ? 1.0 : -1.0) / sqrt(fu * fu + r->b0 * r->b0), -1.0, 1.0);
+    double xu = clamp(-(cu * r->z0) / sqrt(1.0 - cu * cu > 1e-300 ? 1.0 - cu * cu : 1e-300), r->x0, r->x1);
+    /* ... and u.y the y along that line, uniform in the sine of its
+     * elevation, which is uniform in solid angle. */
+    double d2 = xu * xu + r->z0 * r->z0;
+    double h0 = r->y0 / sqrt(d2 + r->y0 * r->y0), h1 = r->y1 / sqrt(d2 + r->y1 * r->y1);
+    double hv = h0 + u.y * (h1 - h0), hv2 = hv * hv;
+    double yv = hv2 < 1.0 - 1e-12 ? clamp(hv * sqrt(d2 / (1.0 - hv2)), r->y0, r->y1) : r->y1;
+    return v3_add(r->o, v3_add(v3_add(v3_scale(r->x, xu), v3_scale(r->y, yv)), v3_scale(r->z, r->z0)));
+}
+
 double mis_power_heuristic(double pdf_f, double pdf_g)
 {
     double f2 = pdf_f * pdf_f, g2 = pdf_g * pdf_g;

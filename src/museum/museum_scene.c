@@ -111,7 +111,7 @@ static void camera(writer w, const layout_t *l)
     attr(w, "up", "0, 1, 0");
     end(w);
     end(w);
-    object(w, "sampler", "independent", NULL);
+    object(w, "sampler", "zsobol", NULL);
     prop(w, "integer", "sample_count", "$spp");
     end(w);
     object(w, "film", "hdrfilm", NULL);

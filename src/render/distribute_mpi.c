@@ -406,7 +406,8 @@ int distribute_render(const scene_t *s, const render_options *opt, film_t *film,
     double t_end = now_seconds();
     /* Interrupted: fewer samples than asked for. Every rank learns it from
      * rank 0, so that they all stop or go on (--frames) together. */
-    render_stats st = {t_end - w.tally.t_start, rank == 0 ? all : taken, all < render_sample_count(s, s0, s1)};
+    render_stats st = {t_end - w.tally.t_start, rank == 0 ? all : taken, all < render_sample_count(s, s0, s1),
+                       w.tally.busy_cpu_seconds, w.tally.idle_cpu_seconds};
     MPI_Bcast(&st.interrupted, 1, MPI_INT, 0, MPI_COMM_WORLD);
     if (rank == 0) {
         if (opt->progress) {

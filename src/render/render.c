@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "render/render_loop.h"
 #include "render/scene_impl.h"
@@ -49,6 +50,13 @@ int render_aov_parse(const char *list, unsigned *mask)
     return 0;
 }
 
+static double thread_cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 /* What the tiles of a render share. */
 typedef struct {
     const scene_t *s;
@@ -57,6 +65,7 @@ typedef struct {
     bool alpha;          /* the film has an A channel */
     int nown;            /* the integrator's own channels */
     int x0, y0, x1, y1;  /* the sampled pixels: the film, and the border with sample_border */
+    int border;          /* its width: the sampler numbers pixels from the border's corner */
 } render_job;
 
 /* Film values of one sample: RGB, A, then the requested AOVs and the
@@ -125,14 +134,19 @@ static uint64_t render_tile(const render_job *j, int tx, int ty, int s0, int s1)
                 if (stop_requested)
                     goto done;
                 sampler_stream smp;
-                sampler_start(&s->sampler, &smp, (uint32_t)x, (uint32_t)y, (uint32_t)k);
-                /* The film position: two 1D numbers, x first; then the lens. */
-                double sx = sampler_next_1d(&smp), sy = sampler_next_1d(&smp);
-                vec2 lens = cam->needs_aperture ? sampler_next_2d(&smp) : v2(0.5, 0.5);
-                camera_ray_t cr = camera_ray_at(cam, x + sx, y + sy, lens);
+                sampler_start(&s->sampler, &smp, (uint32_t)(x + j->border), (uint32_t)(y + j->border), (uint32_t)k);
+                sampler_seek(&smp, SAMPLER_DIM_FILM);
+                vec2 film_pos = sampler_next_2d(&smp);
+                double sx = x + film_pos.x, sy = y + film_pos.y;
+                vec2 lens = v2(0.5, 0.5);
+                if (cam->needs_aperture) {
+                    sampler_seek(&smp, SAMPLER_DIM_LENS);
+                    lens = sampler_next_2d(&smp);
+                }
+                camera_ray_t cr = camera_ray_at(cam, sx, sy, lens);
                 rgb L = integrator_li(s->integrator, &sc, &cr.ray, cr.tmin, cr.tmax, &smp, need_aov ? aov : NULL);
                 pack_values(j, L, aov, vals);
-                splat(j->film, &s->film.filter, x, y, x + sx, y + sy, vals);
+                splat(j->film, &s->film.filter, x, y, sx, sy, vals);
                 n++;
             }
 done:
@@ -229,28 +243,46 @@ void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, 
                       -border,
                       y0 == 0 ? -border : y0,
                       cam->width + border,
-                      y1 == cam->height ? y1 + border : y1};
+                      y1 == cam->height ? y1 + border : y1,
+                      border};
     int tiles_x = (job.x1 - job.x0 + TILE - 1) / TILE, tiles_y = (job.y1 - job.y0 + TILE - 1) / TILE;
     /* Tiles of one colour are k tiles apart: (k - 1) TILE > 2 radius. */
     int k = rfilter_is_box(filter) ? 1 : 2 + (int)floor(2.0 * filter->radius / TILE);
+    double busy = 0.0, idle = 0.0;
     for (int colour = 0; colour < k * k && !stop_requested; colour++) {
         int cx = colour % k, cy = colour / k;
-        int ncx = (tiles_x - cx + k - 1) / k, ncy = (tiles_y - cy + k - 1) / k, ntiles = ncx * ncy;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-        for (int t = 0; t < ntiles; t++) {
-            if (stop_requested)
-                continue;
-            int tx = job.x0 + (cx + k * (t % ncx)) * TILE, ty = job.y0 + (cy + k * (t / ncx)) * TILE;
-            uint64_t add = render_tile(&job, tx, ty, s0, s1);
-            uint64_t now = atomic_fetch_add(&tally->taken, add) + add;
-            if (tally->bar && omp_get_thread_num() == 0) {
-                char extra[64];
-                double el = now_seconds() - tally->t_start;
-                snprintf(extra, sizeof extra, "%.2f Msamples/s", el > 0 ? 1e-6 * (double)now / el : 0.0);
-                progress_update(tally->bar, now, extra);
+        int ncx = (tiles_x - cx + k - 1) / k, ncy = (tiles_y - cy + k - 1) / k, ntiles = ncx * ncy, team = 1;
+        double spent = 0.0, most = 0.0;
+#pragma omp parallel num_threads(threads) reduction(+ : spent) reduction(max : most)
+        {
+            double mine = 0.0; /* this thread's CPU seconds in tiles */
+#pragma omp for schedule(dynamic, 1)
+            for (int t = 0; t < ntiles; t++) {
+                if (stop_requested)
+                    continue;
+                int tx = job.x0 + (cx + k * (t % ncx)) * TILE, ty = job.y0 + (cy + k * (t / ncx)) * TILE;
+                double c0 = thread_cpu_seconds();
+                uint64_t add = render_tile(&job, tx, ty, s0, s1);
+                mine += thread_cpu_seconds() - c0;
+                uint64_t now = atomic_fetch_add(&tally->taken, add) + add;
+                if (tally->bar && omp_get_thread_num() == 0) {
+                    char extra[64];
+                    double el = now_seconds() - tally->t_start;
+                    snprintf(extra, sizeof extra, "%.2f Msamples/s", el > 0 ? 1e-6 * (double)now / el : 0.0);
+                    progress_update(tally->bar, now, extra);
+                }
             }
+            spent += mine, most = mine;
+#pragma omp master
+            team = omp_get_num_threads();
         }
+        /* Every thread waits at the end of a colour's tiles for the one
+         * with the most. */
+        busy += spent;
+        idle += team * most - spent;
     }
+    tally->busy_cpu_seconds += busy;
+    tally->idle_cpu_seconds += idle;
 }
 
 void render_print_summary(const scene_t *s, const render_options *opt, const render_stats *st, const char *who)
@@ -283,13 +315,14 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
     int spp = s1 - s0, pass_spp = spp < 8 ? 1 : (spp + 7) / 8;
     int threads = render_thread_count(opt);
     progress_t bar;
-    render_tally tally = {0, opt->progress ? &bar : NULL, now_seconds()};
+    render_tally tally = {.bar = opt->progress ? &bar : NULL, .t_start = now_seconds()};
     if (opt->progress)
         progress_begin(&bar, "render", render_sample_count(s, s0, s1));
     for (int p0 = s0; p0 < s1 && !stop_requested; p0 += pass_spp)
         render_samples(s, threads, opt->aovs, film, p0, p0 + pass_spp < s1 ? p0 + pass_spp : s1, 0, cam->height,
                        &tally);
-    render_stats st = {now_seconds() - tally.t_start, atomic_load(&tally.taken), stop_requested != 0};
+    render_stats st = {now_seconds() - tally.t_start, atomic_load(&tally.taken), stop_requested != 0,
+                       tally.busy_cpu_seconds, tally.idle_cpu_seconds};
     if (opt->progress) {
         if (!st.interrupted)
             progress_end(&bar);

@@ -22,6 +22,9 @@ typedef struct {
     _Atomic uint64_t taken;
     progress_t *bar; /* NULL: none */
     double t_start;  /* for the bar's Msamples/s */
+    /* The threads' CPU seconds in tiles and their wait at the end of each
+     * render_samples (render_stats), added by the calling thread. */
+    double busy_cpu_seconds, idle_cpu_seconds;
 } render_tally;
 
 /* The film for the scene's size, pixel format, the requested AOVs and the

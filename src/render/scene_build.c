@@ -12,7 +12,7 @@
 
 scene_options scene_options_default(void)
 {
-    return (scene_options){0, 0, 0, -1, 0};
+    return (scene_options){0, 0, 0, -1, 0, NULL};
 }
 
 /* An object of class cls and plugin type with no parameters, located at at:
@@ -52,8 +52,11 @@ static int build_film(scene_obj *sensor, const scene_options *opt, film_settings
     return 0;
 }
 
-/* The sampler, its sample count and seed overridden by the options. */
-static int build_sampler(struct scene *s, scene_obj *sensor, const scene_options *opt, char *err, size_t errlen)
+/* The sampler (the options may name another plugin, which then keeps the
+ * scene's sample count and seed), its sample count and seed overridden by
+ * the options and rounded by the plugin for a film of fs. */
+static int build_sampler(struct scene *s, scene_obj *sensor, const scene_options *opt, const film_settings *fs,
+                         char *err, size_t errlen)
 {
     scene_obj implicit = implicit_object(SCENE_SAMPLER, "independent", sensor);
     scene_obj *o = scene_obj_child(sensor, SCENE_SAMPLER);
@@ -61,12 +64,31 @@ static int build_sampler(struct scene *s, scene_obj *sensor, const scene_options
         o = &implicit;
     if (sampler_plugin_find(o->type)->create(o, &s->sampler, err, errlen) != 0)
         return -1;
+    const char *type = o->type;
+    if (opt->sampler && strcmp(opt->sampler, o->type) != 0) {
+        const sampler_plugin *named = sampler_plugin_find(opt->sampler);
+        if (!named)
+            return scene_obj_error(o, err, errlen, "unknown sampler '%s'", opt->sampler);
+        scene_obj other = implicit_object(SCENE_SAMPLER, named->decl.type, o);
+        sampler_t scene_own = s->sampler;
+        if (named->create(&other, &s->sampler, err, errlen) != 0)
+            return -1;
+        s->sampler.sample_count = scene_own.sample_count;
+        s->sampler.seed = scene_own.seed;
+        type = named->decl.type;
+    }
+    s->sampler.plugin = type;
     if (opt->spp > 0)
         s->sampler.sample_count = opt->spp;
     if (opt->seed >= 0)
         s->sampler.seed = (uint64_t)opt->seed;
-    if (s->sampler.sample_count < 1 || s->sampler.sample_count > (1ll << 24))
+    const long long max_count = 1ll << 24;
+    if (s->sampler.sample_count < 1 || s->sampler.sample_count > max_count)
         return scene_obj_error(o, err, errlen, "sample_count %lld is out of range", s->sampler.sample_count);
+    sampler_prepare(&s->sampler, fs->width, fs->height);
+    if (s->sampler.sample_count > max_count)
+        return scene_obj_error(o, err, errlen, "sample_count rounds up to %lld for the %s sampler: out of range",
+                               s->sampler.sample_count, type);
     return 0;
 }
 
@@ -79,7 +101,7 @@ static int build_sensor(struct scene *s, scene_obj *root, const scene_options *o
     if (build_film(sensor, opt, fs, err, errlen) != 0 ||
         sensor_plugin_find(sensor->type)->create(sensor, fs->width, fs->height, &s->camera, err, errlen) != 0)
         return -1;
-    return build_sampler(s, sensor, opt, err, errlen);
+    return build_sampler(s, sensor, opt, fs, err, errlen);
 }
 
 /* Textures and BSDFs at the top level are built even when unreferenced, so
@@ -186,6 +208,8 @@ static int build_all(struct scene *s, scene_desc *desc, const scene_options *opt
         snprintf(err, errlen, "%s", msg);
         return -1;
     }
+    if (emitter_list_commit(&s->emitters) != 0)
+        return scene_obj_error(root, err, errlen, "out of memory");
     return shape_list_commit(&s->shapes, err, errlen);
 }
 

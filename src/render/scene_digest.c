@@ -2,8 +2,8 @@
  * tree as read (defaults and -D applied, file names resolved), the contents
  * of every file a parameter names (meshes, profiles, textures, maps), and
  * what the build made of the options that change the image (film size, spp,
- * SOR geometry). Parts of a render compare it to tell whether they rendered
- * the same scene (parts.h). */
+ * the sampler plugin, SOR geometry). Parts of a render compare it to tell
+ * whether they rendered the same scene (parts.h). */
 #include <search.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -130,6 +130,7 @@ uint64_t scene_digest_compute(const scene_desc *desc, const struct scene *s, int
     tdestroy(d.seen, free);
     const long long o[4] = {s->camera.width, s->camera.height, s->sampler.sample_count, mesh_segments};
     add(h, o, sizeof o);
+    add_str(h, s->sampler.plugin);
     uint64_t digest_value = d.out_of_memory ? 0 : XXH3_64bits_digest(h);
     XXH3_freeState(h);
     return digest_value;

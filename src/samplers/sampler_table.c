@@ -5,6 +5,11 @@
 
 #define SAMPLER_PLUGINS(X)               \
     X(sampler, independent)              \
+    X(sampler, stratified)               \
+    X(sampler, multijitter)              \
+    X(sampler, orthogonal)               \
+    X(sampler, ldsampler)                \
+    X(sampler, zsobol)                   \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(sampler, SAMPLER_PLUGINS)

@@ -38,8 +38,14 @@ static void cylinder_tangents(const void *data, const shape_local_hit *h, vec3 *
     *dpdv = v3(0.0, 0.0, 1.0);
 }
 
+static void cylinder_bounds(const void *data, vec3 *lo, vec3 *hi)
+{
+    (void)data;
+    *lo = v3(-1.0, -1.0, 0.0), *hi = v3(1.0, 1.0, 1.0);
+}
+
 static const shape_analytic_ops cylinder_ops = {cylinder_add, shape_analytic_local_hit, cylinder_sample, cylinder_pdf,
-                                               cylinder_destroy, cylinder_tangents};
+                                                cylinder_destroy, cylinder_tangents, cylinder_bounds, NULL};
 
 static int cylinder_create(scene_obj *o, const shape_options *opt, const transform4 *to_world, shape_t *sh,
                            char *err, size_t errlen)

@@ -38,8 +38,21 @@ static void disk_tangents(const void *data, const shape_local_hit *h, vec3 *dpdu
     *dpdv = v3(-2.0 * M_PI * h->p.y, 2.0 * M_PI * h->p.x, 0.0);
 }
 
-static const shape_analytic_ops disk_ops = {disk_add, shape_analytic_local_hit, disk_sample, disk_pdf, disk_destroy,
-                                           disk_tangents};
+static void disk_bounds(const void *data, vec3 *lo, vec3 *hi)
+{
+    (void)data;
+    *lo = v3(-1.0, -1.0, 0.0), *hi = v3(1.0, 1.0, 0.0);
+}
+
+static bool disk_flat_normal(const void *data, vec3 *n)
+{
+    (void)data;
+    *n = v3(0.0, 0.0, 1.0);
+    return true;
+}
+
+static const shape_analytic_ops disk_ops = {disk_add, shape_analytic_local_hit, disk_sample, disk_pdf,
+                                            disk_destroy, disk_tangents, disk_bounds, disk_flat_normal};
 
 static int disk_create(scene_obj *o, const shape_options *opt, const transform4 *to_world, shape_t *sh, char *err,
                        size_t errlen)

@@ -36,16 +36,89 @@ int shape_create(scene_obj *o, const transform4 *outer, const shape_options *opt
         shape_free(sh);
         return -1;
     }
-    if (sh->is_mesh)
+    if (sh->is_mesh) {
         shape_mesh_transform(&sh->mesh, &to_world);
-    else
+        sh->to_world = to_world;
+    } else {
         sh->det = fabs(det3(&sh->to_world));
+    }
     return 0;
+}
+
+/* The area as the mean of 1 / pdf over a stratified grid of area samples
+ * (exact for a sphere, disk or cylinder under a similarity; light selection
+ * needs no more). */
+static double analytic_area(const shape_t *sh)
+{
+    enum { N = 64 };
+    double sum = 0.0;
+    for (int i = 0; i < N; i++)
+        for (int j = 0; j < N; j++) {
+            surface_hit h;
+            double pdf;
+            shape_sample_area(sh, v3((i + 0.5) / N, (j + 0.5) / N, (i * N + j + 0.5) / (N * N)), &h, &pdf);
+            sum += pdf > 0.0 ? 1.0 / pdf : 0.0;
+        }
+    return sum / (N * N);
+}
+
+/* World bounds and normal cone of an analytic shape: its object bounds'
+ * corners placed, its flat normal if it has one. */
+static void analytic_extent(shape_t *sh)
+{
+    vec3 lo, hi;
+    sh->ops->bounds(sh->data, &lo, &hi);
+    sh->bounds_lo = v3(INFINITY, INFINITY, INFINITY);
+    sh->bounds_hi = v3(-INFINITY, -INFINITY, -INFINITY);
+    for (int c = 0; c < 8; c++) {
+        vec3 p = transform_point(&sh->to_world, v3(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z));
+        sh->bounds_lo = v3(fmin(sh->bounds_lo.x, p.x), fmin(sh->bounds_lo.y, p.y), fmin(sh->bounds_lo.z, p.z));
+        sh->bounds_hi = v3(fmax(sh->bounds_hi.x, p.x), fmax(sh->bounds_hi.y, p.y), fmax(sh->bounds_hi.z, p.z));
+    }
+    vec3 n;
+    if (sh->ops->flat_normal && sh->ops->flat_normal(sh->data, &n)) {
+        n = v3_norm(transform_normal(&sh->to_world, n));
+        sh->normal_axis = sh->flip_normals ? v3_neg(n) : n;
+        sh->normal_cos = 1.0;
+    } else {
+        sh->normal_axis = v3(0.0, 0.0, 1.0);
+        sh->normal_cos = -1.0;
+    }
 }
 
 int shape_prepare_sampling(shape_t *sh)
 {
-    return sh->is_mesh ? shape_mesh_prepare_sampling(&sh->mesh) : 0;
+    if (sh->is_mesh) {
+        if (shape_mesh_prepare_sampling(&sh->mesh) != 0)
+            return -1;
+        sh->area = sh->mesh.area;
+        shape_mesh_extent(sh);
+    } else {
+        sh->area = analytic_area(sh);
+        analytic_extent(sh);
+    }
+    return sh->area > 0.0 ? 0 : -1;
+}
+
+void shape_sample_from(const shape_t *sh, vec3 ref, vec3 u, surface_hit *hit, double *pdf)
+{
+    if (sh->solid_angle && (*pdf = sh->solid_angle->sample(sh, ref, v2(u.x, u.y), hit)) > 0.0)
+        return;
+    double pdf_area;
+    shape_sample_area(sh, u, hit, &pdf_area);
+    vec3 d = v3_sub(hit->p, ref);
+    double dist2 = v3_dot(d, d), cos_l = fabs(v3_dot(hit->ng, d));
+    *pdf = dist2 > 0.0 && cos_l > 0.0 ? pdf_area * dist2 * sqrt(dist2) / cos_l : 0.0;
+}
+
+double shape_pdf_from(const shape_t *sh, vec3 ref, const surface_hit *hit)
+{
+    double pdf;
+    if (sh->solid_angle && (pdf = sh->solid_angle->pdf(sh, ref)) > 0.0)
+        return pdf;
+    vec3 d = v3_sub(hit->p, ref);
+    double dist2 = v3_dot(d, d), cos_l = fabs(v3_dot(hit->ng, d));
+    return dist2 > 0.0 && cos_l > 0.0 ? shape_pdf_area(sh, hit) * dist2 * sqrt(dist2) / cos_l : 0.0;
 }
 
 void shape_sample_area(const shape_t *sh, vec3 u, surface_hit *hit, double *pdf_area)

@@ -26,6 +26,10 @@ struct shape_analytic_ops {
     /* The object-space derivatives of the point by the texture
      * coordinates, dp/du and dp/dv, at a hit (Mitsuba's dp_du, dp_dv). */
     void (*tangents)(const void *data, const shape_local_hit *h, vec3 *dpdu, vec3 *dpdv);
+    /* The object-space axis-aligned bounds. */
+    void (*bounds)(const void *data, vec3 *lo, vec3 *hi);
+    /* A flat shape's object-space normal (false: normals in every direction). */
+    bool (*flat_normal)(const void *data, vec3 *n);
 };
 
 /* World-space hit from an analytic object-space hit. */
@@ -35,6 +39,23 @@ double shape_analytic_pdf_area(const shape_t *sh, const shape_local_hit *lh);
 /* The object-space hit of accel as it reports it (the quadrics' local_hit). */
 void shape_analytic_local_hit(const void *data, const accel_hit *ah, shape_local_hit *h);
 
+/* --------------------------------------------- sampling by solid angle */
+
+/* A shape's sampler uniform in the solid angle it subtends from a point. */
+struct shape_solid_angle_ops {
+    /* Its density per solid angle from ref (the same wherever the ray meets
+     * the shape), or 0 where it does not apply (area sampling then). */
+    double (*pdf)(const shape_t *sh, vec3 ref);
+    /* A point drawn from u; returns the density, or 0 where it does not
+     * apply (as pdf would). */
+    double (*sample)(const shape_t *sh, vec3 ref, vec2 u, surface_hit *hit);
+};
+
+/* Below this solid angle (sr) a shape is sampled by area: the density of
+ * area sampling is then nearly uniform in solid angle too, and the
+ * spherical formulas lose precision (pbrt-v4 takes the same limit). */
+#define SHAPE_MIN_SOLID_ANGLE 3e-4
+
 /* ------------------------------------------------------- triangle meshes */
 
 /* Adds a mesh, already in world space, to acc. */
@@ -42,6 +63,8 @@ unsigned shape_mesh_add(const shape_t *sh, accel_t *acc, char *err, size_t errle
 /* World hit on triangle tri at barycentrics (b1, b2). */
 void shape_mesh_finish(const shape_t *sh, int tri, double b1, double b2, double t, surface_hit *hit);
 int shape_mesh_prepare_sampling(shape_mesh_data *m);
+/* The mesh's world bounds and normal cone into sh (shape_prepare_sampling). */
+void shape_mesh_extent(shape_t *sh);
 void shape_mesh_sample(const shape_t *sh, vec3 u, surface_hit *hit, double *pdf_area);
 void shape_mesh_transform(shape_mesh_data *m, const transform4 *to_world);
 void shape_mesh_data_free(shape_mesh_data *m);

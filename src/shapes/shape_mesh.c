@@ -94,6 +94,37 @@ int shape_mesh_prepare_sampling(shape_mesh_data *m)
     return rc != 0 || !(m->area > 0.0) ? -1 : 0;
 }
 
+void shape_mesh_extent(shape_t *sh)
+{
+    const shape_mesh_data *m = &sh->mesh;
+    sh->bounds_lo = v3(INFINITY, INFINITY, INFINITY);
+    sh->bounds_hi = v3(-INFINITY, -INFINITY, -INFINITY);
+    for (int i = 0; i < m->n_verts; i++) {
+        vec3 p = mesh_pos(m, (unsigned)i);
+        sh->bounds_lo = v3(fmin(sh->bounds_lo.x, p.x), fmin(sh->bounds_lo.y, p.y), fmin(sh->bounds_lo.z, p.z));
+        sh->bounds_hi = v3(fmax(sh->bounds_hi.x, p.x), fmax(sh->bounds_hi.y, p.y), fmax(sh->bounds_hi.z, p.z));
+    }
+    /* The cone around the area-weighted mean normal that holds every face
+     * normal; all directions when the faces turn every way. */
+    vec3 sum = v3(0.0, 0.0, 0.0);
+    for (int t = 0; t < m->n_tris; t++) {
+        const unsigned *v = &m->tri[3 * t];
+        vec3 p0 = mesh_pos(m, v[0]);
+        sum = v3_add(sum, v3_cross(v3_sub(mesh_pos(m, v[1]), p0), v3_sub(mesh_pos(m, v[2]), p0)));
+    }
+    vec3 axis = v3_norm(sum);
+    double cos_min = v3_len(sum) > 0.0 ? 1.0 : -1.0;
+    for (int t = 0; t < m->n_tris && cos_min > -1.0; t++) {
+        const unsigned *v = &m->tri[3 * t];
+        vec3 p0 = mesh_pos(m, v[0]);
+        vec3 n = v3_norm(v3_cross(v3_sub(mesh_pos(m, v[1]), p0), v3_sub(mesh_pos(m, v[2]), p0)));
+        if (v3_len(n) > 0.0)
+            cos_min = fmin(cos_min, v3_dot(axis, n) - 1e-9);
+    }
+    sh->normal_axis = v3_len(sum) > 0.0 ? (sh->flip_normals ? v3_neg(axis) : axis) : v3(0.0, 0.0, 1.0);
+    sh->normal_cos = fmax(-1.0, cos_min);
+}
+
 void shape_mesh_sample(const shape_t *sh, vec3 u, surface_hit *hit, double *pdf_area)
 {
     const shape_mesh_data *m = &sh->mesh;

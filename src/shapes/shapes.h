@@ -66,6 +66,7 @@ bsdf_query shape_bsdf_query(const surface_hit *hit, vec3 dir, transport_mode mod
 /* ------------------------------------------------------------- shapes */
 
 typedef struct shape_analytic_ops shape_analytic_ops;
+typedef struct shape_solid_angle_ops shape_solid_angle_ops;
 
 typedef struct {
     int n_verts, n_tris;
@@ -90,8 +91,17 @@ struct shape {
     /* analytic shapes */
     const shape_analytic_ops *ops;
     void *data;
-    transform4 to_world;
+    transform4 to_world;  /* every shape's (a mesh is already placed by it) */
     double det;           /* |det| of to_world's 3x3 part */
+    /* sampling by solid angle from a point (shape_sample_from), or NULL,
+     * and what it keeps (a rectangle: its world corner and edges) */
+    const shape_solid_angle_ops *solid_angle;
+    vec3 solid_angle_frame[3];
+    /* what light selection needs of an emitting shape (shape_prepare_sampling) */
+    double area;          /* world */
+    vec3 bounds_lo, bounds_hi;      /* world, axis-aligned */
+    vec3 normal_axis;     /* every normal within acos(normal_cos) of it */
+    double normal_cos;    /* -1: normals in every direction */
 };
 
 /* How shapes are built: options of the whole render. */
@@ -121,12 +131,24 @@ int shape_create(scene_obj *o, const transform4 *outer, const shape_options *opt
 /* Frees what shape_create allocated. */
 void shape_free(shape_t *sh);
 
-/* Prepares sampling by area (a mesh's triangle CDF): 0, or -1 when the
- * shape has no area or memory ran out. */
+/* Prepares sampling (a mesh's triangle CDF) and fills the shape's area,
+ * bounds and normal cone: 0, or -1 when the shape has no area or memory ran
+ * out. */
 int shape_prepare_sampling(shape_t *sh);
-/* A point on the shape by area (emitters): world hit and density per area. */
+/* A point on the shape by area: world hit and density per area. */
 void shape_sample_area(const shape_t *sh, vec3 u, surface_hit *hit, double *pdf_area);
 double shape_pdf_area(const shape_t *sh, const surface_hit *hit);
+
+/* A point on the shape as seen from ref (emitters): drawn uniformly in the
+ * solid angle the shape subtends where it has such a sampler (a rectangle,
+ * by spherical rectangles; a sphere from outside, by the cone it subtends)
+ * and that solid angle is large enough to matter, by area otherwise. Its
+ * density per unit solid angle at ref in *pdf (0: no usable sample, e.g.
+ * ref on the shape). */
+void shape_sample_from(const shape_t *sh, vec3 ref, vec3 u, surface_hit *hit, double *pdf);
+/* The density per solid angle with which shape_sample_from draws hit, the
+ * first point of the shape along the ray from ref. */
+double shape_pdf_from(const shape_t *sh, vec3 ref, const surface_hit *hit);
 
 /* A shape plugin: its declaration for the scene reader and the constructor
  * of its geometry. create fills sh->mesh in object space (shape_create then

@@ -202,8 +202,23 @@ static void sor_shape_tangents(const void *data, const shape_local_hit *h, vec3 
     *dpdv = v3_scale(m, -s->height / fmax(m.y, 1e-3));
 }
 
+/* The control polygon holds the B-spline (its convex hull property): the
+ * widest control point bounds the radius, the lowest and highest the
+ * height. */
+static void sor_shape_bounds(const void *data, vec3 *lo, vec3 *hi)
+{
+    const sor_shape *s = data;
+    double r = 0.0, y0 = INFINITY, y1 = -INFINITY;
+    for (int i = 0; i < s->curve.n_ctrl; i++) {
+        r = fmax(r, fabs(s->curve.ctrl[i].x));
+        y0 = fmin(y0, s->curve.ctrl[i].y), y1 = fmax(y1, s->curve.ctrl[i].y);
+    }
+    r *= s->scale;
+    *lo = v3(-r, s->scale * y0, -r), *hi = v3(r, s->scale * y1, r);
+}
+
 static const shape_analytic_ops sor_ops = {sor_shape_add, sor_shape_local_hit, sor_shape_sample, sor_shape_pdf,
-                                          sor_shape_destroy, sor_shape_tangents};
+                                           sor_shape_destroy, sor_shape_tangents, sor_shape_bounds, NULL};
 
 static int sor_mesh(const char *profile_path, double height, bool caps, int segments, shape_mesh_data *m, char *err,
                     size_t errlen)
