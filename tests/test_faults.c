@@ -242,12 +242,12 @@ Test(faults, signals_during_a_batch_reconstruct_leave_whole_vessels_or_none, .ti
     }
 }
 
-/* A tmpfs of 64 KiB at dir/full; 0, or -1 when this process may not mount. */
+/* A tmpfs of 16 KiB at dir/full; 0, or -1 when this process may not mount. */
 static int mount_small_disk(char *mnt, size_t len)
 {
     snprintf(mnt, len, "%s/full", dir);
     cr_assert_eq(mkdir(mnt, 0777), 0);
-    return mount("tmpfs", mnt, "tmpfs", 0, "size=64k");
+    return mount("tmpfs", mnt, "tmpfs", 0, "size=16k");
 }
 
 static int is_empty(const char *path)
@@ -271,9 +271,11 @@ Test(faults, a_full_disk_leaves_nothing_half_written, .timeout = 300)
     draw_photo("a.png", SYNTH_VASE);
     snprintf(photo, sizeof photo, "%s/a.png", dir);
 
-    /* An EXR of 256 x 256 floats (about 600 KiB) cannot fit. */
+    /* An EXR of 1024 x 1024 floats cannot fit: even this noise-free furnace
+     * sphere (every sample of a pixel gives the same value) compresses to
+     * about 100 KiB. */
     snprintf(out, sizeof out, "%s/out.exr", mnt);
-    cli_result r = cli_run(dir, (const char *[]){"render", scene, "-o", out, "--res", "256x256", "--spp", "1", NULL});
+    cli_result r = cli_run(dir, (const char *[]){"render", scene, "-o", out, "--res", "1024x1024", "--spp", "1", NULL});
     cr_expect_eq(r.status, 1, "render onto a full disk exited %d: %s", r.status, r.err);
     cr_expect_not_null(strstr(r.err, "No space left on device"), "%s", r.err);
     cr_expect(is_empty(mnt), "render left files on the full disk");
