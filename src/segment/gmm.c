@@ -37,8 +37,7 @@ static void moments_stats(const moments *m, double mu[3], double cov[9])
             cov[3 * i + j] = m->sq[3 * i + j] / m->n - mu[i] * mu[j] + (i == j ? GMM_VARIANCE_FLOOR : 0);
 }
 
-/* Inverse and log-determinant of a symmetric positive definite 3x3. */
-static int invert3(const double a[9], double inv[9], double *logdet)
+int recon_invert_sym3(const double a[9], double inv[9], double *logdet)
 {
     double c00 = a[4] * a[8] - a[5] * a[7], c01 = a[5] * a[6] - a[3] * a[8], c02 = a[3] * a[7] - a[4] * a[6];
     double det = a[0] * c00 + a[1] * c01 + a[2] * c02;
@@ -46,13 +45,10 @@ static int invert3(const double a[9], double inv[9], double *logdet)
         return -1;
     double id = 1 / det;
     inv[0] = c00 * id;
-    inv[1] = (a[2] * a[7] - a[1] * a[8]) * id;
-    inv[2] = (a[1] * a[5] - a[2] * a[4]) * id;
-    inv[3] = c01 * id;
+    inv[1] = inv[3] = c01 * id;
+    inv[2] = inv[6] = c02 * id;
     inv[4] = (a[0] * a[8] - a[2] * a[6]) * id;
-    inv[5] = (a[2] * a[3] - a[0] * a[5]) * id;
-    inv[6] = c02 * id;
-    inv[7] = (a[1] * a[6] - a[0] * a[7]) * id;
+    inv[5] = inv[7] = (a[2] * a[3] - a[0] * a[5]) * id;
     inv[8] = (a[0] * a[4] - a[1] * a[3]) * id;
     *logdet = log(det);
     return 0;
@@ -65,7 +61,7 @@ static int set_component(recon_gmm *g, int k, const moments *m, double total)
         return -1;
     double cov[9], logdet;
     moments_stats(m, g->mean[k], cov);
-    if (invert3(cov, g->icov[k], &logdet) != 0)
+    if (recon_invert_sym3(cov, g->icov[k], &logdet) != 0)
         return -1;
     /* log(weight) - log((2 pi)^(3/2) sqrt(det)) */
     g->lognorm[k] = log(m->n / total) - 1.5 * log(2 * M_PI) - 0.5 * logdet;
@@ -75,9 +71,7 @@ static int set_component(recon_gmm *g, int k, const moments *m, double total)
 static double mahalanobis2(const recon_gmm *g, int k, const float *c)
 {
     double d[3] = {c[0] - g->mean[k][0], c[1] - g->mean[k][1], c[2] - g->mean[k][2]};
-    const double *q = g->icov[k];
-    return d[0] * (q[0] * d[0] + 2 * q[1] * d[1] + 2 * q[2] * d[2]) + d[1] * (q[4] * d[1] + 2 * q[5] * d[2]) +
-           d[2] * q[8] * d[2];
+    return recon_quad3(g->icov[k], d);
 }
 
 /* The component that explains c best (hard assignment). */

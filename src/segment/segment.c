@@ -87,48 +87,25 @@ static float *downsample(const image_t *img, int f, int w, int h)
     return out;
 }
 
-static int invert_sym3(const double a[9], double inv[9], double *logdet)
-{
-    double c00 = a[4] * a[8] - a[5] * a[7], c01 = a[5] * a[6] - a[3] * a[8], c02 = a[3] * a[7] - a[4] * a[6];
-    double det = a[0] * c00 + a[1] * c01 + a[2] * c02;
-    if (!(det > 0))
-        return -1;
-    double id = 1 / det;
-    inv[0] = c00 * id;
-    inv[1] = inv[3] = c01 * id;
-    inv[2] = inv[6] = c02 * id;
-    inv[4] = (a[0] * a[8] - a[2] * a[6]) * id;
-    inv[5] = inv[7] = (a[2] * a[3] - a[0] * a[5]) * id;
-    inv[8] = (a[0] * a[4] - a[1] * a[3]) * id;
-    *logdet = log(det);
-    return 0;
-}
-
-static double quad3(const double q[9], const double d[3])
-{
-    return d[0] * (q[0] * d[0] + 2 * q[1] * d[1] + 2 * q[2] * d[2]) + d[1] * (q[4] * d[1] + 2 * q[5] * d[2]) +
-           d[2] * q[8] * d[2];
-}
-
 /* The backdrop and shadow Gaussians from the backdrop's residual covariance,
  * each with its prior weight folded into the normaliser. */
 int recon_colour_model_prepare(recon_colour_model *m)
 {
     double logdet, cov_s[9];
     double p_support = m->have_support ? SUPPORT_PRIOR : 0;
-    if (invert_sym3(m->backdrop.cov, m->bg_icov, &logdet) != 0)
+    if (recon_invert_sym3(m->backdrop.cov, m->bg_icov, &logdet) != 0)
         return -1;
     double p_backdrop = 1 - SHADOW_PRIOR - p_support;
     m->bg_lognorm = log(p_backdrop * (1 - TAIL_WEIGHT)) - 1.5 * log(2 * M_PI) - 0.5 * logdet;
     double cov_t[9];
     for (int i = 0; i < 9; i++)
         cov_t[i] = m->backdrop.cov[i] * TAIL_SCALE * TAIL_SCALE + (i % 4 == 0 ? TAIL_MIN_SIGMA * TAIL_MIN_SIGMA : 0);
-    if (invert_sym3(cov_t, m->tail_icov, &logdet) != 0)
+    if (recon_invert_sym3(cov_t, m->tail_icov, &logdet) != 0)
         return -1;
     m->tail_lognorm = log(p_backdrop * TAIL_WEIGHT) - 1.5 * log(2 * M_PI) - 0.5 * logdet;
     for (int i = 0; i < 9; i++)
         cov_s[i] = m->backdrop.cov[i] * SHADOW_SIGMA_SCALE * SHADOW_SIGMA_SCALE + (i % 4 == 0 ? 1e-4 : 0);
-    if (invert_sym3(cov_s, m->shadow_icov, &logdet) != 0)
+    if (recon_invert_sym3(cov_s, m->shadow_icov, &logdet) != 0)
         return -1;
     m->shadow_lognorm = log(SHADOW_PRIOR) - 1.5 * log(2 * M_PI) - 0.5 * logdet;
     return 0;
@@ -163,7 +140,8 @@ static double backdrop_log_likelihood(const recon_colour_model *m, const float *
                                       const float *mbc)
 {
     double d[3] = {c[0] - bc[0], c[1] - bc[1], c[2] - bc[2]};
-    double l_bg = logsumexp2(m->bg_lognorm - 0.5 * quad3(m->bg_icov, d), m->tail_lognorm - 0.5 * quad3(m->tail_icov, d));
+    double l_bg = logsumexp2(m->bg_lognorm - 0.5 * recon_quad3(m->bg_icov, d),
+                             m->tail_lognorm - 0.5 * recon_quad3(m->tail_icov, d));
     /* The shadow: the backdrop scaled by the k that fits c best. */
     double k0 = shadow_factor(c, bc), k = k0 < SHADOW_K_MIN ? SHADOW_K_MIN : (k0 > 1 ? 1 : k0);
     double ds[3] = {c[0] - k * bc[0], c[1] - k * bc[1], c[2] - k * bc[2]};
@@ -173,7 +151,7 @@ static double backdrop_log_likelihood(const recon_colour_model *m, const float *
         if (k0 < 0.97 && km < 0.97 && fabs(k0 - km) < SHADOW_ALIKE)
             prior = log(SHADOW_SYMMETRIC_FACTOR);
     }
-    return logsumexp2(l_bg, prior + m->shadow_lognorm - 0.5 * quad3(m->shadow_icov, ds));
+    return logsumexp2(l_bg, prior + m->shadow_lognorm - 0.5 * recon_quad3(m->shadow_icov, ds));
 }
 
 /* -log p(c | not object) from the backdrop's log-likelihood l. */
@@ -480,7 +458,7 @@ int recon_segment_start(const image_t *img, recon_segmentation *seg)
         double d[3];
         for (int c = 0; c < 3; c++)
             d[c] = seg->rgb[3 * p + c] - k->bgc[3 * p + c];
-        seg->object[p] = quad3(seg->model.bg_icov, d) > INIT_CHI2;
+        seg->object[p] = recon_quad3(seg->model.bg_icov, d) > INIT_CHI2;
     }
     seg->beta = recon_contrast_beta(seg->rgb, w, h);
     smoothness_weights(seg, k->nlw);
