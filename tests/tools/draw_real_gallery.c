@@ -15,16 +15,12 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include <gsl/gsl_statistics_double.h>
+
 #include "celadon/image.h"
 #include "sheet/recon_sheet.h"
 
 enum { THUMB_W = 320 };
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* The overlay as a THUMB_W wide JPEG. */
 static int write_thumbnail(const char *path, const image_t *ov)
@@ -134,8 +130,7 @@ int main(int argc, char **argv)
         printf("%-50s %s\n", name, !refused && q->passed ? "passed" : gate);
         reconstruction_free(&r);
     }
-    qsort(lr, (size_t)passed, sizeof *lr, cmp_double);
-    double median = passed ? (passed % 2 ? lr[passed / 2] : 0.5 * (lr[passed / 2 - 1] + lr[passed / 2])) : 0;
+    double median = passed ? gsl_stats_median(lr, 1, (size_t)passed) : 0;
     FILE *f = fopen(tmp, "w");
     if (!f) {
         fprintf(stderr, "draw_real_gallery: %s: cannot write\n", tmp);
