@@ -109,10 +109,17 @@ static int trace_arc(const image_t *img, const recon_result *res, vec2 c0, vec2 
             slope = fabs((double)(edge_row[i - i0 - 1] - here));
         if (i < i1 && edge_row[i - i0 + 1] >= 0)
             slope = fmax(slope, fabs((double)(edge_row[i - i0 + 1] - here)));
-        /* The rows recon_subpixel_edge may read: |slope| + 12 beyond and a
-         * few inside. */
-        int reach = (int)slope + 16, j0 = here - reach < 0 ? 0 : here - reach;
-        int j1 = here + reach > h - 1 ? h - 1 : here + reach;
+        /* The rows recon_subpixel_edge may read: a few inside, and outside
+         * only the ramp's |slope| + 1 pixels and two of backdrop. It takes
+         * the backdrop from its farthest row and the edge from the first
+         * pixel inward that differs from it; 12 px out, a floor shadow's
+         * gentle ramp under the base differs from the backdrop beside the
+         * edge, and the edge came out where the shadow fades (up to 12 px
+         * below the base's ellipse on incense_bowl_sweep_e4). */
+        int span = (int)ceil(slope), reach = span + 16;
+        int j0 = here - (side < 0 ? span + 3 : reach), j1 = here + (side > 0 ? span + 3 : reach);
+        j0 = j0 < 0 ? 0 : j0;
+        j1 = j1 > h - 1 ? h - 1 : j1;
         recon_signal sig = column_signal(img, alpha, i, j0, j1, col);
         recon_edge e = recon_subpixel_edge_flat(&sig, here - j0, side, slope, delta);
         if (e.ok)
