@@ -67,7 +67,7 @@ static void run(const pinhole_params *p, int use_recon_extract, const recon_came
     image_free(&img);
 }
 
-static void expect_accurate(const pinhole_params *p, const outcome *o, const char *what)
+static void expect_accurate(const pinhole_params *p, const outcome *o, const char *what, double meridian_tol)
 {
     double e_true = pinhole_elevation(p);
     cr_log_info("%s: elevation %.3f (true %.3f), f %.1f (true %.0f), meridian mean %.3f%% max %.3f%% (outline as "
@@ -79,7 +79,7 @@ static void expect_accurate(const pinhole_params *p, const outcome *o, const cha
                   o->cam.elevation_deg, e_true);
     cr_expect_leq(fabs(o->cam.focal_px / p->focal_px - 1), FOCAL_TOL, "%s: focal length %.1f, true %.1f", what,
                   o->cam.focal_px, p->focal_px);
-    cr_expect_leq(o->max, MERIDIAN_TOL, "%s: meridian off by up to %.3f%% of the height", what, 100 * o->max);
+    cr_expect_leq(o->max, meridian_tol, "%s: meridian off by up to %.3f%% of the height", what, 100 * o->max);
 }
 
 /* A vase (narrow neck, flared mouth) and a wide flaring bowl at one elevation. */
@@ -92,7 +92,7 @@ static void elevation_case(double elevation_deg)
         run(&p, 0, NULL, &o);
         char what[64];
         snprintf(what, sizeof what, "%s at %g deg", s ? "bowl" : "vase", elevation_deg);
-        expect_accurate(&p, &o, what);
+        expect_accurate(&p, &o, what, MERIDIAN_TOL);
         /* From 5 degrees up the bowl's outline is not its meridian within the
          * tolerance: the test tells the two apart. */
         if (elevation_deg >= 5 && shapes[s] == SYNTH_BOWL)
@@ -107,26 +107,25 @@ Test(recon_camera, elevation_5, .timeout = 120) { elevation_case(5); }
 Test(recon_camera, elevation_10, .timeout = 120) { elevation_case(10); }
 Test(recon_camera, elevation_20, .timeout = 120) { elevation_case(20); }
 
-Test(recon_camera, through_recon_extract, .timeout = 120)
+Test(recon_camera, through_recon_extract, .timeout = 240)
 {
-    /* The whole chain as the pipeline runs it, where the corner finder
-     * copes: at 0 and 5 degrees on the vase. From 10 degrees the wall meets
-     * the base's ellipse tangentially and caps.c takes the ellipse's pole
-     * for both base corners (docs/algorithms-recon.md, 13.8): the bottom arc
-     * is then a few columns wide, and the camera must say orthographic
-     * rather than be wrong. */
-    for (int e = 0; e <= 10; e += 5) {
-        pinhole_params p = pinhole_defaults(SYNTH_VASE, e);
-        outcome o;
-        run(&p, 1, NULL, &o);
-        char what[64];
-        snprintf(what, sizeof what, "vase at %d deg through recon_extract", e);
-        if (e < 10 || o.cam.method != RECON_CAMERA_ORTHOGRAPHIC)
-            expect_accurate(&p, &o, what);
-        else
-            cr_expect_neq(o.cam.note[0], '\0', "%s: the orthographic fallback says why", what);
-        recon_meridian_free(&o.mer);
-    }
+    /* The whole chain as the pipeline runs it, the corners from caps.c: from
+     * 10 degrees up the wall leaves the base's ellipse tangentially and the
+     * corners are where the outline changes from the ellipse to the wall
+     * (docs/algorithms-recon.md, section 6). The bowl at 5 degrees comes
+     * out at 0.32% at worst (its base corners 2 px off): held at 0.4%. */
+    const synth_shape shapes[2] = {SYNTH_VASE, SYNTH_BOWL};
+    for (int s = 0; s < 2; s++)
+        for (int k = 0; k < 4; k++) {
+            const int elevations[4] = {0, 5, 10, 20};
+            pinhole_params p = pinhole_defaults(shapes[s], elevations[k]);
+            outcome o;
+            run(&p, 1, NULL, &o);
+            char what[64];
+            snprintf(what, sizeof what, "%s at %d deg through recon_extract", s ? "bowl" : "vase", elevations[k]);
+            expect_accurate(&p, &o, what, s && elevations[k] == 5 ? 0.004 : MERIDIAN_TOL);
+            recon_meridian_free(&o.mer);
+        }
 }
 
 Test(recon_camera, yawed_and_rolled_camera, .timeout = 120)
@@ -141,7 +140,7 @@ Test(recon_camera, yawed_and_rolled_camera, .timeout = 120)
         p.look_at_side = yawed ? 0.3 : 0;
         outcome o;
         run(&p, 0, NULL, &o);
-        expect_accurate(&p, &o, yawed ? "vase at 10 deg, roll 2 deg, yawed" : "vase at 10 deg, roll 2 deg");
+        expect_accurate(&p, &o, yawed ? "vase at 10 deg, roll 2 deg, yawed" : "vase at 10 deg, roll 2 deg", MERIDIAN_TOL);
         if (!yawed)
             cr_expect_float_eq(o.cam.roll_deg, 2.0, 0.05, "roll %.3f", o.cam.roll_deg);
         recon_meridian_free(&o.mer);
