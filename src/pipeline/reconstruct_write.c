@@ -11,7 +11,7 @@
 #include "core/core.h"
 #include "celadon/reconstruct.h"
 
-enum { MAX_FILES = 4 + 2 * (1 + RECONSTRUCT_MAX_LODS) };
+enum { MAX_FILES = 5 + 2 * (1 + RECONSTRUCT_MAX_LODS) };
 /* Imaged cross-sections the overlay draws over a perspective photo. */
 enum { OVERLAY_CROSS_SECTIONS = 5 };
 
@@ -90,6 +90,24 @@ static int write_all(reconstruction *r, const char *source, const char *tmp, con
         return 1;
     }
     add_file(files, "texture.png");
+    if (r->texture.seen) { /* taken by the camera: which texels it saw (255) and which it did not (0) */
+        size_t n = (size_t)r->texture.width * r->texture.height;
+        uint8_t *mask = malloc(n ? n : 1);
+        if (!mask) {
+            snprintf(err, errlen, "cannot write texture_seen.png: out of memory");
+            return 1;
+        }
+        for (size_t i = 0; i < n; i++)
+            mask[i] = r->texture.seen[i] ? 255 : 0;
+        snprintf(path, sizeof path, "%s/texture_seen.png", tmp);
+        int rc = image_write_u8(path, r->texture.width, r->texture.height, 1, mask, why, sizeof why);
+        free(mask);
+        if (rc != 0) {
+            snprintf(err, errlen, "cannot write texture_seen.png: %s", why);
+            return 1;
+        }
+        add_file(files, "texture_seen.png");
+    }
     snprintf(path, sizeof path, "%s/model.mtl", tmp);
     if (mesh_write_mtl(path, "texture.png", why, sizeof why) != 0) {
         snprintf(err, errlen, "cannot write model.mtl: %s", why);
