@@ -81,13 +81,11 @@ static int outermost_step(const image_t *img, int alpha, int i, int here, int si
     return here;
 }
 
-/* One arc: columns strictly between the corners' x (less the margin). */
-static int trace_arc(const image_t *img, const recon_result *res, vec2 c0, vec2 c1, int side, float *col,
-                     int *edge_row, vec2 *out)
+/* The outline's sub-pixel edge in columns i0..i1 on side (-1 top, +1
+ * bottom), a point per column where it is found. */
+static int trace_columns(const image_t *img, const recon_result *res, int i0, int i1, int side, float *col,
+                         int *edge_row, vec2 *out)
 {
-    double lo = fmin(c0.x, c1.x), hi = fmax(c0.x, c1.x);
-    double margin = fmax(CORNER_MARGIN_PX, CORNER_MARGIN_FRAC * (hi - lo));
-    int i0 = (int)ceil(lo + margin), i1 = (int)floor(hi - margin - 1);
     i0 = i0 < 1 ? 1 : i0;
     i1 = i1 > res->width - 2 ? res->width - 2 : i1;
     int alpha = res->mask_mode == RECON_MASK_ALPHA, h = res->height;
@@ -125,6 +123,25 @@ static int trace_arc(const image_t *img, const recon_result *res, vec2 c0, vec2 
         if (e.ok)
             out[n++] = v2(i + 0.5, j0 + e.x);
     }
+    return n;
+}
+
+/* One arc: columns strictly between the corners' x (less the margin). */
+static int trace_arc(const image_t *img, const recon_result *res, vec2 c0, vec2 c1, int side, float *col,
+                     int *edge_row, vec2 *out)
+{
+    double lo = fmin(c0.x, c1.x), hi = fmax(c0.x, c1.x);
+    double margin = fmax(CORNER_MARGIN_PX, CORNER_MARGIN_FRAC * (hi - lo));
+    return trace_columns(img, res, (int)ceil(lo + margin), (int)floor(hi - margin - 1), side, col, edge_row, out);
+}
+
+int recon_outline_columns(const image_t *img, const recon_result *res, int i0, int i1, int side, vec2 *out)
+{
+    float *col = malloc((size_t)res->height * 3 * sizeof *col);
+    int *edge_row = malloc((size_t)res->width * sizeof *edge_row);
+    int n = col && edge_row ? trace_columns(img, res, i0, i1, side, col, edge_row, out) : -1;
+    free(col);
+    free(edge_row);
     return n;
 }
 
