@@ -130,6 +130,33 @@ Test(recon_camera, through_recon_extract, .timeout = 240)
         }
 }
 
+Test(recon_camera, base_corners_where_the_wall_leaves_the_ellipse, .timeout = 120)
+{
+    /* From 10 degrees up the wall leaves the base's ellipse tangentially:
+     * caps.c's change point puts the base corners within 4 px of the true
+     * ones (where the wall's apparent contour meets the base circle); they
+     * were the ellipse's lowest point, 30 px below and 95 px in. */
+    const synth_shape shapes[2] = {SYNTH_VASE, SYNTH_BOWL};
+    for (int s = 0; s < 2; s++)
+        for (int e = 10; e <= 20; e += 10) {
+            pinhole_params p = pinhole_defaults(shapes[s], e);
+            image_t img;
+            recon_result truth, res;
+            char err[256];
+            cr_assert_eq(pinhole_photo(&p, &img, &truth), 0);
+            cr_assert_eq(recon_extract(&img, NULL, &res, err, sizeof err), RECON_OK, "%s", err);
+            for (int c = CORNER_BASE_LEFT; c <= CORNER_BASE_RIGHT; c++) {
+                double d = v2_len(v2_sub(res.corners[c], truth.corners[c]));
+                cr_expect_leq(d, 4.0, "%s at %d deg: base corner %d at (%.1f, %.1f), %.1f px from (%.1f, %.1f)",
+                              s ? "bowl" : "vase", e, c, res.corners[c].x, res.corners[c].y, d, truth.corners[c].x,
+                              truth.corners[c].y);
+            }
+            recon_result_free(&truth);
+            recon_result_free(&res);
+            image_free(&img);
+        }
+}
+
 /* The image point where column x meets the mask's outline from the top
  * (side -1) or the bottom (+1). */
 static vec2 outline_in_column(const recon_result *r, double x, int side)
