@@ -64,11 +64,20 @@ typedef struct {
     int i;       /* its index on the contour */
 } end_point;
 
-/* Least squares on up to 4 columns: x solves (A^T A) x = A^T y. */
+/* Least squares on up to 4 columns: x solves (A^T A) x = A^T y. A
+ * (nearly) singular system is refused before GSL's solver would call its
+ * error handler, which aborts. */
 static int solve_normal(gsl_matrix *ata, gsl_vector *aty, gsl_vector *x)
 {
     gsl_permutation *perm = gsl_permutation_alloc(ata->size1);
     int sgn, rc = perm ? gsl_linalg_LU_decomp(ata, perm, &sgn) : -1;
+    double umax = 0, umin = INFINITY;
+    for (size_t i = 0; rc == 0 && i < ata->size1; i++) {
+        umax = fmax(umax, fabs(gsl_matrix_get(ata, i, i)));
+        umin = fmin(umin, fabs(gsl_matrix_get(ata, i, i)));
+    }
+    if (rc == 0 && !(umin > 1e-12 * umax))
+        rc = -1;
     if (rc == 0)
         rc = gsl_linalg_LU_solve(ata, perm, aty, x);
     gsl_permutation_free(perm);
