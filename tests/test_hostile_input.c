@@ -118,13 +118,70 @@ Test(hostile_input, a_fifo_does_not_block_the_reader)
     expect_refused((const char *[]){"mesh", fifo, "-o", out, NULL}, "not a regular file");
 }
 
-Test(hostile_input, a_folder_is_named_as_a_folder)
+/* A folder where a file is expected is named as such by every command and
+ * by every file a scene names (a folder given to `mesh` used to be "not
+ * valid JSON near end of file"; to `merge`, "cannot read as OpenEXR"). */
+Test(hostile_input, a_folder_is_named_as_a_folder_by_every_command)
 {
-    char out[256];
+    char dir[256], out[256], scene[256];
+    snprintf(dir, sizeof dir, "%s/folder.xml", fx.dir);
+    cr_assert_eq(mkdir(dir, 0700), 0);
     snprintf(out, sizeof out, "%s/out.obj", fx.dir);
-    expect_refused((const char *[]){"mesh", fx.dir, "-o", out, NULL}, "is a folder");
+    expect_refused((const char *[]){"mesh", dir, "-o", out, NULL}, "folder.xml: is a folder");
     snprintf(out, sizeof out, "%s/out.png", fx.dir);
-    expect_refused((const char *[]){"render", fx.dir, "-o", out, NULL}, "is a folder");
+    expect_refused((const char *[]){"render", dir, "-o", out, NULL}, "folder.xml: is a folder");
+    snprintf(out, sizeof out, "%s/out.exr", fx.dir);
+    expect_refused((const char *[]){"merge", dir, "-o", out, NULL}, "folder.xml: is a folder");
+    snprintf(out, sizeof out, "%s/out", fx.dir);
+    expect_refused((const char *[]){"reconstruct", dir, "-o", out, NULL}, "folder.xml: is a folder");
+    expect_refused((const char *[]){"museum", dir, "-o", out, NULL}, "folder.xml: is a folder");
+    expect_refused((const char *[]){"museum", "--catalogue", dir, "-o", out, NULL}, "folder.xml: is a folder");
+    expect_refused((const char *[]){"crosscheck", dir, "--segments", "4,8", "-o", out, NULL},
+                   "folder.xml: is a folder");
+    static const char *const named[] = {
+        "<include filename=\"folder.xml\"/>",
+        "<shape type=\"sor\"><string name=\"filename\" value=\"folder.xml\"/></shape>",
+        "<shape type=\"obj\"><string name=\"filename\" value=\"folder.xml\"/></shape>",
+        "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\">"
+        "<string name=\"filename\" value=\"folder.xml\"/></texture></bsdf></shape>",
+    };
+    for (size_t k = 0; k < sizeof named / sizeof *named; k++) {
+        char xml[1024];
+        snprintf(xml, sizeof xml, "<scene version=\"3.0.0\"><sensor type=\"perspective\"/>%s</scene>", named[k]);
+        render_write_file(&fx, "names-a-folder.xml", xml, scene, sizeof scene);
+        snprintf(out, sizeof out, "%s/out.png", fx.dir);
+        expect_refused((const char *[]){"render", scene, "-o", out, NULL}, "is a folder");
+    }
+    for (const char *const *ext = (const char *const[]){"", ".png", ".obj", ".exr", NULL}; *ext; ext++) {
+        snprintf(out, sizeof out, "%s/out%s", fx.dir, *ext);
+        cr_expect(!exists(out), "a refused command left %s", out);
+    }
+}
+
+/* More than 64 -D is a usage error, named as such, that frees the defines
+ * already taken (the sanitized build's leak check runs on the child). */
+Test(hostile_input, too_many_defines_is_a_usage_error)
+{
+    char out[256], scene[256];
+    render_write_file(&fx, "empty.xml", "<scene version=\"3.0.0\"/>", scene, sizeof scene);
+    snprintf(out, sizeof out, "%s/out.png", fx.dir);
+    static char defs[65][32];
+    const char *args[8 + 2 * 65] = {"render", scene, "-o", out};
+    int n = 4;
+    for (int i = 0; i < 65; i++) {
+        snprintf(defs[i], sizeof defs[i], "v%d=%d", i, i);
+        args[n++] = "-D";
+        args[n++] = defs[i];
+    }
+    args[n] = NULL;
+    expect_refused(args, "at most 64 -D");
+    args[0] = "crosscheck";
+    args[n++] = "--segments";
+    args[n++] = "4,8";
+    args[n] = NULL;
+    snprintf(out, sizeof out, "%s/cc", fx.dir);
+    expect_refused(args, "at most 64 -D");
+    cr_expect(!exists(out));
 }
 
 Test(hostile_input, files_over_the_limit_are_refused_before_reading)

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Mutation testing (docs/faults.md): each mutant plants one deliberate bug in
 # core code, in a copy of the repository at HEAD; the optimised test suite is
-# built and run against it, and the mutant is killed when a test fails.
+# built and run against it, and the mutant is killed when a test fails (the
+# run stops at the first failure, which it names).
 # Prints one line per mutant and the kill rate.
 #
 #   tools/mutate.sh            every mutant, the whole suite (about 5 min each)
@@ -65,10 +66,11 @@ PY
     verdict="killed (does not build)"
     killed=$((killed + 1))
   elif (cd "$work" && CELADON_BIN="$work/build/celadon" CELADON_BUILD=opt \
-          ./build/opt/celadon-tests --jobs 2 ${MUTATE_FILTER:+--filter "$MUTATE_FILTER"} >>"$log" 2>&1); then
+          ./build/opt/celadon-tests --jobs 2 --fail-fast ${MUTATE_FILTER:+--filter "$MUTATE_FILTER"} >>"$log" 2>&1); then
     verdict="SURVIVED"
   else
-    verdict="killed ($(grep -c '^\[FAIL\]' "$log") failing tests)"
+    first=$(grep -m1 -o '^\[FAIL\] [^:]*' "$log" | cut -c8-)
+    verdict="killed by ${first:-a crash of the suite}"
     killed=$((killed + 1))
   fi
   echo "mutant $k ($file): $verdict"
