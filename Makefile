@@ -52,16 +52,20 @@ all: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon web
 
 # ---------------------------------------------------------------- dependencies
-# Installs only what is missing; works as root or through sudo.
-deps:
-	@missing=""; for p in $(DEB_PKGS); do \
+# $(call apt_install,PACKAGES): a recipe's shell line that installs them
+# from Debian, as root or through sudo.
+apt_install = echo "celadon: installing Debian packages: $(strip $(1))"; \
+	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $(1) >/dev/null
+# $(call deb_install_missing,PACKAGES): installs those of them not installed yet.
+deb_install_missing = missing=""; for p in $(1); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
 	done; \
-	if [ -n "$$missing" ]; then \
-	  echo "celadon: installing Debian packages:$$missing"; \
-	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; \
-	fi
+	if [ -n "$$missing" ]; then $(call apt_install,$${missing# }); fi
+
+# Installs only what is missing; works as root or through sudo.
+deps:
+	@$(call deb_install_missing,$(DEB_PKGS))
 	@$(MAKE) --no-print-directory deps-web
 
 # The museum's page and its tests: Node.js and npm from Debian when `node` is
@@ -70,9 +74,7 @@ deps:
 .PHONY: deps-web
 deps-web:
 	@if ! command -v node >/dev/null || ! command -v npm >/dev/null; then \
-	  echo "celadon: installing Debian packages: nodejs npm"; \
-	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq nodejs npm >/dev/null; \
+	  $(call apt_install,nodejs npm); \
 	fi
 	@if [ ! -f web/node_modules/.package-lock.json ] || [ web/package-lock.json -nt web/node_modules/.package-lock.json ]; then \
 	  echo "celadon: installing the page's npm packages (web/package-lock.json)"; \
@@ -320,14 +322,7 @@ FUZZ_ENV := OMP_NUM_THREADS=1 ASAN_OPTIONS=detect_leaks=1:allocator_may_return_n
 
 .PHONY: fuzz fuzz-build deps-fuzz
 deps-fuzz:
-	@missing=""; for p in $(FUZZ_DEB_PKGS); do \
-	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
-	done; \
-	if [ -n "$$missing" ]; then \
-	  echo "celadon: installing Debian packages:$$missing"; \
-	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; \
-	fi
+	@$(call deb_install_missing,$(FUZZ_DEB_PKGS))
 
 build/fuzz/%.o: %.c
 	@mkdir -p $(dir $@)
