@@ -3,10 +3,12 @@
  * end-of-file dictionary), read back exactly; damaged files refused in one
  * line. */
 #include <criterion/criterion.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include "shapes/shapes.h"
 #include "support/plugin_xml.h"
@@ -107,4 +109,50 @@ Test(shape_serialized, damaged_files_are_refused_in_one_line)
     cr_assert_eq(build(path, "", &sh, err, sizeof err), -1);
     cr_expect_not_null(strstr(err, "not a Mitsuba .serialized file"), "%s", err);
     cr_expect_null(strchr(err, '\n'));
+}
+
+/* Writes bytes to path. */
+static void write_bytes(const unsigned char *b, size_t n)
+{
+    FILE *fp = fopen(path, "wb");
+    cr_assert_not_null(fp);
+    cr_assert_eq(fwrite(b, 1, n, fp), n);
+    fclose(fp);
+}
+
+/* A mesh's offset in the dictionary is the file's to choose: one near 2^64
+ * is past the end (off + 4 wrapped around to pass the check). */
+Test(shape_serialized, an_offset_past_the_end_is_refused)
+{
+    size_t n;
+    unsigned char *b = serialized_file_bytes(4, 2, 0, 3, 9, &n);
+    for (int i = 0; i < 8; i++) /* mesh 1's entry: the last before the count */
+        b[n - 4 - 8 + i] = i ? 0xff : 0xfe;
+    write_bytes(b, n);
+    free(b);
+    char err[512];
+    shape_t sh;
+    cr_assert_eq(build(path, "<integer name=\"shape_index\" value=\"1\"/>", &sh, err, sizeof err), -1);
+    cr_expect_not_null(strstr(err, "past the end of the file"), "%s", err);
+}
+
+/* A small file may not claim more than its stream can hold (zlib expands a
+ * byte to at most 1032): 2^27 vertices in a stream of 30 bytes are refused
+ * before gigabytes are allocated for them. */
+Test(shape_serialized, counts_beyond_what_the_stream_holds_are_refused)
+{
+    unsigned char raw[4 + 5 + 16] = {0x01, 0x10, 0, 0, 'm', 'e', 's', 'h', 0};
+    uint64_t nv = 1u << 27, nt = 1;
+    for (int i = 0; i < 8; i++) {
+        raw[9 + i] = (unsigned char)(nv >> (8 * i));
+        raw[17 + i] = (unsigned char)(nt >> (8 * i));
+    }
+    unsigned char file[4 + 128] = {0x1c, 0x04, 4, 0};
+    uLongf zn = sizeof file - 4;
+    cr_assert_eq(compress2(file + 4, &zn, raw, sizeof raw, 9), Z_OK);
+    write_bytes(file, 4 + zn);
+    char err[512];
+    shape_t sh;
+    cr_assert_eq(build(path, "", &sh, err, sizeof err), -1);
+    cr_expect_not_null(strstr(err, "134217728 vertices and 1 triangles, more than its"), "%s", err);
 }
