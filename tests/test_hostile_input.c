@@ -330,3 +330,29 @@ Test(hostile_input, json_text_keeps_utf8_and_replaces_the_rest)
     char small[8];
     cr_expect_str_eq(json_text("\xff\xff\xff\xff", small, sizeof small), "\xef\xbf\xbd\xef\xbf\xbd");
 }
+
+/* Embree aborts the process (an assertion) on a ray from beyond 1.8e18:
+ * a shape that reaches past 1e15 is refused in one line, and a camera
+ * placed beyond Embree's range renders what it sees, nothing (found by the
+ * serialized fuzz target: a mesh vertex at 3.7e19 lit as an area light). */
+Test(hostile_input, coordinates_beyond_the_tracer_s_range)
+{
+    char scene[256], out[256];
+    snprintf(out, sizeof out, "%s/out.png", fx.dir);
+    render_write_file(&fx, "huge.xml",
+                      "<scene version=\"3.0.0\"><sensor type=\"perspective\"/><shape type=\"sphere\">"
+                      "<float name=\"radius\" value=\"1e20\"/><emitter type=\"area\"/></shape></scene>",
+                      scene, sizeof scene);
+    expect_refused((const char *[]){"render", scene, "-o", out, NULL}, "the shape reaches 1e+20 from the origin");
+    cr_expect(!exists(out));
+    render_write_file(&fx, "far.xml",
+                      "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
+                      "<lookat origin=\"0, 0, 1e30\" target=\"0, 0, 0\" up=\"0, 1, 0\"/></transform>"
+                      "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" "
+                      "value=\"6\"/></film></sensor><shape type=\"sphere\"><emitter type=\"area\"/></shape></scene>",
+                      scene, sizeof scene);
+    cli_result r = cli_run_within(fx.dir, (const char *[]){"render", scene, "-o", out, NULL}, HANG_SECONDS);
+    cr_expect_eq(r.status, 0, "stderr: %s", r.err);
+    cli_result_free(&r);
+    cr_expect(exists(out));
+}
