@@ -23,7 +23,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 
 # file | text | replacement (exact, once) | the suites meant to kill it. What each one breaks, in order:
 #  1 Russian roulette without its 1/q compensation
-#  2 the area light's pdf left per unit area (no distance^2 / cosine)
+#  2 an area-sampled light's pdf left per unit area (no distance^2 / cosine)
 #  3 the crosscheck stall's slope taken over the wrong rows
 #  4 sub-pixel edges rounded to whole pixels
 #  5 the diffuse BSDF's 1/pi taken as 1/(2 pi)
@@ -36,7 +36,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 # 12 the SOR's quadratic root from rho^2 clamped the wrong way
 mutants=(
   'src/integrators/path.c|beta = rgb_scale(beta, 1.0 / survive);|(void)survive;|render_furnace/*'
-  'src/emitters/area.c|out->pdf = pdf_area * dist2 / cos_l;|out->pdf = pdf_area;|render_lights/*'
+  'src/shapes/shape.c|*pdf = dist2 > 0.0 && cos_l > 0.0 ? pdf_area * dist2 * sqrt(dist2) / cos_l : 0.0;|*pdf = dist2 > 0.0 && cos_l > 0.0 ? pdf_area : 0.0;|@(render_lights|light_sampling)/*'
   'src/crosscheck/crosscheck.c|chord_slope(rows, from, last, CROSSCHECK_MEAN_ABS_DIFF)|chord_slope(rows, from + 1, last, CROSSCHECK_MEAN_ABS_DIFF)|crosscheck/*'
   'src/recon/subpixel_edge.c|out.x = side > 0 ? a0 + len : a1 + 1 - len;|out.x = round(side > 0 ? a0 + len : a1 + 1 - len);|recon_subpixel/*'
   'src/bsdfs/diffuse.c|wo.z / M_PI|wo.z / (2.0 * M_PI)|render_furnace/*'
