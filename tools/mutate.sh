@@ -84,7 +84,7 @@ PY
           ./build/opt/celadon-tests --jobs 2 --fail-fast ${filter:+--filter "$filter"} >>"$log" 2>&1); then
     verdict="SURVIVED"
   else
-    first=$(grep -m1 -o '^\[FAIL\] [^:]*' "$log" | cut -c8-)
+    first=$(sed -n 's/^\[FAIL\] \([^:]*::[^:]*\):.*/\1/p' "$log" | head -1)
     verdict="killed by ${first:-a crash of the suite}"
     killed=$((killed + 1))
   fi
