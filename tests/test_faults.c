@@ -19,8 +19,7 @@
 
 #include "celadon/image.h"
 #include "celadon/profile.h"
-#include "core/atomic_file.h"
-#include "core/temp_files.h"
+#include "core/core.h"
 #include "support/cli_run.h"
 #include "support/scratch_dir.h"
 #include "support/synth_vessel.h"

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/input_file.h"
+#include "core/core.h"
 #include "render/exr_error.h"
 #include "render/exr_metadata.h"
 
