@@ -174,6 +174,21 @@ Test(scene_mitsuba, polarized_spectral_and_dropped_plugins_are_refused_by_name)
     scene_desc_destroy(d);
 }
 
+/* Mitsuba 3 finds a plugin as the file plugins/<type>.so: on the
+ * case-insensitive file systems of macOS and Windows `Rectangle` is the
+ * rectangle (as in some of Mitsuba's own scenes); a type that is no plugin in
+ * any spelling is still refused. */
+Test(scene_mitsuba, capitalised_plugin_names_are_their_lower_case_plugins)
+{
+    scene_desc *d = load_ok("cap.xml", V3 "\n  <shape type=\"Rectangle\"><bsdf type=\"Diffuse\"/></shape>\n</scene>\n");
+    scene_obj *s = scene_obj_child(scene_desc_root(d), SCENE_SHAPE);
+    cr_assert_str_eq(s->type, "rectangle");
+    cr_assert_str_eq(scene_obj_child(s, SCENE_BSDF)->type, "diffuse");
+    scene_desc_destroy(d);
+    load_fails("capx.xml", V3 "\n  <shape type=\"Rectangles\"/>\n</scene>\n", "capx.xml", 3,
+               "unknown plugin 'Rectangles' for <shape>");
+}
+
 /* ------------------------------------------------------ the 0.6 upgrade */
 /* Whether two trees hold the same objects with the same properties (names,
  * types, values), ignoring where they were written. */

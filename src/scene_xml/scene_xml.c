@@ -1,5 +1,6 @@
 /* The scene reader: documents, includes, defaults, objects, references and
  * validation against the plugin declarations the caller's lookup gives. */
+#include <ctype.h>
 #include <errno.h>
 #include <libgen.h>
 #include <libxml/SAX2.h>
@@ -433,6 +434,20 @@ static int declared_only(scene_ctx *c, const scene_obj *parent, const scene_obj 
     return !schema_child_find(c->plugins(SCENE_SCENE, "scene"), o->cls) || c->plugins(o->cls, o->type)->host != SCENE_SCENE;
 }
 
+/* Mitsuba 3 loads a plugin from the file plugins/<type>.so (.dylib, .dll),
+ * so on the case-insensitive file systems of macOS and Windows `Rectangle`
+ * loads `rectangle` (some of Mitsuba's own scenes say so): a type that names
+ * no plugin becomes its lower-case spelling when that one does. */
+static void fold_plugin_case(scene_ctx *c, scene_class cls, char *type)
+{
+    char *lower = xstrdup(type);
+    for (char *s = lower; *s; s++)
+        *s = (char)tolower((unsigned char)*s);
+    if (c->plugins(cls, lower))
+        memcpy(type, lower, strlen(lower));
+    free(lower);
+}
+
 static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_obj *parent)
 {
     int line = scene_line(n);
@@ -441,6 +456,8 @@ static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_o
     if (scene_check_attrs(c, n, "type|id|name") != 0 || scene_attr_req(c, n, "type", &type) != 0 ||
         scene_attr(c, n, "id", &id) != 0 || scene_attr(c, n, "name", &name) != 0)
         goto done;
+    if (!c->plugins(cls, type))
+        fold_plugin_case(c, cls, type);
     if (!c->plugins(cls, type)) {
         const char *why = scene_plugin_refusal(cls, type);
         scene_fail(c, line, "unknown plugin '%s' for <%s>%s%s%s", type, scene_class_name(cls), why ? " (" : "",
