@@ -102,6 +102,14 @@ static void document(const scene_plugin_decl *pl, const char *prop, char *buf, s
         open = "<sensor type=\"perspective\"><film type=\"hdrfilm\">"; close = "</film></sensor>"; *depth = 3; break;
     case SCENE_TEXTURE:
         open = "<bsdf type=\"diffuse\">"; close = "</bsdf>"; *depth = 2; break;
+    case SCENE_MEDIUM: /* a shape's interior */
+        open = "<shape type=\"sphere\">"; close = "</shape>"; *depth = 2; break;
+    case SCENE_PHASE:
+        open = "<shape type=\"sphere\"><medium type=\"homogeneous\" name=\"interior\">";
+        close = "</medium></shape>"; *depth = 3; break;
+    case SCENE_VOLUME:
+        open = "<shape type=\"sphere\"><medium type=\"heterogeneous\" name=\"interior\">";
+        close = "</medium></shape>"; *depth = 3; break;
     case SCENE_EMITTER:
         if (strcmp(pl->type, "area") == 0) {
             open = "<shape type=\"sphere\">"; close = "</shape>"; *depth = 2;
@@ -111,7 +119,11 @@ static void document(const scene_plugin_decl *pl, const char *prop, char *buf, s
     }
     snprintf(buf, len,
              "<scene version=\"3.0.0\">\n%s<%s type=\"%s\"%s>%s\n%s\n</%s>%s\n</scene>\n", open, cls, pl->type,
-             pl->cls == SCENE_TEXTURE ? " name=\"reflectance\"" : "", extra, prop, cls, close);
+             pl->cls == SCENE_TEXTURE  ? " name=\"reflectance\""
+             : pl->cls == SCENE_MEDIUM ? " name=\"interior\""
+             : pl->cls == SCENE_VOLUME ? " name=\"sigma_t\""
+                                       : "",
+             extra, prop, cls, close);
 }
 
 static scene_obj *descend(scene_desc *d, int depth)

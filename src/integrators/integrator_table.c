@@ -9,6 +9,8 @@
     X(integrator, depth)                 \
     X(integrator, aov)                   \
     X(integrator, moment)                \
+    X(integrator, volpath)               \
+    X(integrator, volpathmis)            \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(integrator, INTEGRATOR_PLUGINS)

@@ -15,7 +15,8 @@
 #include "scene_xml/scene_xml_internal.h"
 
 static const char *class_tags[SCENE_CLASS_COUNT] = {
-    "scene", "sensor", "film", "sampler", "rfilter", "integrator", "shape", "bsdf", "texture", "emitter"};
+    "scene", "sensor", "film", "sampler", "rfilter", "integrator", "shape", "bsdf", "texture", "emitter",
+    "medium", "phase", "volume"};
 
 const char *scene_class_name(scene_class c) { return c >= 0 && c < SCENE_CLASS_COUNT ? class_tags[c] : "?"; }
 
@@ -204,9 +205,10 @@ static int add_prop(scene_ctx *c, scene_obj *o, scene_prop *p)
     return 0;
 }
 
-/* Puts child under parent: a texture below an object sets the property its
- * name says (unless the object takes nested textures whatever their name,
- * as bumpmap does, and the name is none of its parameters); anything else
+/* Puts child under parent: a texture, medium or volume below an object sets
+ * the property its name says (unless, for a texture, the object takes nested
+ * textures whatever their name, as bumpmap does, and the name is none of its
+ * parameters); anything else
  * joins the children, within the table's limits. */
 static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char *name, int line)
 {
@@ -215,7 +217,8 @@ static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char 
     describe(child, cw, sizeof cw);
     const scene_plugin_decl *pd = c->plugins(parent->cls, parent->type);
     bool any_name = schema_child_find(pd, SCENE_TEXTURE) && !(name && schema_param_find(pd, name));
-    if (child->cls == SCENE_TEXTURE && parent->cls != SCENE_SCENE && !any_name) {
+    bool by_name = (child->cls == SCENE_TEXTURE && !any_name) || child->cls == SCENE_MEDIUM || child->cls == SCENE_VOLUME;
+    if (by_name && parent->cls != SCENE_SCENE) {
         if (!name)
             return scene_fail(c, line, "%s inside %s needs a name (the parameter it sets)", cw, pw);
         scene_prop p = {0};

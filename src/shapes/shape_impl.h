@@ -86,7 +86,9 @@ void shape_mesh_square_face(shape_mesh_data *m, int f, int a, int b, int c, doub
 /* -------------------------------------------------------------- plugins */
 
 /* The parameters every shape takes, and what every shape may hold. */
-#define SHAPE_PARAMS_COMMON {"to_world", PARAM_TRANSFORM, 0, NULL}, {"flip_normals", PARAM_BOOL, 0, NULL}
+#define SHAPE_PARAMS_COMMON                                                                                 \
+    {"to_world", PARAM_TRANSFORM, 0, NULL}, {"flip_normals", PARAM_BOOL, 0, NULL},                           \
+        {"interior", PARAM_OBJECT, 0, NULL}, {"exterior", PARAM_OBJECT, 0, NULL}
 #define SHAPE_PARAMS_END {NULL, 0, 0, NULL}
 extern const scene_child_decl shape_children[];
 

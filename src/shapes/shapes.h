@@ -24,6 +24,7 @@
 
 typedef struct shape shape_t;
 struct emitter;
+struct medium;
 
 /* ------------------------------------------------------------- hits */
 
@@ -84,6 +85,10 @@ struct shape {
     bool flip_normals;
     const bsdf_t *bsdf;   /* never NULL once the scene is built */
     const struct emitter *emitter; /* its area emitter, or NULL */
+    /* the media behind its normal and in front of it (Mitsuba's interior
+     * and exterior), NULL for none; a shape with neither leaves the medium
+     * of a ray that crosses it unchanged */
+    const struct medium *interior, *exterior;
     const char *file;     /* where it was declared, for messages */
     int line;
     /* meshes */
