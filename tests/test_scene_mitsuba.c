@@ -372,6 +372,24 @@ Test(scene_mitsuba, instances_render_as_the_shapes_written_out)
     scene_desc_destroy(d);
 }
 
+/* Integrators read as others with the same expectation render the same
+ * numbers: ptracer as path, volpathmis as volpath (docs/scene-format.md). */
+Test(scene_mitsuba, ptracer_and_volpathmis_render_as_path_and_volpath)
+{
+    const char *pairs[2][2] = {{"ptracer", "path"}, {"volpathmis", "volpath"}};
+    for (int k = 0; k < 2; k++) {
+        char a[1024], b[1024];
+        const char *fmt = INSTANCE_HEAD "  <integrator type=\"%s\"><integer name=\"max_depth\" value=\"4\"/>%s"
+                                        "</integrator>\n  <shape type=\"sphere\"/>\n</scene>\n";
+        snprintf(a, sizeof a, fmt, pairs[k][0], k == 0 ? "<integer name=\"samples_per_pass\" value=\"64\"/>" : "");
+        snprintf(b, sizeof b, fmt, pairs[k][1], "");
+        float *pa = render_text("a.xml", a), *pb = render_text("b.xml", b);
+        cr_assert_eq(memcmp(pa, pb, sizeof(float) * 24 * 16 * 3), 0, "%s differs from %s", pairs[k][0], pairs[k][1]);
+        free(pa);
+        free(pb);
+    }
+}
+
 /* --spp N is the fallback for $spp: used where the scene declares no
  * <default>, beaten by one, and no error where the scene has no $spp. */
 Test(scene_mitsuba, a_fallback_define_gives_way_to_the_scene)

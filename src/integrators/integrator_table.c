@@ -11,6 +11,7 @@
     X(integrator, moment)                \
     X(integrator, volpath)               \
     X(integrator, volpathmis)            \
+    X(integrator, ptracer)               \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(integrator, INTEGRATOR_PLUGINS)
