@@ -75,6 +75,7 @@ typedef struct {
     float *nrm;       /* world, unit, or NULL */
     float *uv;        /* or NULL */
     unsigned *tri;    /* 3 per triangle */
+    texture_mesh attrs; /* its attributes (ply), attrs.tri = tri; none: count 0 */
     distribution1d area_cdf; /* over triangles by area; built only for emitters */
     double area;      /* world, total */
 } shape_mesh_data;
