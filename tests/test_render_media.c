@@ -97,15 +97,9 @@ static float *render_medium(const char *medium, const char *shape, const char *l
         cr_assert_eq(fwrite(extra, 1, extra_len, fp), extra_len);
         fclose(fp);
     }
-    int w, h, nch;
-    float *px = render_to_pixels(path, 0, 3, 2, 0, &w, &h, &nch);
-    cr_assert(w == 16 && h == 16 && nch >= 3);
-    float *rgb = malloc(sizeof *rgb * 3 * 256);
-    cr_assert_not_null(rgb);
-    for (int i = 0; i < 256; i++)
-        for (int c = 0; c < 3; c++)
-            rgb[3 * i + c] = px[i * nch + c];
-    free(px);
+    int w, h;
+    float *rgb = render_to_rgb(path, 3, &w, &h);
+    cr_assert(w == 16 && h == 16);
     render_fixture_close(&f);
     return rgb;
 }

@@ -41,15 +41,9 @@ static float *render_square(const char *name)
     render_write_file(&f, "square.ply", square_ply, path, sizeof path);
     snprintf(xml, sizeof xml, scene_xml, name);
     render_write_file(&f, "scene.xml", xml, path, sizeof path);
-    int w, h, nch;
-    float *px = render_to_pixels(path, 0, 9, 2, 0, &w, &h, &nch);
+    int w, h;
+    float *rgb = render_to_rgb(path, 9, &w, &h);
     cr_assert(w == 16 && h == 16);
-    float *rgb = malloc(sizeof *rgb * 3 * 256);
-    cr_assert_not_null(rgb);
-    for (int i = 0; i < 256; i++)
-        for (int c = 0; c < 3; c++)
-            rgb[3 * i + c] = px[i * nch + c];
-    free(px);
     render_fixture_close(&f);
     return rgb;
 }
