@@ -75,12 +75,15 @@ static void check_value(scene_prop *p, scene_prop_type t, const scene_param_decl
 static void document(const scene_plugin_decl *pl, const char *prop, char *buf, size_t len, int *depth)
 {
     char extra[256] = "";
-    for (const scene_param_decl *q = pl->params; q && q->name; q++)
-        if ((q->flags & PARAM_REQUIRED) && !strstr(prop, q->name)) {
+    for (const scene_param_decl *q = pl->params; q && q->name; q++) {
+        char given[80]; /* the property under test is this required one */
+        snprintf(given, sizeof given, "name=\"%s\"", q->name);
+        if ((q->flags & PARAM_REQUIRED) && !strstr(prop, given)) {
             char more[128];
             property_xml(q->types & PARAM_STRING ? SCENE_STRING : SCENE_FLOAT, q->name, q, more, sizeof more);
             strncat(extra, more, sizeof extra - strlen(extra) - 1);
         }
+    }
     /* The nested objects the plugin needs: that many of a plain plugin of each class. */
     for (const scene_child_decl *c = pl->children; c && c->max > 0; c++)
         for (int k = 0; k < c->min; k++) {
