@@ -172,6 +172,11 @@ Test(bsdf_models, conductor_presets_and_fresnel)
         if (strcmp(metals[i], "Ag") == 0)
             cr_assert(a.b > 0.9, "silver is white");
     }
+    /* Amorphous carbon is a dark grey absorber: about a fifth of the light at
+     * normal incidence in every channel (Palik's n ~ 2.2-2.4, k ~ 0.7-0.9). */
+    cr_assert_eq(bsdf_conductor_preset("a-C", &eta, &k), 0);
+    rgb carbon = bsdf_albedo(bsdf_of("<bsdf type='conductor'><string name='material' value='a-C'/></bsdf>"), v2(0, 0));
+    cr_assert(fmin(carbon.r, fmin(carbon.g, carbon.b)) > 0.15 && rgb_max(carbon) < 0.25, "a-C: %g %g %g", carbon.r, carbon.g, carbon.b);
     /* Default material "none": a perfect mirror. */
     const bsdf_t *b = bsdf_of("<bsdf type='conductor'/>");
     bsdf_query q = query_at(70.0, 0.0, TRANSPORT_RADIANCE);
@@ -289,9 +294,9 @@ Test(bsdf_models, parameters_names_and_errors)
         nm += len + (nm[len] == '|');
     }
     cr_assert_eq(n_ior, 23);
-    const char *metals[] = {"none", "Ag", "Al", "Au", "Cu"};
+    const char *metals[] = {"none", "Ag", "Al", "Au", "Cu", "a-C"};
     rgb eta, k;
-    for (int i = 0; i < 5; i++)
+    for (int i = 0; i < 6; i++)
         cr_assert_eq(bsdf_conductor_preset(metals[i], &eta, &k), 0, "%s", metals[i]);
 
     /* Bad values are refused when the BSDF is built, naming the parameter. */

@@ -108,6 +108,23 @@ static inline float *render_to_pixels_with(const char *scene_path, const scene_o
     return px;
 }
 
+/* The RGB of a scene file rendered with seed on 2 threads, 3 floats a pixel
+ * (malloc'd), its size in *w, *h. */
+static inline float *render_to_rgb(const char *scene_path, long long seed, int *w, int *h)
+{
+    scene_options bo = scene_options_default();
+    bo.seed = seed;
+    int nch;
+    float *px = render_to_pixels_with(scene_path, &bo, 2, 0, w, h, &nch);
+    float *rgb = malloc(sizeof *rgb * 3 * (size_t)(*w * *h));
+    cr_assert_not_null(rgb);
+    for (int i = 0; i < *w * *h; i++)
+        for (int c = 0; c < 3; c++)
+            rgb[3 * i + c] = px[i * nch + c];
+    free(px);
+    return rgb;
+}
+
 /* The same with the SORs meshed into mesh_segments (0: analytic) and seed. */
 static inline float *render_to_pixels(const char *scene_path, int mesh_segments, long long seed, int threads,
                                       unsigned aovs, int *w, int *h, int *nch)

@@ -174,6 +174,21 @@ Test(scene_mitsuba, polarized_spectral_and_dropped_plugins_are_refused_by_name)
     scene_desc_destroy(d);
 }
 
+/* Mitsuba 3 finds a plugin as the file plugins/<type>.so: on the
+ * case-insensitive file systems of macOS and Windows `Rectangle` is the
+ * rectangle (as in some of Mitsuba's own scenes); a type that is no plugin in
+ * any spelling is still refused. */
+Test(scene_mitsuba, capitalised_plugin_names_are_their_lower_case_plugins)
+{
+    scene_desc *d = load_ok("cap.xml", V3 "\n  <shape type=\"Rectangle\"><bsdf type=\"Diffuse\"/></shape>\n</scene>\n");
+    scene_obj *s = scene_obj_child(scene_desc_root(d), SCENE_SHAPE);
+    cr_assert_str_eq(s->type, "rectangle");
+    cr_assert_str_eq(scene_obj_child(s, SCENE_BSDF)->type, "diffuse");
+    scene_desc_destroy(d);
+    load_fails("capx.xml", V3 "\n  <shape type=\"Rectangles\"/>\n</scene>\n", "capx.xml", 3,
+               "unknown plugin 'Rectangles' for <shape>");
+}
+
 /* ------------------------------------------------------ the 0.6 upgrade */
 /* Whether two trees hold the same objects with the same properties (names,
  * types, values), ignoring where they were written. */
@@ -355,6 +370,24 @@ Test(scene_mitsuba, instances_render_as_the_shapes_written_out)
     cr_assert_null(scene_create(d, NULL, err, sizeof err));
     cr_assert_not_null(strstr(err, "glow.xml:4: a shape in a shapegroup cannot emit light"), "%s", err);
     scene_desc_destroy(d);
+}
+
+/* Integrators read as others with the same expectation render the same
+ * numbers: ptracer as path, volpathmis as volpath (docs/scene-format.md). */
+Test(scene_mitsuba, ptracer_and_volpathmis_render_as_path_and_volpath)
+{
+    const char *pairs[2][2] = {{"ptracer", "path"}, {"volpathmis", "volpath"}};
+    for (int k = 0; k < 2; k++) {
+        char a[1024], b[1024];
+        const char *fmt = INSTANCE_HEAD "  <integrator type=\"%s\"><integer name=\"max_depth\" value=\"4\"/>%s"
+                                        "</integrator>\n  <shape type=\"sphere\"/>\n</scene>\n";
+        snprintf(a, sizeof a, fmt, pairs[k][0], k == 0 ? "<integer name=\"samples_per_pass\" value=\"64\"/>" : "");
+        snprintf(b, sizeof b, fmt, pairs[k][1], "");
+        float *pa = render_text("a.xml", a), *pb = render_text("b.xml", b);
+        cr_assert_eq(memcmp(pa, pb, sizeof(float) * 24 * 16 * 3), 0, "%s differs from %s", pairs[k][0], pairs[k][1]);
+        free(pa);
+        free(pb);
+    }
 }
 
 /* --spp N is the fallback for $spp: used where the scene declares no

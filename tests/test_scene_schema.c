@@ -75,12 +75,15 @@ static void check_value(scene_prop *p, scene_prop_type t, const scene_param_decl
 static void document(const scene_plugin_decl *pl, const char *prop, char *buf, size_t len, int *depth)
 {
     char extra[256] = "";
-    for (const scene_param_decl *q = pl->params; q && q->name; q++)
-        if ((q->flags & PARAM_REQUIRED) && !strstr(prop, q->name)) {
+    for (const scene_param_decl *q = pl->params; q && q->name; q++) {
+        char given[80]; /* the property under test is this required one */
+        snprintf(given, sizeof given, "name=\"%s\"", q->name);
+        if ((q->flags & PARAM_REQUIRED) && !strstr(prop, given)) {
             char more[128];
             property_xml(q->types & PARAM_STRING ? SCENE_STRING : SCENE_FLOAT, q->name, q, more, sizeof more);
             strncat(extra, more, sizeof extra - strlen(extra) - 1);
         }
+    }
     /* The nested objects the plugin needs: that many of a plain plugin of each class. */
     for (const scene_child_decl *c = pl->children; c && c->max > 0; c++)
         for (int k = 0; k < c->min; k++) {
@@ -102,6 +105,14 @@ static void document(const scene_plugin_decl *pl, const char *prop, char *buf, s
         open = "<sensor type=\"perspective\"><film type=\"hdrfilm\">"; close = "</film></sensor>"; *depth = 3; break;
     case SCENE_TEXTURE:
         open = "<bsdf type=\"diffuse\">"; close = "</bsdf>"; *depth = 2; break;
+    case SCENE_MEDIUM: /* a shape's interior */
+        open = "<shape type=\"sphere\">"; close = "</shape>"; *depth = 2; break;
+    case SCENE_PHASE:
+        open = "<shape type=\"sphere\"><medium type=\"homogeneous\" name=\"interior\">";
+        close = "</medium></shape>"; *depth = 3; break;
+    case SCENE_VOLUME:
+        open = "<shape type=\"sphere\"><medium type=\"heterogeneous\" name=\"interior\">";
+        close = "</medium></shape>"; *depth = 3; break;
     case SCENE_EMITTER:
         if (strcmp(pl->type, "area") == 0) {
             open = "<shape type=\"sphere\">"; close = "</shape>"; *depth = 2;
@@ -111,7 +122,11 @@ static void document(const scene_plugin_decl *pl, const char *prop, char *buf, s
     }
     snprintf(buf, len,
              "<scene version=\"3.0.0\">\n%s<%s type=\"%s\"%s>%s\n%s\n</%s>%s\n</scene>\n", open, cls, pl->type,
-             pl->cls == SCENE_TEXTURE ? " name=\"reflectance\"" : "", extra, prop, cls, close);
+             pl->cls == SCENE_TEXTURE  ? " name=\"reflectance\""
+             : pl->cls == SCENE_MEDIUM ? " name=\"interior\""
+             : pl->cls == SCENE_VOLUME ? " name=\"sigma_t\""
+                                       : "",
+             extra, prop, cls, close);
 }
 
 static scene_obj *descend(scene_desc *d, int depth)

@@ -397,8 +397,10 @@ Test(scene_xml, unknown_things)
 {
     load_fails("a.xml", HEAD "\n  <bsdf type=\"hair\"/>\n</scene>\n", "a.xml", 4,
                "unknown plugin 'hair' for <bsdf>", NULL, 0);
-    load_fails("b.xml", HEAD "  <medium type=\"homogeneous\"/>\n</scene>\n", "b.xml", 3, "unknown tag <medium>", NULL,
-               0);
+    load_fails("b.xml", HEAD "  <fog type=\"homogeneous\"/>\n</scene>\n", "b.xml", 3, "unknown tag <fog>", NULL, 0);
+    /* a medium is declared at the top with an id, and placed by reference */
+    load_fails("b2.xml", HEAD "  <medium type=\"homogeneous\"/>\n</scene>\n", "b2.xml", 3,
+               "<scene> cannot contain a <medium>", NULL, 0);
     load_fails("c.xml", HEAD "  <bsdf type=\"diffuse\">\n    <rgb name=\"albedo\" value=\"1\"/>\n  </bsdf>\n</scene>\n",
                "c.xml", 4, "unknown parameter 'albedo' for <bsdf type=\"diffuse\">", NULL, 0);
     load_fails("d.xml", HEAD "  <shape type=\"sphere\" color=\"red\"/>\n</scene>\n", "d.xml", 3,

@@ -48,7 +48,9 @@ typedef enum {
     ACCEL_KIND_SOR_MESH = 2,
     ACCEL_KIND_SPHERE = 3,
     ACCEL_KIND_DISK = 4,
-    ACCEL_KIND_CYLINDER = 5
+    ACCEL_KIND_CYLINDER = 5,
+    ACCEL_KIND_CURVE_LINEAR = 6,  /* Embree's round linear curves */
+    ACCEL_KIND_CURVE_BSPLINE = 7  /* Embree's round cubic B-spline curves */
 } accel_kind;
 
 /* How an SOR enters the scene. segments = 0: analytic. segments >= 3: meshed
@@ -106,6 +108,16 @@ unsigned accel_add_sor(accel_t *acc, const bspline_t *profile, double height, un
 /* Adds the quadric kind (ACCEL_KIND_SPHERE, _DISK or _CYLINDER) placed by
  * to_world. Returns the geometry id, or ACCEL_INVALID_ID with a reason. */
 unsigned accel_add_quadric(accel_t *acc, accel_kind kind, const transform4 *to_world, char *err, size_t errlen);
+
+/* Adds round curves of kind ACCEL_KIND_CURVE_LINEAR or _BSPLINE: n_points
+ * world-space control points of four floats (x, y, z, radius) and n_segments
+ * segments, segment i made of the 2 (linear) or 4 (B-spline) points from
+ * index segments[i]. A hit reports t, p, ng (unit, Embree's), prim (the
+ * segment) and param[0] (the curve parameter within the segment, in
+ * [0, 1]); rays starting inside a curve do not hit it (Embree's).
+ * Returns the geometry id, or ACCEL_INVALID_ID with a reason. */
+unsigned accel_add_curves(accel_t *acc, accel_kind kind, const float *points, int n_points, const unsigned *segments,
+                          int n_segments, char *err, size_t errlen);
 
 /* What a hit at the point p of a quadric's object-space surface reports
  * there (unit outward normal, uv, param), e.g. for a point sampled on it. */

@@ -36,6 +36,9 @@ typedef enum {
     SCENE_BSDF,
     SCENE_TEXTURE,
     SCENE_EMITTER,
+    SCENE_MEDIUM,
+    SCENE_PHASE,
+    SCENE_VOLUME,
     SCENE_CLASS_COUNT
 } scene_class;
 
@@ -49,7 +52,7 @@ typedef enum {
     SCENE_POINT,
     SCENE_VECTOR,
     SCENE_TRANSFORM,
-    SCENE_OBJECT     /* a nested or referenced texture given by name */
+    SCENE_OBJECT     /* a nested or referenced texture, medium or volume given by name */
 } scene_prop_type;
 
 typedef struct { double r, g, b; } scene_rgb;
@@ -100,6 +103,9 @@ typedef struct scene_desc scene_desc;
 #define PARAM_VECTOR (1u << SCENE_VECTOR)
 #define PARAM_TRANSFORM (1u << SCENE_TRANSFORM)
 #define PARAM_TEXTURE (1u << SCENE_OBJECT)
+/* A named <medium> or <volume>: an object property like a texture, whose
+ * class its consumer checks. */
+#define PARAM_OBJECT PARAM_TEXTURE
 /* Mitsuba's "spectrum": <rgb>, <spectrum> or a gray <float>. */
 #define PARAM_COLOR ((1u << SCENE_RGB) | (1u << SCENE_SPECTRUM) | PARAM_FLOAT)
 

@@ -41,7 +41,7 @@ accel_t *accel_create(accel_build build, char *err, size_t errlen)
     return acc;
 }
 
-static void geom_free(accel_geom *g)
+void accel_geom_free(accel_geom *g)
 {
     if (!g)
         return;
@@ -57,7 +57,7 @@ void accel_destroy(accel_t *acc)
     rtcReleaseScene(acc->scene);
     rtcReleaseDevice(acc->device);
     for (int i = 0; i < acc->n_geoms; i++)
-        geom_free(acc->geoms[i]);
+        accel_geom_free(acc->geoms[i]);
     free(acc->geoms);
     free(acc);
 }
@@ -87,7 +87,7 @@ static int transform_valid(const transform4 *t)
 }
 
 /* A record with its transforms; NULL with a reason when to_world is unusable. */
-static accel_geom *geom_new(accel_kind kind, const transform4 *to_world, char *err, size_t errlen)
+accel_geom *accel_geom_new(accel_kind kind, const transform4 *to_world, char *err, size_t errlen)
 {
     accel_geom *g = calloc(1, sizeof *g);
     if (!g) {
@@ -106,7 +106,7 @@ static accel_geom *geom_new(accel_kind kind, const transform4 *to_world, char *e
 }
 
 /* Attaches geom (taking our reference) and files g under Embree's id. */
-static unsigned attach(accel_t *acc, RTCGeometry geom, accel_geom *g, char *err, size_t errlen)
+unsigned accel_attach(accel_t *acc, RTCGeometry geom, accel_geom *g, char *err, size_t errlen)
 {
     if (acc->n_geoms == acc->cap_geoms) {
         int cap = acc->cap_geoms ? 2 * acc->cap_geoms : 8;
@@ -114,7 +114,7 @@ static unsigned attach(accel_t *acc, RTCGeometry geom, accel_geom *g, char *err,
         if (!p) {
             snprintf(err, errlen, "out of memory");
             rtcReleaseGeometry(geom);
-            geom_free(g);
+            accel_geom_free(g);
             return ACCEL_INVALID_ID;
         }
         acc->geoms = p;
@@ -128,7 +128,7 @@ static unsigned attach(accel_t *acc, RTCGeometry geom, accel_geom *g, char *err,
         snprintf(err, errlen, "Embree returned geometry id %u, expected %d", id, acc->n_geoms);
         if (id != RTC_INVALID_GEOMETRY_ID)
             rtcDetachGeometry(acc->scene, id);
-        geom_free(g);
+        accel_geom_free(g);
         return ACCEL_INVALID_ID;
     }
     acc->geoms[acc->n_geoms++] = g;
@@ -148,7 +148,7 @@ static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, co
             return ACCEL_INVALID_ID;
         }
     }
-    accel_geom *g = geom_new(kind, to_world, err, errlen);
+    accel_geom *g = accel_geom_new(kind, to_world, err, errlen);
     if (!g)
         return ACCEL_INVALID_ID;
     g->n_verts = m->n_verts;
@@ -156,7 +156,7 @@ static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, co
     size_t nv = (size_t)m->n_verts;
     if (!(g->vtx = calloc(nv, sizeof *g->vtx))) {
         snprintf(err, errlen, "out of memory");
-        geom_free(g);
+        accel_geom_free(g);
         return ACCEL_INVALID_ID;
     }
     RTCGeometry geom = rtcNewGeometry(acc->device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -170,7 +170,7 @@ static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, co
         snprintf(err, errlen, "cannot allocate Embree buffers for %d vertices", m->n_verts);
         if (geom)
             rtcReleaseGeometry(geom);
-        geom_free(g);
+        accel_geom_free(g);
         return ACCEL_INVALID_ID;
     }
     for (int i = 0; i < m->n_verts; i++) {
@@ -178,7 +178,7 @@ static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, co
         if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z)) {
             snprintf(err, errlen, "mesh vertex %d is not finite", i);
             rtcReleaseGeometry(geom);
-            geom_free(g);
+            accel_geom_free(g);
             return ACCEL_INVALID_ID;
         }
         pos[3 * i] = (float)p.x;
@@ -196,7 +196,7 @@ static unsigned add_triangles(accel_t *acc, const mesh_t *m, accel_kind kind, co
     }
     memcpy(tri, m->tri, 3 * sizeof(uint32_t) * (size_t)m->n_tris);
     g->tri = tri;
-    return attach(acc, geom, g, err, errlen);
+    return accel_attach(acc, geom, g, err, errlen);
 }
 
 unsigned accel_add_mesh(accel_t *acc, const mesh_t *mesh, const transform4 *to_world, char *err, size_t errlen)
@@ -207,21 +207,21 @@ unsigned accel_add_mesh(accel_t *acc, const mesh_t *mesh, const transform4 *to_w
 static unsigned add_sor_analytic(accel_t *acc, const bspline_t *profile, double height, unsigned caps,
                                  const transform4 *to_world, char *err, size_t errlen)
 {
-    accel_geom *g = geom_new(ACCEL_KIND_SOR_ANALYTIC, to_world, err, errlen);
+    accel_geom *g = accel_geom_new(ACCEL_KIND_SOR_ANALYTIC, to_world, err, errlen);
     if (!g)
         return ACCEL_INVALID_ID;
     g->sor = sor_create(profile, height, caps, err, errlen);
     if (!g->sor) {
-        geom_free(g);
+        accel_geom_free(g);
         return ACCEL_INVALID_ID;
     }
     RTCGeometry geom = sor_user_geometry_new(acc->device, g);
     if (!geom) {
         snprintf(err, errlen, "cannot create an Embree user geometry");
-        geom_free(g);
+        accel_geom_free(g);
         return ACCEL_INVALID_ID;
     }
-    return attach(acc, geom, g, err, errlen);
+    return accel_attach(acc, geom, g, err, errlen);
 }
 
 static unsigned add_sor_mesh(accel_t *acc, const bspline_t *profile, double height, unsigned caps,
@@ -261,16 +261,16 @@ unsigned accel_add_quadric(accel_t *acc, accel_kind kind, const transform4 *to_w
         snprintf(err, errlen, "geometry kind %d is not a quadric", (int)kind);
         return ACCEL_INVALID_ID;
     }
-    accel_geom *g = geom_new(kind, to_world, err, errlen);
+    accel_geom *g = accel_geom_new(kind, to_world, err, errlen);
     if (!g)
         return ACCEL_INVALID_ID;
     RTCGeometry geom = quadric_user_geometry_new(acc->device, g);
     if (!geom) {
         snprintf(err, errlen, "cannot create an Embree user geometry");
-        geom_free(g);
+        accel_geom_free(g);
         return ACCEL_INVALID_ID;
     }
-    return attach(acc, geom, g, err, errlen);
+    return accel_attach(acc, geom, g, err, errlen);
 }
 
 unsigned accel_add_sor(accel_t *acc, const bspline_t *profile, double height, unsigned caps, const transform4 *to_world,
@@ -458,6 +458,8 @@ int accel_intersect(const accel_t *acc, const ray3 *ray, double tmin, double tma
     hit->kind = g->kind;
     if (g->kind == ACCEL_KIND_MESH || g->kind == ACCEL_KIND_SOR_MESH)
         triangle_hit(g, &rh, ray, hit);
+    else if (g->kind == ACCEL_KIND_CURVE_LINEAR || g->kind == ACCEL_KIND_CURVE_BSPLINE)
+        accel_curve_hit(&rh, ray, hit);
     else
         analytic_hit(g, &ctx.best, hit); /* the last accepted user-geometry hit is this geometry's */
     return 1;

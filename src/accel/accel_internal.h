@@ -39,6 +39,16 @@ typedef struct {
     double param[2];
 } accel_local_hit;
 
+/* A new record of kind placed by to_world (NULL: identity); NULL with err
+ * when the transform is singular or memory runs out. */
+accel_geom *accel_geom_new(accel_kind kind, const transform4 *to_world, char *err, size_t errlen);
+void accel_geom_free(accel_geom *g);
+/* Attaches geom (taking our reference) and files g under Embree's id, which
+ * it returns, or ACCEL_INVALID_ID with err (g freed). */
+unsigned accel_attach(accel_t *acc, RTCGeometry geom, accel_geom *g, char *err, size_t errlen);
+/* The hit of a ray on a curve geometry, from Embree's (curves.c). */
+void accel_curve_hit(const struct RTCRayHit *rh, const ray3 *ray, accel_hit *hit);
+
 /* A unit normal mapped to world space (by the inverse transpose). */
 static inline vec3 world_normal(const accel_geom *g, vec3 n) { return v3_norm(transform_normal(&g->to_world, n)); }
 

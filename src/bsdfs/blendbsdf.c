@@ -11,7 +11,7 @@ typedef struct {
     const bsdf_t *nested[2];
 } blend_data;
 
-static double blend_weight(const blend_data *d, vec2 uv)
+static double blend_weight(const blend_data *d, texture_point uv)
 {
     return fmin(fmax(scalar_eval(&d->weight, uv), 0.0), 1.0);
 }
@@ -19,21 +19,21 @@ static double blend_weight(const blend_data *d, vec2 uv)
 static rgb blend_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
 {
     const blend_data *d = b->data;
-    double w = blend_weight(d, q->uv);
+    double w = blend_weight(d, bsdf_at(q));
     return rgb_add(rgb_scale(bsdf_eval(d->nested[0], q, wo), 1.0 - w), rgb_scale(bsdf_eval(d->nested[1], q, wo), w));
 }
 
 static double blend_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
 {
     const blend_data *d = b->data;
-    double w = blend_weight(d, q->uv);
+    double w = blend_weight(d, bsdf_at(q));
     return (1.0 - w) * bsdf_pdf(d->nested[0], q, wo) + w * bsdf_pdf(d->nested[1], q, wo);
 }
 
 static int blend_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out)
 {
     const blend_data *d = b->data;
-    double w = blend_weight(d, q->uv);
+    double w = blend_weight(d, bsdf_at(q));
     int second = u1 <= w && w > 0.0;
     double u = second ? u1 / w : (u1 - w) / (1.0 - w), choice = second ? w : 1.0 - w;
     if (!bsdf_sample(d->nested[second], q, fmin(u, 1.0 - 1e-16), u2, out))
@@ -45,17 +45,17 @@ static int blend_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2
     return bsdf_finish_sample(b, q, out);
 }
 
-static rgb blend_albedo(const bsdf_t *b, vec2 uv)
+static rgb blend_albedo(const bsdf_t *b, texture_point uv)
 {
     const blend_data *d = b->data;
     double w = blend_weight(d, uv);
-    return rgb_add(rgb_scale(bsdf_albedo(d->nested[0], uv), 1.0 - w), rgb_scale(bsdf_albedo(d->nested[1], uv), w));
+    return rgb_add(rgb_scale(bsdf_albedo_at(d->nested[0], uv), 1.0 - w), rgb_scale(bsdf_albedo_at(d->nested[1], uv), w));
 }
 
 static rgb blend_straight(const bsdf_t *b, const bsdf_query *q)
 {
     const blend_data *d = b->data;
-    double w = blend_weight(d, q->uv);
+    double w = blend_weight(d, bsdf_at(q));
     return rgb_add(rgb_scale(bsdf_straight_transmittance(d->nested[0], q), 1.0 - w),
                    rgb_scale(bsdf_straight_transmittance(d->nested[1], q), w));
 }

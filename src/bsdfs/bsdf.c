@@ -67,9 +67,14 @@ unsigned bsdf_flags(const bsdf_t *b)
     return b->flags;
 }
 
+rgb bsdf_albedo_at(const bsdf_t *b, texture_point at)
+{
+    return b->ops->albedo(b, at);
+}
+
 rgb bsdf_albedo(const bsdf_t *b, vec2 uv)
 {
-    return b->ops->albedo(b, uv);
+    return bsdf_albedo_at(b, (texture_point){.uv = uv});
 }
 
 rgb bsdf_straight_transmittance(const bsdf_t *b, const bsdf_query *q)

@@ -17,7 +17,7 @@ typedef struct {
     int (*sample)(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out);
     rgb (*eval)(const bsdf_t *b, const bsdf_query *q, vec3 wo);
     double (*pdf)(const bsdf_t *b, const bsdf_query *q, vec3 wo);
-    rgb (*albedo)(const bsdf_t *b, vec2 uv);
+    rgb (*albedo)(const bsdf_t *b, texture_point uv);
     rgb (*straight)(const bsdf_t *b, const bsdf_query *q); /* NULL unless BSDF_STRAIGHT_TRANSMISSION */
     vec3 (*shading_normal)(const bsdf_t *b, const bsdf_query *q); /* NULL: the frame's own, +z */
 } bsdf_ops;
@@ -39,9 +39,15 @@ typedef struct {
     const texture_t *texture;
 } bsdf_spectrum;
 
-static inline rgb spectrum_eval(const bsdf_spectrum *s, vec2 uv)
+/* The texture point of a query. */
+static inline texture_point bsdf_at(const bsdf_query *q)
 {
-    return s->texture ? texture_eval(s->texture, uv) : s->value;
+    return (texture_point){q->uv, q->mesh, q->prim, q->b1, q->b2};
+}
+
+static inline rgb spectrum_eval(const bsdf_spectrum *s, texture_point uv)
+{
+    return s->texture ? texture_eval_at(s->texture, &uv) : s->value;
 }
 static inline double spectrum_mean(const bsdf_spectrum *s)
 {
@@ -55,9 +61,9 @@ typedef struct {
     const texture_t *texture;
 } bsdf_scalar;
 
-static inline double scalar_eval(const bsdf_scalar *s, vec2 uv)
+static inline double scalar_eval(const bsdf_scalar *s, texture_point uv)
 {
-    return s->texture ? texture_eval_1(s->texture, uv) : s->value;
+    return s->texture ? texture_eval_1(s->texture, &uv) : s->value;
 }
 
 /* A microfacet distribution whose roughness may vary over the surface
@@ -75,10 +81,13 @@ static inline unsigned bsdf_roughness_flags(const bsdf_roughness *r)
     return same ? 0u : BSDF_ANISOTROPIC;
 }
 
-static inline microfacet bsdf_roughness_at(const bsdf_roughness *r, vec2 uv)
+static inline microfacet bsdf_roughness_at(const bsdf_roughness *r, texture_point uv)
 {
     return microfacet_make(r->type, scalar_eval(&r->alpha_u, uv), scalar_eval(&r->alpha_v, uv), r->sample_visible);
 }
+
+/* bsdf_albedo at a surface point (a nested BSDF's, for its wrapper). */
+rgb bsdf_albedo_at(const bsdf_t *b, texture_point at);
 
 /* eval and pdf of BSDFs made only of delta lobes: always zero. */
 rgb bsdf_eval_delta_only(const bsdf_t *b, const bsdf_query *q, vec3 wo);
@@ -114,7 +123,7 @@ typedef struct {
 int bsdf_perturbing_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out);
 rgb bsdf_perturbing_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo);
 double bsdf_perturbing_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo);
-rgb bsdf_perturbing_albedo(const bsdf_t *b, vec2 uv);
+rgb bsdf_perturbing_albedo(const bsdf_t *b, texture_point uv);
 vec3 bsdf_perturbing_shading_normal(const bsdf_t *b, const bsdf_query *q);
 #define BSDF_PERTURBING_OPS(name)                                                                                 \
     {name, bsdf_perturbing_sample, bsdf_perturbing_eval, bsdf_perturbing_pdf, bsdf_perturbing_albedo, NULL,         \

@@ -74,6 +74,11 @@ typedef struct {
      * the geometric normal. Zero when unknown: the tangent is then local
      * +x and the geometric normal +z. */
     vec3 dpdu, dpdv, ng;
+    /* On a mesh with attributes (mesh_attribute textures): the mesh, the
+     * triangle and its barycentrics (texture_point); mesh NULL elsewhere. */
+    const texture_mesh *mesh;
+    int prim;
+    double b1, b2;
 } bsdf_query;
 
 typedef struct {

@@ -19,11 +19,11 @@ static int conductor_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec
     out->pdf = 1.0;
     out->eta = 1.0;
     out->sampled_type = BSDF_DELTA_REFLECTION;
-    out->weight = rgb_mul(spectrum_eval(&d->specular_reflectance, q->uv), fresnel_conductor_rgb(q->wi.z, d->eta, d->k));
+    out->weight = rgb_mul(spectrum_eval(&d->specular_reflectance, bsdf_at(q)), fresnel_conductor_rgb(q->wi.z, d->eta, d->k));
     return 1;
 }
 
-static rgb conductor_albedo(const bsdf_t *b, vec2 uv)
+static rgb conductor_albedo(const bsdf_t *b, texture_point uv)
 {
     const conductor_data *d = b->data;
     return rgb_mul(spectrum_eval(&d->specular_reflectance, uv), fresnel_conductor_rgb(1.0, d->eta, d->k));

@@ -21,19 +21,19 @@ static int dielectric_sample(const bsdf_t *b, const bsdf_query *q, double u1, ve
         out->pdf = r;
         out->eta = 1.0;
         out->sampled_type = BSDF_DELTA_REFLECTION;
-        out->weight = spectrum_eval(&d->specular_reflectance, q->uv);
+        out->weight = spectrum_eval(&d->specular_reflectance, bsdf_at(q));
     } else {
         out->wo = refract_about(q->wi, v3(0.0, 0.0, 1.0), cos_t, eta_ti);
         out->pdf = 1.0 - r;
         out->eta = eta_it;
         out->sampled_type = BSDF_DELTA_TRANSMISSION;
         double scale = q->mode == TRANSPORT_RADIANCE ? eta_ti * eta_ti : 1.0;
-        out->weight = rgb_scale(spectrum_eval(&d->specular_transmittance, q->uv), scale);
+        out->weight = rgb_scale(spectrum_eval(&d->specular_transmittance, bsdf_at(q)), scale);
     }
     return out->pdf > 0.0;
 }
 
-static rgb dielectric_albedo(const bsdf_t *b, vec2 uv)
+static rgb dielectric_albedo(const bsdf_t *b, texture_point uv)
 {
     const dielectric_data *d = b->data;
     return spectrum_eval(&d->specular_transmittance, uv);

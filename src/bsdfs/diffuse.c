@@ -16,7 +16,7 @@ static int diffuse_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 
     out->pdf = warp_cosine_hemisphere_pdf(out->wo);
     if (!(out->pdf > 0.0))
         return 0;
-    out->weight = spectrum_eval(&d->reflectance, q->uv);
+    out->weight = spectrum_eval(&d->reflectance, bsdf_at(q));
     out->eta = 1.0;
     out->sampled_type = BSDF_DIFFUSE_REFLECTION;
     return 1;
@@ -27,7 +27,7 @@ static rgb diffuse_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     const diffuse_data *d = b->data;
     if (q->wi.z <= 0.0 || wo.z <= 0.0)
         return rgb_gray(0.0);
-    return rgb_scale(spectrum_eval(&d->reflectance, q->uv), wo.z / M_PI);
+    return rgb_scale(spectrum_eval(&d->reflectance, bsdf_at(q)), wo.z / M_PI);
 }
 
 static double diffuse_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
@@ -36,7 +36,7 @@ static double diffuse_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     return q->wi.z > 0.0 ? warp_cosine_hemisphere_pdf(wo) : 0.0;
 }
 
-static rgb diffuse_albedo(const bsdf_t *b, vec2 uv)
+static rgb diffuse_albedo(const bsdf_t *b, texture_point uv)
 {
     const diffuse_data *d = b->data;
     return spectrum_eval(&d->reflectance, uv);

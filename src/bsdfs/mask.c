@@ -11,7 +11,7 @@ typedef struct {
     const bsdf_t *nested;
 } mask_data;
 
-static double mask_opacity(const mask_data *d, vec2 uv)
+static double mask_opacity(const mask_data *d, texture_point uv)
 {
     return fmin(fmax(scalar_eval(&d->opacity, uv), 0.0), 1.0);
 }
@@ -19,7 +19,7 @@ static double mask_opacity(const mask_data *d, vec2 uv)
 static int mask_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out)
 {
     const mask_data *d = b->data;
-    double opacity = mask_opacity(d, q->uv);
+    double opacity = mask_opacity(d, bsdf_at(q));
     if (u1 < opacity) {
         if (!bsdf_sample(d->nested, q, u1 / opacity, u2, out))
             return 0;
@@ -37,26 +37,26 @@ static int mask_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2,
 static rgb mask_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
 {
     const mask_data *d = b->data;
-    return rgb_scale(bsdf_eval(d->nested, q, wo), mask_opacity(d, q->uv));
+    return rgb_scale(bsdf_eval(d->nested, q, wo), mask_opacity(d, bsdf_at(q)));
 }
 
 static double mask_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
 {
     const mask_data *d = b->data;
-    return bsdf_pdf(d->nested, q, wo) * mask_opacity(d, q->uv);
+    return bsdf_pdf(d->nested, q, wo) * mask_opacity(d, bsdf_at(q));
 }
 
-static rgb mask_albedo(const bsdf_t *b, vec2 uv)
+static rgb mask_albedo(const bsdf_t *b, texture_point uv)
 {
     const mask_data *d = b->data;
-    return bsdf_albedo(d->nested, uv);
+    return bsdf_albedo_at(d->nested, uv);
 }
 
 static rgb mask_straight(const bsdf_t *b, const bsdf_query *q)
 {
     const mask_data *d = b->data;
     rgb nested = bsdf_straight_transmittance(d->nested, q);
-    double opacity = mask_opacity(d, q->uv);
+    double opacity = mask_opacity(d, bsdf_at(q));
     return rgb_make(1.0 - opacity * (1.0 - nested.r), 1.0 - opacity * (1.0 - nested.g),
                     1.0 - opacity * (1.0 - nested.b));
 }

@@ -15,7 +15,7 @@ typedef struct {
 static void normalmap_normal(const void *data, const bsdf_query *q, vec3 *n, vec3 *tangent)
 {
     const normalmap_data *d = data;
-    rgb c = spectrum_eval(&d->normals, q->uv);
+    rgb c = spectrum_eval(&d->normals, bsdf_at(q));
     vec3 m = v3(2.0 * c.r - 1.0, 2.0 * c.g - 1.0, 2.0 * c.b - 1.0); /* in Mitsuba's frame */
     vec3 s = bsdf_query_tangent(q), t = v3(-s.y, s.x, 0.0);          /* its axes in the local one */
     *n = v3_add(v3_add(v3_scale(s, m.x), v3_scale(t, m.y)), v3(0.0, 0.0, m.z));

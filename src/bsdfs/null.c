@@ -21,7 +21,7 @@ static rgb null_straight(const bsdf_t *b, const bsdf_query *q)
     return rgb_gray(1.0);
 }
 
-static rgb null_albedo(const bsdf_t *b, vec2 uv)
+static rgb null_albedo(const bsdf_t *b, texture_point uv)
 {
     (void)b, (void)uv;
     return rgb_gray(0.0);

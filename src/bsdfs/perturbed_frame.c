@@ -91,10 +91,10 @@ double bsdf_perturbing_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     return bsdf_pdf(d->nested, &r, local);
 }
 
-rgb bsdf_perturbing_albedo(const bsdf_t *b, vec2 uv)
+rgb bsdf_perturbing_albedo(const bsdf_t *b, texture_point uv)
 {
     const bsdf_perturbing *d = b->data;
-    return bsdf_albedo(d->nested, uv);
+    return bsdf_albedo_at(d->nested, uv);
 }
 
 vec3 bsdf_perturbing_shading_normal(const bsdf_t *b, const bsdf_query *q)

@@ -17,7 +17,7 @@ typedef struct {
 } plastic_data;
 
 /* The diffuse albedo after internal scattering, rho / (1 - k). */
-static rgb plastic_diffuse(const plastic_data *d, vec2 uv)
+static rgb plastic_diffuse(const plastic_data *d, texture_point uv)
 {
     rgb rho = spectrum_eval(&d->diffuse_reflectance, uv);
     rgb k = d->nonlinear ? rgb_scale(rho, d->fdr_int) : rgb_gray(d->fdr_int);
@@ -44,7 +44,7 @@ static int plastic_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 
         out->wo = reflect_local(q->wi);
         out->pdf = p_spec;
         out->sampled_type = BSDF_DELTA_REFLECTION;
-        out->weight = rgb_scale(spectrum_eval(&d->specular_reflectance, q->uv), f_i / p_spec);
+        out->weight = rgb_scale(spectrum_eval(&d->specular_reflectance, bsdf_at(q)), f_i / p_spec);
         return 1;
     }
     out->wo = warp_square_to_cosine_hemisphere(u2);
@@ -54,7 +54,7 @@ static int plastic_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 
     double p_diff = 1.0 - p_spec;
     out->pdf = p_diff * warp_cosine_hemisphere_pdf(out->wo);
     out->sampled_type = BSDF_DIFFUSE_REFLECTION;
-    out->weight = rgb_scale(plastic_diffuse(d, q->uv), d->inv_eta2 * (1.0 - f_i) * (1.0 - f_o) / p_diff);
+    out->weight = rgb_scale(plastic_diffuse(d, bsdf_at(q)), d->inv_eta2 * (1.0 - f_i) * (1.0 - f_o) / p_diff);
     return 1;
 }
 
@@ -65,7 +65,7 @@ static rgb plastic_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
         return rgb_gray(0.0);
     double f_i = fresnel_dielectric(q->wi.z, d->eta, NULL, NULL, NULL);
     double f_o = fresnel_dielectric(wo.z, d->eta, NULL, NULL, NULL);
-    return rgb_scale(plastic_diffuse(d, q->uv), d->inv_eta2 * (1.0 - f_i) * (1.0 - f_o) * wo.z / M_PI);
+    return rgb_scale(plastic_diffuse(d, bsdf_at(q)), d->inv_eta2 * (1.0 - f_i) * (1.0 - f_o) * wo.z / M_PI);
 }
 
 static double plastic_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
@@ -77,7 +77,7 @@ static double plastic_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     return (1.0 - plastic_prob_specular(d, f_i)) * warp_cosine_hemisphere_pdf(wo);
 }
 
-static rgb plastic_albedo(const bsdf_t *b, vec2 uv)
+static rgb plastic_albedo(const bsdf_t *b, texture_point uv)
 {
     const plastic_data *d = b->data;
     return spectrum_eval(&d->diffuse_reflectance, uv);

@@ -52,7 +52,7 @@ static double smith_ggx1(vec3 v, vec3 wh, double alpha)
 }
 
 /* The clearcoat's alpha: gloss 0 gives 0.1, 1 gives 0.001. */
-static double clearcoat_alpha(const principled_data *d, vec2 uv)
+static double clearcoat_alpha(const principled_data *d, texture_point uv)
 {
     double g = scalar_eval(&d->clearcoat_gloss, uv);
     return 0.1 + (0.001 - 0.1) * g;
@@ -64,7 +64,7 @@ typedef struct {
     double brdf, bsdf; /* the weights of the reflective and transmissive major lobes */
 } principled_at;
 
-static principled_at principled_values(const principled_data *d, vec2 uv)
+static principled_at principled_values(const principled_data *d, texture_point uv)
 {
     principled_at v;
     v.roughness = scalar_eval(&d->roughness, uv);
@@ -123,8 +123,8 @@ static rgb principled_eval_bsdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     double cos_i = wi.z, cos_o = wo.z;
     if (cos_i == 0.0)
         return rgb_gray(0.0);
-    principled_at v = principled_values(d, q->uv);
-    rgb base = spectrum_eval(&d->base_color, q->uv);
+    principled_at v = principled_values(d, bsdf_at(q));
+    rgb base = spectrum_eval(&d->base_color, bsdf_at(q));
     bool reflect = cos_i * cos_o > 0.0, refract = cos_i * cos_o < 0.0, front = cos_i > 0.0;
     double eta_path = front ? d->eta : 1.0 / d->eta, inv_eta_path = 1.0 / eta_path;
     microfacet distr = principled_ggx(v.roughness, v.anisotropic, d->anisotropic.on);
@@ -135,7 +135,7 @@ static rgb principled_eval_bsdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     double dd = microfacet_D(&distr, wh), g = microfacet_G(&distr, wi, wo, wh);
     rgb value = rgb_gray(0.0);
     if (reflect && refl_ok && f_diel > 0.0) {
-        double spec_tint = principled_eval(&d->spec_tint, q->uv);
+        double spec_tint = principled_eval(&d->spec_tint, bsdf_at(q));
         rgb f = principled_fresnel(d, &v, base, f_diel, spec_tint, v3_dot(wi, wh), front);
         value = rgb_add(value, rgb_scale(f, dd * g / (4.0 * fabs(cos_i))));
     }
@@ -149,17 +149,17 @@ static rgb principled_eval_bsdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     if (d->clearcoat.on && v.clearcoat > 0.0 && reflect && refl_ok && front) {
         double fcc = principled_schlick(0.04, v3_dot(wi, wh), d->eta);
         double gcc = smith_ggx1(wi, wh, 0.25) * smith_ggx1(wo, wh, 0.25);
-        double dcc = gtr1_d(clearcoat_alpha(d, q->uv), wh);
+        double dcc = gtr1_d(clearcoat_alpha(d, bsdf_at(q)), wh);
         value = rgb_add(value, rgb_gray(0.25 * v.clearcoat * fcc * dcc * gcc * fabs(cos_o)));
     }
     if (v.brdf > 0.0 && reflect && front) {
         double cos_d = v3_dot(wh, wo);
-        rgb diffuse = principled_diffuse(base, v.roughness, principled_eval(&d->flatness, q->uv), d->flatness.on,
+        rgb diffuse = principled_diffuse(base, v.roughness, principled_eval(&d->flatness, bsdf_at(q)), d->flatness.on,
                                          fabs(cos_i), fabs(cos_o), cos_d);
         value = rgb_add(value, rgb_scale(diffuse, v.brdf));
-        double sheen = principled_eval(&d->sheen, q->uv);
+        double sheen = principled_eval(&d->sheen, bsdf_at(q));
         if (d->sheen.on && sheen > 0.0 && 1.0 - v.metallic > 0.0) {
-            rgb s = principled_sheen(base, sheen, principled_eval(&d->sheen_tint, q->uv), fabs(cos_o), cos_d);
+            rgb s = principled_sheen(base, sheen, principled_eval(&d->sheen_tint, bsdf_at(q)), fabs(cos_o), cos_d);
             value = rgb_add(value, rgb_scale(s, 1.0 - v.metallic));
         }
     }
@@ -173,7 +173,7 @@ static double principled_pdf_bsdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     double cos_i = wi.z, cos_o = wo.z;
     if (cos_i == 0.0)
         return 0.0;
-    principled_at v = principled_values(d, q->uv);
+    principled_at v = principled_values(d, bsdf_at(q));
     bool front = cos_i > 0.0, reflect = cos_i * cos_o > 0.0, refract = cos_i * cos_o < 0.0;
     if (!front && !(v.bsdf > 0.0))
         return 0.0; /* what sampling never gives (Mitsuba claims a density here) */
@@ -196,7 +196,7 @@ static double principled_pdf_bsdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     if (d->spec_trans.on && principled_compatible(wh, wi, wo, cos_i, false) && refract)
         pdf += p[2] * microfacet_pdf(&distr, wi_up, wh) * jacobian;
     if (d->clearcoat.on && refl_ok)
-        pdf += p[1] * gtr1_pdf(clearcoat_alpha(d, q->uv), wh) * jacobian;
+        pdf += p[1] * gtr1_pdf(clearcoat_alpha(d, bsdf_at(q)), wh) * jacobian;
     return pdf;
 }
 
@@ -207,7 +207,7 @@ static int principled_sample(const bsdf_t *b, const bsdf_query *q, double u1, ve
     double cos_i = wi.z;
     if (cos_i == 0.0)
         return 0;
-    principled_at v = principled_values(d, q->uv);
+    principled_at v = principled_values(d, bsdf_at(q));
     bool front = cos_i > 0.0;
     if (!front && !(v.bsdf > 0.0))
         return 0; /* no transmission: nothing from the back */
@@ -224,7 +224,7 @@ static int principled_sample(const bsdf_t *b, const bsdf_query *q, double u1, ve
         if (cos_i * out->wo.z <= 0.0)
             return 0;
     } else if (u1 < p[0] + p[1]) {
-        vec3 mc = gtr1_sample(clearcoat_alpha(d, q->uv), u2);
+        vec3 mc = gtr1_sample(clearcoat_alpha(d, bsdf_at(q)), u2);
         out->wo = reflect_about(wi, mc);
         out->sampled_type = BSDF_GLOSSY_REFLECTION;
         if (!principled_compatible(mc, wi, out->wo, cos_i, true) || cos_i * out->wo.z <= 0.0)
@@ -244,7 +244,7 @@ static int principled_sample(const bsdf_t *b, const bsdf_query *q, double u1, ve
     return bsdf_finish_sample(b, q, out);
 }
 
-static rgb principled_albedo(const bsdf_t *b, vec2 uv)
+static rgb principled_albedo(const bsdf_t *b, texture_point uv)
 {
     const principled_data *d = b->data;
     return spectrum_eval(&d->base_color, uv);

@@ -33,7 +33,7 @@ typedef struct {
 
 int principled_param_read(bsdf_set *set, scene_obj *o, const char *name, double def, principled_param *out,
                           char *err, size_t errlen);
-static inline double principled_eval(const principled_param *p, vec2 uv)
+static inline double principled_eval(const principled_param *p, texture_point uv)
 {
     return p->on ? scalar_eval(&p->v, uv) : 0.0;
 }

@@ -28,11 +28,11 @@ typedef struct {
 static thin_at thin_values(const thin_data *d, const bsdf_query *q)
 {
     thin_at v;
-    v.roughness = scalar_eval(&d->roughness, q->uv);
-    v.anisotropic = principled_eval(&d->anisotropic, q->uv);
-    v.spec_trans = principled_eval(&d->spec_trans, q->uv);
-    v.diff_trans = 0.5 * principled_eval(&d->diff_trans, q->uv); /* [0, 2] made [0, 1] */
-    v.eta = scalar_eval(&d->eta, q->uv);
+    v.roughness = scalar_eval(&d->roughness, bsdf_at(q));
+    v.anisotropic = principled_eval(&d->anisotropic, bsdf_at(q));
+    v.spec_trans = principled_eval(&d->spec_trans, bsdf_at(q));
+    v.diff_trans = 0.5 * principled_eval(&d->diff_trans, bsdf_at(q)); /* [0, 2] made [0, 1] */
+    v.eta = scalar_eval(&d->eta, bsdf_at(q));
     v.wi = q->wi.z < 0.0 ? v3_neg(q->wi) : q->wi;
     return v;
 }
@@ -61,7 +61,7 @@ static rgb thin_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo_in)
     if (q->wi.z == 0.0)
         return rgb_gray(0.0);
     thin_at v = thin_values(d, q);
-    rgb base = spectrum_eval(&d->base_color, q->uv);
+    rgb base = spectrum_eval(&d->base_color, bsdf_at(q));
     vec3 wi = v.wi, wo = q->wi.z < 0.0 ? v3_neg(wo_in) : wo_in;
     double cos_i = wi.z, cos_o = wo.z;
     bool reflect = cos_o > 0.0, refract = cos_o < 0.0;
@@ -72,7 +72,7 @@ static rgb thin_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo_in)
         double f_diel = fresnel_dielectric(v3_dot(wi, wh), v.eta, NULL, NULL, NULL);
         if (reflect && principled_compatible(wh, wi, wo, wi.z, true)) {
             microfacet distr = principled_ggx(v.roughness, v.anisotropic, d->anisotropic.on);
-            double spec_tint = principled_eval(&d->spec_tint, q->uv);
+            double spec_tint = principled_eval(&d->spec_tint, bsdf_at(q));
             rgb f = rgb_gray(f_diel);
             if (d->spec_tint.on) {
                 rgb r0 = rgb_scale(principled_tint(base), schlick_r0_eta(v.eta));
@@ -89,12 +89,12 @@ static rgb thin_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo_in)
     }
     if (reflect && v.spec_trans < 1.0 && v.diff_trans < 1.0) {
         double cos_d = v3_dot(wh, wo), w = (1.0 - v.spec_trans) * (1.0 - v.diff_trans);
-        rgb diffuse = principled_diffuse(base, v.roughness, principled_eval(&d->flatness, q->uv), d->flatness.on,
+        rgb diffuse = principled_diffuse(base, v.roughness, principled_eval(&d->flatness, bsdf_at(q)), d->flatness.on,
                                          cos_i, cos_o, cos_d);
         value = rgb_add(value, rgb_scale(diffuse, w));
-        double sheen = principled_eval(&d->sheen, q->uv);
+        double sheen = principled_eval(&d->sheen, bsdf_at(q));
         if (d->sheen.on && sheen > 0.0) {
-            rgb s = principled_sheen(base, sheen, principled_eval(&d->sheen_tint, q->uv), cos_o, cos_d);
+            rgb s = principled_sheen(base, sheen, principled_eval(&d->sheen_tint, bsdf_at(q)), cos_o, cos_d);
             value = rgb_add(value, rgb_scale(s, w));
         }
     }
@@ -168,7 +168,7 @@ static int thin_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2,
     return bsdf_finish_sample(b, q, out);
 }
 
-static rgb thin_albedo(const bsdf_t *b, vec2 uv)
+static rgb thin_albedo(const bsdf_t *b, texture_point uv)
 {
     const thin_data *d = b->data;
     return spectrum_eval(&d->base_color, uv);

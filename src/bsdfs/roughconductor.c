@@ -16,12 +16,12 @@ static rgb roughconductor_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     if (wi.z <= 0.0 || wo.z <= 0.0)
         return rgb_gray(0.0);
     vec3 m;
-    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    microfacet distr = bsdf_roughness_at(&d->roughness, bsdf_at(q));
     double dg = microfacet_reflection_dg(&distr, wi, wo, &m);
     if (dg == 0.0)
         return rgb_gray(0.0);
     rgb f = fresnel_conductor_rgb(v3_dot(wi, m), d->eta, d->k);
-    return rgb_scale(rgb_mul(f, spectrum_eval(&d->specular_reflectance, q->uv)), dg / (4.0 * wi.z));
+    return rgb_scale(rgb_mul(f, spectrum_eval(&d->specular_reflectance, bsdf_at(q))), dg / (4.0 * wi.z));
 }
 
 static double roughconductor_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
@@ -30,7 +30,7 @@ static double roughconductor_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     vec3 wi = q->wi;
     if (wi.z <= 0.0 || wo.z <= 0.0)
         return 0.0;
-    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    microfacet distr = bsdf_roughness_at(&d->roughness, bsdf_at(q));
     return microfacet_reflection_pdf(&distr, wi, wo);
 }
 
@@ -40,7 +40,7 @@ static int roughconductor_sample(const bsdf_t *b, const bsdf_query *q, double u1
     const roughconductor_data *d = b->data;
     if (q->wi.z <= 0.0)
         return 0;
-    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    microfacet distr = bsdf_roughness_at(&d->roughness, bsdf_at(q));
     vec3 m = microfacet_sample(&distr, q->wi, u2, NULL);
     out->wo = reflect_about(q->wi, m);
     if (out->wo.z <= 0.0)
@@ -50,7 +50,7 @@ static int roughconductor_sample(const bsdf_t *b, const bsdf_query *q, double u1
     return bsdf_finish_sample(b, q, out);
 }
 
-static rgb roughconductor_albedo(const bsdf_t *b, vec2 uv)
+static rgb roughconductor_albedo(const bsdf_t *b, texture_point uv)
 {
     const roughconductor_data *d = b->data;
     return rgb_mul(spectrum_eval(&d->specular_reflectance, uv), fresnel_conductor_rgb(1.0, d->eta, d->k));

@@ -40,18 +40,18 @@ static rgb roughdielectric_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     double eta;
     if (!half_vector(d, wi, wo, &m, &reflect, &eta))
         return rgb_gray(0.0);
-    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    microfacet distr = bsdf_roughness_at(&d->roughness, bsdf_at(q));
     double dg = microfacet_D(&distr, m) * microfacet_G(&distr, wi, wo, m);
     if (dg == 0.0)
         return rgb_gray(0.0);
     double wi_m = v3_dot(wi, m), wo_m = v3_dot(wo, m);
     double f = fresnel_dielectric(wi_m, d->eta, NULL, NULL, NULL);
     if (reflect)
-        return rgb_scale(spectrum_eval(&d->specular_reflectance, q->uv), f * dg / (4.0 * fabs(wi.z)));
+        return rgb_scale(spectrum_eval(&d->specular_reflectance, bsdf_at(q)), f * dg / (4.0 * fabs(wi.z)));
     double denom = wi_m + eta * wo_m;
     double scale = q->mode == TRANSPORT_RADIANCE ? 1.0 / (eta * eta) : 1.0;
     double value = fabs(scale * (1.0 - f) * dg * eta * eta * wi_m * wo_m / (wi.z * denom * denom));
-    return rgb_scale(spectrum_eval(&d->specular_transmittance, q->uv), value);
+    return rgb_scale(spectrum_eval(&d->specular_transmittance, bsdf_at(q)), value);
 }
 
 static double roughdielectric_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
@@ -63,7 +63,7 @@ static double roughdielectric_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     if (!half_vector(d, wi, wo, &m, &reflect, &eta))
         return 0.0;
     vec3 wi_up = wi.z > 0.0 ? wi : v3_neg(wi);
-    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    microfacet distr = bsdf_roughness_at(&d->roughness, bsdf_at(q));
     double pm = microfacet_pdf(&distr, wi_up, m);
     double wi_m = v3_dot(wi, m), wo_m = v3_dot(wo, m);
     double f = fresnel_dielectric(wi_m, d->eta, NULL, NULL, NULL);
@@ -81,7 +81,7 @@ static int roughdielectric_sample(const bsdf_t *b, const bsdf_query *q, double u
         return 0;
     vec3 wi_up = wi.z > 0.0 ? wi : v3_neg(wi);
     double pm;
-    microfacet distr = bsdf_roughness_at(&d->roughness, q->uv);
+    microfacet distr = bsdf_roughness_at(&d->roughness, bsdf_at(q));
     vec3 m = microfacet_sample(&distr, wi_up, u2, &pm);
     if (!(pm > 0.0))
         return 0;
@@ -103,7 +103,7 @@ static int roughdielectric_sample(const bsdf_t *b, const bsdf_query *q, double u
     return bsdf_finish_sample(b, q, out);
 }
 
-static rgb roughdielectric_albedo(const bsdf_t *b, vec2 uv)
+static rgb roughdielectric_albedo(const bsdf_t *b, texture_point uv)
 {
     const roughdielectric_data *d = b->data;
     return spectrum_eval(&d->specular_transmittance, uv);

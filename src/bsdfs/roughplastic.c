@@ -58,7 +58,7 @@ static double table_lookup(const double *table, double mu)
     return table[i] * (1.0 - t) + table[i + 1] * t;
 }
 
-static rgb roughplastic_diffuse(const roughplastic_data *d, vec2 uv)
+static rgb roughplastic_diffuse(const roughplastic_data *d, texture_point uv)
 {
     rgb rho = spectrum_eval(&d->diffuse_reflectance, uv);
     rgb k = d->nonlinear ? rgb_scale(rho, d->internal_reflectance) : rgb_gray(d->internal_reflectance);
@@ -80,9 +80,9 @@ static rgb roughplastic_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     vec3 m;
     double dg = microfacet_reflection_dg(&d->distr, wi, wo, &m);
     double f = fresnel_dielectric(v3_dot(wi, m), d->eta, NULL, NULL, NULL);
-    rgb spec = rgb_scale(spectrum_eval(&d->specular_reflectance, q->uv), f * dg / (4.0 * wi.z));
+    rgb spec = rgb_scale(spectrum_eval(&d->specular_reflectance, bsdf_at(q)), f * dg / (4.0 * wi.z));
     double t = table_lookup(d->transmittance, wi.z) * table_lookup(d->transmittance, wo.z);
-    rgb diff = rgb_scale(roughplastic_diffuse(d, q->uv), d->inv_eta2 * t * wo.z / M_PI);
+    rgb diff = rgb_scale(roughplastic_diffuse(d, bsdf_at(q)), d->inv_eta2 * t * wo.z / M_PI);
     return rgb_add(spec, diff);
 }
 
@@ -117,7 +117,7 @@ static int roughplastic_sample(const bsdf_t *b, const bsdf_query *q, double u1, 
     return bsdf_finish_sample(b, q, out);
 }
 
-static rgb roughplastic_albedo(const bsdf_t *b, vec2 uv)
+static rgb roughplastic_albedo(const bsdf_t *b, texture_point uv)
 {
     const roughplastic_data *d = b->data;
     return spectrum_eval(&d->diffuse_reflectance, uv);

@@ -31,12 +31,12 @@ static int thindielectric_sample(const bsdf_t *b, const bsdf_query *q, double u1
         out->wo = reflect_local(q->wi);
         out->pdf = r;
         out->sampled_type = BSDF_DELTA_REFLECTION;
-        out->weight = spectrum_eval(&d->specular_reflectance, q->uv);
+        out->weight = spectrum_eval(&d->specular_reflectance, bsdf_at(q));
     } else {
         out->wo = v3_neg(q->wi);
         out->pdf = 1.0 - r;
         out->sampled_type = BSDF_DELTA_TRANSMISSION | BSDF_STRAIGHT_TRANSMISSION;
-        out->weight = spectrum_eval(&d->specular_transmittance, q->uv);
+        out->weight = spectrum_eval(&d->specular_transmittance, bsdf_at(q));
     }
     return out->pdf > 0.0;
 }
@@ -47,10 +47,10 @@ static rgb thindielectric_straight(const bsdf_t *b, const bsdf_query *q)
     const thindielectric_data *d = b->data;
     if (q->wi.z == 0.0)
         return rgb_gray(0.0);
-    return rgb_scale(spectrum_eval(&d->specular_transmittance, q->uv), 1.0 - sheet_reflectance(q->wi.z, d->eta));
+    return rgb_scale(spectrum_eval(&d->specular_transmittance, bsdf_at(q)), 1.0 - sheet_reflectance(q->wi.z, d->eta));
 }
 
-static rgb thindielectric_albedo(const bsdf_t *b, vec2 uv)
+static rgb thindielectric_albedo(const bsdf_t *b, texture_point uv)
 {
     const thindielectric_data *d = b->data;
     return spectrum_eval(&d->specular_transmittance, uv);

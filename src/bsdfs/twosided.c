@@ -50,10 +50,10 @@ static double twosided_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
     return 0.0;
 }
 
-static rgb twosided_albedo(const bsdf_t *b, vec2 uv)
+static rgb twosided_albedo(const bsdf_t *b, texture_point uv)
 {
     const twosided_data *d = b->data;
-    return bsdf_albedo(d->front, uv);
+    return bsdf_albedo_at(d->front, uv);
 }
 
 static const bsdf_ops twosided_ops = {"twosided", twosided_sample, twosided_eval, twosided_pdf, twosided_albedo, NULL, NULL};

@@ -54,4 +54,9 @@ int integrator_nested(scene_obj *o, integrator_t **out, int max, char *err, size
  * for the i-th unnamed one. */
 void integrator_nested_name(const scene_obj *o, int i, char *buf, size_t len);
 
+/* The `volpath` integrator's constructor and parameters, which
+ * `volpathmis` shares (volpath.c). */
+integrator_t *integrator_volpath_create(scene_obj *o, char *err, size_t errlen);
+extern const scene_param_decl integrator_volpath_params[];
+
 #endif

@@ -9,6 +9,9 @@
     X(integrator, depth)                 \
     X(integrator, aov)                   \
     X(integrator, moment)                \
+    X(integrator, volpath)               \
+    X(integrator, volpathmis)            \
+    X(integrator, ptracer)               \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(integrator, INTEGRATOR_PLUGINS)

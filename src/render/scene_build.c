@@ -142,7 +142,8 @@ static int build_shape(struct scene *s, const shape_leaf *leaf, const scene_opti
     s->shapes.count++;
     scene_obj *bo = scene_obj_child(o, SCENE_BSDF);
     sh->bsdf = bo ? bsdf_set_get(&s->bsdfs, bo, err, errlen) : bsdf_set_default(&s->bsdfs, o, err, errlen);
-    if (!sh->bsdf)
+    if (!sh->bsdf || medium_set_param(&s->media, o, "interior", &sh->interior, err, errlen) != 0 ||
+        medium_set_param(&s->media, o, "exterior", &sh->exterior, err, errlen) != 0)
         return -1;
     scene_obj *eo = scene_obj_child(o, SCENE_EMITTER);
     if (!eo)
@@ -256,6 +257,7 @@ void scene_destroy(scene_t *s)
     /* BSDFs borrow textures: free them first. */
     bsdf_set_free(&s->bsdfs);
     texture_set_free(&s->textures);
+    medium_set_free(&s->media);
     integrator_destroy(s->integrator);
     free(s);
 }

@@ -7,6 +7,7 @@
 #include "celadon/scene.h"
 #include "emitters/emitters.h"
 #include "integrators/integrators.h"
+#include "media/media.h"
 #include "samplers/samplers.h"
 #include "sensors/sensors.h"
 #include "shapes/shapes.h"
@@ -21,6 +22,7 @@ struct scene {
     emitter_list emitters; /* area emitters in shape order, then the others in document order */
     bsdf_set bsdfs;
     texture_set textures;
+    medium_set media;
     uint64_t digest; /* scene_digest */
 };
 

@@ -1,6 +1,8 @@
 /* Every plugin the renderer builds, gathered from the registration tables of
  * the kinds for the scene reader; and the scene root's own declaration. */
+#include "phases/phases.h"
 #include "render/scene_impl.h"
+#include "volumes/volumes.h"
 
 static const scene_child_decl scene_children[] = {
     {SCENE_SENSOR, 0, 1, NULL},           {SCENE_INTEGRATOR, 0, 1, NULL}, {SCENE_SHAPE, 0, 1 << 30, NULL},
@@ -16,7 +18,8 @@ static const scene_plugin_decl *const *const tables[SCENE_CLASS_COUNT] = {
     [SCENE_SCENE] = root_table,          [SCENE_SENSOR] = sensor_plugins,   [SCENE_FILM] = film_plugins,
     [SCENE_SAMPLER] = sampler_plugins,   [SCENE_RFILTER] = rfilter_plugins, [SCENE_INTEGRATOR] = integrator_plugins,
     [SCENE_SHAPE] = shape_plugins,       [SCENE_BSDF] = bsdf_plugins,       [SCENE_TEXTURE] = texture_plugins,
-    [SCENE_EMITTER] = emitter_plugins,
+    [SCENE_EMITTER] = emitter_plugins,   [SCENE_MEDIUM] = medium_plugins,   [SCENE_PHASE] = phase_plugins,
+    [SCENE_VOLUME] = volume_plugins,
 };
 
 const scene_plugin_decl *scene_plugin_find(scene_class cls, const char *type)

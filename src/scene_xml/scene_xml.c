@@ -1,5 +1,6 @@
 /* The scene reader: documents, includes, defaults, objects, references and
  * validation against the plugin declarations the caller's lookup gives. */
+#include <ctype.h>
 #include <errno.h>
 #include <libgen.h>
 #include <libxml/SAX2.h>
@@ -14,7 +15,8 @@
 #include "scene_xml/scene_xml_internal.h"
 
 static const char *class_tags[SCENE_CLASS_COUNT] = {
-    "scene", "sensor", "film", "sampler", "rfilter", "integrator", "shape", "bsdf", "texture", "emitter"};
+    "scene", "sensor", "film", "sampler", "rfilter", "integrator", "shape", "bsdf", "texture", "emitter",
+    "medium", "phase", "volume"};
 
 const char *scene_class_name(scene_class c) { return c >= 0 && c < SCENE_CLASS_COUNT ? class_tags[c] : "?"; }
 
@@ -204,9 +206,10 @@ static int add_prop(scene_ctx *c, scene_obj *o, scene_prop *p)
     return 0;
 }
 
-/* Puts child under parent: a texture below an object sets the property its
- * name says (unless the object takes nested textures whatever their name,
- * as bumpmap does, and the name is none of its parameters); anything else
+/* Puts child under parent: a texture, medium or volume below an object sets
+ * the property its name says (unless, for a texture, the object takes nested
+ * textures whatever their name, as bumpmap does, and the name is none of its
+ * parameters); anything else
  * joins the children, within the table's limits. */
 static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char *name, int line)
 {
@@ -215,7 +218,8 @@ static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char 
     describe(child, cw, sizeof cw);
     const scene_plugin_decl *pd = c->plugins(parent->cls, parent->type);
     bool any_name = schema_child_find(pd, SCENE_TEXTURE) && !(name && schema_param_find(pd, name));
-    if (child->cls == SCENE_TEXTURE && parent->cls != SCENE_SCENE && !any_name) {
+    bool by_name = (child->cls == SCENE_TEXTURE && !any_name) || child->cls == SCENE_MEDIUM || child->cls == SCENE_VOLUME;
+    if (by_name && parent->cls != SCENE_SCENE) {
         if (!name)
             return scene_fail(c, line, "%s inside %s needs a name (the parameter it sets)", cw, pw);
         scene_prop p = {0};
@@ -434,6 +438,20 @@ static int declared_only(scene_ctx *c, const scene_obj *parent, const scene_obj 
     return !schema_child_find(c->plugins(SCENE_SCENE, "scene"), o->cls) || c->plugins(o->cls, o->type)->host != SCENE_SCENE;
 }
 
+/* Mitsuba 3 loads a plugin from the file plugins/<type>.so (.dylib, .dll),
+ * so on the case-insensitive file systems of macOS and Windows `Rectangle`
+ * loads `rectangle` (some of Mitsuba's own scenes say so): a type that names
+ * no plugin becomes its lower-case spelling when that one does. */
+static void fold_plugin_case(scene_ctx *c, scene_class cls, char *type)
+{
+    char *lower = xstrdup(type);
+    for (char *s = lower; *s; s++)
+        *s = (char)tolower((unsigned char)*s);
+    if (c->plugins(cls, lower))
+        memcpy(type, lower, strlen(lower));
+    free(lower);
+}
+
 static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_obj *parent)
 {
     int line = scene_line(n);
@@ -442,6 +460,8 @@ static int parse_object(scene_ctx *c, const xmlNode *n, scene_class cls, scene_o
     if (scene_check_attrs(c, n, "type|id|name") != 0 || scene_attr_req(c, n, "type", &type) != 0 ||
         scene_attr(c, n, "id", &id) != 0 || scene_attr(c, n, "name", &name) != 0)
         goto done;
+    if (!c->plugins(cls, type))
+        fold_plugin_case(c, cls, type);
     if (!c->plugins(cls, type)) {
         const char *why = scene_plugin_refusal(cls, type);
         scene_fail(c, line, "unknown plugin '%s' for <%s>%s%s%s", type, scene_class_name(cls), why ? " (" : "",

@@ -1,7 +1,12 @@
 /* Stanford PLY reader for the `ply` shape: ascii and binary_little_endian,
  * vertex x y z, optional nx ny nz and u v (or s t, texture_u texture_v),
  * faces as a list property vertex_indices (or vertex_index), fanned into
- * triangles. Other elements and properties are read and skipped. */
+ * triangles. The other scalar properties of vertices and faces are the
+ * mesh's attributes, named as Mitsuba names them: stem_0, stem_1, ... (or
+ * one property stem) are vertex_stem or face_stem with that many channels,
+ * r g b (red green blue) are color; attributes of 1 or 3 channels are kept
+ * (a face's values for each of its triangles), others skipped. Other
+ * elements are read and skipped. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -132,6 +137,73 @@ static int vertex_slot(const char *name)
     return -1;
 }
 
+/* The stem and channel of a scalar property as an attribute. */
+static void attribute_stem(const char *name, char *stem, size_t len, int *channel)
+{
+    static const char *rgb[3][2] = {{"r", "red"}, {"g", "green"}, {"b", "blue"}};
+    for (int c = 0; c < 3; c++)
+        if (!strcmp(name, rgb[c][0]) || !strcmp(name, rgb[c][1])) {
+            snprintf(stem, len, "color");
+            *channel = c;
+            return;
+        }
+    size_t n = strlen(name);
+    if (n >= 3 && name[n - 2] == '_' && name[n - 1] >= '0' && name[n - 1] <= '9') {
+        snprintf(stem, len, "%.*s", (int)(n - 2), name);
+        *channel = name[n - 1] - '0';
+        return;
+    }
+    snprintf(stem, len, "%s", name);
+    *channel = 0;
+}
+
+/* The attributes of element e (a vertex or face element): for each scalar
+ * property that is not a vertex slot, its attribute in m->attrs (appended;
+ * -1 when skipped) and channel. 0, or -1 when out of memory. */
+static int plan_attributes(const ply_elem *e, const int *slot, bool per_face, shape_mesh_data *m, int *attr, int *chan)
+{
+    for (int k = 0; k < e->nprops; k++) {
+        attr[k] = -1;
+        if (e->props[k].count_type || slot[k] >= 0)
+            continue;
+        char stem[64], name[80];
+        attribute_stem(e->props[k].name, stem, sizeof stem, &chan[k]);
+        snprintf(name, sizeof name, "%s_%s", per_face ? "face" : "vertex", stem);
+        int a = 0;
+        while (a < m->attrs.count && strcmp(m->attrs.items[a].name, name) != 0)
+            a++;
+        if (a == m->attrs.count) {
+            texture_attribute *items = realloc(m->attrs.items, sizeof *items * (size_t)(a + 1));
+            if (!items)
+                return -1;
+            m->attrs.items = items;
+            items[a] = (texture_attribute){.name = strdup(name), .per_face = per_face};
+            m->attrs.count++;
+            if (!items[a].name)
+                return -1;
+        }
+        texture_attribute *t = &m->attrs.items[a];
+        t->channels = chan[k] + 1 > t->channels ? chan[k] + 1 : t->channels;
+        attr[k] = a;
+    }
+    /* Only 1 or 3 channels make a value: drop the others' properties. */
+    for (int k = 0; k < e->nprops; k++)
+        if (attr[k] >= 0 && m->attrs.items[attr[k]].channels != 1 && m->attrs.items[attr[k]].channels != 3)
+            attr[k] = -1;
+    return 0;
+}
+
+/* Room for count more values (of channels each) of attribute a: 0 or -1. */
+static int grow_attribute(texture_attribute *a, size_t have, size_t count)
+{
+    float *v = realloc(a->values, sizeof *v * (have + count) * (size_t)a->channels);
+    if (!v)
+        return -1;
+    a->values = v;
+    memset(v + have * (size_t)a->channels, 0, sizeof *v * count * (size_t)a->channels);
+    return 0;
+}
+
 static int read_elements(FILE *fp, int binary, const ply_elem *elems, int nelems, shape_mesh_data *m,
                          size_t *tri_cap)
 {
@@ -154,13 +226,29 @@ static int read_elements(FILE *fp, int binary, const ply_elem *elems, int nelems
             if (!m->pos)
                 return -1;
         }
+        int attr[PLY_MAX_PROPS], chan[PLY_MAX_PROPS], first_attr = m->attrs.count;
+        if ((is_vertex || is_face) && plan_attributes(e, slot, is_face, m, attr, chan) != 0)
+            return -1;
+        for (int a = first_attr; is_vertex && a < m->attrs.count; a++)
+            if (grow_attribute(&m->attrs.items[a], 0, (size_t)m->n_verts) != 0)
+                return -1;
         for (long i = 0; i < e->count; i++) {
+            float face_values[PLY_MAX_PROPS];
+            int tris_before = m->n_tris;
             for (int k = 0; k < e->nprops; k++) {
                 const ply_prop *p = &e->props[k];
                 double x;
                 if (!p->count_type) {
                     if (ply_value(fp, binary, p->type, &x) != 0)
                         return -1;
+                    if ((is_vertex || is_face) && attr[k] >= 0) {
+                        texture_attribute *a = &m->attrs.items[attr[k]];
+                        if (is_vertex)
+                            a->values[(size_t)i * (size_t)a->channels + (size_t)chan[k]] = (float)x;
+                        else
+                            face_values[k] = (float)x;
+                        continue;
+                    }
                     int s = slot[k];
                     if (s >= 0 && s < 3)
                         m->pos[3 * i + s] = (float)x;
@@ -199,8 +287,21 @@ static int read_elements(FILE *fp, int binary, const ply_elem *elems, int nelems
                     prev = vi;
                 }
             }
+            /* The face's values, for each triangle it was fanned into. */
+            size_t added = (size_t)(m->n_tris - tris_before);
+            for (int a = first_attr; is_face && added > 0 && a < m->attrs.count; a++)
+                if (grow_attribute(&m->attrs.items[a], (size_t)tris_before, added) != 0)
+                    return -1;
+            for (int k = 0; is_face && k < e->nprops; k++) {
+                if (attr[k] < 0)
+                    continue;
+                texture_attribute *a = &m->attrs.items[attr[k]];
+                for (size_t t = (size_t)tris_before; t < (size_t)m->n_tris; t++)
+                    a->values[t * (size_t)a->channels + (size_t)chan[k]] = face_values[k];
+            }
         }
     }
+    m->attrs.tri = m->tri;
     return m->n_verts > 0 && m->n_tris > 0 ? 0 : -1;
 }
 

@@ -159,6 +159,12 @@ bsdf_query shape_bsdf_query(const surface_hit *hit, vec3 dir, transport_mode mod
     q.dpdu = frame3_to_local(hit->sh, hit->dpdu);
     q.dpdv = frame3_to_local(hit->sh, hit->dpdv);
     q.ng = frame3_to_local(hit->sh, hit->ng);
+    const shape_t *s = hit->shape;
+    if (s->is_mesh && s->mesh.attrs.count > 0) {
+        q.mesh = &s->mesh.attrs;
+        q.prim = hit->prim;
+        q.b1 = hit->local.param[0], q.b2 = hit->local.param[1];
+    }
     return q;
 }
 

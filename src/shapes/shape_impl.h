@@ -86,8 +86,15 @@ void shape_mesh_square_face(shape_mesh_data *m, int f, int a, int b, int c, doub
 /* -------------------------------------------------------------- plugins */
 
 /* The parameters every shape takes, and what every shape may hold. */
-#define SHAPE_PARAMS_COMMON {"to_world", PARAM_TRANSFORM, 0, NULL}, {"flip_normals", PARAM_BOOL, 0, NULL}
+#define SHAPE_PARAMS_COMMON                                                                                 \
+    {"to_world", PARAM_TRANSFORM, 0, NULL}, {"flip_normals", PARAM_BOOL, 0, NULL},                           \
+        {"interior", PARAM_OBJECT, 0, NULL}, {"exterior", PARAM_OBJECT, 0, NULL}
 #define SHAPE_PARAMS_END {NULL, 0, 0, NULL}
+
+/* A curve shape (curve.c) of kind ACCEL_KIND_CURVE_LINEAR or _BSPLINE from
+ * the file its `filename` names, placed by to_world: 0, or -1 with err. */
+int curve_shape_create(scene_obj *o, accel_kind kind, const transform4 *to_world, shape_t *sh, char *err,
+                       size_t errlen);
 extern const scene_child_decl shape_children[];
 
 #endif

@@ -53,6 +53,7 @@ void shape_mesh_finish(const shape_t *sh, int tri, double b1, double b2, double 
     hit->sh = frame3_from_normal(ns);
     hit->eps = surface_hit_eps(hit->p);
     hit->prim = tri;
+    hit->local.param[0] = b1, hit->local.param[1] = b2; /* for mesh attributes (shape_bsdf_query) */
 }
 
 unsigned shape_mesh_add(const shape_t *sh, accel_t *acc, char *err, size_t errlen)
@@ -135,6 +136,7 @@ void shape_mesh_data_free(shape_mesh_data *m)
     free(m->nrm);
     free(m->uv);
     free(m->tri);
+    texture_mesh_free(&m->attrs);
     if (m->area_cdf.cdf)
         distribution1d_free(&m->area_cdf);
     memset(m, 0, sizeof *m);

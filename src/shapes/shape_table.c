@@ -13,6 +13,8 @@
     X(shape, cylinder)                   \
     X(shape, sor)                        \
     X(shape, serialized)                 \
+    X(shape, linearcurve)                \
+    X(shape, bsplinecurve)               \
     X(shape, shapegroup)                 \
     X(shape, instance)                   \
     /* one line per plugin, in any order */

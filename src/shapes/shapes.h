@@ -24,6 +24,7 @@
 
 typedef struct shape shape_t;
 struct emitter;
+struct medium;
 
 /* ------------------------------------------------------------- hits */
 
@@ -74,6 +75,7 @@ typedef struct {
     float *nrm;       /* world, unit, or NULL */
     float *uv;        /* or NULL */
     unsigned *tri;    /* 3 per triangle */
+    texture_mesh attrs; /* its attributes (ply), attrs.tri = tri; none: count 0 */
     distribution1d area_cdf; /* over triangles by area; built only for emitters */
     double area;      /* world, total */
 } shape_mesh_data;
@@ -84,6 +86,10 @@ struct shape {
     bool flip_normals;
     const bsdf_t *bsdf;   /* never NULL once the scene is built */
     const struct emitter *emitter; /* its area emitter, or NULL */
+    /* the media behind its normal and in front of it (Mitsuba's interior
+     * and exterior), NULL for none; a shape with neither leaves the medium
+     * of a ray that crosses it unchanged */
+    const struct medium *interior, *exterior;
     const char *file;     /* where it was declared, for messages */
     int line;
     /* meshes */

@@ -13,7 +13,7 @@ static rgb checkerboard_lookup(const texture_t *t, vec2 uv)
     return mu == mv ? c->color0 : c->color1;
 }
 
-static const texture_ops checkerboard_ops = {checkerboard_lookup, NULL, NULL};
+static const texture_ops checkerboard_ops = {checkerboard_lookup, NULL, NULL, NULL};
 
 static texture_t *checkerboard_create(scene_obj *o, char *err, size_t errlen)
 {

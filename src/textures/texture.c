@@ -10,9 +10,16 @@ static vec2 uv_apply(const uv_transform *t, vec2 uv)
     return v2(t->m[0][0] * uv.x + t->m[0][1] * uv.y + t->m[0][2], t->m[1][0] * uv.x + t->m[1][1] * uv.y + t->m[1][2]);
 }
 
+rgb texture_eval_at(const texture_t *t, const texture_point *at)
+{
+    if (t->ops->lookup_at)
+        return t->ops->lookup_at(t, at);
+    return t->ops->lookup(t, uv_apply(&t->to_uv, at->uv));
+}
+
 rgb texture_eval(const texture_t *t, vec2 uv)
 {
-    return t->ops->lookup(t, uv_apply(&t->to_uv, uv));
+    return texture_eval_at(t, &(texture_point){.uv = uv});
 }
 
 rgb texture_mean(const texture_t *t)
@@ -20,9 +27,9 @@ rgb texture_mean(const texture_t *t)
     return t->mean;
 }
 
-double texture_eval_1(const texture_t *t, vec2 uv)
+double texture_eval_1(const texture_t *t, const texture_point *at)
 {
-    return rgb_luminance(texture_eval(t, uv));
+    return rgb_luminance(texture_eval_at(t, at));
 }
 
 /* By the chain rule through uv' = A uv + b: the gradient by uv is A^T
@@ -53,6 +60,17 @@ texture_t *texture_alloc(const texture_ops *ops, size_t data_size)
     t->width = t->height = 1;
     t->data = at;
     return t;
+}
+
+void texture_mesh_free(texture_mesh *m)
+{
+    for (int i = 0; i < m->count; i++) {
+        free(m->items[i].name);
+        free(m->items[i].values);
+    }
+    free(m->items);
+    m->items = NULL;
+    m->count = 0;
 }
 
 void texture_destroy(texture_t *t)

@@ -18,6 +18,9 @@ typedef struct {
     void (*release)(void *data);
     /* The gradient of the value's luminance by the (moved) uv; NULL: zero. */
     vec2 (*gradient_1)(const texture_t *t, vec2 uv);
+    /* For a texture of the surface point rather than of uv (mesh_attribute):
+     * the value at at (no to_uv); NULL: lookup at the moved uv. */
+    rgb (*lookup_at)(const texture_t *t, const texture_point *at);
 } texture_ops;
 
 struct texture {

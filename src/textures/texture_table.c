@@ -7,6 +7,7 @@
     X(texture, bitmap)                   \
     X(texture, checkerboard)             \
     X(texture, rawconstant)              \
+    X(texture, mesh_attribute)           \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(texture, TEXTURE_PLUGINS)

@@ -11,6 +11,7 @@
 #ifndef CELADON_TEXTURES_H
 #define CELADON_TEXTURES_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "celadon/color.h"
@@ -19,12 +20,43 @@
 
 typedef struct texture texture_t;
 
+/* A mesh's named values per vertex or per face, as Mitsuba names them
+ * ("vertex_color", "face_weight": vertex_ or face_ and the stem of the PLY
+ * properties stem_0, stem_1, ...; r, g, b are vertex_color). */
+typedef struct {
+    char *name;
+    int channels; /* 1 or 3 */
+    bool per_face;
+    float *values; /* channels per vertex, or per face */
+} texture_attribute;
+
+/* The attributes of a triangle mesh and its triangles (3 vertex indices
+ * each), for `mesh_attribute`. */
+typedef struct {
+    texture_attribute *items;
+    int count;
+    const unsigned *tri;
+} texture_mesh;
+
+/* Where a texture is looked up: the surface's uv and, on a mesh with
+ * attributes, the mesh, the triangle and the barycentrics of its second and
+ * third vertices (mesh NULL elsewhere). */
+typedef struct {
+    vec2 uv;
+    const texture_mesh *mesh;
+    int prim;
+    double b1, b2;
+} texture_point;
+
+/* The value at a surface point. */
+rgb texture_eval_at(const texture_t *t, const texture_point *at);
+/* The value at uv, on no mesh (emitters, tests). */
 rgb texture_eval(const texture_t *t, vec2 uv);
 /* Mean value over the uv unit square (Mitsuba's Texture::mean). */
 rgb texture_mean(const texture_t *t);
 /* Mitsuba's eval_1, a texture read as a scalar (opacity, roughness, a
  * weight, a height): the luminance of its value at uv. */
-double texture_eval_1(const texture_t *t, vec2 uv);
+double texture_eval_1(const texture_t *t, const texture_point *at);
 /* The gradient of texture_eval_1 by (u, v) (Mitsuba's eval_1_grad): the
  * bilinear interpolant's for a bilinear bitmap, zero for the piecewise
  * constant ones. */
@@ -32,6 +64,8 @@ vec2 texture_eval_1_gradient(const texture_t *t, vec2 uv);
 /* Mitsuba's resolution(): a bitmap's size in texels, 1 x 1 otherwise. */
 void texture_resolution(const texture_t *t, int *width, int *height);
 void texture_destroy(texture_t *t);
+/* Frees a mesh's attributes (their names and values, and the array). */
+void texture_mesh_free(texture_mesh *m);
 
 /* A texture plugin: its declaration for the scene reader and its constructor
  * from a <texture> object, which returns NULL with "file:line: problem" in
