@@ -142,6 +142,7 @@ double spherical_rect_init(spherical_rect *r, vec3 o, vec3 corner, vec3 edge_u, 
     unit_complex g2 = corner_angle(r->x0 * r->y1, l01, r->z0, ax0, ay1);
     unit_complex g3 = corner_angle(-r->x0 * r->y0, l00, r->z0, ax0, ay0);
     r->b0 = -r->y0 / ay0, r->b1 = r->y1 / ay1; /* n0.z, n2.z */
+    r->b0_comp = z2 / (ay0 * ay0);              /* 1 - b0^2 without cancellation */
     /* cos k = cos(g2 + g3), sin k = -sin(g2 + g3). */
     r->cos_k = g2.c * g3.c - g2.s * g3.s;
     r->sin_k = -(g2.s * g3.c + g2.c * g3.s);
@@ -165,9 +166,14 @@ vec3 spherical_rect_sample(const spherical_rect *r, vec2 u)
     double sin_us, cos_us;
     sincos(u.x * r->solid_angle, &sin_us, &cos_us);
     double cos_au = cos_us * r->cos_k - sin_us * r->sin_k, sin_au = sin_us * r->cos_k + cos_us * r->sin_k;
-    double fu = (cos_au * r->b0 - r->b1) / sin_au;
-    double cu = clamp((fu > 0.0 ? 1.0 : -1.0) / sqrt(fu * fu + r->b0 * r->b0), -1.0, 1.0);
-    double xu = clamp(-(cu * r->z0) / sqrt(1.0 - cu * cu > 1e-300 ? 1.0 - cu * cu : 1e-300), r->x0, r->x1);
+    /* Urena et al.'s fu = n / sin(au), cu = sign(fu) / sqrt(fu^2 + b0^2)
+     * and xu = -cu z0 / sqrt(1 - cu^2) fold into
+     * xu = -z0 sign(fu) / sqrt(fu^2 - (1 - b0^2)), written over sin(au)
+     * (one square root, no division by sin(au)); where the root's argument
+     * is not positive xu is beyond the rectangle on sign(fu)'s side. */
+    double n = cos_au * r->b0 - r->b1, den2 = n * n - r->b0_comp * sin_au * sin_au;
+    double num = -r->z0 * (n > 0.0 ? sin_au : -sin_au);
+    double xu = clamp(den2 > 0.0 ? num / sqrt(den2) : copysign(INFINITY, num), r->x0, r->x1);
     /* ... and u.y the y along that line, uniform in the sine of its
      * elevation, which is uniform in solid angle. */
     double d2 = xu * xu + r->z0 * r->z0;
