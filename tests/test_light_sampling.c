@@ -30,6 +30,15 @@ static scene_t *load_scene(render_fixture *f, const char *body)
     return s;
 }
 
+/* The fixture opened, body loaded, and its first shape in *sh. */
+static scene_t *open_first_shape(render_fixture *f, const char *body, const shape_t **sh)
+{
+    render_fixture_open(f);
+    scene_t *s = load_scene(f, body);
+    *sh = &s->shapes.items[0];
+    return s;
+}
+
 /* The solid angle of the rectangle [x0,x1] x [y0,y1] in the plane z = h
  * seen from the origin, from the corner-anchored closed form
  * atan(x y / (h sqrt(x^2 + y^2 + h^2))) by inclusion-exclusion. */
@@ -155,10 +164,9 @@ Test(light_sampling, sphere_cone_is_uniform_in_solid_angle)
 Test(light_sampling, distant_rectangle_is_sampled_by_area)
 {
     render_fixture f;
-    render_fixture_open(&f);
-    scene_t *s = load_scene(&f, "<shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"1.5\" y=\"1\"/>"
-                                "</transform><emitter type=\"area\"/></shape>");
-    const shape_t *sh = &s->shapes.items[0];
+    const shape_t *sh;
+    scene_t *s = open_first_shape(&f, "<shape type=\"rectangle\"><transform name=\"to_world\">"
+                                      "<scale x=\"1.5\" y=\"1\"/></transform><emitter type=\"area\"/></shape>", &sh);
     /* (x, y, h): over the centre and beside the rectangle, far; then near
      * enough that the spherical rectangle stays (pdf 1 / solid angle). */
     const double refs[][3] = {{0.0, 0.0, 10.0}, {4.0, -3.0, 12.0}, {-20.0, 5.0, 6.0}, {0.3, 0.2, 2.0}};
