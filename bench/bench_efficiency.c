@@ -19,13 +19,18 @@
  *
  *   bench_efficiency [--bin CELADON] [--scenes DIR] [--scene NAME]... [--res WxH]
  *                    [--spp N,N,...] [--repeat R] [--ref-spp N] [--sampler NAME] [--threads T]
+ *                    [--scene-filter]
  *
  * Defaults: the binary $CELADON_BIN (else build/celadon), scenes studio,
  * cornell-sor and showcase (DIR/NAME/scene.xml, DIR = scenes, from the
  * repository root; an older binary wants its own commit's scenes), 320x180, 4,16,64 spp, 2 seeds each, 2 threads, the scene's own
  * sampler. The reference (2048 spp, zsobol, rendered once by build/celadon
  * and kept in out/bench/efficiency/) is the same for every binary, so an
- * older binary (--bin) is measured against the same truth ("before"). */
+ * older binary (--bin) is measured against the same truth ("before").
+ * Every render has a 1-pixel box filter, as Cycles' in the comparison
+ * (box_filtered_scene); --scene-filter keeps the scene's own, for a binary
+ * older than the reconstruction filters (whose film was such a box) or to
+ * see the filter's effect. */
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -49,6 +54,7 @@ typedef struct {
     const char *scenes[MAX_SCENES];
     int nscenes;
     int width, height, threads, repeat, ref_spp;
+    int scene_filter; /* render with the scene's own filter, not a box */
     int spp[MAX_SPP], nspp;
 } options;
 
@@ -75,12 +81,53 @@ static double run_cpu(char *const argv[])
            1e-6 * ru.ru_stime.tv_usec;
 }
 
-/* One render of scene to out; its CPU seconds or -1. */
+/* DIR/NAME/scene.xml with a 1-pixel box filter in its film (the bundled
+ * scenes take hdrfilm's default Gaussian, which blurs the noise over
+ * neighbouring pixels: a smaller MSE that is not a cleaner estimate, and not
+ * what Cycles' box is compared with), written beside it as
+ * DIR/NAME/.efficiency-box.xml so that its relative file names still
+ * resolve. Its path in path, 0; or -1 when the scene cannot be read or
+ * already names a filter. */
+static int box_filtered_scene(const char *dir, const char *scene, char *path, size_t n)
+{
+    char src[512];
+    snprintf(src, sizeof src, "%s/%s/scene.xml", dir, scene);
+    snprintf(path, n, "%s/%s/.efficiency-box.xml", dir, scene);
+    FILE *f = fopen(src, "rb");
+    char *xml = f ? malloc(1 << 20) : NULL;
+    size_t len = xml ? fread(xml, 1, (1 << 20) - 1, f) : 0;
+    if (f)
+        fclose(f);
+    if (!xml) {
+        fprintf(stderr, "bench_efficiency: cannot read %s\n", src);
+        return -1;
+    }
+    xml[len] = '\0';
+    char *film = strstr(xml, "<film"), *end = film ? strchr(film, '>') : NULL;
+    int rc = -1;
+    if (!end || end[-1] == '/' || strstr(xml, "<rfilter"))
+        fprintf(stderr, "bench_efficiency: %s: no <film> to give a box filter, or a filter already\n", src);
+    else if ((f = fopen(path, "wb"))) {
+        fwrite(xml, 1, (size_t)(end + 1 - xml), f);
+        fputs("<rfilter type=\"box\"/>", f);
+        fputs(end + 1, f);
+        rc = fclose(f) == 0 ? 0 : -1;
+    }
+    free(xml);
+    return rc;
+}
+
+/* One render of scene to out (box-filtered unless --scene-filter); its CPU
+ * seconds or -1. */
 static double render(const options *o, const char *bin, const char *scene, int spp, int seed, const char *sampler,
                      const char *out)
 {
     char path[512], spp_s[32], res_s[64], thr_s[32], seed_s[32];
-    snprintf(path, sizeof path, "%s/%s/scene.xml", bin == o->ref_bin ? "scenes" : o->scene_dir, scene);
+    const char *dir = bin == o->ref_bin ? "scenes" : o->scene_dir;
+    if (o->scene_filter)
+        snprintf(path, sizeof path, "%s/%s/scene.xml", dir, scene);
+    else if (box_filtered_scene(dir, scene, path, sizeof path) != 0)
+        return -1.0;
     snprintf(spp_s, sizeof spp_s, "%d", spp);
     snprintf(res_s, sizeof res_s, "%dx%d", o->width, o->height);
     snprintf(thr_s, sizeof thr_s, "%d", o->threads);
@@ -90,7 +137,10 @@ static double render(const options *o, const char *bin, const char *scene, int s
                     NULL};
     if (!sampler)
         argv[13] = NULL;
-    return run_cpu(argv);
+    double cpu = run_cpu(argv);
+    if (!o->scene_filter)
+        unlink(path);
+    return cpu;
 }
 
 static int read_rgb(const char *path, image_t *img)
@@ -133,7 +183,8 @@ static double loadavg(void)
 static int reference(const options *o, const char *scene, image_t *ref)
 {
     char path[512];
-    snprintf(path, sizeof path, "out/bench/efficiency/%s-%dx%d-%d.exr", scene, o->width, o->height, o->ref_spp);
+    snprintf(path, sizeof path, "out/bench/efficiency/%s-%dx%d-%d%s.exr", scene, o->width, o->height, o->ref_spp,
+             o->scene_filter ? "" : "-box");
     struct stat st;
     if (stat(path, &st) != 0) {
         printf("(rendering the %d-spp reference of %s with %s ...)\n", o->ref_spp, scene, o->ref_bin);
@@ -234,6 +285,10 @@ int main(int argc, char **argv)
                  .height = 180, .threads = 2, .repeat = 2, .ref_spp = 2048, .spp = {4, 16, 64}, .nspp = 3};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--scene-filter")) {
+            o.scene_filter = 1;
+            continue;
+        }
         int ok = v != NULL;
         if (ok && !strcmp(a, "--bin"))
             o.bin = v;

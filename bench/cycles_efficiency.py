@@ -5,11 +5,11 @@
     /usr/bin/python3 bench/cycles_efficiency.py [--scene studio|cornell-sor]...
         [--spp 4,16,64] [--res 320x180] [--bin build/celadon]
 
-Each scene is rendered by celadon (scenes/NAME/scene.xml) and by Cycles
-(bench/cycles_scene.py: the same scene rebuilt in Blender, the vessel as
-celadon's own 360-segment OBJ, a 1-pixel box filter, no denoising, no
-adaptive sampling), both on 2 threads, at each spp with seeds 1 and 2, the
-two renderers alternating so that they share the machine's load. For each:
+Each scene is rendered by celadon (scenes/NAME/scene.xml, given a 1-pixel
+box filter) and by Cycles (bench/cycles_scene.py: the same scene rebuilt in
+Blender, the vessel as celadon's own 360-segment OBJ, a 1-pixel box filter,
+no denoising, no adaptive sampling), both on 2 threads, at each spp with
+seeds 1 and 2, the two renderers alternating so that they share the machine's load. For each:
 MSE = mean((a - b)^2) / 2 over the seed pair (an unbiased renderer's
 variance, no reference needed); CPU seconds per spp = the slope of a
 least-squares line through the runs' CPU time (user + sys of the child)
@@ -40,6 +40,23 @@ def cpu_of(cmd, env=None):
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
+def box_filtered(scene_xml):
+    """The scene with a 1-pixel box filter in its film, as Cycles' (the bundled
+    scenes take hdrfilm's default Gaussian, which blurs the noise over
+    neighbouring pixels: a smaller MSE that is no cleaner an estimate), written
+    beside it so that its relative file names resolve."""
+    with open(scene_xml) as f:
+        xml = f.read()
+    film = xml.find("<film")
+    end = xml.find(">", film)
+    if film < 0 or xml[end - 1] == "/" or "<rfilter" in xml:
+        sys.exit(f"{scene_xml}: no <film> to give a box filter, or a filter already")
+    out = os.path.join(os.path.dirname(scene_xml), ".efficiency-box.xml")
+    with open(out, "w") as f:
+        f.write(xml[:end + 1] + '<rfilter type="box"/>' + xml[end + 1:])
+    return out
+
+
 def read(path):
     return oiio.ImageBuf(path).get_pixels(oiio.FLOAT)[..., :3].astype(np.float64)
 
@@ -67,18 +84,20 @@ def main():
         subprocess.run([exe, "mesh", os.path.join(vessel_dir, "profile.json"), "-o", obj, "--segments", "360",
                         "--height", str(HEIGHT[scene])], check=True, capture_output=True)
         texture = os.path.join(vessel_dir, "texture.png")
+        scene_xml = box_filtered(os.path.join(ROOT, "scenes", scene, "scene.xml"))
         runs = {"celadon": {}, "cycles": {}}
         load0 = os.getloadavg()[0]
         for seed in (1, 2):
             for spp in spps:
                 out = os.path.join(tmp, f"celadon-{spp}-{seed}.exr")
-                c = cpu_of([exe, "render", os.path.join(ROOT, "scenes", scene, "scene.xml"), "-o", out, "--spp",
+                c = cpu_of([exe, "render", scene_xml, "-o", out, "--spp",
                             str(spp), "--res", o.res, "--threads", "2", "--seed", str(seed)])
                 runs["celadon"][(spp, seed)] = (c, out)
                 out = os.path.join(tmp, f"cycles-{spp}-{seed}.exr")
                 c = cpu_of(["blender", "-b", "--factory-startup", "--python", script, "--", scene, str(spp), o.res,
                             out, str(seed), obj, texture])
                 runs["cycles"][(spp, seed)] = (c, out)
+        os.remove(scene_xml)
         print(f"\n{scene}, {o.res}, 2 threads; load average {load0:.1f} -> {os.getloadavg()[0]:.1f}\n")
         print("| renderer | spp | mean | seed-pair RMSE | rel. | CPU s per spp | efficiency 1/(MSE x CPU s) |")
         print("|---|---:|---:|---:|---:|---:|---:|")

@@ -30,6 +30,15 @@ static scene_t *load_scene(render_fixture *f, const char *body)
     return s;
 }
 
+/* The fixture opened, body loaded, and its first shape in *sh. */
+static scene_t *open_first_shape(render_fixture *f, const char *body, const shape_t **sh)
+{
+    render_fixture_open(f);
+    scene_t *s = load_scene(f, body);
+    *sh = &s->shapes.items[0];
+    return s;
+}
+
 /* The solid angle of the rectangle [x0,x1] x [y0,y1] in the plane z = h
  * seen from the origin, from the corner-anchored closed form
  * atan(x y / (h sqrt(x^2 + y^2 + h^2))) by inclusion-exclusion. */
@@ -142,6 +151,52 @@ Test(light_sampling, sphere_cone_is_uniform_in_solid_angle)
         }
         double p = chi2_pvalue_counts(obs, expect, NC * NP, NULL);
         cr_expect_gt(p, chi2_threshold(), "distance %g: chi-square p = %g", dists[t], p);
+    }
+    scene_destroy(s);
+    render_fixture_close(&f);
+}
+
+/* Seen from far enough that area sampling's density in solid angle varies
+ * over the rectangle by at most 2x ((d_max / d_min)^3 <= 2), the rectangle
+ * is sampled uniformly in area through its own coordinates: the hit's uv is
+ * u itself (u's 2D stratification kept), the density is area sampling's
+ * (the hit reports it too), and E[1 / pdf] is the closed-form solid angle. */
+Test(light_sampling, distant_rectangle_is_sampled_by_area)
+{
+    render_fixture f;
+    const shape_t *sh;
+    scene_t *s = open_first_shape(&f, "<shape type=\"rectangle\"><transform name=\"to_world\">"
+                                      "<scale x=\"1.5\" y=\"1\"/></transform><emitter type=\"area\"/></shape>", &sh);
+    /* (x, y, h): over the centre and beside the rectangle, far; then near
+     * enough that the spherical rectangle stays (pdf 1 / solid angle). */
+    const double refs[][3] = {{0.0, 0.0, 10.0}, {4.0, -3.0, 12.0}, {-20.0, 5.0, 6.0}, {0.3, 0.2, 2.0}};
+    enum { N = 20000 };
+    for (int c = 0; c < 4; c++) {
+        double rx = refs[c][0], ry = refs[c][1], h = refs[c][2];
+        vec3 ref = v3(rx, ry, h);
+        double omega = rect_solid_angle(-1.5 - rx, 1.5 - rx, -1.0 - ry, 1.0 - ry, h);
+        double near_x = rx - fmin(1.5, fmax(-1.5, rx)), near_y = ry - fmin(1.0, fmax(-1.0, ry));
+        double far_x = fabs(rx) + 1.5, far_y = fabs(ry) + 1.0;
+        double q = (h * h + far_x * far_x + far_y * far_y) / (h * h + near_x * near_x + near_y * near_y);
+        bool by_area = q * q * q <= 4.0;
+        cr_assert_eq(by_area, c < 3, "ref %d: the test's geometry (q^3 = %g)", c, q * q * q);
+        double inv = 0.0;
+        for (int k = 0; k < N; k++) {
+            vec2 u = v2((k + 0.5) / N, fmod(k * 0.6180339887498949, 1.0));
+            surface_hit hit;
+            double pdf;
+            shape_sample_from(sh, ref, v3(u.x, u.y, 0.5), &hit, &pdf);
+            inv += 1.0 / pdf / N;
+            if (k % 64 == 0)
+                check_hit_consistent(s, sh, ref, &hit, pdf);
+            if (by_area) {
+                cr_assert_float_eq(hit.uv.x, u.x, 1e-6, "ref %d: uv %g, u %g", c, hit.uv.x, u.x);
+                cr_assert_float_eq(hit.uv.y, u.y, 1e-6, "ref %d: uv %g, u %g", c, hit.uv.y, u.y);
+            } else {
+                cr_assert_float_eq(pdf, 1.0 / omega, 1e-8 / omega, "ref %d: density %g", c, pdf);
+            }
+        }
+        cr_expect_float_eq(inv, omega, 1e-3 * omega, "ref %d: E[1/pdf] %g, solid angle %g", c, inv, omega);
     }
     scene_destroy(s);
     render_fixture_close(&f);

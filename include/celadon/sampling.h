@@ -35,7 +35,8 @@ vec2 warp_square_to_uniform_triangle(vec2 u);
 typedef struct {
     vec3 o, x, y, z;              /* the reference point and the rectangle's frame (z away from o) */
     double x0, x1, y0, y1, z0;    /* the rectangle in that frame, seen from o */
-    double b0, b1, k;             /* the parametrization's constants */
+    double b0, b1, b0_comp;       /* the parametrization's constants (b0_comp = 1 - b0^2) */
+    double cos_k, sin_k;          /* and its k, as cosine and sine */
     double solid_angle;
 } spherical_rect;
 

@@ -84,6 +84,31 @@ vec2 warp_square_to_uniform_triangle(vec2 u)
 
 static inline double clamp(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }
 
+/* The interior angle of the spherical rectangle at a corner, as its cosine
+ * and sine: -n_a . n_b and |n_a x n_b| of the unit normals of the planes
+ * through o and the two edges that meet there, which for the corner
+ * (x, y, z0) at distance len from o are (cos_num, |z0| len) over
+ * sqrt(z0^2 + x^2) sqrt(z0^2 + y^2) (cos_num's sign depends on the
+ * corner); exact near 0 and pi, where sqrt(1 - cos^2) would lose the
+ * digits. */
+typedef struct {
+    double c, s;
+} unit_complex;
+
+static unit_complex corner_angle(double cos_num, double len, double z0, double ax, double ay)
+{
+    double inv = 1.0 / (ax * ay);
+    return (unit_complex){clamp(cos_num * inv, -1.0, 1.0), fabs(z0) * len * inv};
+}
+
+/* tan(omega / 2) of the triangle o, a, b, c as the fraction (num over the
+ * returned denominator; Van Oosterom & Strackee 1983): num = |a . (b x c)|,
+ * la, lb, lc the corners' distances from o. */
+static double triangle_half_tan_den(vec3 a, vec3 b, vec3 c, double la, double lb, double lc)
+{
+    return la * lb * lc + v3_dot(a, b) * lc + v3_dot(a, c) * lb + v3_dot(b, c) * la;
+}
+
 double spherical_rect_init(spherical_rect *r, vec3 o, vec3 corner, vec3 edge_u, vec3 edge_v)
 {
     double lu = v3_len(edge_u), lv = v3_len(edge_v);
@@ -101,31 +126,54 @@ double spherical_rect_init(spherical_rect *r, vec3 o, vec3 corner, vec3 edge_u, 
     r->solid_angle = 0.0;
     if (!(r->z0 < 0.0))
         return 0.0;
+    /* The corners from o, in the frame. */
+    vec3 p00 = v3(r->x0, r->y0, r->z0), p10 = v3(r->x1, r->y0, r->z0);
+    vec3 p11 = v3(r->x1, r->y1, r->z0), p01 = v3(r->x0, r->y1, r->z0);
+    double l00 = v3_len(p00), l10 = v3_len(p10), l11 = v3_len(p11), l01 = v3_len(p01);
     /* The planes through o and each edge have the normals n0 = (0, z0, -y0),
      * n1 = (-z0, 0, x1), n2 = (0, -z0, y1), n3 = (z0, 0, -x0) (over their
-     * lengths); the spherical rectangle's internal angles are
-     * acos(-n_i . n_(i+1)), written out below. */
+     * lengths); Urena et al.'s internal angles g_i = acos(-n_i . n_(i+1))
+     * are kept as cosine and sine, never as angles: the constant
+     * k = 2 pi - g2 - g3 enters the sampler only through its cosine and
+     * sine. */
     double z2 = r->z0 * r->z0;
-    double ax0 = sqrt(z2 + r->x0 * r->x0), ax1 = sqrt(z2 + r->x1 * r->x1);
+    double ax0 = sqrt(z2 + r->x0 * r->x0);
     double ay0 = sqrt(z2 + r->y0 * r->y0), ay1 = sqrt(z2 + r->y1 * r->y1);
-    double g0 = acos(clamp(r->y0 * r->x1 / (ay0 * ax1), -1.0, 1.0));
-    double g1 = acos(clamp(-r->x1 * r->y1 / (ax1 * ay1), -1.0, 1.0));
-    double g2 = acos(clamp(r->x0 * r->y1 / (ay1 * ax0), -1.0, 1.0));
-    double g3 = acos(clamp(-r->x0 * r->y0 / (ax0 * ay0), -1.0, 1.0));
+    unit_complex g2 = corner_angle(r->x0 * r->y1, l01, r->z0, ax0, ay1);
+    unit_complex g3 = corner_angle(-r->x0 * r->y0, l00, r->z0, ax0, ay0);
     r->b0 = -r->y0 / ay0, r->b1 = r->y1 / ay1; /* n0.z, n2.z */
-    r->k = 2.0 * M_PI - g2 - g3;
-    r->solid_angle = g0 + g1 - r->k > 0.0 ? g0 + g1 - r->k : 0.0;
+    r->b0_comp = z2 / (ay0 * ay0);              /* 1 - b0^2 without cancellation */
+    /* cos k = cos(g2 + g3), sin k = -sin(g2 + g3). */
+    r->cos_k = g2.c * g3.c - g2.s * g3.s;
+    r->sin_k = -(g2.s * g3.c + g2.c * g3.s);
+    /* The solid angle, in [0, 2 pi), as the two triangles' (p00, p10, p11)
+     * and (p00, p11, p01): both have the triple product z0 lu lv, and the
+     * sum of their half-angles, in [0, pi), is the argument of the product
+     * (d1 + i num)(d2 + i num), one atan2 (its sine >= 0 but for
+     * rounding). */
+    double num = fabs(r->z0) * lu * lv;
+    double d1 = triangle_half_tan_den(p00, p10, p11, l00, l10, l11);
+    double d2 = triangle_half_tan_den(p00, p11, p01, l00, l11, l01);
+    r->solid_angle = 2.0 * atan2(fmax(num * (d1 + d2), 0.0), d1 * d2 - num * num);
     return r->solid_angle;
 }
 
 vec3 spherical_rect_sample(const spherical_rect *r, vec2 u)
 {
-    /* u.x picks the x where the solid angle to its left is u.x S ... */
-    double au = u.x * r->solid_angle + r->k, sin_au, cos_au;
-    sincos(au, &sin_au, &cos_au);
-    double fu = (cos_au * r->b0 - r->b1) / sin_au;
-    double cu = clamp((fu > 0.0 ? 1.0 : -1.0) / sqrt(fu * fu + r->b0 * r->b0), -1.0, 1.0);
-    double xu = clamp(-(cu * r->z0) / sqrt(1.0 - cu * cu > 1e-300 ? 1.0 - cu * cu : 1e-300), r->x0, r->x1);
+    /* u.x picks the x where the solid angle to its left is u.x S: the angle
+     * au = u.x S + k, whose sine and cosine come from those of u.x S turned
+     * by k ... */
+    double sin_us, cos_us;
+    sincos(u.x * r->solid_angle, &sin_us, &cos_us);
+    double cos_au = cos_us * r->cos_k - sin_us * r->sin_k, sin_au = sin_us * r->cos_k + cos_us * r->sin_k;
+    /* Urena et al.'s fu = n / sin(au), cu = sign(fu) / sqrt(fu^2 + b0^2)
+     * and xu = -cu z0 / sqrt(1 - cu^2) fold into
+     * xu = -z0 sign(fu) / sqrt(fu^2 - (1 - b0^2)), written over sin(au)
+     * (one square root, no division by sin(au)); where the root's argument
+     * is not positive xu is beyond the rectangle on sign(fu)'s side. */
+    double n = cos_au * r->b0 - r->b1, den2 = n * n - r->b0_comp * sin_au * sin_au;
+    double num = -r->z0 * (n > 0.0 ? sin_au : -sin_au);
+    double xu = clamp(den2 > 0.0 ? num / sqrt(den2) : copysign(INFINITY, num), r->x0, r->x1);
     /* ... and u.y the y along that line, uniform in the sine of its
      * elevation, which is uniform in solid angle. */
     double d2 = xu * xu + r->z0 * r->z0;

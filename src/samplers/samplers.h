@@ -60,6 +60,9 @@ typedef struct {
     uint32_t dim;           /* the next dimension */
     uint64_t key;           /* a hash of the seed and the pixel */
     uint64_t base;          /* zsobol: the pixel's first global sample index */
+    uint64_t coarse_key;    /* zsobol: the sample's coarse index bits and the seed, for every dimension's key */
+    uint32_t coarse_bits;   /* zsobol: the sample's coarse index bits, in place */
+    uint32_t fine_reversed; /* zsobol: the sample's fine index bits, reversed */
     rng_t rng;              /* independent: the sample's PCG32 stream */
 } sampler_stream;
 

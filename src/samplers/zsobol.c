@@ -38,10 +38,6 @@ static uint64_t morton2(uint32_t x, uint32_t y)
     return spread_bits(x) | spread_bits(y) << 1;
 }
 
-static void zsobol_start(sampler_stream *st)
-{
-    st->base = morton2(st->px, st->py) << st->sampler->log2_count;
-}
 
 /* The global index of this sample permuted for this dimension. The sample's
  * own bits and those of the FINE_LEVELS finest pixel levels (the fine part,
@@ -57,18 +53,29 @@ static void zsobol_start(sampler_stream *st)
  * sample here.) */
 enum { FINE_LEVELS = 4 };
 
-static uint32_t permuted_index(const sampler_stream *st, uint64_t *key)
+static int fine_bits(const sampler_t *s) { return s->log2_count + 2 * FINE_LEVELS; /* at most 24 + 8 */ }
+
+/* What every dimension of the sample shares, computed once per sample: its
+ * global index, the coarse bits keyed with the seed and the fine bits
+ * reversed. */
+static void zsobol_start(sampler_stream *st)
 {
     const sampler_t *s = st->sampler;
-    int fine_bits = s->log2_count + 2 * FINE_LEVELS; /* at most 24 + 8 */
+    st->base = morton2(st->px, st->py) << s->log2_count;
     uint64_t index = st->base | (st->index & ((1u << s->log2_count) - 1u));
-    uint64_t coarse = index >> fine_bits;
-    *key = rng_mix64(coarse ^ ((uint64_t)st->dim << 40) ^ (s->seed * 0x9E3779B97F4A7C15ull));
-    uint32_t fine = (uint32_t)index & (uint32_t)((1ull << fine_bits) - 1u);
-    uint32_t scrambled = seq_owen_reversed(seq_reverse_bits(fine), (uint32_t)((*key * 0x9E3779B97F4A7C15ull) >> 32));
-    /* Owen-scrambled from bit fine_bits - 1 down, the bits above (zeros
-     * before) are dropped. */
-    return (uint32_t)(coarse << fine_bits) | (scrambled & (uint32_t)((1ull << fine_bits) - 1u));
+    st->coarse_key = (index >> fine_bits(s)) ^ (s->seed * 0x9E3779B97F4A7C15ull);
+    st->coarse_bits = (uint32_t)(index >> fine_bits(s) << fine_bits(s));
+    st->fine_reversed = seq_reverse_bits((uint32_t)index & (uint32_t)((1ull << fine_bits(s)) - 1u));
+}
+
+static uint32_t permuted_index(const sampler_stream *st, uint64_t *key)
+{
+    int fb = fine_bits(st->sampler);
+    *key = rng_mix64(st->coarse_key ^ ((uint64_t)st->dim << 40));
+    uint32_t scrambled = seq_owen_reversed(st->fine_reversed, (uint32_t)((*key * 0x9E3779B97F4A7C15ull) >> 32));
+    /* Owen-scrambled from bit fb - 1 down, the bits above (zeros before)
+     * are dropped. */
+    return st->coarse_bits | (scrambled & (uint32_t)((1ull << fb) - 1u));
 }
 
 /* Owen scrambling keyed per dimension (and coarse block: the blue noise
