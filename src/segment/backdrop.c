@@ -76,26 +76,37 @@ void recon_backdrop_at(const recon_backdrop *b, double x, double y, double out[3
     recon_backdrop_at_basis(b, &bx, &by, out);
 }
 
-void recon_backdrop_row(const recon_backdrop *b, int y, float *out)
+void recon_backdrop_collapse_row(const recon_backdrop *b, const recon_backdrop_basis *by,
+                                 double col[RECON_BACKDROP_MAX_GRID][3])
 {
     const int g = b->grid;
-    int fy;
-    double wy[4], col[RECON_BACKDROP_MAX_GRID][3];
-    basis(y + 0.5, b->height, g, &fy, wy);
     for (int i = 0; i < g; i++)
         for (int c = 0; c < 3; c++) {
             double s = 0;
             for (int j = 0; j < 4; j++)
-                s += wy[j] * b->coef[(fy + j) * g + i][c];
+                s += by->wt[j] * b->coef[(by->first + j) * g + i][c];
             col[i][c] = s;
         }
+}
+
+void recon_backdrop_at_collapsed(const double col[RECON_BACKDROP_MAX_GRID][3], const recon_backdrop_basis *bx,
+                                 float out[3])
+{
+    const double *w = bx->wt;
+    const int f = bx->first;
+    for (int c = 0; c < 3; c++)
+        out[c] = (float)(w[0] * col[f][c] + w[1] * col[f + 1][c] + w[2] * col[f + 2][c] + w[3] * col[f + 3][c]);
+}
+
+void recon_backdrop_row(const recon_backdrop *b, int y, float *out)
+{
+    recon_backdrop_basis by, bx;
+    double col[RECON_BACKDROP_MAX_GRID][3];
+    recon_backdrop_basis_y(b, y + 0.5, &by);
+    recon_backdrop_collapse_row(b, &by, col);
     for (int x = 0; x < b->width; x++) {
-        int fx;
-        double wx[4];
-        basis(x + 0.5, b->width, g, &fx, wx);
-        for (int c = 0; c < 3; c++)
-            out[3 * x + c] = (float)(wx[0] * col[fx][c] + wx[1] * col[fx + 1][c] + wx[2] * col[fx + 2][c] +
-                                     wx[3] * col[fx + 3][c]);
+        recon_backdrop_basis_x(b, x + 0.5, &bx);
+        recon_backdrop_at_collapsed(col, &bx, out + 3 * x);
     }
 }
 
