@@ -11,7 +11,6 @@
 
 #include "core/core.h"
 #include "recon/recon_internal.h"
-#include "segment/vector_clones.h"
 
 /* The largest lean of a vessel's axis from the image's vertical. */
 #define MAX_TILT_DEG 30.0
@@ -192,7 +191,7 @@ static int trace_side(const image_t *img, const float *gray, int alpha, const in
 
 /* Every value of the photo is in [0, 1] (not -0, not NaN): the bits of such
  * a float are at most those of 1. */
-RECON_VECTOR_CLONES static int in_unit_range(const image_t *img)
+static int in_unit_range(const image_t *img)
 {
     const float *v = img->data;
     const size_t n = (size_t)img->width * img->height * img->channels;
