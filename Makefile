@@ -52,16 +52,20 @@ all: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon web
 
 # ---------------------------------------------------------------- dependencies
-# Installs only what is missing; works as root or through sudo.
-deps:
-	@missing=""; for p in $(DEB_PKGS); do \
+# $(call apt_install,PACKAGES): a recipe's shell line that installs them
+# from Debian, as root or through sudo.
+apt_install = echo "celadon: installing Debian packages: $(strip $(1))"; \
+	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $(1) >/dev/null
+# $(call deb_install_missing,PACKAGES): installs those of them not installed yet.
+deb_install_missing = missing=""; for p in $(1); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
 	done; \
-	if [ -n "$$missing" ]; then \
-	  echo "celadon: installing Debian packages:$$missing"; \
-	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; \
-	fi
+	if [ -n "$$missing" ]; then $(call apt_install,$${missing# }); fi
+
+# Installs only what is missing; works as root or through sudo.
+deps:
+	@$(call deb_install_missing,$(DEB_PKGS))
 	@$(MAKE) --no-print-directory deps-web
 
 # The museum's page and its tests: Node.js and npm from Debian when `node` is
@@ -70,9 +74,7 @@ deps:
 .PHONY: deps-web
 deps-web:
 	@if ! command -v node >/dev/null || ! command -v npm >/dev/null; then \
-	  echo "celadon: installing Debian packages: nodejs npm"; \
-	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq nodejs npm >/dev/null; \
+	  $(call apt_install,nodejs npm); \
 	fi
 	@if [ ! -f web/node_modules/.package-lock.json ] || [ web/package-lock.json -nt web/node_modules/.package-lock.json ]; then \
 	  echo "celadon: installing the page's npm packages (web/package-lock.json)"; \
@@ -194,9 +196,10 @@ bench-render: check-deps-stamp
 SYNTH_C := $(addprefix tests/support/,synth_vessel.c synth_body.c synth_profile.c synth_raster.c)
 SCENE_C := $(SYNTH_C) $(addprefix tests/support/,synth_scene.c synth_scene_layers.c synth_noise.c synth_jpeg.c)
 SHEET_C := tests/tools/sheet/recon_sheet.c
-build/tools/%: tests/tools/%.c $(SCENE_C) $(SHEET_C) build/opt/libceladon.a
+TOOL_C  := $(SCENE_C) $(SHEET_C) tests/support/serialized_file.c
+build/tools/%: tests/tools/%.c $(TOOL_C) build/opt/libceladon.a
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -Itests/tools -o $@ $< $(SCENE_C) $(SHEET_C) build/opt/libceladon.a $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) -Itests/tools -o $@ $< $(TOOL_C) build/opt/libceladon.a $(LDLIBS)
 
 # `make hard-cases` draws the named hard cases of tests/support/synth_scene.c
 # (the reconstruction's test photographs) into out/hard-cases/, with a contact
@@ -300,7 +303,7 @@ FUZZ_DEB_PKGS := clang libomp-14-dev
 FUZZ_CC      ?= clang
 FUZZ_CXX     ?= clang++
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := profile scene image catalogue
+FUZZ_TARGETS := profile scene image serialized catalogue
 FUZZ_SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 # clang's warnings are not gcc's: the gcc builds keep -Werror (and clang
 # cannot vectorise every `omp simd` loop under the sanitizers).
@@ -312,20 +315,14 @@ FUZZ_CXXFLAGS = -std=c++17 -Wall -Wextra -Iinclude -Isrc $(PKG_CFLAGS) -O1 -g $(
 FUZZ_OPTS_profile   := -max_len=16384 -dict=fuzz/json.dict
 FUZZ_OPTS_scene     := -max_len=16384 -dict=fuzz/xml.dict
 FUZZ_OPTS_image     := -max_len=8192
+FUZZ_OPTS_serialized := -max_len=8192
 FUZZ_OPTS_catalogue := -max_len=4096
 FUZZ_ENV := OMP_NUM_THREADS=1 ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
             LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 UBSAN_OPTIONS=print_stacktrace=1
 
 .PHONY: fuzz fuzz-build deps-fuzz
 deps-fuzz:
-	@missing=""; for p in $(FUZZ_DEB_PKGS); do \
-	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
-	done; \
-	if [ -n "$$missing" ]; then \
-	  echo "celadon: installing Debian packages:$$missing"; \
-	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; \
-	fi
+	@$(call deb_install_missing,$(FUZZ_DEB_PKGS))
 
 build/fuzz/%.o: %.c
 	@mkdir -p $(dir $@)
@@ -345,6 +342,13 @@ fuzz-build: check-deps-stamp deps-fuzz
 
 fuzz: fuzz-build
 	@$(MAKE) --no-print-directory -j1 $(patsubst %,fuzz-run-%,$(FUZZ_TARGETS))
+# The `serialized` target's seeds are files of our own writer
+# (tests/support/serialized_file.c), written again by `make fuzz-seeds`.
+.PHONY: fuzz-seeds
+fuzz-seeds: check-deps-stamp
+	@$(MAKE) --no-print-directory build/tools/write_serialized_seeds
+	@mkdir -p fuzz/seeds/serialized
+	build/tools/write_serialized_seeds fuzz/seeds/serialized
 fuzz-run-%:
 	@mkdir -p build/fuzz/corpus/$* build/fuzz/crashes/$*
 	@echo "== fuzz_$* for $(FUZZ_SECONDS) s"

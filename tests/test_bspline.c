@@ -98,5 +98,14 @@ Test(bspline, validate_rejects_bad_knots)
     c.knots[5] = 0.35;
     c.knots[0] = -0.5; /* not clamped */
     cr_assert_not_null(bspline_validate(&c));
+    c.knots[0] = 0.0;
+    cr_assert_null(bspline_validate(&c));
+    double first_interior = c.knots[c.degree + 1];
+    c.knots[c.degree + 1] = c.knots[0]; /* the start repeated p + 2 times */
+    cr_assert_str_eq(bspline_validate(&c), "end knot multiplicity exceeds the degree + 1");
+    c.knots[c.degree + 1] = first_interior;
+    int nk = bspline_n_knots(&c);
+    c.knots[nk - 2 - c.degree] = c.knots[nk - 1]; /* the end repeated p + 2 times */
+    cr_assert_str_eq(bspline_validate(&c), "end knot multiplicity exceeds the degree + 1");
     bspline_free(&c);
 }

@@ -140,6 +140,7 @@ static void knots_string(json_t *r) { json_object_set_new(bs(r), "knots", json_s
 static void knot_string(json_t *r) { json_array_set_new(json_object_get(bs(r), "knots"), 5, json_string("0.3")); }
 static void knots_decreasing(json_t *r) { json_array_set_new(json_object_get(bs(r), "knots"), 5, json_real(0.05)); }
 static void knots_unclamped(json_t *r) { json_array_set_new(json_object_get(bs(r), "knots"), 3, json_real(0.01)); }
+static void knots_start_five_times(json_t *r) { json_array_set_new(json_object_get(bs(r), "knots"), 4, json_real(0.0)); }
 static void knots_short(json_t *r) { json_array_remove(json_object_get(bs(r), "knots"), 5); }
 static void degree_2(json_t *r) { json_object_set_new(bs(r), "degree", json_integer(2)); }
 static void ctrl_triple(json_t *r)
@@ -201,6 +202,7 @@ Test(profile_json, malformed_files_are_refused_with_a_reason, .init = setup, .fi
     expect_refused(knot_string, "'bspline.knots[5]' must be a number");
     expect_refused(knots_decreasing, "invalid B-spline: knots are not non-decreasing");
     expect_refused(knots_unclamped, "invalid B-spline: knot vector is not clamped");
+    expect_refused(knots_start_five_times, "invalid B-spline: end knot multiplicity exceeds the degree + 1");
     expect_refused(knots_short, "control points need");
     expect_refused(degree_2, "'bspline.degree' must be 3");
     expect_refused(ctrl_triple, "'bspline.control_points[3]' must be an array of 2 numbers");

@@ -1,10 +1,12 @@
 /* recon_camera_meridian on vessels the test draws through a known pinhole
  * (tests/support/pinhole_vessel): the recovered elevation and focal length
  * against the camera's, the meridian against the drawn profile, at 0, 5,
- * 10 and 20 degrees; a yawed and rolled camera; a given field of view; the
- * orthographic fallback on an orthographic drawing, where the meridian is
- * the image outline; the mouth test that tells the two camera candidates
- * apart; and the drawer itself against brute force. */
+ * 10 and 20 degrees, from the truth's corners and through recon_extract;
+ * corners found inside the arcs; a floor shadow under the base; a yawed
+ * and rolled camera; a given field of view; the orthographic fallback on
+ * an orthographic drawing, where the meridian is the image outline; the
+ * mouth test that tells the two camera candidates apart; and the drawer
+ * itself against brute force. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -67,7 +69,7 @@ static void run(const pinhole_params *p, int use_recon_extract, const recon_came
     image_free(&img);
 }
 
-static void expect_accurate(const pinhole_params *p, const outcome *o, const char *what)
+static void expect_accurate(const pinhole_params *p, const outcome *o, const char *what, double meridian_tol)
 {
     double e_true = pinhole_elevation(p);
     cr_log_info("%s: elevation %.3f (true %.3f), f %.1f (true %.0f), meridian mean %.3f%% max %.3f%% (outline as "
@@ -79,7 +81,7 @@ static void expect_accurate(const pinhole_params *p, const outcome *o, const cha
                   o->cam.elevation_deg, e_true);
     cr_expect_leq(fabs(o->cam.focal_px / p->focal_px - 1), FOCAL_TOL, "%s: focal length %.1f, true %.1f", what,
                   o->cam.focal_px, p->focal_px);
-    cr_expect_leq(o->max, MERIDIAN_TOL, "%s: meridian off by up to %.3f%% of the height", what, 100 * o->max);
+    cr_expect_leq(o->max, meridian_tol, "%s: meridian off by up to %.3f%% of the height", what, 100 * o->max);
 }
 
 /* A vase (narrow neck, flared mouth) and a wide flaring bowl at one elevation. */
@@ -92,7 +94,7 @@ static void elevation_case(double elevation_deg)
         run(&p, 0, NULL, &o);
         char what[64];
         snprintf(what, sizeof what, "%s at %g deg", s ? "bowl" : "vase", elevation_deg);
-        expect_accurate(&p, &o, what);
+        expect_accurate(&p, &o, what, MERIDIAN_TOL);
         /* From 5 degrees up the bowl's outline is not its meridian within the
          * tolerance: the test tells the two apart. */
         if (elevation_deg >= 5 && shapes[s] == SYNTH_BOWL)
@@ -107,26 +109,155 @@ Test(recon_camera, elevation_5, .timeout = 120) { elevation_case(5); }
 Test(recon_camera, elevation_10, .timeout = 120) { elevation_case(10); }
 Test(recon_camera, elevation_20, .timeout = 120) { elevation_case(20); }
 
-Test(recon_camera, through_recon_extract, .timeout = 120)
+Test(recon_camera, through_recon_extract, .timeout = 240)
 {
-    /* The whole chain as the pipeline runs it, where the corner finder
-     * copes: at 0 and 5 degrees on the vase. From 10 degrees the wall meets
-     * the base's ellipse tangentially and caps.c takes the ellipse's pole
-     * for both base corners (docs/algorithms-recon.md, 13.8): the bottom arc
-     * is then a few columns wide, and the camera must say orthographic
-     * rather than be wrong. */
-    for (int e = 0; e <= 10; e += 5) {
-        pinhole_params p = pinhole_defaults(SYNTH_VASE, e);
-        outcome o;
-        run(&p, 1, NULL, &o);
-        char what[64];
-        snprintf(what, sizeof what, "vase at %d deg through recon_extract", e);
-        if (e < 10 || o.cam.method != RECON_CAMERA_ORTHOGRAPHIC)
-            expect_accurate(&p, &o, what);
-        else
-            cr_expect_neq(o.cam.note[0], '\0', "%s: the orthographic fallback says why", what);
-        recon_meridian_free(&o.mer);
+    /* The whole chain as the pipeline runs it, the corners from caps.c: from
+     * 10 degrees up the wall leaves the base's ellipse tangentially and the
+     * corners are where the outline changes from the ellipse to the wall
+     * (docs/algorithms-recon.md, section 6). The bowl at 5 degrees comes
+     * out at 0.32% at worst (its base corners 2 px off): held at 0.4%. */
+    const synth_shape shapes[2] = {SYNTH_VASE, SYNTH_BOWL};
+    for (int s = 0; s < 2; s++)
+        for (int k = 0; k < 4; k++) {
+            const int elevations[4] = {0, 5, 10, 20};
+            pinhole_params p = pinhole_defaults(shapes[s], elevations[k]);
+            outcome o;
+            run(&p, 1, NULL, &o);
+            char what[64];
+            snprintf(what, sizeof what, "%s at %d deg through recon_extract", s ? "bowl" : "vase", elevations[k]);
+            expect_accurate(&p, &o, what, s && elevations[k] == 5 ? 0.004 : MERIDIAN_TOL);
+            recon_meridian_free(&o.mer);
+        }
+}
+
+Test(recon_camera, base_corners_where_the_wall_leaves_the_ellipse, .timeout = 120)
+{
+    /* From 10 degrees up the wall leaves the base's ellipse tangentially:
+     * caps.c's change point puts the base corners within 4 px of the true
+     * ones (where the wall's apparent contour meets the base circle); they
+     * were the ellipse's lowest point, 30 px below and 95 px in. */
+    const synth_shape shapes[2] = {SYNTH_VASE, SYNTH_BOWL};
+    for (int s = 0; s < 2; s++)
+        for (int e = 10; e <= 20; e += 10) {
+            pinhole_params p = pinhole_defaults(shapes[s], e);
+            image_t img;
+            recon_result truth, res;
+            char err[256];
+            cr_assert_eq(pinhole_photo(&p, &img, &truth), 0);
+            cr_assert_eq(recon_extract(&img, NULL, &res, err, sizeof err), RECON_OK, "%s", err);
+            for (int c = CORNER_BASE_LEFT; c <= CORNER_BASE_RIGHT; c++) {
+                double d = v2_len(v2_sub(res.corners[c], truth.corners[c]));
+                cr_expect_leq(d, 4.0, "%s at %d deg: base corner %d at (%.1f, %.1f), %.1f px from (%.1f, %.1f)",
+                              s ? "bowl" : "vase", e, c, res.corners[c].x, res.corners[c].y, d, truth.corners[c].x,
+                              truth.corners[c].y);
+            }
+            recon_result_free(&truth);
+            recon_result_free(&res);
+            image_free(&img);
+        }
+}
+
+/* The image point where column x meets the mask's outline from the top
+ * (side -1) or the bottom (+1). */
+static vec2 outline_in_column(const recon_result *r, double x, int side)
+{
+    int i = (int)floor(x);
+    for (int k = 0; k < r->height; k++) {
+        int j = side < 0 ? k : r->height - 1 - k;
+        if (r->mask[(size_t)j * r->width + i])
+            return v2(i + 0.5, j + (side < 0 ? 0 : 1));
     }
+    return v2(x, 0);
+}
+
+Test(recon_camera, corners_inside_the_arcs, .timeout = 120)
+{
+    /* Corners found halfway in along the rim's and the base's arcs (as the
+     * melon vase's are, 20-113 px in): the arcs grow back to where the wall
+     * leaves each ellipse, and the camera is the true one. Between the
+     * corners alone the vase at 5 degrees gave 4.04 degrees and f 1808 px,
+     * at 10 degrees no focal length. */
+    const synth_shape shapes[2] = {SYNTH_VASE, SYNTH_BOWL};
+    for (int s = 0; s < 2; s++)
+        for (int e = 5; e <= 10; e += 5) {
+            pinhole_params p = pinhole_defaults(shapes[s], e);
+            image_t img;
+            recon_result res;
+            char err[256], what[64];
+            cr_assert_eq(pinhole_photo(&p, &img, &res), 0);
+            for (int c = CORNER_RIM_LEFT; c <= CORNER_BASE_LEFT; c += 2) {
+                vec2 *l = &res.corners[c], *r = &res.corners[c + 1];
+                double mid = 0.5 * (l->x + r->x), half = 0.5 * (r->x - l->x);
+                int side = c == CORNER_RIM_LEFT ? -1 : 1;
+                *l = outline_in_column(&res, mid - 0.5 * half, side);
+                *r = outline_in_column(&res, mid + 0.5 * half, side);
+            }
+            outcome o;
+            cr_assert_eq(recon_camera_meridian(&img, &res, NULL, &o.cam, &o.mer, err, sizeof err), 0, "%s", err);
+            snprintf(what, sizeof what, "%s at %d deg, corners halfway in", s ? "bowl" : "vase", e);
+            cr_log_info("%s: elevation %.3f, f %.1f", what, o.cam.elevation_deg, o.cam.focal_px);
+            cr_expect_eq(o.cam.method, RECON_CAMERA_ELLIPSES, "%s: %s", what, o.cam.note);
+            cr_expect_leq(fabs(o.cam.elevation_deg - pinhole_elevation(&p)), ELEVATION_TOL_DEG, "%s: elevation %.3f",
+                          what, o.cam.elevation_deg);
+            cr_expect_leq(fabs(o.cam.focal_px / p.focal_px - 1), FOCAL_TOL, "%s: focal length %.1f", what,
+                          o.cam.focal_px);
+            recon_meridian_free(&o.mer);
+            recon_result_free(&res);
+            image_free(&img);
+        }
+}
+
+/* A soft floor shadow under the base: the backdrop darkened by up to 6%
+ * in each column between the base corners, fading over the 20 rows below
+ * the last pixel the vessel touches (incense_bowl_sweep_e4's is 5% over
+ * about 20 rows). */
+static void paint_floor_shadow(const pinhole_params *p, image_t *img, double x_left, double x_right)
+{
+    for (int i = (int)ceil(x_left); i < x_right && i < p->width; i++) {
+        int jb = -1;
+        for (int j = p->height - 1; j >= 0 && jb < 0; j--) {
+            const float *px = img->data + ((size_t)j * p->width + i) * 3;
+            if (fabsf(px[0] - p->bg[0]) + fabsf(px[1] - p->bg[1]) + fabsf(px[2] - p->bg[2]) > 1e-6f)
+                jb = j;
+        }
+        for (int j = jb + 1; jb >= 0 && j < p->height; j++) {
+            double f = 1 - 0.06 * fmax(0, 1 - (j - jb - 0.5) / 20);
+            float *px = img->data + ((size_t)j * p->width + i) * 3;
+            for (int k = 0; k < 3; k++)
+                px[k] = (float)(p->bg[k] * f);
+        }
+    }
+}
+
+Test(recon_camera, floor_shadow_under_the_base, .timeout = 120)
+{
+    /* The base's arc is the vessel's edge, not the shadow's ramp below it:
+     * measured with 12 px of backdrop, the arc came out up to a pixel low
+     * at its ends and the focal length 2-13% long. */
+    const synth_shape shapes[2] = {SYNTH_VASE, SYNTH_BOWL};
+    for (int s = 0; s < 2; s++)
+        for (int e = 5; e <= 10; e += 5) {
+            pinhole_params p = pinhole_defaults(shapes[s], e);
+            image_t img;
+            recon_result res;
+            uint8_t *mask = malloc((size_t)p.width * p.height);
+            cr_assert(mask);
+            cr_assert_eq(pinhole_draw(&p, &img, mask), 0);
+            cr_assert_eq(pinhole_extraction(&p, &img, mask, &res), 0);
+            paint_floor_shadow(&p, &img, res.corners[CORNER_BASE_LEFT].x, res.corners[CORNER_BASE_RIGHT].x);
+            recon_result_free(&res);
+            cr_assert_eq(pinhole_extraction(&p, &img, mask, &res), 0);
+            outcome o = {.today_mean = NAN, .today_max = NAN}; /* the outline is not measured here */
+            char err[256], what[64];
+            cr_assert_eq(recon_camera_meridian(&img, &res, NULL, &o.cam, &o.mer, err, sizeof err), 0, "%s", err);
+            profile_error(&p, &o.mer.curve, &o.mean, &o.max);
+            snprintf(what, sizeof what, "%s at %d deg over a floor shadow", s ? "bowl" : "vase", e);
+            expect_accurate(&p, &o, what, MERIDIAN_TOL);
+            recon_meridian_free(&o.mer);
+            recon_result_free(&res);
+            image_free(&img);
+            free(mask);
+        }
 }
 
 Test(recon_camera, yawed_and_rolled_camera, .timeout = 120)
@@ -141,7 +272,7 @@ Test(recon_camera, yawed_and_rolled_camera, .timeout = 120)
         p.look_at_side = yawed ? 0.3 : 0;
         outcome o;
         run(&p, 0, NULL, &o);
-        expect_accurate(&p, &o, yawed ? "vase at 10 deg, roll 2 deg, yawed" : "vase at 10 deg, roll 2 deg");
+        expect_accurate(&p, &o, yawed ? "vase at 10 deg, roll 2 deg, yawed" : "vase at 10 deg, roll 2 deg", MERIDIAN_TOL);
         if (!yawed)
             cr_expect_float_eq(o.cam.roll_deg, 2.0, 0.05, "roll %.3f", o.cam.roll_deg);
         recon_meridian_free(&o.mer);

@@ -9,11 +9,14 @@
  * measure, and so are the lines next to a boundary of the other kind. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "celadon/recon_camera.h"
 #include "celadon/recon_texture.h"
+#include "celadon/reconstruct.h"
 #include "support/pinhole_vessel.h"
+#include "support/scratch_dir.h"
 
 enum { BANDS = 8, SECTORS = 16 };
 
@@ -145,4 +148,48 @@ Test(recon_camera_texture, checkerboard_unrolls_straight, .timeout = 180)
     recon_texture_free(&ours);
     recon_texture_free(&scan);
     pinhole_shot_free(&sh);
+}
+
+Test(recon_camera_texture, reconstruct_writes_what_the_camera_saw, .timeout = 180)
+{
+    /* Through the pipeline: texture_seen.png beside texture.png, the same
+     * size, 255 where the camera saw the texel and 0 where it did not: the
+     * texels at both outlines (grazing) unseen, the front meridian seen. */
+    pinhole_params p = pinhole_defaults(SYNTH_JAR, 10);
+    image_t img;
+    cr_assert_eq(pinhole_draw(&p, &img, NULL), 0);
+    char dir[64], path[128], err[256];
+    scratch_dir_make(dir, sizeof dir, "seen");
+    snprintf(path, sizeof path, "%s/jar.png", dir);
+    size_t n = (size_t)img.width * img.height * 3;
+    uint8_t *u8 = malloc(n);
+    for (size_t i = 0; i < n; i++)
+        u8[i] = (uint8_t)lround(255 * fmin(fmax(img.data[i], 0), 1));
+    cr_assert_eq(image_write_u8(path, img.width, img.height, 3, u8, err, sizeof err), 0, "%s", err);
+    free(u8);
+    image_free(&img);
+    reconstruct_options opt = reconstruct_options_default();
+    reconstruction r;
+    cr_assert_eq(reconstruct_photo(path, &opt, &r, err, sizeof err), 0, "%s", err);
+    cr_assert(reconstruction_is_perspective(&r), "no perspective camera");
+    snprintf(path, sizeof path, "%s/out", dir);
+    cr_assert_eq(reconstruct_write(&r, "jar.png", path, &opt, err, sizeof err), 0, "%s", err);
+    reconstruction_free(&r);
+    image_t tex, seen;
+    snprintf(path, sizeof path, "%s/out/texture.png", dir);
+    cr_assert_eq(image_read(path, &tex, err, sizeof err), 0, "%s", err);
+    snprintf(path, sizeof path, "%s/out/texture_seen.png", dir);
+    cr_assert_eq(image_read(path, &seen, err, sizeof err), 0, "%s", err);
+    cr_assert(seen.width == tex.width && seen.height == tex.height && seen.channels == 1, "%dx%dx%d for %dx%d",
+              seen.width, seen.height, seen.channels, tex.width, tex.height);
+    int W = seen.width, H = seen.height, unseen = 0;
+    for (int i = 0; i < W * H; i++)
+        unseen += seen.data[i] < 0.5f;
+    cr_expect_gt(seen.data[(size_t)(H / 2) * W + W / 2], 0.5f, "the front meridian is seen");
+    cr_expect_lt(seen.data[(size_t)(H / 2) * W], 0.5f, "the left outline is grazing");
+    cr_expect_lt(seen.data[(size_t)(H / 2) * W + W - 1], 0.5f, "the right outline is grazing");
+    cr_expect(unseen > 0 && unseen < W * H / 4, "%d of %d texels unseen", unseen, W * H);
+    image_free(&tex);
+    image_free(&seen);
+    scratch_dir_remove(dir);
 }

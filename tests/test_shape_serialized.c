@@ -12,105 +12,15 @@
 
 #include "shapes/shapes.h"
 #include "support/plugin_xml.h"
+#include "support/serialized_file.h"
 
-typedef struct {
-    unsigned char *b;
-    size_t n, cap;
-} bytes;
-
-static void put_bytes(bytes *o, const void *p, size_t n)
+/* A file of nmeshes meshes (support/serialized_file.h) written to path. */
+static void write_file(const char *path, int version, int nmeshes, int dbl, unsigned flags, int level)
 {
-    if (o->n + n > o->cap) {
-        o->cap = 2 * (o->n + n);
-        o->b = realloc(o->b, o->cap);
-        cr_assert_not_null(o->b);
-    }
-    memcpy(o->b + o->n, p, n);
-    o->n += n;
+    cr_assert_eq(serialized_file_write(path, version, nmeshes, dbl, flags, level), 0, "cannot write %s", path);
 }
 
-static void put_le(bytes *o, uint64_t v, int size)
-{
-    unsigned char b[8];
-    for (int i = 0; i < size; i++)
-        b[i] = (unsigned char)(v >> (8 * i));
-    put_bytes(o, b, (size_t)size);
-}
-
-static void put_real(bytes *o, double v, int dbl)
-{
-    if (dbl) {
-        uint64_t u;
-        memcpy(&u, &v, 8);
-        put_le(o, u, 8);
-    } else {
-        float f = (float)v;
-        uint32_t u;
-        memcpy(&u, &f, 4);
-        put_le(o, u, 4);
-    }
-}
-
-/* A mesh: nv vertices at (i, 2i + k, -i/4) (k the mesh's number) with normals
- * (0, 0, 1) and uvs (i/8, 1 - i/8), fanned triangles (0, i, i+1). */
-enum { NV = 6 };
-
-static void put_mesh(bytes *file, int version, int k, int dbl, unsigned flags)
-{
-    bytes raw = {0};
-    put_le(&raw, flags | (dbl ? 0x2000u : 0x1000u), 4);
-    if (version == 4)
-        put_bytes(&raw, "mesh", 5);
-    put_le(&raw, NV, 8);
-    put_le(&raw, NV - 2, 8);
-    for (int i = 0; i < NV; i++) {
-        put_real(&raw, i, dbl);
-        put_real(&raw, 2 * i + k, dbl);
-        put_real(&raw, -i / 4.0, dbl);
-    }
-    for (int i = 0; (flags & 1) && i < NV; i++)
-        for (int c = 0; c < 3; c++)
-            put_real(&raw, c == 2, dbl);
-    for (int i = 0; (flags & 2) && i < NV; i++) {
-        put_real(&raw, i / 8.0, dbl);
-        put_real(&raw, 1 - i / 8.0, dbl);
-    }
-    for (int i = 0; (flags & 8) && i < NV; i++)
-        for (int c = 0; c < 3; c++)
-            put_real(&raw, 0.5, dbl);
-    for (int t = 0; t < NV - 2; t++) {
-        put_le(&raw, 0, 4);
-        put_le(&raw, (uint64_t)t + 1, 4);
-        put_le(&raw, (uint64_t)t + 2, 4);
-    }
-    uLongf zn = compressBound(raw.n);
-    unsigned char *z = malloc(zn);
-    cr_assert_eq(compress2(z, &zn, raw.b, raw.n, 9), Z_OK);
-    put_le(file, 0x041C, 2);
-    put_le(file, (uint64_t)version, 2);
-    put_bytes(file, z, zn);
-    free(z);
-    free(raw.b);
-}
-
-/* A file of nmeshes meshes with its dictionary, written to path. */
-static void write_file(const char *path, int version, int nmeshes, int dbl, unsigned flags)
-{
-    bytes f = {0};
-    uint64_t off[4];
-    for (int k = 0; k < nmeshes; k++) {
-        off[k] = f.n;
-        put_mesh(&f, version, k, dbl, flags);
-    }
-    for (int k = 0; k < nmeshes; k++)
-        put_le(&f, off[k], version == 4 ? 8 : 4);
-    put_le(&f, (uint64_t)nmeshes, 4);
-    FILE *fp = fopen(path, "wb");
-    cr_assert_not_null(fp);
-    cr_assert_eq(fwrite(f.b, 1, f.n, fp), f.n);
-    fclose(fp);
-    free(f.b);
-}
+enum { NV = SERIALIZED_FILE_NV };
 
 /* Builds <shape type="serialized"> of path with extra parameters: 0, or -1
  * with the message in err. */
@@ -145,9 +55,11 @@ TestSuite(shape_serialized, .init = make_file, .fini = remove_file);
 
 Test(shape_serialized, every_mesh_of_a_file_reads_back_exactly)
 {
-    const struct { int version, dbl; unsigned flags; } kinds[] = {{4, 0, 3}, {4, 1, 3}, {3, 0, 2 | 8}, {4, 0, 0}};
+    /* zlib level 0 stores the data in the stream uncompressed */
+    const struct { int version, dbl; unsigned flags; int level; } kinds[] = {
+        {4, 0, 3, 9}, {4, 1, 3, 9}, {3, 0, 2 | 8, 9}, {4, 0, 0, 9}, {3, 1, 1, 0}};
     for (size_t c = 0; c < sizeof kinds / sizeof kinds[0]; c++) {
-        write_file(path, kinds[c].version, 3, kinds[c].dbl, kinds[c].flags);
+        write_file(path, kinds[c].version, 3, kinds[c].dbl, kinds[c].flags, kinds[c].level);
         for (int k = 0; k < 3; k++) {
             char extra[128], err[512];
             snprintf(extra, sizeof extra, "<integer name=\"shape_index\" value=\"%d\"/>", k);
@@ -157,7 +69,7 @@ Test(shape_serialized, every_mesh_of_a_file_reads_back_exactly)
             cr_assert_eq(sh.mesh.n_tris, NV - 2);
             for (int i = 0; i < NV; i++) {
                 cr_expect_eq(sh.mesh.pos[3 * i], (float)i);
-                cr_expect_eq(sh.mesh.pos[3 * i + 1], (float)(2 * i + k), "mesh %d of version %d", k,
+                cr_expect_eq(sh.mesh.pos[3 * i + 1], (float)(i * i + k), "mesh %d of version %d", k,
                              kinds[c].version);
                 cr_expect_eq(sh.mesh.pos[3 * i + 2], (float)(-i / 4.0));
                 if (kinds[c].flags & 1)
@@ -181,7 +93,7 @@ Test(shape_serialized, damaged_files_are_refused_in_one_line)
 {
     char err[512];
     shape_t sh;
-    write_file(path, 4, 2, 0, 3);
+    write_file(path, 4, 2, 0, 3, 9);
     cr_assert_eq(build(path, "<integer name=\"shape_index\" value=\"2\"/>", &sh, err, sizeof err), -1);
     cr_expect(strstr(err, "snippet.xml:2: ") == err && strstr(err, "shape_index 2 is out of range (the file holds 2"),
               "%s", err);
@@ -197,4 +109,50 @@ Test(shape_serialized, damaged_files_are_refused_in_one_line)
     cr_assert_eq(build(path, "", &sh, err, sizeof err), -1);
     cr_expect_not_null(strstr(err, "not a Mitsuba .serialized file"), "%s", err);
     cr_expect_null(strchr(err, '\n'));
+}
+
+/* Writes bytes to path. */
+static void write_bytes(const unsigned char *b, size_t n)
+{
+    FILE *fp = fopen(path, "wb");
+    cr_assert_not_null(fp);
+    cr_assert_eq(fwrite(b, 1, n, fp), n);
+    fclose(fp);
+}
+
+/* A mesh's offset in the dictionary is the file's to choose: one near 2^64
+ * is past the end (off + 4 wrapped around to pass the check). */
+Test(shape_serialized, an_offset_past_the_end_is_refused)
+{
+    size_t n;
+    unsigned char *b = serialized_file_bytes(4, 2, 0, 3, 9, &n);
+    for (int i = 0; i < 8; i++) /* mesh 1's entry: the last before the count */
+        b[n - 4 - 8 + i] = i ? 0xff : 0xfe;
+    write_bytes(b, n);
+    free(b);
+    char err[512];
+    shape_t sh;
+    cr_assert_eq(build(path, "<integer name=\"shape_index\" value=\"1\"/>", &sh, err, sizeof err), -1);
+    cr_expect_not_null(strstr(err, "past the end of the file"), "%s", err);
+}
+
+/* A small file may not claim more than its stream can hold (zlib expands a
+ * byte to at most 1032): 2^27 vertices in a stream of 30 bytes are refused
+ * before gigabytes are allocated for them. */
+Test(shape_serialized, counts_beyond_what_the_stream_holds_are_refused)
+{
+    unsigned char raw[4 + 5 + 16] = {0x01, 0x10, 0, 0, 'm', 'e', 's', 'h', 0};
+    uint64_t nv = 1u << 27, nt = 1;
+    for (int i = 0; i < 8; i++) {
+        raw[9 + i] = (unsigned char)(nv >> (8 * i));
+        raw[17 + i] = (unsigned char)(nt >> (8 * i));
+    }
+    unsigned char file[4 + 128] = {0x1c, 0x04, 4, 0};
+    uLongf zn = sizeof file - 4;
+    cr_assert_eq(compress2(file + 4, &zn, raw, sizeof raw, 9), Z_OK);
+    write_bytes(file, 4 + zn);
+    char err[512];
+    shape_t sh;
+    cr_assert_eq(build(path, "", &sh, err, sizeof err), -1);
+    cr_expect_not_null(strstr(err, "134217728 vertices and 1 triangles, more than its"), "%s", err);
 }

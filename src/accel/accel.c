@@ -422,12 +422,29 @@ static void analytic_hit(const accel_geom *g, const accel_local_hit *h, accel_hi
     hit->param[1] = h->param[1];
 }
 
+/* Whether Embree takes the ray: it asserts, and so aborts the process, on
+ * an origin or a direction beyond FLT_LARGE (1.844e18) or not finite, or a
+ * NaN bound (RayK::valid). Scenes keep their shapes well inside
+ * (shape_list_commit); a ray that still fails, from a camera placed beyond
+ * or a NaN upstream, meets nothing. */
+static bool embree_takes(const struct RTCRay *r)
+{
+    const float large = 1.844e18f;
+    return fabsf(r->org_x) <= large && fabsf(r->org_y) <= large && fabsf(r->org_z) <= large &&
+           fabsf(r->dir_x) <= large && fabsf(r->dir_y) <= large && fabsf(r->dir_z) <= large && !isnan(r->tnear) &&
+           !isnan(r->tfar);
+}
+
 int accel_intersect(const accel_t *acc, const ray3 *ray, double tmin, double tmax, accel_hit *hit)
 {
     accel_context ctx;
     context_init(&ctx, acc, ray, tmin, tmax);
     struct RTCRayHit rh;
     embree_ray(&rh.ray, ray, tmin, tmax);
+    if (!embree_takes(&rh.ray)) {
+        hit->geom_id = ACCEL_INVALID_ID;
+        return 0;
+    }
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(acc->scene, &ctx.rtc, &rh);
@@ -452,6 +469,8 @@ int accel_occluded(const accel_t *acc, const ray3 *ray, double tmin, double tmax
     context_init(&ctx, acc, ray, tmin, tmax);
     struct RTCRay r;
     embree_ray(&r, ray, tmin, tmax);
+    if (!embree_takes(&r))
+        return 0;
     rtcOccluded1(acc->scene, &ctx.rtc, &r);
     return r.tfar == -INFINITY;
 }

@@ -292,20 +292,12 @@ static bsdf_t *principled_create(scene_obj *o, bsdf_set *set, char *err, size_t 
 }
 
 static const scene_param_decl principled_params[] = {
-    {"base_color", PARAM_COLOR | PARAM_TEXTURE, 0, NULL},
-    {"roughness", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"anisotropic", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
+    PRINCIPLED_PARAMS_COMMON,
     {"metallic", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"spec_trans", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
     {"eta", PARAM_FLOAT, 0, NULL},
     {"specular", PARAM_FLOAT, 0, NULL},
-    {"spec_tint", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"sheen", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"sheen_tint", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"flatness", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
     {"clearcoat", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
     {"clearcoat_gloss", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"diffuse_reflectance_sampling_rate", PARAM_FLOAT, 0, NULL},
     {"main_specular_sampling_rate", PARAM_FLOAT, 0, NULL},
     {"clearcoat_sampling_rate", PARAM_FLOAT, 0, NULL},
     BSDF_PARAMS_END,

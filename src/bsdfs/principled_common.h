@@ -11,6 +11,19 @@
 
 #include "bsdfs/bsdf_impl.h"
 
+/* The parameters both Disney BSDFs take (Mitsuba's names), for their
+ * plugins' tables. */
+#define PRINCIPLED_PARAMS_COMMON                                        \
+    {"base_color", PARAM_COLOR | PARAM_TEXTURE, 0, NULL},               \
+        {"roughness", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},            \
+        {"anisotropic", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},          \
+        {"spec_trans", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},           \
+        {"spec_tint", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},            \
+        {"sheen", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},                \
+        {"sheen_tint", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},           \
+        {"flatness", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},             \
+        {"diffuse_reflectance_sampling_rate", PARAM_FLOAT, 0, NULL}
+
 /* A parameter of a Disney BSDF and whether its lobe is on: given, and not
  * the float 0 (Mitsuba's get_flag). */
 typedef struct {

@@ -211,17 +211,9 @@ static bsdf_t *thin_create(scene_obj *o, bsdf_set *set, char *err, size_t errlen
 }
 
 static const scene_param_decl thin_params[] = {
-    {"base_color", PARAM_COLOR | PARAM_TEXTURE, 0, NULL},
-    {"roughness", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"anisotropic", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"spec_trans", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
+    PRINCIPLED_PARAMS_COMMON,
     {"eta", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"spec_tint", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"sheen", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"sheen_tint", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"flatness", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
     {"diff_trans", PARAM_FLOAT | PARAM_TEXTURE, 0, NULL},
-    {"diffuse_reflectance_sampling_rate", PARAM_FLOAT, 0, NULL},
     {"specular_reflectance_sampling_rate", PARAM_FLOAT, 0, NULL},
     {"specular_transmittance_sampling_rate", PARAM_FLOAT, 0, NULL},
     {"diffuse_transmittance_sampling_rate", PARAM_FLOAT, 0, NULL},

@@ -18,6 +18,7 @@
 #include "cli/commands.h"
 
 enum { MAX_DEFINES = 64, MAX_SEGMENTS = 32, PLOT_W = 900, PLOT_H = 600 };
+_Static_assert(MAX_DEFINES == 64, "the -D limit's usage error names it");
 
 static void usage(FILE *f)
 {
@@ -245,8 +246,10 @@ int cmd_crosscheck(int argc, char **argv)
                 rc = cli_usage_error("crosscheck", "--part wants K/N with 1 <= K <= N <= 1000000, not '%s'", val);
         } else if (!strcmp(a, "-D")) {
             const char *eq = strchr(val, '=');
-            if (!eq || eq == val || p.ndefs == MAX_DEFINES)
+            if (!eq || eq == val)
                 rc = cli_usage_error("crosscheck", "-D wants name=value, not '%s'", val);
+            else if (p.ndefs == MAX_DEFINES)
+                rc = cli_usage_error("crosscheck", "at most 64 -D, not more ('%s')", val);
             else if (!(defs[p.ndefs].name = strndup(val, (size_t)(eq - val))))
                 rc = 1;
             else

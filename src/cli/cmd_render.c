@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 
 enum { MAX_DEFINES = 64, MAX_FRAMES = 1000000 };
+_Static_assert(MAX_DEFINES == 64, "the -D limit's usage error names it");
 
 static void usage(FILE *f)
 {
@@ -141,8 +142,10 @@ static int parse_args(int argc, char **argv, render_args *a)
             a->bo.sampler = val;
         } else if (!strcmp(arg, "-D")) {
             const char *eq = strchr(val, '=');
-            if (!eq || eq == val || a->ndefs == MAX_DEFINES)
+            if (!eq || eq == val)
                 return cli_usage_error("render", "-D wants name=value, not '%s'", val);
+            if (a->ndefs == MAX_DEFINES)
+                return cli_usage_error("render", "at most 64 -D, not more ('%s')", val);
             char *name = strndup(val, (size_t)(eq - val));
             if (!name)
                 return 1;

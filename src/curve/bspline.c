@@ -59,6 +59,11 @@ const char *bspline_validate(const bspline_t *c)
             return "knot vector is not clamped";
     if (!(c->knots[nk - 1] > c->knots[0]))
         return "empty parameter domain";
+    /* An end knot repeated more than p + 1 times adds an empty span with a
+     * zero basis function: no curve needs it, and the Bezier split counts
+     * on exactly p + 1. */
+    if (c->knots[p + 1] == c->knots[0] || c->knots[nk - 2 - p] == c->knots[nk - 1])
+        return "end knot multiplicity exceeds the degree + 1";
     for (int i = p + 1, run = 1; i < nk - p - 1; i++) {
         run = c->knots[i] == c->knots[i - 1] ? run + 1 : 1;
         if (run > p)

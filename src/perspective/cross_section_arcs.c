@@ -81,13 +81,11 @@ static int outermost_step(const image_t *img, int alpha, int i, int here, int si
     return here;
 }
 
-/* One arc: columns strictly between the corners' x (less the margin). */
-static int trace_arc(const image_t *img, const recon_result *res, vec2 c0, vec2 c1, int side, float *col,
-                     int *edge_row, vec2 *out)
+/* The outline's sub-pixel edge in columns i0..i1 on side (-1 top, +1
+ * bottom), a point per column where it is found. */
+static int trace_columns(const image_t *img, const recon_result *res, int i0, int i1, int side, float *col,
+                         int *edge_row, vec2 *out)
 {
-    double lo = fmin(c0.x, c1.x), hi = fmax(c0.x, c1.x);
-    double margin = fmax(CORNER_MARGIN_PX, CORNER_MARGIN_FRAC * (hi - lo));
-    int i0 = (int)ceil(lo + margin), i1 = (int)floor(hi - margin - 1);
     i0 = i0 < 1 ? 1 : i0;
     i1 = i1 > res->width - 2 ? res->width - 2 : i1;
     int alpha = res->mask_mode == RECON_MASK_ALPHA, h = res->height;
@@ -109,15 +107,41 @@ static int trace_arc(const image_t *img, const recon_result *res, vec2 c0, vec2 
             slope = fabs((double)(edge_row[i - i0 - 1] - here));
         if (i < i1 && edge_row[i - i0 + 1] >= 0)
             slope = fmax(slope, fabs((double)(edge_row[i - i0 + 1] - here)));
-        /* The rows recon_subpixel_edge may read: |slope| + 12 beyond and a
-         * few inside. */
-        int reach = (int)slope + 16, j0 = here - reach < 0 ? 0 : here - reach;
-        int j1 = here + reach > h - 1 ? h - 1 : here + reach;
+        /* The rows recon_subpixel_edge may read: a few inside, and outside
+         * only the ramp's |slope| + 1 pixels and two of backdrop. It takes
+         * the backdrop from its farthest row and the edge from the first
+         * pixel inward that differs from it; 12 px out, a floor shadow's
+         * gentle ramp under the base differs from the backdrop beside the
+         * edge, and the edge came out where the shadow fades (up to 12 px
+         * below the base's ellipse on incense_bowl_sweep_e4). */
+        int span = (int)ceil(slope), reach = span + 16;
+        int j0 = here - (side < 0 ? span + 3 : reach), j1 = here + (side > 0 ? span + 3 : reach);
+        j0 = j0 < 0 ? 0 : j0;
+        j1 = j1 > h - 1 ? h - 1 : j1;
         recon_signal sig = column_signal(img, alpha, i, j0, j1, col);
         recon_edge e = recon_subpixel_edge_flat(&sig, here - j0, side, slope, delta);
         if (e.ok)
             out[n++] = v2(i + 0.5, j0 + e.x);
     }
+    return n;
+}
+
+/* One arc: columns strictly between the corners' x (less the margin). */
+static int trace_arc(const image_t *img, const recon_result *res, vec2 c0, vec2 c1, int side, float *col,
+                     int *edge_row, vec2 *out)
+{
+    double lo = fmin(c0.x, c1.x), hi = fmax(c0.x, c1.x);
+    double margin = fmax(CORNER_MARGIN_PX, CORNER_MARGIN_FRAC * (hi - lo));
+    return trace_columns(img, res, (int)ceil(lo + margin), (int)floor(hi - margin - 1), side, col, edge_row, out);
+}
+
+int recon_outline_columns(const image_t *img, const recon_result *res, int i0, int i1, int side, vec2 *out)
+{
+    float *col = malloc((size_t)res->height * 3 * sizeof *col);
+    int *edge_row = malloc((size_t)res->width * sizeof *edge_row);
+    int n = col && edge_row ? trace_columns(img, res, i0, i1, side, col, edge_row, out) : -1;
+    free(col);
+    free(edge_row);
     return n;
 }
 

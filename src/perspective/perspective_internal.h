@@ -34,6 +34,12 @@ int recon_fit_axis_ellipse(const vec2 *pts, int n, int half, recon_ellipse *out)
 int recon_outline_arcs(const image_t *img, const recon_result *res, vec2 **top, int *n_top, vec2 **bottom,
                        int *n_bottom);
 
+/* The same measure on the columns i0..i1 (clamped to the image) on side
+ * -1 (the outline's top) or +1 (its bottom): out (room for i1 - i0 + 1
+ * points) receives a point per column where an edge is found. Returns their
+ * number, or -1 when out of memory. */
+int recon_outline_columns(const image_t *img, const recon_result *res, int i0, int i1, int side, vec2 *out);
+
 /* ---- camera_from_sor.c */
 
 /* Image point -> camera frame (u, w), and back. */

@@ -7,6 +7,116 @@
 
 #include "perspective/perspective_internal.h"
 
+/* Whether the points pts[0..n) (image) all lie within tol of the ellipse e
+ * (camera frame), or of one fitted to them and the arc's points together
+ * (half: as recon_fit_axis_ellipse) whose residual stays within twice e's
+ * and 0.05 px. work has room for n_arc + n points. */
+static int on_one_ellipse(const recon_camera *cam, const recon_ellipse *e, int half, const vec2 *arc, int n_arc,
+                          const vec2 *pts, int n, double tol, vec2 *work)
+{
+    int near = 1;
+    for (int k = 0; k < n && near; k++) {
+        vec2 q = recon_camera_to_frame(cam, pts[k]);
+        near = fabs(recon_ellipse_distance(e->w0, e->a, e->b, q, NULL)) <= tol;
+    }
+    if (near)
+        return 1;
+    int m = 0;
+    for (int k = 0; k < n_arc; k++)
+        work[m++] = recon_camera_to_frame(cam, arc[k]);
+    for (int k = 0; k < n; k++)
+        work[m++] = recon_camera_to_frame(cam, pts[k]);
+    recon_ellipse f;
+    if (recon_fit_axis_ellipse(work, m, half, &f) != 0 || !(f.b > 0) || !(f.rms_px <= 2 * e->rms_px + 0.05))
+        return 0;
+    for (int k = 0; k < n; k++)
+        if (!(fabs(recon_ellipse_distance(f.w0, f.a, f.b, work[n_arc + k], NULL)) <= tol))
+            return 0;
+    return 1;
+}
+
+/* Appends to the arc (x increasing) the columns beyond its end on side
+ * `dir` (-1 left, +1 right) whose outline lies on one ellipse with the
+ * arc (within 3 times its residual, and half a pixel), up to where it
+ * leaves it (to within 2% of the arc's width), a gap, or half the arc's
+ * width. Returns the number added, or -1 when out of memory. */
+static int grow_end(const image_t *img, const recon_result *res, const recon_camera *cam, const recon_ellipse *e,
+                    int side, int half, int dir, vec2 **arc, int *n)
+{
+    if (*n < 6 || !(e->b > 0))
+        return 0;
+    int x_end = (int)floor((dir < 0 ? (*arc)[0] : (*arc)[*n - 1]).x);
+    double width = (*arc)[*n - 1].x - (*arc)[0].x;
+    int reach = (int)ceil(0.5 * width), batch = (int)fmax(3, ceil(0.02 * width));
+    int i0 = dir < 0 ? x_end - reach : x_end + 1, i1 = dir < 0 ? x_end - 1 : x_end + reach;
+    vec2 *col = malloc((size_t)(reach > 0 ? reach : 1) * sizeof *col);
+    vec2 *grown = realloc(*arc, (size_t)(*n + reach + 1) * sizeof *grown);
+    vec2 *work = malloc((size_t)(*n + reach + 1) * sizeof *work);
+    if (grown)
+        *arc = grown;
+    int m = col && grown && work && reach > 0 ? recon_outline_columns(img, res, i0, i1, side, col) : -1;
+    if (m < 0) {
+        free(col);
+        free(work);
+        return reach > 0 ? -1 : 0;
+    }
+    if (dir < 0) /* outward order */
+        for (int k = 0; k < m / 2; k++) {
+            vec2 t = col[k];
+            col[k] = col[m - 1 - k];
+            col[m - 1 - k] = t;
+        }
+    int run = 0; /* the columns up to the first gap */
+    for (double last_x = x_end + 0.5; run < m && fabs(col[run].x - last_x) <= 2.5; run++)
+        last_x = col[run].x;
+    /* Batches double while they are taken and halve down to the first size
+     * when not: a few ellipse fits per end. */
+    int kept = 0;
+    double tol = fmax(3 * e->rms_px, 0.5);
+    for (int size = batch; kept < run;) {
+        int b = size < run - kept ? size : run - kept;
+        if (on_one_ellipse(cam, e, half, grown, *n, col, kept + b, tol, work)) {
+            kept += b;
+            size *= 2;
+        } else if (size > batch) {
+            size /= 2;
+        } else {
+            break;
+        }
+    }
+    /* the arc plus the kept columns, x increasing */
+    if (dir < 0) {
+        memmove(grown + kept, grown, (size_t)*n * sizeof *grown);
+        for (int k = 0; k < kept; k++)
+            grown[k] = col[kept - 1 - k];
+    } else {
+        memcpy(grown + *n, col, (size_t)kept * sizeof *grown);
+    }
+    *n += kept;
+    free(col);
+    free(work);
+    return kept;
+}
+
+/* The corners bound the arcs, and a corner found inside its arc (the melon
+ * vase's, 20-113 px in from the true ends) leaves a short arc whose ellipse
+ * is ill-determined. The outline beyond a corner that lies on one ellipse
+ * with the arc is the same circle's image: the arcs grow by it, and the
+ * camera is fitted again. Returns the columns added, or -1 (out of memory). */
+static int grow_arcs(const image_t *img, const recon_result *res, const recon_camera *cam, vec2 **top, int *n_top,
+                     vec2 **bottom, int *n_bottom)
+{
+    int added = 0;
+    for (int dir = -1; dir <= 1; dir += 2) {
+        int a = grow_end(img, res, cam, &cam->rim, -1, 1, dir, top, n_top);
+        int b = grow_end(img, res, cam, &cam->base, 1, -1, dir, bottom, n_bottom);
+        if (a < 0 || b < 0)
+            return -1;
+        added += a + b;
+    }
+    return added;
+}
+
 int recon_camera_meridian(const image_t *img, const recon_result *res, const recon_camera_options *opt,
                           recon_camera *cam, recon_meridian *mer, char *err, size_t errlen)
 {
@@ -25,6 +135,15 @@ int recon_camera_meridian(const image_t *img, const recon_result *res, const rec
     }
     double smoothing = opt && opt->smoothing_px > 0 ? opt->smoothing_px : 1.0;
     int rc = recon_camera_solve(img, res, opt, top, n_top, bottom, n_bottom, cam, err, errlen);
+    /* Once: a second round moved no synth-dev camera by more than 0.5
+     * degrees and cost as much again. */
+    int added = rc == 0 ? grow_arcs(img, res, cam, &top, &n_top, &bottom, &n_bottom) : 0;
+    if (added < 0) {
+        snprintf(err, errlen, "out of memory");
+        rc = -1;
+    } else if (added > 0) {
+        rc = recon_camera_solve(img, res, opt, top, n_top, bottom, n_bottom, cam, err, errlen);
+    }
     if (rc == 0)
         rc = recon_meridian_from_outline(cam, res, smoothing, mer, err, errlen);
     free(top);

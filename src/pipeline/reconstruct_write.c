@@ -11,7 +11,7 @@
 #include "core/core.h"
 #include "celadon/reconstruct.h"
 
-enum { MAX_FILES = 4 + 2 * (1 + RECONSTRUCT_MAX_LODS) };
+enum { MAX_FILES = 5 + 2 * (1 + RECONSTRUCT_MAX_LODS) };
 /* Imaged cross-sections the overlay draws over a perspective photo. */
 enum { OVERLAY_CROSS_SECTIONS = 5 };
 
@@ -78,18 +78,42 @@ static int write_meshes(reconstruction *r, const char *source, const reconstruct
     return 0;
 }
 
+/* tmp/name from 8-bit pixels, listed in files; 0, or 1 with err. */
+static int write_png(const char *tmp, const char *name, int width, int height, int channels, const uint8_t *pixels,
+                     file_list *files, char *err, size_t errlen)
+{
+    char path[PATH_MAX + 64], why[400];
+    snprintf(path, sizeof path, "%s/%s", tmp, name);
+    if (image_write_u8(path, width, height, channels, pixels, why, sizeof why) != 0) {
+        snprintf(err, errlen, "cannot write %s: %s", name, why);
+        return 1;
+    }
+    add_file(files, name);
+    return 0;
+}
+
 /* Every output into the empty folder tmp. */
 static int write_all(reconstruction *r, const char *source, const char *tmp, const reconstruct_options *opt,
                      file_list *files, char *err, size_t errlen)
 {
     char path[PATH_MAX + 64], why[400];
     double t0 = now_seconds();
-    snprintf(path, sizeof path, "%s/texture.png", tmp);
-    if (image_write_u8(path, r->texture.width, r->texture.height, 3, r->texture.rgb, why, sizeof why) != 0) {
-        snprintf(err, errlen, "cannot write texture.png: %s", why);
+    if (write_png(tmp, "texture.png", r->texture.width, r->texture.height, 3, r->texture.rgb, files, err, errlen))
         return 1;
+    if (r->texture.seen) { /* taken by the camera: which texels it saw (255) and which it did not (0) */
+        size_t n = (size_t)r->texture.width * r->texture.height;
+        uint8_t *mask = malloc(n ? n : 1);
+        if (!mask) {
+            snprintf(err, errlen, "cannot write texture_seen.png: out of memory");
+            return 1;
+        }
+        for (size_t i = 0; i < n; i++)
+            mask[i] = r->texture.seen[i] ? 255 : 0;
+        int rc = write_png(tmp, "texture_seen.png", r->texture.width, r->texture.height, 1, mask, files, err, errlen);
+        free(mask);
+        if (rc != 0)
+            return 1;
     }
-    add_file(files, "texture.png");
     snprintf(path, sizeof path, "%s/model.mtl", tmp);
     if (mesh_write_mtl(path, "texture.png", why, sizeof why) != 0) {
         snprintf(err, errlen, "cannot write model.mtl: %s", why);
@@ -114,14 +138,10 @@ static int write_all(reconstruction *r, const char *source, const char *tmp, con
     }
     r->ms.overlay = ms_since(t0);
     t0 = now_seconds();
-    snprintf(path, sizeof path, "%s/overlay.png", tmp);
-    int rc = image_write_u8(path, r->photo.width, r->photo.height, 3, overlay, why, sizeof why);
+    int rc = write_png(tmp, "overlay.png", r->photo.width, r->photo.height, 3, overlay, files, err, errlen);
     free(overlay);
-    if (rc != 0) {
-        snprintf(err, errlen, "cannot write overlay.png: %s", why);
+    if (rc != 0)
         return 1;
-    }
-    add_file(files, "overlay.png");
     profile_t prof;
     reconstruction_profile(r, source, &prof);
     snprintf(path, sizeof path, "%s/profile.json", tmp);

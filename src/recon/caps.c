@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include <gsl/gsl_linalg.h>
 #include <gsl/gsl_statistics_double.h>
 
 #include "recon/recon_internal.h"
@@ -39,13 +40,181 @@ static double signed_area(const vec2 *c, int n)
     return 0.5 * s;
 }
 
+/* ---- An end seen from above: the circle's ellipse, left tangentially.
+ *
+ * Seen from above (below), the outline's end is the near (far) arc of the
+ * base's (rim's) ellipse, and the wall's silhouette leaves it where the two
+ * are tangent: the plane that touches the wall along the base circle holds
+ * both the ray and the circle's tangent, so the images share their tangent
+ * there and nothing turns sharply. What changes there is the curve: an
+ * ellipse on one side, the wall on the other. In the end's frame (r across
+ * the axis, d depth from the end) an ellipse symmetric about a line r = r_c
+ * is r^2 = c0 + c1 r + c2 d + c3 d^2 (c2 > 0, c3 < 0), the wall on each side
+ * r = p0 + p1 d + p2 d^2; the corner depth is the change point that
+ * minimises the two models' squared residuals, accepted when they explain
+ * the zone better than one ellipse does by an F-test (a dome's end is an
+ * ellipse all the way). */
+
+#define ELLIPSE_MIN_POINTS 10
+#define WALL_MIN_POINTS 6
+#define CHANGE_POINT_F 20.0 /* as the conic fit's line-or-ellipse test */
+
+typedef struct {
+    double r, d; /* across the axis (signed), depth from the end */
+    int i;       /* its index on the contour */
+} end_point;
+
+/* Least squares on up to 4 columns: x solves (A^T A) x = A^T y. A
+ * (nearly) singular system is refused before GSL's solver would call its
+ * error handler, which aborts. */
+static int solve_normal(gsl_matrix *ata, gsl_vector *aty, gsl_vector *x)
+{
+    gsl_permutation *perm = gsl_permutation_alloc(ata->size1);
+    int sgn, rc = perm ? gsl_linalg_LU_decomp(ata, perm, &sgn) : -1;
+    double umax = 0, umin = INFINITY;
+    for (size_t i = 0; rc == 0 && i < ata->size1; i++) {
+        umax = fmax(umax, fabs(gsl_matrix_get(ata, i, i)));
+        umin = fmin(umin, fabs(gsl_matrix_get(ata, i, i)));
+    }
+    if (rc == 0 && !(umin > 1e-12 * umax))
+        rc = -1;
+    if (rc == 0)
+        rc = gsl_linalg_LU_solve(ata, perm, aty, x);
+    gsl_permutation_free(perm);
+    if (rc == 0)
+        for (size_t i = 0; i < x->size; i++)
+            if (!isfinite(gsl_vector_get(x, i)))
+                rc = -1;
+    return rc;
+}
+
+/* Sum of squared (Sampson) distances of the points with d in [lo, hi] to
+ * the best symmetric ellipse; INFINITY when there is none. */
+static double ellipse_sse(const end_point *p, int n, double lo, double hi, int *count)
+{
+    double m[16] = {0}, v[4] = {0}, xs[4];
+    int k = 0;
+    for (int i = 0; i < n; i++) {
+        if (p[i].d < lo || p[i].d > hi)
+            continue;
+        double a[4] = {1, p[i].r, p[i].d, p[i].d * p[i].d}, y = p[i].r * p[i].r;
+        for (int u = 0; u < 4; u++) {
+            v[u] += a[u] * y;
+            for (int w = 0; w < 4; w++)
+                m[4 * u + w] += a[u] * a[w];
+        }
+        k++;
+    }
+    *count = k;
+    if (k < ELLIPSE_MIN_POINTS)
+        return INFINITY;
+    gsl_matrix_view mv = gsl_matrix_view_array(m, 4, 4);
+    gsl_vector_view vv = gsl_vector_view_array(v, 4), xv = gsl_vector_view_array(xs, 4);
+    if (solve_normal(&mv.matrix, &vv.vector, &xv.vector) != 0 || xs[2] <= 0 || xs[3] >= 0)
+        return INFINITY;
+    double sse = 0;
+    for (int i = 0; i < n; i++) {
+        if (p[i].d < lo || p[i].d > hi)
+            continue;
+        double res = p[i].r * p[i].r - (xs[0] + xs[1] * p[i].r + xs[2] * p[i].d + xs[3] * p[i].d * p[i].d);
+        double gr = 2 * p[i].r - xs[1], gd = -(xs[2] + 2 * xs[3] * p[i].d);
+        double g2 = gr * gr + gd * gd;
+        sse += g2 > 0 ? res * res / g2 : 0;
+    }
+    return sse;
+}
+
+/* Sum of squared residuals of |r| = p0 + p1 d + p2 d^2 on side s (r > 0 or
+ * not) for d in (lo, hi]; INFINITY with too few points. */
+static double wall_sse(const end_point *p, int n, int s, double lo, double hi)
+{
+    double m[9] = {0}, v[3] = {0}, xs[3], dmin = INFINITY, dmax = -INFINITY;
+    int k = 0;
+    for (int i = 0; i < n; i++) {
+        if ((p[i].r > 0) != s || p[i].d <= lo || p[i].d > hi)
+            continue;
+        double a[3] = {1, p[i].d, p[i].d * p[i].d}, y = fabs(p[i].r);
+        for (int u = 0; u < 3; u++) {
+            v[u] += a[u] * y;
+            for (int w = 0; w < 3; w++)
+                m[3 * u + w] += a[u] * a[w];
+        }
+        dmin = fmin(dmin, p[i].d);
+        dmax = fmax(dmax, p[i].d);
+        k++;
+    }
+    if (k < WALL_MIN_POINTS || dmax - dmin < 3)
+        return INFINITY;
+    gsl_matrix_view mv = gsl_matrix_view_array(m, 3, 3);
+    gsl_vector_view vv = gsl_vector_view_array(v, 3), xv = gsl_vector_view_array(xs, 3);
+    if (solve_normal(&mv.matrix, &vv.vector, &xv.vector) != 0)
+        return INFINITY;
+    double sse = 0;
+    for (int i = 0; i < n; i++) {
+        if ((p[i].r > 0) != s || p[i].d <= lo || p[i].d > hi)
+            continue;
+        double res = fabs(p[i].r) - (xs[0] + xs[1] * p[i].d + xs[2] * p[i].d * p[i].d);
+        sse += res * res;
+    }
+    return sse;
+}
+
+/* The depth where the outline leaves the end's ellipse for the wall, or -1
+ * when one ellipse explains the zone as well (a dome) or nothing fits. */
+static double ellipse_leaving_depth(const end_point *p, int n, double zone)
+{
+    int n_all;
+    double sse1 = ellipse_sse(p, n, -INFINITY, zone, &n_all), best = INFINITY, best_d = -1;
+    for (double delta = 2; delta < zone - 3; delta += 0.5) {
+        int k;
+        double e = ellipse_sse(p, n, -INFINITY, delta, &k);
+        if (!isfinite(e))
+            continue;
+        double t = e + wall_sse(p, n, 0, delta, zone) + wall_sse(p, n, 1, delta, zone);
+        if (t < best) {
+            best = t;
+            best_d = delta;
+        }
+    }
+    const int extra = 3 + 3 + 1; /* two walls and the change point, beyond the ellipse's 4 */
+    if (best_d < 0 || n_all <= 4 + extra + 1)
+        return -1;
+    double f = isfinite(sse1) ? (sse1 - best) / extra / (fmax(best, 1e-12) / (n_all - 4 - extra)) : INFINITY;
+    return f > CHANGE_POINT_F ? best_d : -1;
+}
+
+/* Per side, the zone's point nearest the depth where the outline leaves the
+ * end's ellipse; 0, or -1 (pick untouched) when it does not. */
+static int ellipse_corners(const end_point *p, int n, double zone, int pick[2])
+{
+    double delta = ellipse_leaving_depth(p, n, zone);
+    if (delta < 0)
+        return -1;
+    int found[2] = {-1, -1};
+    double gap[2] = {INFINITY, INFINITY};
+    for (int i = 0; i < n; i++) {
+        int s = p[i].r > 0;
+        if (fabs(p[i].d - delta) < gap[s]) {
+            gap[s] = fabs(p[i].d - delta);
+            found[s] = p[i].i;
+        }
+    }
+    if (found[0] < 0 || found[1] < 0)
+        return -1;
+    pick[0] = found[0];
+    pick[1] = found[1];
+    return 0;
+}
+
 int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT])
 {
     double *turns = malloc((size_t)(n > 0 ? n : 1) * sizeof *turns);
     vec2 *contour = malloc((size_t)(n > 0 ? n : 1) * sizeof *contour);
-    if (!turns || !contour) {
+    end_point *zp = malloc((size_t)(n > 0 ? n : 1) * sizeof *zp);
+    if (!turns || !contour || !zp) {
         free(turns);
         free(contour);
+        free(zp);
         return -1;
     }
     /* The pixel staircase turns by up to 45 degrees from one step to the
@@ -93,6 +262,7 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
             free(bi);
             free(turns);
             free(contour);
+            free(zp);
             return -1;
         }
         for (int b = 0; b < 2 * nb; b++) {
@@ -111,6 +281,7 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
                 pole[s] = i;
             }
             double t = turn_at(contour, n, i, k, orient);
+            zp[m] = (end_point){r, depth, i};
             turns[m++] = fabs(t);
             if (b < nb && t > bt[s * nb + b]) {
                 bt[s * nb + b] = t;
@@ -169,8 +340,10 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
         }
         /* A widest point nearer the end than the corner, with the outline
          * narrowing between the two, is a foot ring (lip) below (above) the
-         * corner: it ends the vessel. Neither a corner nor a widest point: the
-         * outline only widens from the end (a dome), and its pole ends it. */
+         * corner: it ends the vessel. Neither a corner nor a widest point:
+         * the end's ellipse left tangentially by the wall (seen from above or
+         * below), else the outline only widens from the end (a dome), and its
+         * pole ends it. */
         int ring = 0;
         if (wide_b >= 0 && best_b > wide_b + 2)
             for (int b = wide_b + 1; b < best_b && !ring; b++)
@@ -178,7 +351,7 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
         if (wide_b >= 0 && (best_b < 0 || ring)) {
             pick[0] = bo[wide_b];
             pick[1] = bo[nb + wide_b];
-        } else if (best_b < 0) {
+        } else if (best_b < 0 && ellipse_corners(zp, m, zone, pick) != 0) {
             pick[0] = pole[0];
             pick[1] = pole[1];
         }
@@ -219,5 +392,6 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
         }
     free(turns);
     free(contour);
+    free(zp);
     return 0;
 }

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/core.h"
 #include "render/exr_error.h"
 #include "render/exr_metadata.h"
 
@@ -16,6 +17,11 @@ struct exr_in {
 
 exr_in *exr_in_open(const char *path, char *err, size_t errlen)
 {
+    char why[256];
+    if (input_check(path, INPUT_MAX_DATA_BYTES, NULL, why, sizeof why) != 0) {
+        snprintf(err, errlen, "%s: %s", path, why);
+        return NULL;
+    }
     exr_in *e = calloc(1, sizeof *e);
     if (!e)
         abort();

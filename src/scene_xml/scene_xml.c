@@ -157,8 +157,9 @@ static int check_file(scene_ctx *c, int line, const char *shown, const char *pat
     struct stat st;
     if (stat(path, &st) != 0)
         return scene_fail(c, line, "file '%s' not found (%s: %s)", shown, path, strerror(errno));
-    if (!S_ISREG(st.st_mode))
-        return scene_fail(c, line, "'%s' (%s) is not a regular file", shown, path);
+    char why[256];
+    if (input_check(path, INPUT_MAX_DATA_BYTES, NULL, why, sizeof why) != 0)
+        return scene_fail(c, line, "'%s' (%s): %s", shown, path, why);
     return 0;
 }
 

@@ -25,6 +25,7 @@ enum {
     SERIALIZED_COLORS = 0x0008,
     SERIALIZED_DOUBLE = 0x2000,
     SERIALIZED_MAX_ELEMS = 1 << 28, /* vertices or triangles: the meshes' int indices, with room */
+    DEFLATE_MAX_RATIO = 1032,       /* zlib's bound on what one byte of a deflate stream expands to */
 };
 
 typedef struct {
@@ -145,11 +146,24 @@ static int read_mesh(serialized_reader *r, int version, shape_mesh_data *m, char
                  (unsigned long long)nv, (unsigned long long)nt, SERIALIZED_MAX_ELEMS);
         return -1;
     }
+    /* What the counts claim must fit in the stream's bytes, so that a small
+     * file cannot make us allocate gigabytes before it runs out. */
+    size_t real = flags & SERIALIZED_DOUBLE ? 8 : 4;
+    uint64_t per_vertex = real * (3 + (flags & SERIALIZED_NORMALS ? 3 : 0) + (flags & SERIALIZED_TEXCOORDS ? 2 : 0) +
+                                  (flags & SERIALIZED_COLORS ? 3 : 0));
+    uint64_t claimed = nv * per_vertex + nt * 3 * sizeof(unsigned);
+    if (claimed / DEFLATE_MAX_RATIO > r->z.avail_in + (uint64_t)r->z.total_in) {
+        snprintf(why, whylen,
+                 "the mesh claims %llu vertices and %llu triangles, more than its %llu compressed bytes can hold",
+                 (unsigned long long)nv, (unsigned long long)nt,
+                 (unsigned long long)(r->z.avail_in + (uint64_t)r->z.total_in));
+        return -1;
+    }
     if (shape_mesh_alloc(m, (int)nv, (int)nt) != 0) {
         snprintf(why, whylen, "out of memory");
         return -1;
     }
-    int dbl = (flags & SERIALIZED_DOUBLE) != 0, rc = read_reals(r, dbl, nv, 3, m->pos);
+    int dbl = real == 8, rc = read_reals(r, dbl, nv, 3, m->pos);
     if (rc == 0 && (flags & SERIALIZED_NORMALS))
         rc = read_reals(r, dbl, nv, 3, m->nrm);
     if (rc == 0 && (flags & SERIALIZED_TEXCOORDS))
@@ -198,7 +212,7 @@ static int serialized_read(const char *path, long long index, shape_mesh_data *m
         snprintf(why, whylen, "serialized format version %d is not supported (versions 3 and 4 are)", version);
     else if (mesh_offset(&r, version, index, &off, why, whylen) != 0)
         ; /* why says it */
-    else if (off + 4 > r.size)
+    else if (off > r.size - 4) /* not off + 4 > size: off is the file's to choose, up to 2^64 - 1 */
         snprintf(why, whylen, "the offset of mesh %lld is past the end of the file", index);
     else if (inflateInit(&r.z) != Z_OK)
         snprintf(why, whylen, "out of memory");

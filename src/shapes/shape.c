@@ -62,19 +62,33 @@ static double analytic_area(const shape_t *sh)
     return sum / (N * N);
 }
 
-/* World bounds and normal cone of an analytic shape: its object bounds'
- * corners placed, its flat normal if it has one. */
+void shape_world_bounds(const shape_t *sh, vec3 *lo, vec3 *hi)
+{
+    *lo = v3(INFINITY, INFINITY, INFINITY);
+    *hi = v3(-INFINITY, -INFINITY, -INFINITY);
+    int n = sh->is_mesh ? sh->mesh.n_verts : 8;
+    vec3 olo, ohi;
+    if (!sh->is_mesh)
+        sh->ops->bounds(sh->data, &olo, &ohi);
+    for (int i = 0; i < n; i++) {
+        /* a mesh's vertices are in world space; an analytic shape's object
+         * bounds' corners placed */
+        vec3 p = sh->is_mesh ? v3(sh->mesh.pos[3 * i], sh->mesh.pos[3 * i + 1], sh->mesh.pos[3 * i + 2])
+                             : transform_point(&sh->to_world, v3(i & 1 ? ohi.x : olo.x, i & 2 ? ohi.y : olo.y,
+                                                                 i & 4 ? ohi.z : olo.z));
+        /* fmin and fmax would pass over a NaN: it spreads instead */
+        *lo = v3(p.x < lo->x || p.x != p.x ? p.x : lo->x, p.y < lo->y || p.y != p.y ? p.y : lo->y,
+                 p.z < lo->z || p.z != p.z ? p.z : lo->z);
+        *hi = v3(p.x > hi->x || p.x != p.x ? p.x : hi->x, p.y > hi->y || p.y != p.y ? p.y : hi->y,
+                 p.z > hi->z || p.z != p.z ? p.z : hi->z);
+    }
+}
+
+/* World bounds and normal cone of an analytic shape: its flat normal if it
+ * has one. */
 static void analytic_extent(shape_t *sh)
 {
-    vec3 lo, hi;
-    sh->ops->bounds(sh->data, &lo, &hi);
-    sh->bounds_lo = v3(INFINITY, INFINITY, INFINITY);
-    sh->bounds_hi = v3(-INFINITY, -INFINITY, -INFINITY);
-    for (int c = 0; c < 8; c++) {
-        vec3 p = transform_point(&sh->to_world, v3(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z));
-        sh->bounds_lo = v3(fmin(sh->bounds_lo.x, p.x), fmin(sh->bounds_lo.y, p.y), fmin(sh->bounds_lo.z, p.z));
-        sh->bounds_hi = v3(fmax(sh->bounds_hi.x, p.x), fmax(sh->bounds_hi.y, p.y), fmax(sh->bounds_hi.z, p.z));
-    }
+    shape_world_bounds(sh, &sh->bounds_lo, &sh->bounds_hi);
     vec3 n;
     if (sh->ops->flat_normal && sh->ops->flat_normal(sh->data, &n)) {
         n = v3_norm(transform_normal(&sh->to_world, n));

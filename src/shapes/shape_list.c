@@ -3,6 +3,7 @@
  * are Embree triangles, with the hit refined in double; sphere, disk,
  * cylinder and the analytic SOR are Embree user geometries solved exactly in
  * double. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -20,6 +21,14 @@ int shape_list_commit(shape_list *l, char *err, size_t errlen)
     }
     for (int i = 0; i < l->count; i++) {
         const shape_t *sh = &l->items[i];
+        vec3 lo, hi;
+        shape_world_bounds(sh, &lo, &hi);
+        double reach = fmax(fmax(fmax(fabs(lo.x), fabs(lo.y)), fmax(fabs(lo.z), fabs(hi.x))), fmax(fabs(hi.y), fabs(hi.z)));
+        if (!(reach <= SHAPE_MAX_COORD) || lo.x != lo.x || lo.y != lo.y || lo.z != lo.z) {
+            snprintf(err, errlen, "%s:%d: the shape reaches %g from the origin (at most %g is traced)", sh->file,
+                     sh->line, reach, SHAPE_MAX_COORD);
+            return -1;
+        }
         l->straight_shadows |= (bsdf_flags(sh->bsdf) & BSDF_STRAIGHT_TRANSMISSION) != 0;
         unsigned id = sh->is_mesh ? shape_mesh_add(sh, l->accel, why, sizeof why)
                                   : sh->ops->add(sh->data, l->accel, &sh->to_world, why, sizeof why);

@@ -97,13 +97,7 @@ int shape_mesh_prepare_sampling(shape_mesh_data *m)
 void shape_mesh_extent(shape_t *sh)
 {
     const shape_mesh_data *m = &sh->mesh;
-    sh->bounds_lo = v3(INFINITY, INFINITY, INFINITY);
-    sh->bounds_hi = v3(-INFINITY, -INFINITY, -INFINITY);
-    for (int i = 0; i < m->n_verts; i++) {
-        vec3 p = mesh_pos(m, (unsigned)i);
-        sh->bounds_lo = v3(fmin(sh->bounds_lo.x, p.x), fmin(sh->bounds_lo.y, p.y), fmin(sh->bounds_lo.z, p.z));
-        sh->bounds_hi = v3(fmax(sh->bounds_hi.x, p.x), fmax(sh->bounds_hi.y, p.y), fmax(sh->bounds_hi.z, p.z));
-    }
+    shape_world_bounds(sh, &sh->bounds_lo, &sh->bounds_hi);
     /* The cone around the area-weighted mean normal that holds every face
      * normal; all directions when the faces turn every way. */
     vec3 sum = v3(0.0, 0.0, 0.0);

@@ -135,6 +135,11 @@ void shape_free(shape_t *sh);
  * bounds and normal cone: 0, or -1 when the shape has no area or memory ran
  * out. */
 int shape_prepare_sampling(shape_t *sh);
+/* The shape's world-space axis-aligned bounds (NaN where a coordinate is). */
+void shape_world_bounds(const shape_t *sh, vec3 *lo, vec3 *hi);
+/* How far from the origin a shape may reach: Embree takes rays from at most
+ * 1.844e18 (FLT_LARGE), and paths start on the shapes. */
+#define SHAPE_MAX_COORD 1e15
 /* A point on the shape by area: world hit and density per area. */
 void shape_sample_area(const shape_t *sh, vec3 u, surface_hit *hit, double *pdf_area);
 double shape_pdf_area(const shape_t *sh, const surface_hit *hit);

@@ -6,6 +6,7 @@
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -89,13 +90,16 @@ cli_result cli_run_argv(const char *scratch_dir, const char *const *argv)
 
 cli_result cli_run_within(const char *scratch_dir, const char *const *args, double seconds)
 {
-    const char *argv[64];
-    int n = 0;
-    argv[n++] = cli_bin();
-    for (; *args && n < 63; args++)
-        argv[n++] = *args;
-    argv[n] = NULL;
-    return run_argv_within(scratch_dir, argv, seconds);
+    size_t n = 0;
+    while (args[n])
+        n++;
+    const char **argv = malloc((n + 2) * sizeof *argv);
+    cr_assert_not_null(argv);
+    argv[0] = cli_bin();
+    memcpy(argv + 1, args, (n + 1) * sizeof *argv);
+    cli_result r = run_argv_within(scratch_dir, argv, seconds);
+    free(argv);
+    return r;
 }
 
 cli_result cli_run(const char *scratch_dir, const char *const *args) { return cli_run_within(scratch_dir, args, 0.0); }

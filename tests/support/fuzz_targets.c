@@ -97,20 +97,12 @@ int fuzz_profile(const uint8_t *data, size_t size)
     return s ? 0 : 1;
 }
 
-int fuzz_scene(const uint8_t *data, size_t size)
+/* Builds and renders a scene from its text, anchored at anchor (the file
+ * its relative names are found from): 0 when both were accepted. */
+static int build_and_render(const char *text, size_t len, const char *anchor)
 {
-    static char anchor[PATH_MAX + 32];
-    if (!anchor[0]) {
-        char dir[PATH_MAX];
-        if (!realpath("scenes/showcase", dir)) {
-            fprintf(stderr, "fuzz: run from the repository's top folder (scenes/showcase/ is missing)\n");
-            abort();
-        }
-        snprintf(anchor, sizeof anchor, "%s/fuzzed.xml", dir);
-    }
     char err[2048];
-    scene_desc *d = scene_desc_create_from_text((const char *)data, size, anchor, NULL, 0, scene_plugin_find, err,
-                                                sizeof err);
+    scene_desc *d = scene_desc_create_from_text(text, len, anchor, NULL, 0, scene_plugin_find, err, sizeof err);
     if (!d)
         return 1;
     scene_options o = scene_options_default();
@@ -127,6 +119,40 @@ int fuzz_scene(const uint8_t *data, size_t size)
         film_free(&film);
     scene_destroy(s);
     return rc == 0 ? 0 : 1;
+}
+
+int fuzz_scene(const uint8_t *data, size_t size)
+{
+    static char anchor[PATH_MAX + 32];
+    if (!anchor[0]) {
+        char dir[PATH_MAX];
+        if (!realpath("scenes/showcase", dir)) {
+            fprintf(stderr, "fuzz: run from the repository's top folder (scenes/showcase/ is missing)\n");
+            abort();
+        }
+        snprintf(anchor, sizeof anchor, "%s/fuzzed.xml", dir);
+    }
+    return build_and_render((const char *)data, size, anchor);
+}
+
+int fuzz_serialized(const uint8_t *data, size_t size)
+{
+    char path[PATH_MAX + 64], anchor[PATH_MAX + 64], xml[2 * PATH_MAX + 512];
+    write_input("mesh.serialized", data, size, path, sizeof path);
+    snprintf(anchor, sizeof anchor, "%s/fuzzed.xml", scratch_dir());
+    int rc = 1;
+    for (int index = 0; index < 2; index++) {
+        /* a camera that sees the fan of support/serialized_file.h's meshes */
+        int n = snprintf(xml, sizeof xml,
+                         "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
+                         "<lookat origin=\"2.5, 14, 60\" target=\"2.5, 14, 0\" up=\"0, 1, 0\"/></transform></sensor>"
+                         "<shape type=\"serialized\"><string name=\"filename\" value=\"%s\"/>"
+                         "<integer name=\"shape_index\" value=\"%d\"/><emitter type=\"area\"/></shape></scene>",
+                         path, index);
+        if (build_and_render(xml, (size_t)n, anchor) == 0)
+            rc = 0;
+    }
+    return rc;
 }
 
 int fuzz_image(const uint8_t *data, size_t size)
@@ -157,6 +183,7 @@ const fuzz_target fuzz_target_table[] = {
     {"profile", fuzz_profile},
     {"scene", fuzz_scene},
     {"image", fuzz_image},
+    {"serialized", fuzz_serialized},
     {"catalogue", fuzz_catalogue},
     {NULL, NULL},
 };

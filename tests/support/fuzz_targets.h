@@ -21,6 +21,9 @@ int fuzz_scene(const uint8_t *data, size_t size);
 /* image file of any format -> reconstruct_photo (decode, image stages,
  * B-spline, texture). */
 int fuzz_image(const uint8_t *data, size_t size);
+/* a Mitsuba .serialized file -> <shape type="serialized"> (its meshes 0 and
+ * 1) as an area light -> scene build -> a 8x6 render at one sample per pixel. */
+int fuzz_serialized(const uint8_t *data, size_t size);
 /* the museum's catalogue CSV (rows may name photo.png and b.jpg, which
  * exist beside it). */
 int fuzz_catalogue(const uint8_t *data, size_t size);
