@@ -170,6 +170,45 @@ static vec2 outline_in_column(const recon_result *r, double x, int side)
     return v2(x, 0);
 }
 
+/* Runs check on the drawn vase and bowl at 5 and 10 degrees, each named
+ * "<shape> at <e> deg, <situation>". */
+static void vase_and_bowl_at_5_and_10(const char *situation, void (*check)(const pinhole_params *p, const char *what))
+{
+    const synth_shape shapes[2] = {SYNTH_VASE, SYNTH_BOWL};
+    for (int s = 0; s < 2; s++)
+        for (int e = 5; e <= 10; e += 5) {
+            pinhole_params p = pinhole_defaults(shapes[s], e);
+            char what[96];
+            snprintf(what, sizeof what, "%s at %d deg, %s", s ? "bowl" : "vase", e, situation);
+            check(&p, what);
+        }
+}
+
+static void corners_halfway_in(const pinhole_params *p, const char *what)
+{
+    image_t img;
+    recon_result res;
+    char err[256];
+    cr_assert_eq(pinhole_photo(p, &img, &res), 0);
+    for (int c = CORNER_RIM_LEFT; c <= CORNER_BASE_LEFT; c += 2) {
+        vec2 *l = &res.corners[c], *r = &res.corners[c + 1];
+        double mid = 0.5 * (l->x + r->x), half = 0.5 * (r->x - l->x);
+        int side = c == CORNER_RIM_LEFT ? -1 : 1;
+        *l = outline_in_column(&res, mid - 0.5 * half, side);
+        *r = outline_in_column(&res, mid + 0.5 * half, side);
+    }
+    outcome o;
+    cr_assert_eq(recon_camera_meridian(&img, &res, NULL, &o.cam, &o.mer, err, sizeof err), 0, "%s", err);
+    cr_log_info("%s: elevation %.3f, f %.1f", what, o.cam.elevation_deg, o.cam.focal_px);
+    cr_expect_eq(o.cam.method, RECON_CAMERA_ELLIPSES, "%s: %s", what, o.cam.note);
+    cr_expect_leq(fabs(o.cam.elevation_deg - pinhole_elevation(p)), ELEVATION_TOL_DEG, "%s: elevation %.3f", what,
+                  o.cam.elevation_deg);
+    cr_expect_leq(fabs(o.cam.focal_px / p->focal_px - 1), FOCAL_TOL, "%s: focal length %.1f", what, o.cam.focal_px);
+    recon_meridian_free(&o.mer);
+    recon_result_free(&res);
+    image_free(&img);
+}
+
 Test(recon_camera, corners_inside_the_arcs, .timeout = 120)
 {
     /* Corners found halfway in along the rim's and the base's arcs (as the
@@ -177,34 +216,7 @@ Test(recon_camera, corners_inside_the_arcs, .timeout = 120)
      * leaves each ellipse, and the camera is the true one. Between the
      * corners alone the vase at 5 degrees gave 4.04 degrees and f 1808 px,
      * at 10 degrees no focal length. */
-    const synth_shape shapes[2] = {SYNTH_VASE, SYNTH_BOWL};
-    for (int s = 0; s < 2; s++)
-        for (int e = 5; e <= 10; e += 5) {
-            pinhole_params p = pinhole_defaults(shapes[s], e);
-            image_t img;
-            recon_result res;
-            char err[256], what[64];
-            cr_assert_eq(pinhole_photo(&p, &img, &res), 0);
-            for (int c = CORNER_RIM_LEFT; c <= CORNER_BASE_LEFT; c += 2) {
-                vec2 *l = &res.corners[c], *r = &res.corners[c + 1];
-                double mid = 0.5 * (l->x + r->x), half = 0.5 * (r->x - l->x);
-                int side = c == CORNER_RIM_LEFT ? -1 : 1;
-                *l = outline_in_column(&res, mid - 0.5 * half, side);
-                *r = outline_in_column(&res, mid + 0.5 * half, side);
-            }
-            outcome o;
-            cr_assert_eq(recon_camera_meridian(&img, &res, NULL, &o.cam, &o.mer, err, sizeof err), 0, "%s", err);
-            snprintf(what, sizeof what, "%s at %d deg, corners halfway in", s ? "bowl" : "vase", e);
-            cr_log_info("%s: elevation %.3f, f %.1f", what, o.cam.elevation_deg, o.cam.focal_px);
-            cr_expect_eq(o.cam.method, RECON_CAMERA_ELLIPSES, "%s: %s", what, o.cam.note);
-            cr_expect_leq(fabs(o.cam.elevation_deg - pinhole_elevation(&p)), ELEVATION_TOL_DEG, "%s: elevation %.3f",
-                          what, o.cam.elevation_deg);
-            cr_expect_leq(fabs(o.cam.focal_px / p.focal_px - 1), FOCAL_TOL, "%s: focal length %.1f", what,
-                          o.cam.focal_px);
-            recon_meridian_free(&o.mer);
-            recon_result_free(&res);
-            image_free(&img);
-        }
+    vase_and_bowl_at_5_and_10("corners halfway in", corners_halfway_in);
 }
 
 /* A soft floor shadow under the base: the backdrop darkened by up to 6%
@@ -229,35 +241,34 @@ static void paint_floor_shadow(const pinhole_params *p, image_t *img, double x_l
     }
 }
 
+static void over_a_floor_shadow(const pinhole_params *p, const char *what)
+{
+    image_t img;
+    recon_result res;
+    uint8_t *mask = malloc((size_t)p->width * p->height);
+    cr_assert(mask);
+    cr_assert_eq(pinhole_draw(p, &img, mask), 0);
+    cr_assert_eq(pinhole_extraction(p, &img, mask, &res), 0);
+    paint_floor_shadow(p, &img, res.corners[CORNER_BASE_LEFT].x, res.corners[CORNER_BASE_RIGHT].x);
+    recon_result_free(&res);
+    cr_assert_eq(pinhole_extraction(p, &img, mask, &res), 0);
+    outcome o = {.today_mean = NAN, .today_max = NAN}; /* the outline is not measured here */
+    char err[256];
+    cr_assert_eq(recon_camera_meridian(&img, &res, NULL, &o.cam, &o.mer, err, sizeof err), 0, "%s", err);
+    profile_error(p, &o.mer.curve, &o.mean, &o.max);
+    expect_accurate(p, &o, what, MERIDIAN_TOL);
+    recon_meridian_free(&o.mer);
+    recon_result_free(&res);
+    image_free(&img);
+    free(mask);
+}
+
 Test(recon_camera, floor_shadow_under_the_base, .timeout = 120)
 {
     /* The base's arc is the vessel's edge, not the shadow's ramp below it:
      * measured with 12 px of backdrop, the arc came out up to a pixel low
      * at its ends and the focal length 2-13% long. */
-    const synth_shape shapes[2] = {SYNTH_VASE, SYNTH_BOWL};
-    for (int s = 0; s < 2; s++)
-        for (int e = 5; e <= 10; e += 5) {
-            pinhole_params p = pinhole_defaults(shapes[s], e);
-            image_t img;
-            recon_result res;
-            uint8_t *mask = malloc((size_t)p.width * p.height);
-            cr_assert(mask);
-            cr_assert_eq(pinhole_draw(&p, &img, mask), 0);
-            cr_assert_eq(pinhole_extraction(&p, &img, mask, &res), 0);
-            paint_floor_shadow(&p, &img, res.corners[CORNER_BASE_LEFT].x, res.corners[CORNER_BASE_RIGHT].x);
-            recon_result_free(&res);
-            cr_assert_eq(pinhole_extraction(&p, &img, mask, &res), 0);
-            outcome o = {.today_mean = NAN, .today_max = NAN}; /* the outline is not measured here */
-            char err[256], what[64];
-            cr_assert_eq(recon_camera_meridian(&img, &res, NULL, &o.cam, &o.mer, err, sizeof err), 0, "%s", err);
-            profile_error(&p, &o.mer.curve, &o.mean, &o.max);
-            snprintf(what, sizeof what, "%s at %d deg over a floor shadow", s ? "bowl" : "vase", e);
-            expect_accurate(&p, &o, what, MERIDIAN_TOL);
-            recon_meridian_free(&o.mer);
-            recon_result_free(&res);
-            image_free(&img);
-            free(mask);
-        }
+    vase_and_bowl_at_5_and_10("over a floor shadow", over_a_floor_shadow);
 }
 
 Test(recon_camera, yawed_and_rolled_camera, .timeout = 120)
