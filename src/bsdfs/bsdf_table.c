@@ -20,6 +20,7 @@
     X(bsdf, bumpmap)                     \
     X(bsdf, principled)                  \
     X(bsdf, principledthin)              \
+    X(bsdf, hair)                        \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(bsdf, BSDF_PLUGINS)

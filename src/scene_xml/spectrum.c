@@ -111,7 +111,7 @@ scene_rgb spectrum_xyz_to_rgb(const double xyz[3])
 
 spectrum_use spectrum_use_of(scene_class cls, const char *name)
 {
-    static const char *unbounded[] = {"eta", "k", "int_ior", "ext_ior", "sigma_t"};
+    static const char *unbounded[] = {"eta", "k", "int_ior", "ext_ior", "sigma_t", "sigma_a"};
     if (cls == SCENE_EMITTER)
         return SPECTRUM_EMITTED;
     for (size_t i = 0; i < sizeof unbounded / sizeof unbounded[0]; i++)
