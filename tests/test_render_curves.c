@@ -86,3 +86,48 @@ Test(render_curves, files_that_are_not_curves_are_refused)
     }
     render_fixture_close(&f);
 }
+
+/* The `hair` BSDF on curves, in a white furnace: a fibre that absorbs
+ * nothing under a uniform white sky gives back exactly 1 along every path
+ * that leaves it after one scattering (max_depth 2), since its lobes'
+ * weights then sum to 1 and each light path through the fibre is one
+ * event: a direction into the fibre must pass out of its far side, not hit
+ * its inside (curves are seen from outside only, as in Mitsuba). Brown
+ * hair, in the same place, is darker than the sky. */
+Test(render_curves, white_hair_in_a_furnace_stays_white)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    char path[256];
+    render_write_file(&f, "line.txt", "-3 0 0 0.5\n0 0 0 0.5\n3 0 0 0.5\n", path, sizeof path);
+    render_write_file(&f, "spline.txt", "-6 0 0 0.5\n-3 0 0.3 0.5\n0 0 0 0.5\n3 0 -0.3 0.5\n6 0 0 0.5\n", path,
+                      sizeof path);
+    const char *shapes[2] = {"linearcurve\"><string name=\"filename\" value=\"line.txt\"/>",
+                             "bsplinecurve\"><string name=\"filename\" value=\"spline.txt\"/>"};
+    const char *bsdfs[2] = {"<bsdf type=\"hair\"><rgb name=\"sigma_a\" value=\"0\"/></bsdf>",
+                            "<bsdf type=\"hair\"/>"};
+    for (int k = 0; k < 2; k++)
+        for (int b = 0; b < 2; b++) {
+            char shape[512], xml[4096];
+            snprintf(shape, sizeof shape, "<shape type=\"%s%s</shape>", shapes[k], bsdfs[b]);
+            snprintf(xml, sizeof xml, tube_xml, shape);
+            render_write_file(&f, "scene.xml", xml, path, sizeof path);
+            int w, h, nch, covered = 0;
+            float *px = render_to_pixels(path, 0, 5, 1, RENDER_AOV_DEPTH, &w, &h, &nch);
+            double worst = 0.0, mean = 0.0;
+            for (int i = 0; i < w * h; i++)
+                if (px[i * nch + 3] > 0.0f) { /* the fibre */
+                    covered++;
+                    worst = fmax(worst, fabs(px[i * nch] - 1.0));
+                    mean += px[i * nch];
+                }
+            free(px);
+            cr_assert_gt(covered, w * h / 5, "%s", shape);
+            mean /= covered;
+            if (b == 0)
+                cr_expect_lt(worst, 1e-5, "%s: a white fibre in a furnace is off by %g", shape, worst);
+            else
+                cr_expect_lt(mean, 0.8, "%s: brown hair's mean %g", shape, mean);
+        }
+    render_fixture_close(&f);
+}

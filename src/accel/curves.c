@@ -1,10 +1,31 @@
 /* Round curves as Embree's own curve geometries (linear cones with spherical
  * joints, cubic B-spline swept spheres): the control points go to Embree in
- * world space; a hit is Embree's (float). */
+ * world space; a hit is Embree's (float). As in Mitsuba, a curve is seen
+ * only from outside: a ray leaving a point of the surface into the fibre
+ * (the `hair` BSDF's transmitted lobes, which stand for the whole walk
+ * inside it) passes out through the far side instead of hitting it. */
 #include <stdio.h>
 #include <string.h>
 
 #include "accel_internal.h"
+
+/* Embree 3 reports hits on the inside of a round curve; drop those whose
+ * geometric normal (outward) faces along the ray. The N-wide ray and hit
+ * are Embree's SOA layout (rtcore_ray.h; its accessors are C++ only):
+ * the ray's dir_x, dir_y, dir_z are rows 4-6 of N floats, the hit's Ng
+ * rows 0-2. */
+static void cull_inside(const struct RTCFilterFunctionNArguments *args)
+{
+    const float *ray = (const float *)args->ray, *hit = (const float *)args->hit;
+    unsigned n = args->N;
+    for (unsigned i = 0; i < n; i++) {
+        if (!args->valid[i])
+            continue;
+        float d = ray[4 * n + i] * hit[i] + ray[5 * n + i] * hit[n + i] + ray[6 * n + i] * hit[2 * n + i];
+        if (d > 0.0f)
+            args->valid[i] = 0;
+    }
+}
 
 unsigned accel_add_curves(accel_t *acc, accel_kind kind, const float *points, int n_points, const unsigned *segments,
                           int n_segments, char *err, size_t errlen)
@@ -38,6 +59,8 @@ unsigned accel_add_curves(accel_t *acc, accel_kind kind, const float *points, in
         accel_geom_free(g);
         return ACCEL_INVALID_ID;
     }
+    rtcSetGeometryIntersectFilterFunction(geom, cull_inside);
+    rtcSetGeometryOccludedFilterFunction(geom, cull_inside);
     memcpy(v, points, 4 * sizeof(float) * (size_t)n_points);
     memcpy(idx, segments, sizeof(unsigned) * (size_t)n_segments);
     return accel_attach(acc, geom, g, err, errlen);
