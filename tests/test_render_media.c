@@ -259,3 +259,48 @@ Test(render_media, bad_media_are_refused_naming_file_and_line)
                    "albedo must be a <volume> or a color");
     medium_refused("<texture type=\"checkerboard\" id=\"m\"/>", "interior must be a <medium>");
 }
+
+/* The camera inside a medium (the sensor's nested <medium>, Mitsuba's
+ * m_medium): a pinhole at the centre of a sphere of radius 2 whose inside
+ * is an absorbing medium (null boundary) under a white sky sees
+ * e^{-sigma_t 2} in every direction (less the near clip's 0.01 of the
+ * path); without the sensor's medium, camera rays start in none and see the
+ * sky whole. */
+Test(render_media, a_camera_inside_a_medium_sees_through_it)
+{
+    static const char *xml =
+        "<scene version=\"3.0.0\">\n"
+        "  <integrator type=\"volpath\"/>\n"
+        "  <medium type=\"homogeneous\" id=\"m\"><rgb name=\"sigma_t\" value=\"0.5, 0.25, 0.1\"/>"
+        "<rgb name=\"albedo\" value=\"0\"/></medium>\n"
+        "  <sensor type=\"perspective\"><float name=\"fov\" value=\"90\"/>\n"
+        "    <transform name=\"to_world\"><lookat origin=\"0, 0, 0\" target=\"1, 0.3, 0.2\" up=\"0, 1, 0\"/></transform>\n"
+        "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"64\"/></sampler>\n"
+        "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"16\"/><integer name=\"height\" value=\"16\"/>"
+        "<rfilter type=\"box\"/></film>%s\n"
+        "  </sensor>\n"
+        "  <shape type=\"sphere\"><float name=\"radius\" value=\"2\"/><bsdf type=\"null\"/>"
+        "<ref id=\"m\" name=\"interior\"/></shape>\n"
+        "  <emitter type=\"constant\"/>\n"
+        "</scene>\n";
+    const double sigma[3] = {0.5, 0.25, 0.1};
+    for (int inside = 0; inside < 2; inside++) {
+        render_fixture f;
+        render_fixture_open(&f);
+        char text[4096], path[256];
+        snprintf(text, sizeof text, xml, inside ? "\n    <ref id=\"m\"/>" : "");
+        render_write_file(&f, "scene.xml", text, path, sizeof path);
+        int w, h;
+        float *px = render_to_rgb(path, 3, &w, &h);
+        cr_assert(w == 16 && h == 16);
+        double mean[3];
+        image_mean(px, mean);
+        for (int c = 0; c < 3; c++) {
+            /* 16384 Bernoulli samples: a standard error under 0.004 */
+            double want = inside ? exp(-sigma[c] * 2.0) : 1.0;
+            cr_expect_float_eq(mean[c], want, 0.013, "inside %d, channel %d: %g, not %g", inside, c, mean[c], want);
+        }
+        free(px);
+        render_fixture_close(&f);
+    }
+}

@@ -395,8 +395,8 @@ Test(scene_xml, malformed_xml)
 
 Test(scene_xml, unknown_things)
 {
-    load_fails("a.xml", HEAD "\n  <bsdf type=\"hair\"/>\n</scene>\n", "a.xml", 4,
-               "unknown plugin 'hair' for <bsdf>", NULL, 0);
+    load_fails("a.xml", HEAD "\n  <bsdf type=\"velvet\"/>\n</scene>\n", "a.xml", 4,
+               "unknown plugin 'velvet' for <bsdf>", NULL, 0);
     load_fails("b.xml", HEAD "  <fog type=\"homogeneous\"/>\n</scene>\n", "b.xml", 3, "unknown tag <fog>", NULL, 0);
     /* a medium is declared at the top with an id, and placed by reference */
     load_fails("b2.xml", HEAD "  <medium type=\"homogeneous\"/>\n</scene>\n", "b2.xml", 3,

@@ -20,10 +20,12 @@
 typedef struct integrator integrator_t;
 
 /* What an integrator traces against: the scene's shapes (with their BSDFs
- * and area emitters) and its emitters. */
+ * and area emitters) and its emitters; and the medium camera rays start in
+ * (the sensor's; NULL: none), which only volpath sees. */
 typedef struct {
     const shape_list *shapes;
     const emitter_list *emitters;
+    const struct medium *camera_medium;
 } integrator_scene;
 
 /* The first hit's values for the AOV channels, in this order: depth (the

@@ -209,7 +209,7 @@ static rgb volpath_li(const integrator_t *in, const integrator_scene *sc, const 
     ray3 ray = {ray0->o, v3_scale(ray0->d, 1.0 / len)};
     double t0 = tmin * len, t1 = tmax * len;
     path_state ps = {rgb_gray(0.0), rgb_gray(1.0), 1.0, 1.0, true, {ray.o, v3(0.0, 0.0, 0.0)}};
-    const medium_t *med = NULL;
+    const medium_t *med = sc->camera_medium;
     if (aov)
         integrator_clear_aovs(aov, emitters->env && !pd->hide_emitters); /* Mitsuba's valid ray */
     vertex_numbers num;

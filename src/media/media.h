@@ -73,6 +73,9 @@ typedef struct {
     scene_obj_map built;
 } medium_set;
 
+/* The medium of the <medium> object mo, built on first use. 0, or -1 with
+ * "file:line: problem" in err. */
+int medium_set_get(medium_set *set, scene_obj *mo, const medium_t **out, char *err, size_t errlen);
 /* The medium the object property name of o names (a shape's interior or
  * exterior), built on first use; NULL in *out when o has no such property.
  * 0, or -1 with "file:line: problem" in err. */

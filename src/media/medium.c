@@ -152,9 +152,14 @@ int medium_set_param(medium_set *set, scene_obj *o, const char *name, const medi
     scene_obj *mo = scene_obj_texture(o, name);
     if (!mo)
         return 0;
-    const medium_plugin *plugin = mo->cls == SCENE_MEDIUM ? medium_plugin_find(mo->type) : NULL;
-    if (!plugin)
+    if (mo->cls != SCENE_MEDIUM || !medium_plugin_find(mo->type))
         return scene_obj_error(o, err, errlen, "%s must be a <medium>", name);
+    return medium_set_get(set, mo, out, err, errlen);
+}
+
+int medium_set_get(medium_set *set, scene_obj *mo, const medium_t **out, char *err, size_t errlen)
+{
+    const medium_plugin *plugin = medium_plugin_find(mo->type);
     medium_t *m = scene_obj_map_find(&set->built, mo);
     if (!m) {
         if (!(m = plugin->create(mo, err, errlen)))

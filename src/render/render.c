@@ -120,7 +120,7 @@ static uint64_t render_tile(const render_job *j, int tx, int ty, int s0, int s1)
 {
     const scene_t *s = j->s;
     const camera_t *cam = &s->camera;
-    integrator_scene sc = {&s->shapes, &s->emitters};
+    integrator_scene sc = {&s->shapes, &s->emitters, s->camera_medium};
     size_t naov = INTEGRATOR_AOV_COUNT + (size_t)j->nown;
     double *aov = malloc(sizeof(double) * (naov + j->film->nchannels));
     if (!aov)

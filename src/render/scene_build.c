@@ -101,6 +101,9 @@ static int build_sensor(struct scene *s, scene_obj *root, const scene_options *o
     if (build_film(sensor, opt, fs, err, errlen) != 0 ||
         sensor_plugin_find(sensor->type)->create(sensor, fs->width, fs->height, &s->camera, err, errlen) != 0)
         return -1;
+    scene_obj *medium = scene_obj_child(sensor, SCENE_MEDIUM);
+    if (medium && medium_set_get(&s->media, medium, &s->camera_medium, err, errlen) != 0)
+        return -1;
     return build_sampler(s, sensor, opt, fs, err, errlen);
 }
 

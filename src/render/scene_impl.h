@@ -23,6 +23,7 @@ struct scene {
     bsdf_set bsdfs;
     texture_set textures;
     medium_set media;
+    const medium_t *camera_medium; /* the sensor's <medium>, or NULL */
     uint64_t digest; /* scene_digest */
 };
 

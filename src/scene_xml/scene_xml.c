@@ -209,7 +209,7 @@ static int add_prop(scene_ctx *c, scene_obj *o, scene_prop *p)
 /* Puts child under parent: a texture, medium or volume below an object sets
  * the property its name says (unless, for a texture, the object takes nested
  * textures whatever their name, as bumpmap does, and the name is none of its
- * parameters); anything else
+ * parameters, or, for a medium, the object takes one as a child); anything else
  * joins the children, within the table's limits. */
 static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char *name, int line)
 {
@@ -218,7 +218,10 @@ static int attach(scene_ctx *c, scene_obj *parent, scene_obj *child, const char 
     describe(child, cw, sizeof cw);
     const scene_plugin_decl *pd = c->plugins(parent->cls, parent->type);
     bool any_name = schema_child_find(pd, SCENE_TEXTURE) && !(name && schema_param_find(pd, name));
-    bool by_name = (child->cls == SCENE_TEXTURE && !any_name) || child->cls == SCENE_MEDIUM || child->cls == SCENE_VOLUME;
+    /* a medium sets a named parameter (a shape's interior), unless the
+     * object takes one whatever its name (a sensor's, as Mitsuba's endpoints) */
+    bool medium_by_name = child->cls == SCENE_MEDIUM && !schema_child_find(pd, SCENE_MEDIUM);
+    bool by_name = (child->cls == SCENE_TEXTURE && !any_name) || medium_by_name || child->cls == SCENE_VOLUME;
     if (by_name && parent->cls != SCENE_SCENE) {
         if (!name)
             return scene_fail(c, line, "%s inside %s needs a name (the parameter it sets)", cw, pw);

@@ -9,6 +9,7 @@
 const scene_child_decl sensor_children[] = {
     {SCENE_FILM, 0, 1, NULL},
     {SCENE_SAMPLER, 0, 1, NULL},
+    {SCENE_MEDIUM, 0, 1, NULL}, /* the medium the camera is in (volpath) */
     {SCENE_SCENE, 0, 0, NULL},
 };
 
