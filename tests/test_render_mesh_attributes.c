@@ -95,3 +95,35 @@ Test(render_mesh_attributes, vertex_values_are_interpolated)
     cr_expect_float_eq(blue, 1.0, 0.02, "blue %g", blue);
     free(px);
 }
+
+/* A mesh_attribute texture on a surface without that attribute (another
+ * shape, or a mesh that lacks it) is refused in one line naming the
+ * texture's file:line and the shape, as Mitsuba refuses the scene. */
+Test(render_mesh_attributes, a_missing_attribute_is_refused)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    char path[256], xml[2048], err[1024];
+    render_write_file(&f, "square.ply", square_ply, path, sizeof path);
+    snprintf(xml, sizeof xml, scene_xml, "vertex_weight");
+    render_write_file(&f, "scene.xml", xml, path, sizeof path);
+    scene_t *s = scene_create_from_file(path, NULL, 0, NULL, err, sizeof err);
+    cr_expect_null(s);
+    cr_expect(strstr(err, "scene.xml:10:") && strstr(err, "<shape type=\"ply\"> at line 9") &&
+                  strstr(err, "'vertex_weight'") && !strchr(err, '\n'),
+              "%s", err);
+    scene_destroy(s);
+    static const char *sphere = "<scene version=\"3.0.0\">\n  <sensor type=\"orthographic\"/>\n"
+                                "  <shape type=\"sphere\"><bsdf type=\"twosided\"><bsdf type=\"diffuse\">\n"
+                                "    <texture type=\"mesh_attribute\" name=\"reflectance\">"
+                                "<string name=\"name\" value=\"face_weight\"/></texture>\n"
+                                "  </bsdf></bsdf></shape>\n</scene>\n";
+    render_write_file(&f, "sphere.xml", sphere, path, sizeof path);
+    s = scene_create_from_file(path, NULL, 0, NULL, err, sizeof err);
+    cr_expect_null(s);
+    cr_expect(strstr(err, "sphere.xml:4:") && strstr(err, "<shape type=\"sphere\"> at line 3") &&
+                  strstr(err, "'face_weight'"),
+              "%s", err);
+    scene_destroy(s);
+    render_fixture_close(&f);
+}

@@ -133,6 +133,60 @@ static int add_emitter(struct scene *s, scene_obj *o, emitter_t *e, char *err, s
     return 0;
 }
 
+/* Whether shape sh carries the mesh attribute name. */
+static bool has_attribute(const shape_t *sh, const char *name)
+{
+    for (int i = 0; sh->is_mesh && i < sh->mesh.attrs.count; i++)
+        if (strcmp(sh->mesh.attrs.items[i].name, name) == 0)
+            return true;
+    return false;
+}
+
+/* The first `mesh_attribute` texture in o or the objects it holds (its
+ * textures, nested and referenced BSDFs) whose attribute shape sh lacks, or
+ * NULL; *name is then that attribute. Mitsuba refuses such a scene. */
+static const scene_obj *missing_attribute(const scene_obj *o, const shape_t *sh, const char **name, int depth)
+{
+    if (depth > 32) /* deeper than any nesting a scene can hold */
+        return NULL;
+    if (o->cls == SCENE_TEXTURE && strcmp(o->type, "mesh_attribute") == 0)
+        for (int i = 0; i < o->nprops; i++)
+            if (o->props[i].type == SCENE_STRING && strcmp(o->props[i].name, "name") == 0 &&
+                !has_attribute(sh, o->props[i].value.s)) {
+                *name = o->props[i].value.s;
+                return o;
+            }
+    const scene_obj *found = NULL;
+    for (int i = 0; !found && i < o->nprops; i++)
+        if (o->props[i].type == SCENE_OBJECT)
+            found = missing_attribute(o->props[i].value.obj, sh, name, depth + 1);
+    for (int i = 0; !found && i < o->nchildren; i++)
+        found = missing_attribute(o->children[i], sh, name, depth + 1);
+    return found;
+}
+
+/* Refuses a shape whose BSDF or emitter reads a mesh attribute it lacks. */
+static int check_attributes(const scene_obj *o, const shape_t *sh, char *err, size_t errlen)
+{
+    const scene_obj *parts[2] = {scene_obj_child(o, SCENE_BSDF), scene_obj_child(o, SCENE_EMITTER)};
+    for (int k = 0; k < 2; k++) {
+        const char *name = NULL;
+        const scene_obj *t = parts[k] ? missing_attribute(parts[k], sh, &name, 0) : NULL;
+        if (!t)
+            continue;
+        char at[512]; /* the shape's line, and its file when the texture is in another */
+        if (strcmp(t->file, o->file) == 0)
+            snprintf(at, sizeof at, "line %d", o->line);
+        else
+            snprintf(at, sizeof at, "%s:%d", o->file, o->line);
+        return scene_obj_error(t, err, errlen,
+                               "<texture type=\"mesh_attribute\">: the <shape type=\"%s\"> at %s has no mesh "
+                               "attribute '%s' (Mitsuba refuses it too)",
+                               o->type, at, name);
+    }
+    return 0;
+}
+
 /* The shape of a leaf, its BSDF (Mitsuba's default when it names none) and
  * its area emitter. */
 static int build_shape(struct scene *s, const shape_leaf *leaf, const scene_options *opt, char *err, size_t errlen)
@@ -143,6 +197,8 @@ static int build_shape(struct scene *s, const shape_leaf *leaf, const scene_opti
     if (shape_create(o, leaf->placed ? &leaf->outer : NULL, &so, sh, err, errlen) != 0)
         return -1;
     s->shapes.count++;
+    if (check_attributes(o, sh, err, errlen) != 0)
+        return -1;
     scene_obj *bo = scene_obj_child(o, SCENE_BSDF);
     sh->bsdf = bo ? bsdf_set_get(&s->bsdfs, bo, err, errlen) : bsdf_set_default(&s->bsdfs, o, err, errlen);
     if (!sh->bsdf || medium_set_param(&s->media, o, "interior", &sh->interior, err, errlen) != 0 ||

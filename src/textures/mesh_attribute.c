@@ -1,9 +1,10 @@
 /* Mitsuba's `mesh_attribute` texture: the mesh attribute `name` (e.g.
  * "vertex_color", "face_weight") at the surface point, times `scale` (1):
  * a face attribute is the triangle's value, a vertex attribute is
- * interpolated by the barycentrics; one channel is gray. On a surface
- * without that attribute (another shape, a mesh that lacks it) the value is
- * black, where Mitsuba refuses the scene. */
+ * interpolated by the barycentrics; one channel is gray. A shape without
+ * that attribute (another shape, a mesh that lacks it) is refused by the
+ * scene build, as Mitsuba refuses it; looked up without a mesh (a test, an
+ * emitter's mean) the value is black. */
 #include <stdio.h>
 #include <string.h>
 
