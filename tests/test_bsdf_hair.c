@@ -221,29 +221,6 @@ Test(bsdf_hair, eval_matches_the_model_integrated_from_its_definitions, .timeout
 
 /* ------------------------------------------------------------- sampling */
 
-typedef struct {
-    const bsdf_t *b;
-    bsdf_query q;
-} hair_ctx;
-
-static int hair_draw(void *ctx, rng_t *rng, vec3 *w)
-{
-    const hair_ctx *c = ctx;
-    bsdf_sample_rec s;
-    double u1 = rng_next_double(rng);
-    vec2 u2 = v2(rng_next_double(rng), rng_next_double(rng));
-    if (!bsdf_sample(c->b, &c->q, u1, u2, &s))
-        return 0;
-    *w = s.wo;
-    return 1;
-}
-
-static double hair_density(void *ctx, vec3 w)
-{
-    const hair_ctx *c = ctx;
-    return bsdf_pdf(c->b, &c->q, w);
-}
-
 /* sample() returns eval / pdf at the direction it draws, with pdf(); and it
  * draws by that density (chi-square over the sphere, 16 x 32 cells). */
 Test(bsdf_hair, sample_follows_pdf_and_agrees_with_eval, .timeout = 120)
@@ -255,7 +232,7 @@ Test(bsdf_hair, sample_follows_pdf_and_agrees_with_eval, .timeout = 120)
     for (int k = 0; k < 3; k++) {
         const bsdf_t *b = hair_bsdf(&fx, rough_fibres[k]);
         for (int t = 0; t < 2; t++) {
-            hair_ctx ctx = {b, fibre_query(thetas[t], hs[t])};
+            bsdf_density_ctx ctx = {b, fibre_query(thetas[t], hs[t])};
             rng_t rng;
             rng_seed(&rng, 77 + k, t);
             for (int i = 0; i < 2000; i++) {
@@ -270,7 +247,7 @@ Test(bsdf_hair, sample_follows_pdf_and_agrees_with_eval, .timeout = 120)
                               fabs(s.weight.b * pdf - f.b) <= 1e-9 * (f.b + 1e-300),
                           "%s: weight %g, eval / pdf %g", rough_fibres[k], s.weight.r, f.r / pdf);
             }
-            sphere_sampler sp = {hair_draw, hair_density, &ctx};
+            sphere_sampler sp = bsdf_sphere_sampler(&ctx);
             char msg[256];
             double p = chi2_sphere(&sp, 16, 32, 100000, 500 + 7 * k + t, msg, sizeof msg);
             cr_expect_gt(p, chi2_threshold(), "%s, theta %g h %g: %s", rough_fibres[k], thetas[t], hs[t], msg);

@@ -84,29 +84,6 @@ Test(bsdf_props, albedo_at_most_one_and_sample_matches_eval_pdf, .timeout = 60)
     bsdf_cases_free();
 }
 
-typedef struct {
-    const bsdf_t *b;
-    bsdf_query q;
-} bsdf_ctx;
-
-static int bsdf_density_sample(void *ctx, rng_t *rng, vec3 *w)
-{
-    const bsdf_ctx *c = ctx;
-    bsdf_sample_rec s;
-    double u1 = rng_next_double(rng);
-    vec2 u2 = v2(rng_next_double(rng), rng_next_double(rng));
-    if (!bsdf_sample(c->b, &c->q, u1, u2, &s) || (s.sampled_type & BSDF_DELTA))
-        return 0;
-    *w = s.wo;
-    return 1;
-}
-
-static double bsdf_density(void *ctx, vec3 w)
-{
-    const bsdf_ctx *c = ctx;
-    return bsdf_pdf(c->b, &c->q, w);
-}
-
 /* Runs the chi-square test on every case whose name starts with prefix. */
 static void chi2_cases(const char *prefix)
 {
@@ -119,8 +96,8 @@ static void chi2_cases(const char *prefix)
         for (int ti = 0; ti < 4; ti++) {
             if (thetas[ti] > 90.0 && !cases[ci].two_sided_incidence)
                 continue;
-            bsdf_ctx ctx = {cases[ci].bsdf, query_at(thetas[ti], 40.0, TRANSPORT_RADIANCE)};
-            sphere_sampler s = {bsdf_density_sample, bsdf_density, &ctx};
+            bsdf_density_ctx ctx = {cases[ci].bsdf, query_at(thetas[ti], 40.0, TRANSPORT_RADIANCE)};
+            sphere_sampler s = bsdf_sphere_sampler(&ctx);
             char msg[256];
             double p = chi2_sphere(&s, 16, 32, 100000, 1000 + 13 * ci + ti, msg, sizeof msg);
             cr_assert_gt(p, chi2_threshold(), "%s, theta %g: %s", cases[ci].name, thetas[ti], msg);

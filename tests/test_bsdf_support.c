@@ -118,6 +118,29 @@ double chi2_sphere(const sphere_sampler *s, int n_cos, int n_phi, long n_samples
     return p;
 }
 
+static int bsdf_density_sample(void *ctx, rng_t *rng, vec3 *w)
+{
+    const bsdf_density_ctx *c = ctx;
+    bsdf_sample_rec s;
+    double u1 = rng_next_double(rng);
+    vec2 u2 = v2(rng_next_double(rng), rng_next_double(rng));
+    if (!bsdf_sample(c->b, &c->q, u1, u2, &s) || (s.sampled_type & BSDF_DELTA))
+        return 0;
+    *w = s.wo;
+    return 1;
+}
+
+static double bsdf_density(void *ctx, vec3 w)
+{
+    const bsdf_density_ctx *c = ctx;
+    return bsdf_pdf(c->b, &c->q, w);
+}
+
+sphere_sampler bsdf_sphere_sampler(bsdf_density_ctx *ctx)
+{
+    return (sphere_sampler){bsdf_density_sample, bsdf_density, ctx};
+}
+
 bsdf_query query_at(double theta_deg, double phi_deg, transport_mode mode)
 {
     double t = theta_deg * M_PI / 180.0, p = phi_deg * M_PI / 180.0;

@@ -31,6 +31,13 @@ typedef struct {
 double chi2_sphere(const sphere_sampler *s, int n_cos, int n_phi, long n_samples, uint64_t seed, char *msg,
                    size_t msglen);
 
+/* The sphere sampler of a BSDF at a query: its non-delta samples and pdf. */
+typedef struct {
+    const bsdf_t *b;
+    bsdf_query q;
+} bsdf_density_ctx;
+sphere_sampler bsdf_sphere_sampler(bsdf_density_ctx *ctx);
+
 /* A BSDF query helper: wi at polar angle theta (degrees; > 90 is the back side). */
 bsdf_query query_at(double theta_deg, double phi_deg, transport_mode mode);
 
