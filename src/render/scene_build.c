@@ -144,11 +144,13 @@ static bool has_attribute(const shape_t *sh, const char *name)
 
 /* The first `mesh_attribute` texture in o or the objects it holds (its
  * textures, nested and referenced BSDFs) whose attribute shape sh lacks, or
- * NULL; *name is then that attribute. Mitsuba refuses such a scene. */
-static const scene_obj *missing_attribute(const scene_obj *o, const shape_t *sh, const char **name, int depth)
+ * NULL; *name is then that attribute. Each object is looked at once
+ * (seen), however often it is referenced. Mitsuba refuses such a scene. */
+static const scene_obj *missing_attribute(const scene_obj *o, const shape_t *sh, const char **name,
+                                          scene_obj_map *seen)
 {
-    if (depth > 32) /* deeper than any nesting a scene can hold */
-        return NULL;
+    if (scene_obj_map_find(seen, o) || scene_obj_map_add(seen, o, (void *)o) != 0)
+        return NULL; /* looked at already (or out of memory: not looked at) */
     if (o->cls == SCENE_TEXTURE && strcmp(o->type, "mesh_attribute") == 0)
         for (int i = 0; i < o->nprops; i++)
             if (o->props[i].type == SCENE_STRING && strcmp(o->props[i].name, "name") == 0 &&
@@ -159,9 +161,9 @@ static const scene_obj *missing_attribute(const scene_obj *o, const shape_t *sh,
     const scene_obj *found = NULL;
     for (int i = 0; !found && i < o->nprops; i++)
         if (o->props[i].type == SCENE_OBJECT)
-            found = missing_attribute(o->props[i].value.obj, sh, name, depth + 1);
+            found = missing_attribute(o->props[i].value.obj, sh, name, seen);
     for (int i = 0; !found && i < o->nchildren; i++)
-        found = missing_attribute(o->children[i], sh, name, depth + 1);
+        found = missing_attribute(o->children[i], sh, name, seen);
     return found;
 }
 
@@ -171,7 +173,9 @@ static int check_attributes(const scene_obj *o, const shape_t *sh, char *err, si
     const scene_obj *parts[2] = {scene_obj_child(o, SCENE_BSDF), scene_obj_child(o, SCENE_EMITTER)};
     for (int k = 0; k < 2; k++) {
         const char *name = NULL;
-        const scene_obj *t = parts[k] ? missing_attribute(parts[k], sh, &name, 0) : NULL;
+        scene_obj_map seen = {0};
+        const scene_obj *t = parts[k] ? missing_attribute(parts[k], sh, &name, &seen) : NULL;
+        scene_obj_map_free(&seen);
         if (!t)
             continue;
         char at[512]; /* the shape's line, and its file when the texture is in another */
