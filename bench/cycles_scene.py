@@ -94,20 +94,27 @@ def glass(name, ior):
     return m
 
 
-def one_sided_emitter(name, rgb, back_rgb):
-    """Mitsuba's area emitter: radiance on the front (+z) side only; the
-    back is the shape's diffuse BSDF."""
+def one_sided_emitter(name, rgb, reflectance):
+    """Mitsuba's area emitter on a shape with a diffuse BSDF: radiance on the
+    front (+z) side only, where the surface also reflects as its BSDF does;
+    the back is black (Mitsuba's diffuse is one-sided)."""
     m, tree, out = material(name)
     e = tree.nodes.new("ShaderNodeEmission")
     e.inputs[0].default_value = (*rgb, 1.0)
     e.inputs[1].default_value = 1.0
     d = tree.nodes.new("ShaderNodeBsdfDiffuse")
-    d.inputs[0].default_value = (*back_rgb, 1.0)
+    d.inputs[0].default_value = (*reflectance, 1.0)
+    d.inputs["Roughness"].default_value = 0.0
+    front = tree.nodes.new("ShaderNodeAddShader")
+    tree.links.new(e.outputs[0], front.inputs[0])
+    tree.links.new(d.outputs[0], front.inputs[1])
+    black = tree.nodes.new("ShaderNodeBsdfDiffuse")
+    black.inputs[0].default_value = (0.0, 0.0, 0.0, 1.0)
     geometry = tree.nodes.new("ShaderNodeNewGeometry")
     mix = tree.nodes.new("ShaderNodeMixShader")
     tree.links.new(geometry.outputs["Backfacing"], mix.inputs[0])
-    tree.links.new(e.outputs[0], mix.inputs[1])
-    tree.links.new(d.outputs[0], mix.inputs[2])
+    tree.links.new(front.outputs[0], mix.inputs[1])
+    tree.links.new(black.outputs[0], mix.inputs[2])
     tree.links.new(mix.outputs[0], out.inputs[0])
     return m
 

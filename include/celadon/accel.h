@@ -128,6 +128,12 @@ int accel_commit(accel_t *acc, char *err, size_t errlen);
 
 /* Nearest hit with t in (tmin, tmax), 0 <= tmin, of a world-space ray (d need not be unit). */
 int accel_intersect(const accel_t *acc, const ray3 *ray, double tmin, double tmax, accel_hit *hit);
+/* The same nearest hit, except that a triangle of a mesh added by
+ * accel_add_mesh (ACCEL_KIND_MESH) reports only geom_id, prim, kind, t and
+ * param (its barycentrics, refined in double as accel_intersect's): for a
+ * caller that completes the hit from its own copy of the mesh (the
+ * renderer's shapes), which then costs no interpolation twice. */
+int accel_intersect_refined(const accel_t *acc, const ray3 *ray, double tmin, double tmax, accel_hit *hit);
 /* Any hit with t in (tmin, tmax). */
 int accel_occluded(const accel_t *acc, const ray3 *ray, double tmin, double tmax);
 

@@ -102,6 +102,7 @@ accel_geom *accel_geom_new(accel_kind kind, const transform4 *to_world, char *er
         return NULL;
     }
     g->to_object = transform_inverse(&g->to_world);
+    g->placed = to_world != NULL;
     return g;
 }
 
@@ -375,27 +376,36 @@ static int triangle_refine(vec3 a, vec3 b, vec3 c, const ray3 *ray, double *t, d
 
 static vec3 f3(const float *a) { return v3(a[0], a[1], a[2]); }
 
-/* Embree found the triangle in world space (float); the hit itself is
- * recomputed in object space, on the vertices as given, from the double ray
- * mapped there, so a transform costs no precision. */
-static void triangle_hit(const accel_geom *g, const struct RTCRayHit *rh, const ray3 *ray, accel_hit *hit)
+/* Embree found the triangle in world space (float); the hit (t and the
+ * barycentrics of the second and third vertex) is recomputed in object
+ * space, on the vertices as given, from the double ray mapped there, so a
+ * transform costs no precision. */
+static void triangle_refined(const accel_geom *g, const struct RTCRayHit *rh, const ray3 *ray, accel_hit *hit)
+{
+    const uint32_t *t = g->tri + 3 * (size_t)rh->hit.primID;
+    vec3 a = f3(g->vtx[t[0]].p), b = f3(g->vtx[t[1]].p), c = f3(g->vtx[t[2]].p);
+    ray3 ro = g->placed ? (ray3){transform_point(&g->to_object, ray->o), transform_vector(&g->to_object, ray->d)}
+                        : *ray;
+    double tt = rh->ray.tfar, bu = rh->hit.u, bv = rh->hit.v;
+    triangle_refine(a, b, c, &ro, &tt, &bu, &bv);
+    hit->t = tt;
+    hit->param[0] = bu;
+    hit->param[1] = bv;
+}
+
+/* The rest of a triangle hit from its refined barycentrics. */
+static void triangle_hit(const accel_geom *g, const struct RTCRayHit *rh, accel_hit *hit)
 {
     const uint32_t *t = g->tri + 3 * (size_t)rh->hit.primID;
     const accel_vertex *va = &g->vtx[t[0]], *vb = &g->vtx[t[1]], *vc = &g->vtx[t[2]];
     vec3 a = f3(va->p), b = f3(vb->p), c = f3(vc->p);
-    ray3 ro = {transform_point(&g->to_object, ray->o), transform_vector(&g->to_object, ray->d)};
-    double tt = rh->ray.tfar, bu = rh->hit.u, bv = rh->hit.v;
-    triangle_refine(a, b, c, &ro, &tt, &bu, &bv);
-    double bw = 1.0 - bu - bv;
-    hit->t = tt;
+    double bu = hit->param[0], bv = hit->param[1], bw = 1.0 - bu - bv;
     hit->p_obj = v3_add(v3_add(v3_scale(a, bw), v3_scale(b, bu)), v3_scale(c, bv));
     hit->p = transform_point(&g->to_world, hit->p_obj);
     /* The counter-clockwise side in object space, carried by A^-T (which keeps
      * it on the same side of the surface even when the transform mirrors). */
     hit->n_obj = v3_norm(v3_cross(v3_sub(b, a), v3_sub(c, a)));
     hit->ng = world_normal(g, hit->n_obj);
-    hit->param[0] = bu;
-    hit->param[1] = bv;
     hit->ns = hit->ng;
     if (g->has_nrm) {
         vec3 n = v3_add(v3_add(v3_scale(f3(va->n), bw), v3_scale(f3(vb->n), bu)), v3_scale(f3(vc->n), bv));
@@ -435,7 +445,7 @@ static bool embree_takes(const struct RTCRay *r)
            !isnan(r->tfar);
 }
 
-int accel_intersect(const accel_t *acc, const ray3 *ray, double tmin, double tmax, accel_hit *hit)
+static int intersect(const accel_t *acc, const ray3 *ray, double tmin, double tmax, accel_hit *hit, bool whole)
 {
     accel_context ctx;
     context_init(&ctx, acc, ray, tmin, tmax);
@@ -456,13 +466,26 @@ int accel_intersect(const accel_t *acc, const ray3 *ray, double tmin, double tma
     hit->geom_id = rh.hit.geomID;
     hit->prim = rh.hit.primID;
     hit->kind = g->kind;
-    if (g->kind == ACCEL_KIND_MESH || g->kind == ACCEL_KIND_SOR_MESH)
-        triangle_hit(g, &rh, ray, hit);
-    else if (g->kind == ACCEL_KIND_CURVE_LINEAR || g->kind == ACCEL_KIND_CURVE_BSPLINE)
+    if (g->kind == ACCEL_KIND_MESH || g->kind == ACCEL_KIND_SOR_MESH) {
+        triangle_refined(g, &rh, ray, hit);
+        if (whole || g->kind != ACCEL_KIND_MESH)
+            triangle_hit(g, &rh, hit);
+    } else if (g->kind == ACCEL_KIND_CURVE_LINEAR || g->kind == ACCEL_KIND_CURVE_BSPLINE) {
         accel_curve_hit(&rh, ray, hit);
-    else
+    } else {
         analytic_hit(g, &ctx.best, hit); /* the last accepted user-geometry hit is this geometry's */
+    }
     return 1;
+}
+
+int accel_intersect(const accel_t *acc, const ray3 *ray, double tmin, double tmax, accel_hit *hit)
+{
+    return intersect(acc, ray, tmin, tmax, hit, true);
+}
+
+int accel_intersect_refined(const accel_t *acc, const ray3 *ray, double tmin, double tmax, accel_hit *hit)
+{
+    return intersect(acc, ray, tmin, tmax, hit, false);
 }
 
 int accel_occluded(const accel_t *acc, const ray3 *ray, double tmin, double tmax)

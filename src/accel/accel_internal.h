@@ -6,6 +6,7 @@
 
 #include <embree3/rtcore.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "celadon/accel.h"
@@ -19,6 +20,7 @@ typedef struct {
 typedef struct {
     accel_kind kind;
     transform4 to_world, to_object; /* each carries the other as its inverse */
+    bool placed;                    /* false: to_world is the identity (none was given) */
     /* Triangles (ACCEL_KIND_MESH, ACCEL_KIND_SOR_MESH): Embree's buffers hold the
      * world-space vertices it traverses (float) and the indices; our copy keeps
      * the mesh as given, in object space, where hits are refined in double. */

@@ -17,6 +17,10 @@
  * for 4-7% fewer instructions per sample. */
 #define AREA_RATIO_MAX 2.0
 
+/* x clamped to [0, 1], NaN to 0 (as fmin(1, fmax(0, x)), without their
+ * calls into libm) */
+static double clamp01(double x) { return x > 0.0 ? (x < 1.0 ? x : 1.0) : 0.0; }
+
 static bool area_is_as_good(const shape_t *sh, vec3 ref)
 {
     const vec3 *f = sh->solid_angle_frame;
@@ -26,7 +30,7 @@ static bool area_is_as_good(const shape_t *sh, vec3 ref)
     double hn = v3_dot(d, v3_cross(f[1], f[2])), h2 = hn * hn / (uu * vv);
     /* The nearest point (ref's projection clamped onto the rectangle) and
      * the farthest corner. */
-    double ns = s - fmin(1.0, fmax(0.0, s)), nt = t - fmin(1.0, fmax(0.0, t));
+    double ns = s - clamp01(s), nt = t - clamp01(t);
     double fs = s - (s < 0.5 ? 1.0 : 0.0), ft = t - (t < 0.5 ? 1.0 : 0.0);
     double near2 = h2 + uu * ns * ns + vv * nt * nt, far2 = h2 + uu * fs * fs + vv * ft * ft;
     double q = far2 / near2; /* (d_max / d_min)^2 */
@@ -43,15 +47,15 @@ static double rectangle_solid_angle(const shape_t *sh, vec3 ref, spherical_rect 
     return s >= SHAPE_MIN_SOLID_ANGLE ? s : 0.0;
 }
 
-/* The hit of the mesh at rectangle coordinates (a, b) in [0,1]^2: in
+/* The point of the mesh at rectangle coordinates (a, b) in [0,1]^2: in
  * triangle 0 (corners 0, 1, 2) when a >= b, else in triangle 1 (corners
  * 0, 2, 3), shape_mesh_square_face's order. */
 static void rectangle_hit(const shape_t *sh, double a, double b, surface_hit *hit)
 {
     if (a >= b)
-        shape_mesh_finish(sh, 0, a - b, b, 0.0, hit);
+        shape_mesh_point(sh, 0, a - b, b, hit);
     else
-        shape_mesh_finish(sh, 1, a, b - a, 0.0, hit);
+        shape_mesh_point(sh, 1, a, b - a, hit);
 }
 
 static double rectangle_sa_pdf(const shape_t *sh, vec3 ref)
@@ -81,8 +85,7 @@ static double rectangle_sa_sample(const shape_t *sh, vec3 ref, vec2 u, surface_h
         return 0.0;
     vec3 eu = sh->solid_angle_frame[1], ev = sh->solid_angle_frame[2];
     vec3 d = v3_sub(spherical_rect_sample(&r, u), sh->solid_angle_frame[0]);
-    rectangle_hit(sh, fmin(1.0, fmax(0.0, v3_dot(d, eu) / v3_dot(eu, eu))),
-                  fmin(1.0, fmax(0.0, v3_dot(d, ev) / v3_dot(ev, ev))), hit);
+    rectangle_hit(sh, clamp01(v3_dot(d, eu) / v3_dot(eu, eu)), clamp01(v3_dot(d, ev) / v3_dot(ev, ev)), hit);
     return 1.0 / s;
 }
 

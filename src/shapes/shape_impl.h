@@ -62,6 +62,9 @@ struct shape_solid_angle_ops {
 unsigned shape_mesh_add(const shape_t *sh, accel_t *acc, char *err, size_t errlen);
 /* World hit on triangle tri at barycentrics (b1, b2). */
 void shape_mesh_finish(const shape_t *sh, int tri, double b1, double b2, double t, surface_hit *hit);
+/* The same as a sampled point (shape_sample_area): without the shading
+ * frame and the derivatives, which nothing shades it with. */
+void shape_mesh_point(const shape_t *sh, int tri, double b1, double b2, surface_hit *hit);
 int shape_mesh_prepare_sampling(shape_mesh_data *m);
 /* The mesh's world bounds and normal cone into sh (shape_prepare_sampling). */
 void shape_mesh_extent(shape_t *sh);

@@ -57,7 +57,7 @@ void shape_list_free(shape_list *l)
 bool shape_list_intersect(const shape_list *l, const ray3 *r, double tmin, double tmax, surface_hit *hit)
 {
     accel_hit ah;
-    if (!accel_intersect(l->accel, r, tmin, tmax, &ah))
+    if (!accel_intersect_refined(l->accel, r, tmin, tmax, &ah))
         return false;
     const shape_t *sh = &l->items[ah.geom_id];
     if (sh->is_mesh) {

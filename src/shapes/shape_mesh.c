@@ -12,48 +12,69 @@ static vec3 mesh_pos(const shape_mesh_data *m, unsigned v)
     return v3(m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2]);
 }
 
+/* What a sampled point needs (shape_mesh_point) of the hit on triangle tri
+ * at barycentrics (b1, b2): the point, the geometric normal, the texture
+ * coordinates; the triangle's edges and its vertices' uvs for the rest. */
+static void mesh_point(const shape_t *sh, const unsigned *v, double b1, double b2, surface_hit *hit, vec3 *e1,
+                       vec3 *e2)
+{
+    const shape_mesh_data *m = &sh->mesh;
+    double b0 = 1.0 - b1 - b2;
+    vec3 p0 = mesh_pos(m, v[0]), p1 = mesh_pos(m, v[1]), p2 = mesh_pos(m, v[2]);
+    hit->p = v3_add(v3_add(v3_scale(p0, b0), v3_scale(p1, b1)), v3_scale(p2, b2));
+    *e1 = v3_sub(p1, p0), *e2 = v3_sub(p2, p0);
+    vec3 ng = v3_norm(v3_cross(*e1, *e2));
+    hit->ng = sh->flip_normals ? v3_neg(ng) : ng;
+    if (m->uv) {
+        const float *t0 = &m->uv[2 * v[0]], *t1 = &m->uv[2 * v[1]], *t2 = &m->uv[2 * v[2]];
+        hit->uv = v2(b0 * t0[0] + b1 * t1[0] + b2 * t2[0], b0 * t0[1] + b1 * t1[1] + b2 * t2[1]);
+    } else {
+        hit->uv = v2(b1, b2);
+    }
+    hit->eps = surface_hit_eps(hit->p);
+    hit->local.param[0] = b1, hit->local.param[1] = b2; /* for mesh attributes (shape_bsdf_query) */
+}
+
+void shape_mesh_point(const shape_t *sh, int tri, double b1, double b2, surface_hit *hit)
+{
+    vec3 e1, e2;
+    mesh_point(sh, &sh->mesh.tri[3 * tri], b1, b2, hit, &e1, &e2);
+    hit->t = 0.0;
+    hit->prim = tri;
+}
+
 void shape_mesh_finish(const shape_t *sh, int tri, double b1, double b2, double t, surface_hit *hit)
 {
     const shape_mesh_data *m = &sh->mesh;
     const unsigned *v = &m->tri[3 * tri];
-    double b0 = 1.0 - b1 - b2;
-    vec3 p0 = mesh_pos(m, v[0]), p1 = mesh_pos(m, v[1]), p2 = mesh_pos(m, v[2]);
+    vec3 e1, e2;
+    mesh_point(sh, v, b1, b2, hit, &e1, &e2);
     hit->t = t;
-    hit->p = v3_add(v3_add(v3_scale(p0, b0), v3_scale(p1, b1)), v3_scale(p2, b2));
-    vec3 ng = v3_norm(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)));
-    vec3 ns = ng;
-    if (m->nrm) {
+    hit->prim = tri;
+    vec3 ns = hit->ng; /* flat shading where the mesh has no normals */
+    if (m->nrm && m->nrm_per_face) { /* the triangle's three are equal and unit: no interpolation */
+        vec3 n = v3(m->nrm[3 * v[0]], m->nrm[3 * v[0] + 1], m->nrm[3 * v[0] + 2]);
+        ns = sh->flip_normals ? v3_neg(n) : n;
+    } else if (m->nrm) {
+        const double b[3] = {1.0 - b1 - b2, b1, b2};
         vec3 n = v3(0, 0, 0);
-        const double b[3] = {b0, b1, b2};
         for (int k = 0; k < 3; k++)
             n = v3_add(n, v3_scale(v3(m->nrm[3 * v[k]], m->nrm[3 * v[k] + 1], m->nrm[3 * v[k] + 2]), b[k]));
         if (v3_len(n) > 1e-12)
-            ns = v3_norm(n);
+            ns = sh->flip_normals ? v3_neg(v3_norm(n)) : v3_norm(n);
     }
+    hit->sh = frame3_from_normal(ns);
     /* Without texture coordinates the parametrisation is barycentric, as in
      * Mitsuba: dp/du = p1 - p0, dp/dv = p2 - p0. */
-    vec3 e1 = v3_sub(p1, p0), e2 = v3_sub(p2, p0);
     hit->dpdu = e1, hit->dpdv = e2;
     if (m->uv) {
         const float *t0 = &m->uv[2 * v[0]], *t1 = &m->uv[2 * v[1]], *t2 = &m->uv[2 * v[2]];
-        hit->uv = v2(b0 * t0[0] + b1 * t1[0] + b2 * t2[0], b0 * t0[1] + b1 * t1[1] + b2 * t2[1]);
         /* The change of variables from barycentrics to uv. */
         vec2 d0 = v2(t1[0] - t0[0], t1[1] - t0[1]), d1 = v2(t2[0] - t0[0], t2[1] - t0[1]);
         double det = d0.x * d1.y - d0.y * d1.x, inv = det != 0.0 ? 1.0 / det : 0.0;
         hit->dpdu = v3_scale(v3_sub(v3_scale(e1, d1.y), v3_scale(e2, d0.y)), inv);
         hit->dpdv = v3_scale(v3_sub(v3_scale(e2, d0.x), v3_scale(e1, d1.x)), inv);
-    } else {
-        hit->uv = v2(b1, b2);
     }
-    if (sh->flip_normals) {
-        ng = v3_neg(ng);
-        ns = v3_neg(ns);
-    }
-    hit->ng = ng;
-    hit->sh = frame3_from_normal(ns);
-    hit->eps = surface_hit_eps(hit->p);
-    hit->prim = tri;
-    hit->local.param[0] = b1, hit->local.param[1] = b2; /* for mesh attributes (shape_bsdf_query) */
 }
 
 unsigned shape_mesh_add(const shape_t *sh, accel_t *acc, char *err, size_t errlen)
@@ -61,6 +82,20 @@ unsigned shape_mesh_add(const shape_t *sh, accel_t *acc, char *err, size_t errle
     const shape_mesh_data *m = &sh->mesh;
     mesh_t view = {m->n_verts, m->n_tris, m->pos, m->nrm, m->uv, m->tri};
     return accel_add_mesh(acc, &view, NULL, err, errlen);
+}
+
+/* Whether each triangle's three vertex normals are the same (a rectangle's,
+ * a cube's faces): the shading normal is then that normal wherever the
+ * triangle is hit. */
+static bool normals_per_face(const shape_mesh_data *m)
+{
+    for (int t = 0; t < m->n_tris && m->nrm; t++) {
+        const unsigned *v = &m->tri[3 * t];
+        for (int k = 1; k < 3; k++)
+            if (memcmp(&m->nrm[3 * v[0]], &m->nrm[3 * v[k]], 3 * sizeof *m->nrm) != 0)
+                return false;
+    }
+    return m->nrm != NULL;
 }
 
 void shape_mesh_transform(shape_mesh_data *m, const transform4 *to_world)
@@ -73,6 +108,7 @@ void shape_mesh_transform(shape_mesh_data *m, const transform4 *to_world)
             m->nrm[3 * i] = (float)n.x, m->nrm[3 * i + 1] = (float)n.y, m->nrm[3 * i + 2] = (float)n.z;
         }
     }
+    m->nrm_per_face = normals_per_face(m);
 }
 
 static double tri_area(const shape_mesh_data *m, int t)
@@ -126,7 +162,7 @@ void shape_mesh_sample(const shape_t *sh, vec3 u, surface_hit *hit, double *pdf_
     double reuse;
     int t = distribution1d_sample_discrete(&m->area_cdf, u.z, NULL, &reuse);
     vec2 b = warp_square_to_uniform_triangle(v2(u.x, u.y));
-    shape_mesh_finish(sh, t, b.x, b.y, 0.0, hit);
+    shape_mesh_point(sh, t, b.x, b.y, hit);
     *pdf_area = 1.0 / m->area;
 }
 

@@ -56,7 +56,9 @@ typedef struct {
  * a form-dependent offset would leave a difference no segment count removes). */
 static inline double surface_hit_eps(vec3 p)
 {
-    return 2e-5 * (1.0 + fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
+    /* the largest |coordinate| by comparisons: fmax is a call into libm here */
+    double ax = fabs(p.x), ay = fabs(p.y), az = fabs(p.z), m = ax > ay ? ax : ay;
+    return 2e-5 * (1.0 + (m > az ? m : az));
 }
 
 /* The BSDF query at a hit for light leaving toward -dir (dir: the world
@@ -73,6 +75,7 @@ typedef struct {
     int n_verts, n_tris;
     float *pos;       /* world, 3 per vertex + 1 float of padding (Embree reads 16 bytes) */
     float *nrm;       /* world, unit, or NULL */
+    bool nrm_per_face; /* each triangle's three normals equal (shape_mesh_transform) */
     float *uv;        /* or NULL */
     unsigned *tri;    /* 3 per triangle */
     texture_mesh attrs; /* its attributes (ply), attrs.tri = tri; none: count 0 */
@@ -146,11 +149,14 @@ void shape_world_bounds(const shape_t *sh, vec3 *lo, vec3 *hi);
 /* How far from the origin a shape may reach: Embree takes rays from at most
  * 1.844e18 (FLT_LARGE), and paths start on the shapes. */
 #define SHAPE_MAX_COORD 1e15
-/* A point on the shape by area: world hit and density per area. */
+/* A point on the shape by area: world hit and density per area. A sampled
+ * point of a mesh carries p, ng, uv, eps, prim and its barycentrics, not
+ * the shading frame or dp/du, dp/dv (nothing shades a light sample). */
 void shape_sample_area(const shape_t *sh, vec3 u, surface_hit *hit, double *pdf_area);
 double shape_pdf_area(const shape_t *sh, const surface_hit *hit);
 
-/* A point on the shape as seen from ref (emitters): drawn uniformly in the
+/* A point on the shape as seen from ref (emitters; the hit as
+ * shape_sample_area's): drawn uniformly in the
  * solid angle the shape subtends where it has such a sampler (a rectangle,
  * by spherical rectangles; a sphere from outside, by the cone it subtends)
  * and that solid angle is large enough to matter, by area otherwise. Its
