@@ -1,6 +1,7 @@
 /* One ray-tracing scene for every shape: an Embree 3 device and scene holding
- * triangle meshes, surfaces of revolution (SORs) and the quadrics sphere, disk
- * and cylinder, each placed by an affine object-to-world transform.
+ * triangle meshes, surfaces of revolution (SORs), the quadrics sphere, disk
+ * and cylinder, curves, and user geometries the caller intersects itself,
+ * each placed by an affine object-to-world transform.
  *
  * Placement is a transform4 (celadon/transform.h: the matrix with its inverse),
  * as scenes carry it; NULL means the identity.
