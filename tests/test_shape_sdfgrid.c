@@ -209,6 +209,27 @@ static double sphere_interpolation_bound(void)
     return h * h / 8.0 * 3.0 / (sphere_r - sqrt(3.0) * h);
 }
 
+/* The sphere's grid and a scene of it with the given normals. */
+typedef struct {
+    render_fixture f;
+    float *g;
+    scene_t *s;
+} sphere_fixture;
+
+static void sphere_open(sphere_fixture *x, const char *normals)
+{
+    render_fixture_open(&x->f);
+    x->g = sample_grid(SPHERE_N, sphere_distance);
+    x->s = sdf_scene(&x->f, x->g, SPHERE_N, normals, sphere_place);
+}
+
+static void sphere_close(sphere_fixture *x)
+{
+    scene_destroy(x->s);
+    free(x->g);
+    render_fixture_close(&x->f);
+}
+
 /* A ray from a random point 3 away towards a random point of the ball of
  * radius 0.4 (inside the sphere's 0.6 by far more than the interpolation
  * error): it hits. */
@@ -224,17 +245,16 @@ static ray3 ray_into_sphere(rng_t *r)
  * interpolation error, and has the interpolant's gradient as its normal. */
 Test(shape_sdfgrid, a_sphere_grid_hits_the_first_root_of_its_interpolant)
 {
-    render_fixture f;
-    render_fixture_open(&f);
-    float *g = sample_grid(SPHERE_N, sphere_distance);
-    scene_t *s = sdf_scene(&f, g, SPHERE_N, "analytic", sphere_place);
+    sphere_fixture x;
+    sphere_open(&x, "analytic");
+    const float *g = x.g;
     rng_t r;
     rng_seed(&r, 7, 0);
     double worst_t = 0.0, worst_surface = 0.0, worst_n = 0.0;
     for (int k = 0; k < 300; k++) {
         ray3 ray = ray_into_sphere(&r);
         scene_hit h;
-        cr_assert(scene_first_hit(s, &ray, 0.0, INFINITY, &h), "ray %d missed", k);
+        cr_assert(scene_first_hit(x.s, &ray, 0.0, INFINITY, &h), "ray %d missed", k);
         /* the same ray in the cube's coordinates: t is kept */
         vec3 o = to_cube(ray.o), d = v3_scale(ray.d, 0.5);
         double t_ref = ref_first_root(g, SPHERE_N, o, d, 1e-3);
@@ -249,9 +269,7 @@ Test(shape_sdfgrid, a_sphere_grid_hits_the_first_root_of_its_interpolant)
     cr_expect_lt(worst_surface, sphere_interpolation_bound(), "a hit lies %g from the sphere (bound %g)", worst_surface,
                  sphere_interpolation_bound());
     cr_expect_lt(worst_n, 1e-9, "a normal differs from the interpolant's gradient by %g", worst_n);
-    scene_destroy(s);
-    free(g);
-    render_fixture_close(&f);
+    sphere_close(&x);
 }
 
 /* Rays that pass the sphere farther than the interpolation error, or leave
@@ -260,10 +278,8 @@ Test(shape_sdfgrid, a_sphere_grid_hits_the_first_root_of_its_interpolant)
  * the sphere, where the interpolant is exact along that line. */
 Test(shape_sdfgrid, rays_that_miss_miss_and_a_ray_along_grid_planes_hits)
 {
-    render_fixture f;
-    render_fixture_open(&f);
-    float *g = sample_grid(SPHERE_N, sphere_distance);
-    scene_t *s = sdf_scene(&f, g, SPHERE_N, "analytic", sphere_place);
+    sphere_fixture x;
+    sphere_open(&x, "analytic");
     rng_t r;
     rng_seed(&r, 9, 0);
     double clear = 2.0 * (0.3 + sphere_interpolation_bound()) + 0.01; /* world */
@@ -273,22 +289,20 @@ Test(shape_sdfgrid, rays_that_miss_miss_and_a_ray_along_grid_planes_hits)
         vec3 target = v3_scale(side, clear + (1.5 - clear) * rng_next_double(&r));
         ray3 ray = {o, v3_norm(v3_sub(target, o))};
         scene_hit h;
-        cr_expect(!scene_first_hit(s, &ray, 0.0, INFINITY, &h), "ray %d passing at %g hit at t = %g", k,
+        cr_expect(!scene_first_hit(x.s, &ray, 0.0, INFINITY, &h), "ray %d passing at %g hit at t = %g", k,
                   v3_len(target), h.t);
         ray3 away = {o, v3_norm(o)};
-        cr_expect(!scene_first_hit(s, &away, 0.0, INFINITY, &h), "ray %d leaving the cube hit", k);
+        cr_expect(!scene_first_hit(x.s, &away, 0.0, INFINITY, &h), "ray %d leaving the cube hit", k);
     }
     ray3 down = {v3(0.0, 0.0, 3.0), v3(0.0, 0.0, -1.0)};
     scene_hit h;
-    cr_assert(scene_first_hit(s, &down, 0.0, INFINITY, &h));
+    cr_assert(scene_first_hit(x.s, &down, 0.0, INFINITY, &h));
     cr_expect(fabs(h.t - 2.4) < 1e-6, "the top of the sphere at t = %.12g, not 2.4", h.t);
     /* and from inside, the way out: the bottom of the sphere */
     ray3 out = {v3(0.0, 0.0, 0.0), v3(0.0, 0.0, -1.0)};
-    cr_assert(scene_first_hit(s, &out, 0.0, INFINITY, &h));
+    cr_assert(scene_first_hit(x.s, &out, 0.0, INFINITY, &h));
     cr_expect(fabs(h.t - 0.6) < 1e-6, "the bottom of the sphere from inside at t = %.12g, not 0.6", h.t);
-    scene_destroy(s);
-    free(g);
-    render_fixture_close(&f);
+    sphere_close(&x);
 }
 
 /* The largest change of the normal between neighbouring rays of a fine
@@ -316,15 +330,13 @@ static void normal_scan(scene_t *s, double *jump, double *off)
  * voxel faces, where the trilinear interpolant has a kink. */
 Test(shape_sdfgrid, smooth_normals_are_continuous_where_the_gradient_jumps)
 {
-    render_fixture f;
-    render_fixture_open(&f);
-    float *g = sample_grid(SPHERE_N, sphere_distance);
     double jump[2], off[2];
     const char *modes[2] = {"analytic", "smooth"};
     for (int m = 0; m < 2; m++) {
-        scene_t *s = sdf_scene(&f, g, SPHERE_N, modes[m], sphere_place);
-        normal_scan(s, &jump[m], &off[m]);
-        scene_destroy(s);
+        sphere_fixture x;
+        sphere_open(&x, modes[m]);
+        normal_scan(x.s, &jump[m], &off[m]);
+        sphere_close(&x);
     }
     /* a step of 1/500 voxel turns a continuous normal of curvature 1/0.6 by
      * about 2e-4 / 0.6 */
@@ -335,8 +347,6 @@ Test(shape_sdfgrid, smooth_normals_are_continuous_where_the_gradient_jumps)
      * cancels most of that (measured 0.007) */
     cr_expect_lt(off[0], 0.33, "analytic normals stray %g rad from the sphere's", off[0]);
     cr_expect_lt(off[1], 0.02, "smooth normals stray %g rad from the sphere's", off[1]);
-    free(g);
-    render_fixture_close(&f);
 }
 
 /* -------------------------------------------------------------- bad files */
