@@ -1,7 +1,7 @@
 /* The `gridvolume` volume: a voxel grid read from Mitsuba's binary .vol
- * file (`filename`, vol_file.c), its values not negative. The grid fills the unit cube,
- * placed by `to_world`; with `use_grid_bbox` (false) the file's box is
- * placed by it instead. `filter_type` trilinear (default) or nearest,
+ * file (`filename`, vol_file.c), its values not negative. The grid fills
+ * the unit cube, placed by `to_world`; with `use_grid_bbox` (false) the
+ * file's box is placed by it instead. `filter_type` trilinear (default) or nearest,
  * `wrap_mode` clamp (default), repeat or mirror; `raw` is accepted and
  * changes nothing in RGB. */
 #include <math.h>
