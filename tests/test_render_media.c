@@ -9,6 +9,7 @@
 #include <math.h>
 
 #include "phases/phases.h"
+#include "support/vol_file.h"
 #include "test_render_util.h"
 
 /* ------------------------------------------------------- phase functions */
@@ -112,19 +113,6 @@ static void image_mean(const float *rgb, double mean[3])
             mean[c] += rgb[3 * i + c] / 256.0;
 }
 
-/* A Mitsuba .vol file of nx x ny x nz single-channel float voxels. */
-static size_t vol_file(unsigned char *buf, int nx, int ny, int nz, const float *values)
-{
-    memcpy(buf, "VOL\3", 4);
-    int32_t head[5] = {1, nx, ny, nz, 1};
-    memcpy(buf + 4, head, sizeof head);
-    float box[6] = {0, 0, 0, 1, 1, 1};
-    memcpy(buf + 24, box, sizeof box);
-    size_t n = (size_t)nx * ny * nz;
-    memcpy(buf + 48, values, n * sizeof *values);
-    return 48 + n * sizeof *values;
-}
-
 /* ---------------------------------------------------------- transmittance */
 
 /* Absorption only (albedo 0) under a constant white environment: each
@@ -154,7 +142,7 @@ Test(render_media, a_grid_medium_transmits_its_exact_optical_depth)
 {
     const float layers[2] = {0.4f, 2.0f};
     unsigned char buf[64];
-    size_t len = vol_file(buf, 1, 1, 2, layers);
+    size_t len = vol_file_bytes(buf, 1, 1, 2, 1, layers);
     float *px = render_medium("<medium type=\"heterogeneous\" id=\"m\"><rgb name=\"albedo\" value=\"0\"/>"
                               "<volume type=\"gridvolume\" name=\"sigma_t\"><string name=\"filename\" value=\"g.vol\"/>"
                               "<transform name=\"to_world\"><scale x=\"2\" y=\"2\" z=\"1\"/>"
@@ -190,7 +178,7 @@ Test(render_media, a_white_medium_in_a_furnace_is_invisible)
                    NULL, NULL, 0);
     const float grid[8] = {0.5f, 3.0f, 1.0f, 0.0f, 2.0f, 0.2f, 4.0f, 1.5f};
     unsigned char buf[96];
-    size_t len = vol_file(buf, 2, 2, 2, grid);
+    size_t len = vol_file_bytes(buf, 2, 2, 2, 1, grid);
     medium_furnace("<medium type=\"heterogeneous\" id=\"m\"><rgb name=\"albedo\" value=\"1\"/>"
                    "<volume type=\"gridvolume\" name=\"sigma_t\"><string name=\"filename\" value=\"g.vol\"/>"
                    "<transform name=\"to_world\"><scale value=\"2\"/><translate value=\"-1, -1, -1\"/></transform>"

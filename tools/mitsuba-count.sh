@@ -3,7 +3,7 @@
 # unmodified. Renders every scene file of a copy of mitsuba-data (github
 # mitsuba-renderer/mitsuba-data) under docs/, scenes/ and tests/ with
 #
-#     celadon render SCENE -o OUT.exr --res 32x24 --spp 1 --threads 1
+#     celadon render SCENE -o OUT.exr --res 32x24 --spp 1 --threads 1 -a MITSUBA_DATA_DIR/common
 #
 # under a time limit, and prints one markdown row per scene and a summary:
 #
@@ -15,6 +15,13 @@
 #   crashed    any other exit status (a signal, an internal failure), or a
 #              refusal that is not exactly one line;
 #   hung       still running after the time limit.
+#
+# `-a MITSUBA_DATA_DIR/common` adds the copy's common/ folder to where files
+# are looked for, as Mitsuba's documentation build adds it to its file
+# resolver: the documentation scenes name shared meshes and textures by
+# paths relative to it (include/sensor_scene.xml names
+# meshes/matpreview.serialized, which is common/meshes/matpreview.serialized),
+# so without it they open in Mitsuba itself only from that build.
 #
 # Include fragments are not scenes: a file that another file of the set
 # names in an <include filename="..."/> is left out, and so is every file
@@ -46,8 +53,8 @@ while [ $# -gt 0 ]; do
     esac
     shift 2
 done
-[ -d "$data/docs" ] && [ -d "$data/scenes" ] && [ -d "$data/tests" ] || {
-    echo "mitsuba-count: $data is not a copy of mitsuba-data (no docs/, scenes/, tests/)" >&2
+[ -d "$data/docs" ] && [ -d "$data/scenes" ] && [ -d "$data/tests" ] && [ -d "$data/common" ] || {
+    echo "mitsuba-count: $data is not a copy of mitsuba-data (no docs/, scenes/, tests/, common/)" >&2
     exit 2
 }
 [ -x "$celadon" ] || {
@@ -91,7 +98,7 @@ echo "|---|---|---|"
 while read -r f; do
     rc=0
     timeout -k 5 "$limit" "$celadon" render "$data/$f" -o "$work/out.exr" --res 32x24 --spp 1 --threads 1 \
-        </dev/null >/dev/null 2>"$work/stderr" || rc=$?
+        -a "$data/common" </dev/null >/dev/null 2>"$work/stderr" || rc=$?
     rm -f "$work/out.exr"
     # The reason without the copy's folder (so the table reads the same on any machine).
     reason=$(sed -e "s|^celadon: ||" -e "s|$data/||g" -e 's/|/\\|/g' "$work/stderr" | grep -v '^render: ' | head -n 1)

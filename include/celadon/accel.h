@@ -1,6 +1,7 @@
 /* One ray-tracing scene for every shape: an Embree 3 device and scene holding
- * triangle meshes, surfaces of revolution (SORs) and the quadrics sphere, disk
- * and cylinder, each placed by an affine object-to-world transform.
+ * triangle meshes, surfaces of revolution (SORs), the quadrics sphere, disk
+ * and cylinder, curves, and user geometries the caller intersects itself,
+ * each placed by an affine object-to-world transform.
  *
  * Placement is a transform4 (celadon/transform.h: the matrix with its inverse),
  * as scenes carry it; NULL means the identity.
@@ -50,7 +51,8 @@ typedef enum {
     ACCEL_KIND_DISK = 4,
     ACCEL_KIND_CYLINDER = 5,
     ACCEL_KIND_CURVE_LINEAR = 6,  /* Embree's round linear curves */
-    ACCEL_KIND_CURVE_BSPLINE = 7  /* Embree's round cubic B-spline curves */
+    ACCEL_KIND_CURVE_BSPLINE = 7, /* Embree's round cubic B-spline curves */
+    ACCEL_KIND_USER = 8           /* primitives the caller intersects (accel_add_user) */
 } accel_kind;
 
 /* How an SOR enters the scene. segments = 0: analytic. segments >= 3: meshed
@@ -118,6 +120,33 @@ unsigned accel_add_quadric(accel_t *acc, accel_kind kind, const transform4 *to_w
  * Returns the geometry id, or ACCEL_INVALID_ID with a reason. */
 unsigned accel_add_curves(accel_t *acc, accel_kind kind, const float *points, int n_points, const unsigned *segments,
                           int n_segments, char *err, size_t errlen);
+
+/* A user geometry: primitives that the caller bounds and intersects
+ * itself, exactly, in the geometry's object space (the SDF grid shape).
+ * Embree's BVH culls the primitives by their boxes and calls intersect on
+ * those a ray's box test passes, from any number of threads at once. */
+typedef struct {
+    double t;
+    vec3 p, n;       /* object-space point and unit geometric normal */
+    vec2 uv;
+    double param[2]; /* the caller's own surface parameters, reported back in accel_hit */
+} accel_user_hit;
+
+typedef struct {
+    /* The object-space box of primitive prim. */
+    void (*bounds)(const void *data, unsigned prim, vec3 *lo, vec3 *hi);
+    /* The nearest hit of primitive prim along the object-space ray r (d not
+     * unit; t as in the world) with t in (tmin, tmax): 1 with *h, or 0. */
+    int (*intersect)(const void *data, unsigned prim, const ray3 *r, double tmin, double tmax, accel_user_hit *h);
+} accel_user_ops;
+
+/* Adds a user geometry of n_prims primitives (at least 1) placed by
+ * to_world; data is handed to ops and must outlive the scene. A hit
+ * reports kind ACCEL_KIND_USER, prim, t, p, ng = ns, uv and param from the
+ * caller's hit, part SOR_PART_WALL. Returns the geometry id, or
+ * ACCEL_INVALID_ID with a reason. */
+unsigned accel_add_user(accel_t *acc, const accel_user_ops *ops, const void *data, unsigned n_prims,
+                        const transform4 *to_world, char *err, size_t errlen);
 
 /* What a hit at the point p of a quadric's object-space surface reports
  * there (unit outward normal, uv, param), e.g. for a point sampled on it. */

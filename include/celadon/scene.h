@@ -32,6 +32,9 @@ typedef struct {
     long long seed;      /* sampler seed; < 0 keeps the scene's */
     int mesh_segments;   /* 0: SORs analytic; N >= 3: revolved into N angular segments */
     const char *sampler; /* a sampler plugin to use instead of the scene's (its sample count and seed kept); NULL keeps it */
+    const char *const *search_dirs; /* folders where scene_create_from_file also looks for files, tried
+                                       last (render -a; scene_desc_create_from_file_in) */
+    int n_search_dirs;
 } scene_options;
 
 /* Every field at "keep the scene's own". */

@@ -175,6 +175,12 @@ typedef struct {
  * that the scene neither declares nor uses is an error. */
 scene_desc *scene_desc_create_from_file(const char *path, const scene_define *defs, int ndefs,
                                         scene_plugin_lookup plugins, char *err, size_t errlen);
+/* The same with extra folders where files are looked for, as Mitsuba's
+ * `-a`: tried in order after every folder the scene itself gives
+ * (docs/scene-format.md, "Paths"); each must be an existing folder. */
+scene_desc *scene_desc_create_from_file_in(const char *path, const char *const *dirs, int ndirs,
+                                           const scene_define *defs, int ndefs, scene_plugin_lookup plugins, char *err,
+                                           size_t errlen);
 /* The same from text in memory; path names it in messages and anchors
  * relative file names (it need not exist). */
 scene_desc *scene_desc_create_from_text(const char *xml, size_t len, const char *path, const scene_define *defs,

@@ -30,6 +30,9 @@ typedef struct {
     int has_nrm, has_uv;
     /* Analytic SOR (ACCEL_KIND_SOR_ANALYTIC). */
     sor_t *sor;
+    /* User geometry (ACCEL_KIND_USER): the caller's callbacks and data. */
+    const accel_user_ops *user;
+    const void *user_data;
 } accel_geom;
 
 /* An exact hit on a user geometry (analytic SOR or quadric), object space. */

@@ -2,22 +2,7 @@
  * double precision: the sphere and the cylinder solve a quadratic, the disk
  * a plane. */
 #include "accel/accel_internal.h"
-
-/* Roots of a t^2 + 2 b t + c = 0 without cancellation. Returns 0 when there
- * are none, else 2 with t0 <= t1. */
-static int solve_quadratic(double a, double b, double c, double *t0, double *t1)
-{
-    if (a == 0.0)
-        return 0;
-    double disc = b * b - a * c;
-    if (disc < 0.0)
-        return 0;
-    double q = -(b + copysign(sqrt(disc), b));
-    double r0 = q / a, r1 = q != 0.0 ? c / q : r0;
-    *t0 = fmin(r0, r1);
-    *t1 = fmax(r0, r1);
-    return 2;
-}
+#include "celadon/polynomial.h"
 
 static double wrap_angle(double phi) { return phi < 0.0 ? phi + 2.0 * M_PI : phi; }
 
@@ -59,12 +44,12 @@ static double quadric_t(accel_kind kind, const ray3 *r, double tmin, double tmax
         return x * x + y * y > 1.0 ? 0.0 : td;
     }
     if (kind == ACCEL_KIND_SPHERE) {
-        if (!solve_quadratic(v3_dot(r->d, r->d), v3_dot(r->o, r->d), v3_dot(r->o, r->o) - 1.0, &t[0], &t[1]))
+        if (!poly_quadratic_roots(v3_dot(r->d, r->d), v3_dot(r->o, r->d), v3_dot(r->o, r->o) - 1.0, &t[0], &t[1]))
             return 0.0;
         double ts = t[0] > tmin ? t[0] : t[1];
         return ts <= tmin || ts >= tmax ? 0.0 : ts;
     }
-    if (!solve_quadratic(r->d.x * r->d.x + r->d.y * r->d.y, r->o.x * r->d.x + r->o.y * r->d.y,
+    if (!poly_quadratic_roots(r->d.x * r->d.x + r->d.y * r->d.y, r->o.x * r->d.x + r->o.y * r->d.y,
                          r->o.x * r->o.x + r->o.y * r->o.y - 1.0, &t[0], &t[1]))
         return 0.0;
     for (int i = 0; i < 2; i++) {

@@ -16,14 +16,14 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 
-enum { MAX_DEFINES = 64, MAX_FRAMES = 1000000 };
-_Static_assert(MAX_DEFINES == 64, "the -D limit's usage error names it");
+enum { MAX_DEFINES = 64, MAX_SEARCH_DIRS = 64, MAX_FRAMES = 1000000 };
+_Static_assert(MAX_DEFINES == 64 && MAX_SEARCH_DIRS == 64, "the -D and -a limits' usage errors name them");
 
 static void usage(FILE *f)
 {
     fprintf(f, "usage: celadon render SCENE.xml -o OUT.{exr,png,jpg} [--spp N] [--res WxH]\n"
                "                      [--geometry analytic|mesh:N] [--threads N] [--seed S]\n"
-               "                      [--sampler NAME] [-D name=value]... [--aov depth,normal,albedo]\n"
+               "                      [--sampler NAME] [-D name=value]... [-a DIR]... [--aov depth,normal,albedo]\n"
                "                      [--part K/N] [--frames A:B[:S]]\n\n"
                "Renders a Mitsuba 3 scene (docs/scene-format.md) with its integrator (`path`\n"
                "by default).\n"
@@ -40,6 +40,9 @@ static void usage(FILE *f)
                "  --sampler NAME  sampler plugin instead of the scene's, with its sample count and seed:\n"
                "                  independent, stratified, multijitter, orthogonal, ldsampler, zsobol\n"
                "  -D name=value   sets a scene <default> parameter\n"
+               "  -a DIR, --append DIR\n"
+               "                  one more folder to look for the scene's files in, after those the\n"
+               "                  scene gives (Mitsuba's -a; DIR1;DIR2 gives two)\n"
                "  --aov LIST      extra EXR channels: depth, normal, albedo\n"
                "  --part K/N      render the K-th of N shares of the samples into OUT.exr, for\n"
                "                  `celadon merge` (docs/distributed.md)\n"
@@ -55,6 +58,8 @@ typedef struct {
     render_options ro;
     scene_define defs[MAX_DEFINES + 2]; /* + $spp's fallback + the frame's */
     int ndefs;
+    char *dirs[MAX_SEARCH_DIRS]; /* -a folders, malloc'd */
+    int ndirs;
     const char *spp; /* --spp's text, or NULL */
     render_part part; /* n == 0: the whole render */
     int frame_from, frame_to, frame_step, frames; /* frames == 0: no --frames */
@@ -86,6 +91,24 @@ static int parse_frames(const char *s, render_args *a)
     a->frame_from = from, a->frame_to = to, a->frame_step = step;
     a->frames = (int)(((long long)to - from + step - 1) / step);
     return 0;
+}
+
+/* -a's value: folders separated by ';' as Mitsuba takes them, each one
+ * more search folder. 0, or the exit code. */
+static int add_search_dirs(const char *val, render_args *a)
+{
+    for (const char *p = val;; p++) {
+        size_t n = strcspn(p, ";");
+        if (n == 0)
+            return cli_usage_error("render", "-a wants a folder (or folders separated by ';'), not '%s'", val);
+        if (a->ndirs == MAX_SEARCH_DIRS)
+            return cli_usage_error("render", "at most 64 -a folders, not more ('%s')", val);
+        if (!(a->dirs[a->ndirs++] = strndup(p, n)))
+            return 1;
+        p += n;
+        if (!*p)
+            return 0;
+    }
 }
 
 /* Parses the options; -1 to go on, else the exit code. */
@@ -150,6 +173,10 @@ static int parse_args(int argc, char **argv, render_args *a)
             if (!name)
                 return 1;
             a->defs[a->ndefs++] = (scene_define){name, eq + 1, false};
+        } else if (!strcmp(arg, "-a") || !strcmp(arg, "--append")) {
+            int rc = add_search_dirs(val, a);
+            if (rc != 0)
+                return rc;
         } else if (!strcmp(arg, "--aov")) {
             if (render_aov_parse(val, &a->ro.aovs) != 0)
                 return cli_usage_error("render", "--aov wants a list of depth, normal, albedo, not '%s'", val);
@@ -308,6 +335,8 @@ int cmd_render(int argc, char **argv)
     cli_set_quiet(job.rank != 0); /* every rank would print the same usage error */
     a.ro.progress = job.rank == 0;
     int rc = parse_args(argc, argv, &a);
+    a.bo.search_dirs = (const char *const *)a.dirs;
+    a.bo.n_search_dirs = a.ndirs;
     if (rc < 0 && cli_check_output(a.out, 0) != 0)
         rc = CLI_CANNOT_WRITE; /* every rank checks: they all stop */
     if (rc < 0) {
@@ -328,6 +357,8 @@ int cmd_render(int argc, char **argv)
     }
     for (int i = 0; i < a.ndefs; i++)
         free((char *)a.defs[i].name);
+    for (int i = 0; i < a.ndirs; i++)
+        free(a.dirs[i]);
     distribute_end();
     return rc;
 }

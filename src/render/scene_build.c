@@ -12,7 +12,7 @@
 
 scene_options scene_options_default(void)
 {
-    return (scene_options){0, 0, 0, -1, 0, NULL};
+    return (scene_options){0, 0, 0, -1, 0, NULL, NULL, 0};
 }
 
 /* An object of class cls and plugin type with no parameters, located at at:
@@ -303,7 +303,9 @@ scene_t *scene_create(scene_desc *desc, const scene_options *opt, char *err, siz
 scene_t *scene_create_from_file(const char *path, const scene_define *defs, int ndefs, const scene_options *opt,
                                 char *err, size_t errlen)
 {
-    scene_desc *d = scene_desc_create_from_file(path, defs, ndefs, scene_plugin_find, err, errlen);
+    scene_desc *d = opt ? scene_desc_create_from_file_in(path, opt->search_dirs, opt->n_search_dirs, defs, ndefs,
+                                                         scene_plugin_find, err, errlen)
+                        : scene_desc_create_from_file(path, defs, ndefs, scene_plugin_find, err, errlen);
     if (!d)
         return NULL;
     scene_t *s = scene_create(d, opt, err, errlen);

@@ -143,8 +143,8 @@ char *scene_resolve_path(scene_ctx *c, const char *from_file, const char *name)
     struct stat st;
     if (name[0] == '/' || stat(r, &st) == 0)
         return r;
-    for (int i = -1; i < c->npaths; i++) {
-        char *alt = join_path(i < 0 ? c->scene_dir : c->paths[i], name);
+    for (int i = -1; i < c->npaths + c->nextra; i++) {
+        char *alt = join_path(i < 0 ? c->scene_dir : i < c->npaths ? c->paths[i] : c->extra_dirs[i - c->npaths], name);
         if (stat(alt, &st) == 0) {
             free(r);
             return alt;
@@ -659,8 +659,8 @@ static int finish(scene_ctx *c)
     return rc;
 }
 
-static scene_desc *load(const char *xml, size_t len, const char *path, const scene_define *defs, int ndefs,
-                        scene_plugin_lookup plugins, char *err, size_t errlen)
+static scene_desc *load(const char *xml, size_t len, const char *path, const char *const *dirs, int ndirs,
+                        const scene_define *defs, int ndefs, scene_plugin_lookup plugins, char *err, size_t errlen)
 {
     xmlInitParser();
     scene_ctx c = {0};
@@ -671,7 +671,14 @@ static scene_desc *load(const char *xml, size_t len, const char *path, const sce
     c.err = err;
     c.errlen = errlen;
     c.file = intern_file(c.d, path);
+    c.extra_dirs = dirs;
+    c.nextra = ndirs;
     int rc = 0;
+    for (int i = 0; i < ndirs && rc == 0; i++) {
+        struct stat st;
+        if (stat(dirs[i], &st) != 0 || !S_ISDIR(st.st_mode))
+            rc = scene_fail(&c, 0, "-a %s: no such folder", dirs[i]);
+    }
     for (int i = 0; i < ndefs && rc == 0; i++) {
         for (int j = 0; j < c.nparams; j++)
             if (strcmp(c.params[j].name, defs[i].name) == 0)
@@ -719,11 +726,18 @@ static scene_desc *load(const char *xml, size_t len, const char *path, const sce
 scene_desc *scene_desc_create_from_text(const char *xml, size_t len, const char *path, const scene_define *defs,
                                         int ndefs, scene_plugin_lookup plugins, char *err, size_t errlen)
 {
-    return load(xml, len, path, defs, ndefs, plugins, err, errlen);
+    return load(xml, len, path, NULL, 0, defs, ndefs, plugins, err, errlen);
 }
 
 scene_desc *scene_desc_create_from_file(const char *path, const scene_define *defs, int ndefs,
                                         scene_plugin_lookup plugins, char *err, size_t errlen)
+{
+    return scene_desc_create_from_file_in(path, NULL, 0, defs, ndefs, plugins, err, errlen);
+}
+
+scene_desc *scene_desc_create_from_file_in(const char *path, const char *const *dirs, int ndirs,
+                                           const scene_define *defs, int ndefs, scene_plugin_lookup plugins, char *err,
+                                           size_t errlen)
 {
     char *buf, why[256];
     size_t len;
@@ -731,7 +745,7 @@ scene_desc *scene_desc_create_from_file(const char *path, const scene_define *de
         snprintf(err, errlen, "%s: %s", path, why);
         return NULL;
     }
-    scene_desc *d = load(buf, len, path, defs, ndefs, plugins, err, errlen);
+    scene_desc *d = load(buf, len, path, dirs, ndirs, defs, ndefs, plugins, err, errlen);
     free(buf);
     return d;
 }

@@ -49,6 +49,8 @@ typedef struct {
     char *scene_dir;  /* the folder of the scene file itself */
     char **paths;     /* the folders <path> added, latest first */
     int npaths;
+    const char *const *extra_dirs; /* the caller's folders (render -a), tried last, in order */
+    int nextra;
     int line_hint;    /* the line of the element being read, for messages about its parts */
     char *err;
     size_t errlen;
@@ -83,7 +85,7 @@ int scene_parse_spectrum(scene_ctx *c, const xmlNode *n, scene_class owner, scen
 
 /* Where a file name is looked for (docs/scene-format.md, "Paths"): the
  * folder of from_file (the file that names it), the scene file's folder,
- * then each <path> folder, the latest first. Returns the first candidate
+ * each <path> folder, the latest first, then the caller's extra folders. Returns the first candidate
  * that exists, or the first candidate when none does (the caller's open or
  * stat then reports it); malloc'd. */
 char *scene_resolve_path(scene_ctx *c, const char *from_file, const char *name);

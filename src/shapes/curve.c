@@ -113,7 +113,7 @@ static bool curve_flat_normal(const void *data, vec3 *n)
 /* Curves never emit (curve_shape_create refuses an area emitter), so they
  * are never sampled by area. */
 static const shape_analytic_ops curve_ops = {curve_add,     curve_local_hit, NULL,         NULL,
-                                             curve_destroy, curve_tangents,  curve_bounds, curve_flat_normal};
+                                             curve_destroy, curve_tangents,  curve_bounds, curve_flat_normal, NULL};
 
 /* Appends the segments of the curve whose points are [first, end) (span: 2
  * or 4 points a segment): 0, or -1 when it has too few points. */

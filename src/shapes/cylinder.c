@@ -45,7 +45,7 @@ static void cylinder_bounds(const void *data, vec3 *lo, vec3 *hi)
 }
 
 static const shape_analytic_ops cylinder_ops = {cylinder_add, shape_analytic_local_hit, cylinder_sample, cylinder_pdf,
-                                                cylinder_destroy, cylinder_tangents, cylinder_bounds, NULL};
+                                                cylinder_destroy, cylinder_tangents, cylinder_bounds, NULL, NULL};
 
 static int cylinder_create(scene_obj *o, const shape_options *opt, const transform4 *to_world, shape_t *sh,
                            char *err, size_t errlen)

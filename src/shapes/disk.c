@@ -52,7 +52,7 @@ static bool disk_flat_normal(const void *data, vec3 *n)
 }
 
 static const shape_analytic_ops disk_ops = {disk_add, shape_analytic_local_hit, disk_sample, disk_pdf,
-                                            disk_destroy, disk_tangents, disk_bounds, disk_flat_normal};
+                                            disk_destroy, disk_tangents, disk_bounds, disk_flat_normal, NULL};
 
 static int disk_create(scene_obj *o, const shape_options *opt, const transform4 *to_world, shape_t *sh, char *err,
                        size_t errlen)

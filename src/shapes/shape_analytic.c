@@ -12,7 +12,13 @@ void shape_analytic_finish(const shape_t *sh, const shape_local_hit *lh, surface
     if (sh->flip_normals)
         n = v3_neg(n);
     hit->ng = n;
-    hit->sh = frame3_from_normal(n);
+    vec3 ns = n;
+    if (sh->ops->shading_normal) {
+        ns = v3_norm(transform_normal(&sh->to_world, sh->ops->shading_normal(sh->data, lh)));
+        if (sh->flip_normals)
+            ns = v3_neg(ns);
+    }
+    hit->sh = frame3_from_normal(ns);
     vec3 du, dv;
     sh->ops->tangents(sh->data, lh, &du, &dv);
     hit->dpdu = transform_vector(&sh->to_world, du);

@@ -30,6 +30,10 @@ struct shape_analytic_ops {
     void (*bounds)(const void *data, vec3 *lo, vec3 *hi);
     /* A flat shape's object-space normal (false: normals in every direction). */
     bool (*flat_normal)(const void *data, vec3 *n);
+    /* The object-space shading normal at a hit, on the side of h->n (unit),
+     * or NULL: the shading normal is the geometric one (an SDF grid's
+     * smooth normals differ from it). */
+    vec3 (*shading_normal)(const void *data, const shape_local_hit *h);
 };
 
 /* World-space hit from an analytic object-space hit. */

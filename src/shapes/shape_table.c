@@ -17,6 +17,7 @@
     X(shape, bsplinecurve)               \
     X(shape, shapegroup)                 \
     X(shape, instance)                   \
+    X(shape, sdfgrid)                    \
     /* one line per plugin, in any order */
 
 SCENE_PLUGIN_TABLE(shape, SHAPE_PLUGINS)

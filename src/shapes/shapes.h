@@ -1,9 +1,9 @@
 /* Shapes in the sense of Mitsuba 3, and the ray queries over all of a
  * scene's shapes. Every shape is traced through one Embree scene (accel.h):
  * triangle meshes (obj, ply, rectangle, cube, and `sor` under --geometry
- * mesh:N) as triangles; analytic shapes (sphere, disk, cylinder, and `sor` by
- * default) as user geometries intersected exactly in double precision in
- * their object space.
+ * mesh:N) as triangles; analytic shapes (sphere, disk, cylinder, sdfgrid,
+ * and `sor` by default) as user geometries intersected exactly in double
+ * precision in their object space.
  *
  * This is src/shapes' interface: what emitters, integrators and the scene
  * build use. The plugins' own helpers are in shape_impl.h; each plugin is one

@@ -218,7 +218,7 @@ static void sor_shape_bounds(const void *data, vec3 *lo, vec3 *hi)
 }
 
 static const shape_analytic_ops sor_ops = {sor_shape_add, sor_shape_local_hit, sor_shape_sample, sor_shape_pdf,
-                                           sor_shape_destroy, sor_shape_tangents, sor_shape_bounds, NULL};
+                                           sor_shape_destroy, sor_shape_tangents, sor_shape_bounds, NULL, NULL};
 
 static int sor_mesh(const char *profile_path, double height, bool caps, int segments, shape_mesh_data *m, char *err,
                     size_t errlen)

@@ -46,7 +46,7 @@ static void sphere_bounds(const void *data, vec3 *lo, vec3 *hi)
 }
 
 static const shape_analytic_ops sphere_ops = {sphere_add, shape_analytic_local_hit, sphere_sample, sphere_pdf,
-                                              sphere_destroy, sphere_tangents, sphere_bounds, NULL};
+                                              sphere_destroy, sphere_tangents, sphere_bounds, NULL, NULL};
 
 /* The cone from ref: 1 - cos of its half-angle (stable for far spheres),
  * or 0 when ref is not outside. */

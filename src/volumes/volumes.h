@@ -35,6 +35,19 @@ void volume_destroy(volume_t *v);
  * when absent. NULL with "file:line: problem" in err. */
 volume_t *volume_of_param(scene_obj *o, const char *name, rgb def, char *err, size_t errlen);
 
+/* A grid of Mitsuba's binary .vol format (vol_file.c), as stored. */
+typedef struct {
+    float *values; /* nx * ny * nz * channels floats, finite, x fastest, then y, then z */
+    int nx, ny, nz, channels; /* channels 1 or 3 */
+    vec3 lo, hi;   /* the bounding box the file records */
+} vol_grid;
+
+/* Reads the .vol file at path into g: 0, or -1 with the problem in why
+ * (not a .vol file, an encoding other than float32, a size that disagrees
+ * with the file's length, a value not finite). */
+int vol_grid_read(const char *path, vol_grid *g, char *why, size_t whylen);
+void vol_grid_free(vol_grid *g);
+
 /* A volume plugin: its declaration for the scene reader and its constructor
  * from a <volume> object, which returns NULL with "file:line: problem" in
  * err. */
