@@ -334,8 +334,8 @@ static double total_misfit(recon_camera *cam, double pitch, int use)
     return m;
 }
 
-/* The pitch that best explains the ellipses in use for the camera's focal length
- * (or the orthographic model): a scan, then golden-section search; its
+/* The pitch that best explains the ellipses in use (as total_misfit) for
+ * the camera's focal length (or the orthographic model): a scan, then golden-section search; its
  * standard error from the misfit's curvature (a chi-square in the pitch). */
 static void fit_pitch(recon_camera *cam, double lo, double hi, int use, double *sigma)
 {
@@ -358,7 +358,8 @@ static void fit_pitch(recon_camera *cam, double lo, double hi, int use, double *
         }
     }
     double p = 0.5 * (a + b), h = 0.05 / DEG;
-    double c0 = total_misfit(cam, p, use), curv = (total_misfit(cam, p + h, use) - 2 * c0 + total_misfit(cam, p - h, use)) / (h * h);
+    double c0 = total_misfit(cam, p, use);
+    double curv = (total_misfit(cam, p + h, use) - 2 * c0 + total_misfit(cam, p - h, use)) / (h * h);
     *sigma = curv > 0 ? sqrt(2 / curv) : INFINITY;
     cam->pitch = p;
 }
