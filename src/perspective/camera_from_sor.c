@@ -16,6 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_statistics_double.h>
+
 #include "perspective/perspective_internal.h"
 
 #define DEG (180.0 / M_PI)
@@ -27,6 +29,10 @@
 /* Fields of view across the image that a photo of a vessel can have. */
 #define MIN_FOV_DEG 1.0
 #define MAX_FOV_DEG 120.0
+/* An arc is its circle's image unless its ellipse misses it by more than
+ * ARC_NOISE_RATIO times its edge noise and more than ARC_MISFIT_PX. */
+#define ARC_NOISE_RATIO 3.0
+#define ARC_MISFIT_PX 2.33
 #define PITCH_STEP (0.25 / DEG)
 #define PITCH_LIMIT (60.0 / DEG)
 /* 35 mm film frame diagonal, mm (36 x 24). */
@@ -316,40 +322,124 @@ static void horizon_sigma(const recon_ellipse *B, const recon_ellipse *T, int ab
 
 /* ------------------------------------------------------------------ solve */
 
-static double total_misfit(recon_camera *cam, double pitch)
+/* The misfit of the ellipses in use (bit 0: the base, bit 1: the rim). */
+static double total_misfit(recon_camera *cam, double pitch, int use)
 {
-    double y, r;
+    double y, r, m = 0;
     cam->pitch = pitch;
-    return recon_circle_of_ellipse(cam, &cam->base, &y, &r) + recon_circle_of_ellipse(cam, &cam->rim, &y, &r);
+    if (use & 1)
+        m += recon_circle_of_ellipse(cam, &cam->base, &y, &r);
+    if (use & 2)
+        m += recon_circle_of_ellipse(cam, &cam->rim, &y, &r);
+    return m;
 }
 
-/* The pitch that best explains both ellipses for the camera's focal length
- * (or the orthographic model): a scan, then golden-section search; its
+/* The pitch that best explains the ellipses in use (as total_misfit) for
+ * the camera's focal length (or the orthographic model): a scan, then golden-section search; its
  * standard error from the misfit's curvature (a chi-square in the pitch). */
-static void fit_pitch(recon_camera *cam, double lo, double hi, double *sigma)
+static void fit_pitch(recon_camera *cam, double lo, double hi, int use, double *sigma)
 {
     double best = lo, fbest = INFINITY;
     for (double p = lo; p <= hi + 1e-12; p += PITCH_STEP) {
-        double v = total_misfit(cam, p);
+        double v = total_misfit(cam, p, use);
         if (v < fbest)
             fbest = v, best = p;
     }
     const double g = 0.5 * (sqrt(5.0) - 1);
     double a = fmax(lo, best - PITCH_STEP), b = fmin(hi, best + PITCH_STEP);
-    double x1 = b - g * (b - a), x2 = a + g * (b - a), f1 = total_misfit(cam, x1), f2 = total_misfit(cam, x2);
+    double x1 = b - g * (b - a), x2 = a + g * (b - a), f1 = total_misfit(cam, x1, use), f2 = total_misfit(cam, x2, use);
     for (int it = 0; it < 80 && b - a > 1e-12; it++) {
         if (f1 <= f2) {
             b = x2, x2 = x1, f2 = f1;
-            x1 = b - g * (b - a), f1 = total_misfit(cam, x1);
+            x1 = b - g * (b - a), f1 = total_misfit(cam, x1, use);
         } else {
             a = x1, x1 = x2, f1 = f2;
-            x2 = a + g * (b - a), f2 = total_misfit(cam, x2);
+            x2 = a + g * (b - a), f2 = total_misfit(cam, x2, use);
         }
     }
     double p = 0.5 * (a + b), h = 0.05 / DEG;
-    double c0 = total_misfit(cam, p), curv = (total_misfit(cam, p + h) - 2 * c0 + total_misfit(cam, p - h)) / (h * h);
+    double c0 = total_misfit(cam, p, use);
+    double curv = (total_misfit(cam, p + h, use) - 2 * c0 + total_misfit(cam, p - h, use)) / (h * h);
     *sigma = curv > 0 ? sqrt(2 / curv) : INFINITY;
     cam->pitch = p;
+}
+
+/* The outline's own edge noise along an arc (one point per column): in
+ * each run of EDGE_WINDOW successive columns the rms residual of a
+ * least-squares parabola (a smooth curve is one over so few columns, to
+ * well under the noise), corrected for its 3 parameters; the median over
+ * the runs (the arc's steep ends are a minority). Noise correlated over a
+ * few columns (JPEG blocks, anti-aliasing) is in it; a misfit of the whole
+ * arc by its ellipse is not. Returns 0 when no run is whole. */
+#define EDGE_WINDOW 15
+static double arc_edge_noise(const vec2 *arc, int n)
+{
+    double *run_rms = malloc((size_t)(n > 0 ? n : 1) * sizeof *run_rms);
+    int m = 0;
+    for (int i = 0; run_rms && i + EDGE_WINDOW <= n; i += EDGE_WINDOW) {
+        if (fabs(arc[i + EDGE_WINDOW - 1].x - arc[i].x - (EDGE_WINDOW - 1)) > 0.5)
+            continue; /* a gap */
+        /* y = c0 + c1 x + c2 x^2 with x centred on the run (odd powers sum to 0) */
+        double S0 = EDGE_WINDOW, S2 = 0, S4 = 0, T0 = 0, T1 = 0, T2 = 0, x0 = arc[i + EDGE_WINDOW / 2].x;
+        for (int k = i; k < i + EDGE_WINDOW; k++) {
+            double x = arc[k].x - x0;
+            S2 += x * x, S4 += x * x * x * x;
+            T0 += arc[k].y, T1 += x * arc[k].y, T2 += x * x * arc[k].y;
+        }
+        double det = S0 * S4 - S2 * S2, c1 = T1 / S2;
+        double c0 = (T0 * S4 - T2 * S2) / det, c2 = (S0 * T2 - S2 * T0) / det, ss = 0;
+        for (int k = i; k < i + EDGE_WINDOW; k++) {
+            double x = arc[k].x - x0, r = arc[k].y - (c0 + c1 * x + c2 * x * x);
+            ss += r * r;
+        }
+        run_rms[m++] = sqrt(ss / (EDGE_WINDOW - 3));
+    }
+    double sigma = m > 0 ? gsl_stats_median(run_rms, 1, (size_t)m) : 0;
+    free(run_rms);
+    return sigma;
+}
+
+/* The typical distance of the arc's points from its ellipse (1.4826 times
+ * the median: a chipped lip or a highlight over a few columns does not
+ * count), px; INFINITY when out of memory. */
+static double arc_misfit(const recon_camera *cam, const recon_ellipse *e, const vec2 *arc, int n)
+{
+    double *d = malloc((size_t)(n > 0 ? n : 1) * sizeof *d);
+    if (!d)
+        return INFINITY;
+    for (int i = 0; i < n; i++)
+        d[i] = e->b > 0 ? fabs(recon_ellipse_distance(e->w0, e->a, e->b, recon_camera_to_frame(cam, arc[i]), NULL))
+                        : fabs(recon_camera_to_frame(cam, arc[i]).y - e->w0);
+    double m = n > 0 ? 1.4826 * gsl_stats_median(d, 1, (size_t)n) : 0;
+    free(d);
+    return m;
+}
+
+/* Whether each arc is its circle's image as far as the photo can tell (bit
+ * 0: the base, bit 1: the rim): an arc farther from its ellipse than
+ * ARC_NOISE_RATIO times its own edge noise (what noise cannot explain) and
+ * than ARC_MISFIT_PX (the quality gate's limit for the profile curve
+ * against the outline) is some other curve, a foot that flares out of the
+ * base or a shadow's edge, and its ellipse says nothing of the camera. The
+ * failed arcs' errors go to note. */
+static int arcs_are_ellipses(const recon_camera *cam, const vec2 *top, int n_top, const vec2 *bottom, int n_bottom,
+                             char *note, size_t notelen)
+{
+    static const char *const names[2] = {"base", "rim"};
+    const recon_ellipse *e[2] = {&cam->base, &cam->rim};
+    const vec2 *arc[2] = {bottom, top};
+    int n[2] = {n_bottom, n_top}, ok = 3;
+    for (int k = 0; k < 2; k++) {
+        double noise = arc_edge_noise(arc[k], n[k]), misfit = arc_misfit(cam, e[k], arc[k], n[k]);
+        if (misfit > ARC_NOISE_RATIO * noise && misfit > ARC_MISFIT_PX) {
+            ok &= ~(1 << k);
+            snprintf(note, notelen,
+                     "the %s arc is no ellipse: %.1f px from its fitted ellipse, %.0f times its edge noise "
+                     "(%.2f px)",
+                     names[k], misfit, misfit / noise, noise);
+        }
+    }
+    return ok;
 }
 
 /* Fits both arcs in the camera's current frame. */
@@ -457,7 +547,7 @@ int recon_camera_solve(const image_t *img, const recon_result *res, const recon_
         }
         if (f_given > 0) {
             cam->focal_px = f_given;
-            fit_pitch(cam, -PITCH_LIMIT, PITCH_LIMIT, &sigma_e);
+            fit_pitch(cam, -PITCH_LIMIT, PITCH_LIMIT, 3, &sigma_e);
             ok = 1;
             break;
         }
@@ -467,6 +557,14 @@ int recon_camera_solve(const image_t *img, const recon_result *res, const recon_
             break;
         f_rect = cam->focal_px;
     }
+    /* Arcs that are no ellipse give no camera: with a known focal length
+     * the pitch comes from the other arc alone, else the model is
+     * orthographic. */
+    int arcs_ok = arcs_are_ellipses(cam, top, n_top, bottom, n_bottom, cam->note, sizeof cam->note);
+    if (arcs_ok != 3 && f_given > 0 && arcs_ok != 0)
+        fit_pitch(cam, -PITCH_LIMIT, PITCH_LIMIT, arcs_ok, &sigma_e);
+    else if (arcs_ok != 3)
+        ok = 0;
     if (!ok) {
         /* Orthographic: every circle's image has b/a = sin(e); looking down
          * is assumed (a photo of a vessel is not taken from below it). */
@@ -478,8 +576,8 @@ int recon_camera_solve(const image_t *img, const recon_result *res, const recon_
             snprintf(err, errlen, "cannot fit the outline's top and bottom arcs (%d and %d points)", n_top, n_bottom);
             return -1;
         }
-        if (cam->base.b > 0 || cam->rim.b > 0)
-            fit_pitch(cam, 0, PITCH_LIMIT, &sigma_e);
+        if (((arcs_ok & 1) && cam->base.b > 0) || ((arcs_ok & 2) && cam->rim.b > 0))
+            fit_pitch(cam, 0, PITCH_LIMIT, arcs_ok, &sigma_e);
         else
             cam->pitch = 0, sigma_e = 0;
     }

@@ -68,6 +68,21 @@ void recon_meridian_free(recon_meridian *m)
     memset(m, 0, sizeof *m);
 }
 
+/* Whether a point beyond the polyline's end lies on that end's ellipse
+ * (within 3 times the fit's residual, and half a pixel, as the arcs grow in
+ * recon_camera.c): it is the rim's (base's) own image, whose circle the
+ * meridian already ends at. Solved as an envelope point it would need the
+ * outline's tangent, and near the ends of a thin ellipse (b of a few px at
+ * a few degrees) that turns from vertical to level within a pixel, far
+ * less than the tangent's window: the drawn bowl at 5 degrees got points
+ * 2-4% of the height too wide there. */
+static int on_end_ellipse(const recon_ellipse *e, vec2 f)
+{
+    double tol = fmax(3 * e->rms_px, 0.5);
+    double dist = e->b > 0 ? recon_ellipse_distance(e->w0, e->a, e->b, f, NULL) : f.y - e->w0;
+    return fabs(dist) <= tol;
+}
+
 /* The profile's outline in the camera frame, top to bottom: between the
  * rim's and the base's heights along the imaged axis, the polyline's points
  * (what recon_extract kept of either side, or their mean, with the excluded
@@ -90,7 +105,7 @@ static int profile_outline(const recon_camera *cam, const recon_result *res, vec
     /* (half a pixel past the corners' rows, not the corners themselves) */
     for (double h; k < n_sil && (h = v2_dot(v2_sub(sil[k], res->axis_origin), d)) >= H; k++) {
         vec2 f = recon_camera_to_frame(cam, sil[k]);
-        if (h >= H + 0.5 && f.y <= w_top)
+        if (h >= H + 0.5 && f.y <= w_top && !on_end_ellipse(&cam->rim, f))
             q[n++] = f;
     }
     double last_h = H;
@@ -106,7 +121,7 @@ static int profile_outline(const recon_camera *cam, const recon_result *res, vec
     mid[1] = n;
     for (; k < n_sil; k++) {
         vec2 f = recon_camera_to_frame(cam, sil[k]);
-        if (v2_dot(v2_sub(sil[k], res->axis_origin), d) <= -0.5 && f.y >= w_bottom)
+        if (v2_dot(v2_sub(sil[k], res->axis_origin), d) <= -0.5 && f.y >= w_bottom && !on_end_ellipse(&cam->base, f))
             q[n++] = f;
     }
     return n;
@@ -153,10 +168,9 @@ int recon_meridian_from_outline(const recon_camera *cam, const recon_result *res
         snprintf(err, errlen, "the outline gives too few meridian points (%d)", m - 1);
         return -1;
     }
-    /* Closed by the base and the rim at the nearest point's radius, as the
-     * image-space polyline is. */
-    pts[0] = v2(pts[1].x, 0);
-    pts[m] = v2(pts[m - 1].x, Hm);
+    /* Closed by the base and the rim circles the camera found. */
+    pts[0] = v2(cam->base_r, 0);
+    pts[m] = v2(cam->rim_r, Hm);
     m++;
     int fitted = bspline_fit_profile(pts, m, smoothing_px, &mer->curve, NULL) == 0;
     /* As for the outline's curve (reconstruct.c): control points that

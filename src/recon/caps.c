@@ -90,7 +90,7 @@ static int solve_normal(gsl_matrix *ata, gsl_vector *aty, gsl_vector *x)
 
 /* Sum of squared (Sampson) distances of the points with d in [lo, hi] to
  * the best symmetric ellipse; INFINITY when there is none. */
-static double ellipse_sse(const end_point *p, int n, double lo, double hi, int *count)
+static double ellipse_sse(const end_point *p, int n, double lo, double hi, int *count, double *aspect)
 {
     double m[16] = {0}, v[4] = {0}, xs[4];
     int k = 0;
@@ -112,6 +112,8 @@ static double ellipse_sse(const end_point *p, int n, double lo, double hi, int *
     gsl_vector_view vv = gsl_vector_view_array(v, 4), xv = gsl_vector_view_array(xs, 4);
     if (solve_normal(&mv.matrix, &vv.vector, &xv.vector) != 0 || xs[2] <= 0 || xs[3] >= 0)
         return INFINITY;
+    if (aspect)
+        *aspect = 1 / sqrt(-xs[3]);
     double sse = 0;
     for (int i = 0; i < n; i++) {
         if (p[i].d < lo || p[i].d > hi)
@@ -161,33 +163,38 @@ static double wall_sse(const end_point *p, int n, int s, double lo, double hi)
 
 /* The depth where the outline leaves the end's ellipse for the wall, or -1
  * when one ellipse explains the zone as well (a dome) or nothing fits. */
-static double ellipse_leaving_depth(const end_point *p, int n, double zone)
+static double ellipse_leaving_depth(const end_point *p, int n, double zone, double *aspect)
 {
     int n_all;
-    double sse1 = ellipse_sse(p, n, -INFINITY, zone, &n_all), best = INFINITY, best_d = -1;
+    double sse1 = ellipse_sse(p, n, -INFINITY, zone, &n_all, NULL), best = INFINITY, best_d = -1, asp = 0;
     for (double delta = 2; delta < zone - 3; delta += 0.5) {
         int k;
-        double e = ellipse_sse(p, n, -INFINITY, delta, &k);
+        double a, e = ellipse_sse(p, n, -INFINITY, delta, &k, &a);
         if (!isfinite(e))
             continue;
         double t = e + wall_sse(p, n, 0, delta, zone) + wall_sse(p, n, 1, delta, zone);
         if (t < best) {
             best = t;
             best_d = delta;
+            asp = a;
         }
     }
     const int extra = 3 + 3 + 1; /* two walls and the change point, beyond the ellipse's 4 */
     if (best_d < 0 || n_all <= 4 + extra + 1)
         return -1;
     double f = isfinite(sse1) ? (sse1 - best) / extra / (fmax(best, 1e-12) / (n_all - 4 - extra)) : INFINITY;
-    return f > CHANGE_POINT_F ? best_d : -1;
+    if (f <= CHANGE_POINT_F)
+        return -1;
+    *aspect = asp;
+    return best_d;
 }
 
 /* Per side, the zone's point nearest the depth where the outline leaves the
- * end's ellipse; 0, or -1 (pick untouched) when it does not. */
-static int ellipse_corners(const end_point *p, int n, double zone, int pick[2])
+ * end's ellipse, and that ellipse's b/a into *aspect (when not NULL); 0, or
+ * -1 (pick and aspect untouched) when it does not. */
+static int ellipse_corners(const end_point *p, int n, double zone, int pick[2], double *aspect)
 {
-    double delta = ellipse_leaving_depth(p, n, zone);
+    double b_over_a = 0, delta = ellipse_leaving_depth(p, n, zone, &b_over_a);
     if (delta < 0)
         return -1;
     int found[2] = {-1, -1};
@@ -203,6 +210,8 @@ static int ellipse_corners(const end_point *p, int n, double zone, int pick[2])
         return -1;
     pick[0] = found[0];
     pick[1] = found[1];
+    if (aspect)
+        *aspect = b_over_a;
     return 0;
 }
 
@@ -239,7 +248,9 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
     int k = (int)fmax(5, 0.01 * height);
     /* per end: the picked points, and the extreme point (pole) per side */
     int picked[2][2], poles[2][2];
-    for (int end = 0; end < 2; end++) { /* 0: top (rim), 1: bottom (base) */
+    double base_aspect = 0; /* b/a of the base's ellipse where it was left tangentially, else 0 */
+    for (int pass = 0; pass < 2; pass++) {
+        int end = 1 - pass; /* 1: bottom (base) first, 0: top (rim) */
         double h_end = end ? h_bot : h_top, sign = end ? -1 : 1;
         /* The zone: half the radius of the outline's last 5% toward this end
          * (an ellipse's half-height is r sin(elevation): up to 30 degrees). */
@@ -250,6 +261,13 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
                 r5 = fmax(r5, fabs(v2_dot(q, nrm)));
         }
         double zone = 0.5 * r5 + 3;
+        /* Seen from above, the rim's ellipse is no rounder than the base's
+         * (the rim is seen less steeply), and a wall that flares out of it
+         * leaves it on its near half, down to twice its half-height below
+         * the top: where the base's ellipse is measured, the top's zone
+         * reaches that deep. */
+        if (end == 0)
+            zone = fmax(zone, 2 * fmin(base_aspect, 0.5) * r5 + 3);
         /* The rim (base) is a circle: both sides turn at the same height. Per
          * 1 px bin of height in the zone and per side, the sharpest turn; the
          * corners are the pair at the height where the weaker of the two
@@ -351,7 +369,7 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
         if (wide_b >= 0 && (best_b < 0 || ring)) {
             pick[0] = bo[wide_b];
             pick[1] = bo[nb + wide_b];
-        } else if (best_b < 0 && ellipse_corners(zp, m, zone, pick) != 0) {
+        } else if (best_b < 0 && ellipse_corners(zp, m, zone, pick, end && !base_is_cut ? &base_aspect : NULL) != 0) {
             pick[0] = pole[0];
             pick[1] = pole[1];
         }

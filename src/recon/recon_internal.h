@@ -16,7 +16,8 @@
 /* The four corners (CORNER_ order) of the closed contour in the frame of the
  * axis (origin on it, unit direction toward the top): on each side, the point
  * that turns most within the top (bottom) zone, half the radius of the
- * outline's last 5% of height deep; where none turns much more than the rest
+ * outline's last 5% of height deep (at the top, twice the base's ellipse's
+ * b/a times that radius when deeper: a rim's near half seen from above); where none turns much more than the rest
  * of the zone (a dome), the extreme point, its pole; also at the top when it
  * lies deeper below the top than the base's ellipse allows (a knob), unless
  * base_is_cut (a stand or a shadow cut it). Returns 0, or -1 when out of
