@@ -76,26 +76,37 @@ void recon_backdrop_at(const recon_backdrop *b, double x, double y, double out[3
     recon_backdrop_at_basis(b, &bx, &by, out);
 }
 
-void recon_backdrop_row(const recon_backdrop *b, int y, float *out)
+void recon_backdrop_collapse_row(const recon_backdrop *b, const recon_backdrop_basis *by,
+                                 double col[RECON_BACKDROP_MAX_GRID][3])
 {
     const int g = b->grid;
-    int fy;
-    double wy[4], col[RECON_BACKDROP_MAX_GRID][3];
-    basis(y + 0.5, b->height, g, &fy, wy);
     for (int i = 0; i < g; i++)
         for (int c = 0; c < 3; c++) {
             double s = 0;
             for (int j = 0; j < 4; j++)
-                s += wy[j] * b->coef[(fy + j) * g + i][c];
+                s += by->wt[j] * b->coef[(by->first + j) * g + i][c];
             col[i][c] = s;
         }
+}
+
+void recon_backdrop_at_collapsed(const double col[RECON_BACKDROP_MAX_GRID][3], const recon_backdrop_basis *bx,
+                                 float out[3])
+{
+    const double *w = bx->wt;
+    const int f = bx->first;
+    for (int c = 0; c < 3; c++)
+        out[c] = (float)(w[0] * col[f][c] + w[1] * col[f + 1][c] + w[2] * col[f + 2][c] + w[3] * col[f + 3][c]);
+}
+
+void recon_backdrop_row(const recon_backdrop *b, int y, float *out)
+{
+    recon_backdrop_basis by, bx;
+    double col[RECON_BACKDROP_MAX_GRID][3];
+    recon_backdrop_basis_y(b, y + 0.5, &by);
+    recon_backdrop_collapse_row(b, &by, col);
     for (int x = 0; x < b->width; x++) {
-        int fx;
-        double wx[4];
-        basis(x + 0.5, b->width, g, &fx, wx);
-        for (int c = 0; c < 3; c++)
-            out[3 * x + c] = (float)(wx[0] * col[fx][c] + wx[1] * col[fx + 1][c] + wx[2] * col[fx + 2][c] +
-                                     wx[3] * col[fx + 3][c]);
+        recon_backdrop_basis_x(b, x + 0.5, &bx);
+        recon_backdrop_at_collapsed(col, &bx, out + 3 * x);
     }
 }
 
@@ -134,49 +145,57 @@ static void sample_basis_at(const recon_backdrop *b, double x, double y, sample_
     sb->first = fy * b->grid + fx;
 }
 
-/* Adds a sample of weight w to the normal equations ata (m x m) and atb
- * (m x 3), control points in increasing index order: a = 4 j + i is at
- * first + j g + i; the rows of 4 up to a's own (its upper part within that
- * row of 4 is summed too, and not read). */
-RECON_VECTOR_CLONES static void add_sample(double *restrict ata, double *restrict atb, int m, int g,
-                                           const sample_basis *sb, const float *c, double w)
+/* Adds a sample of weight w to its span cell's block of the normal
+ * equations: the 16x16 products of its basis weights (blk, dense) and its
+ * colour's (rhs, 16x4, the fourth column unused). The samples of one cell share their 16 control
+ * points, so the block is summed contiguously and goes into the whole
+ * system once. */
+RECON_VECTOR_CLONES static void add_sample(double *restrict blk, double *restrict rhs, const double *restrict phi,
+                                           const float *c, double w)
 {
-    const double *phi = sb->phi;
-    for (int ja = 0; ja < 4; ja++)
-        for (int i = 0; i < 4; i++) {
-            double wa = w * phi[4 * ja + i];
-            int ia = sb->first + ja * g + i;
-            double *row = ata + (size_t)ia * m + sb->first;
-            for (int jc = 0; jc <= ja; jc++) {
-                double *r = row + jc * g;
-                const double *q = phi + 4 * jc;
+    const double c4[4] = {c[0], c[1], c[2], 0};
+    for (int a = 0; a < 16; a++) {
+        double wa = w * phi[a], *row = blk + 16 * a, *r = rhs + 4 * a;
 #pragma omp simd
-                for (int ic = 0; ic < 4; ic++)
-                    r[ic] += wa * q[ic];
-            }
-            for (int k = 0; k < 3; k++)
-                atb[3 * ia + k] += wa * c[k];
-        }
+        for (int q = 0; q < 16; q++)
+            row[q] += wa * phi[q];
+#pragma omp simd
+        for (int k = 0; k < 4; k++)
+            r[k] += wa * c4[k];
+    }
 }
 
 /* One weighted solve: coef from the samples (basis, colour, weight). The
- * normal equations are summed in plain arrays (a sample touches 16 control
- * points) and solved by Cholesky, which reads only the lower triangle: the
- * upper one is not summed. */
+ * normal equations are summed per span cell (add_sample) and solved by
+ * Cholesky. */
 static int solve(recon_backdrop *b, const sample_basis *sb, const float *col, const double *wt, int n)
 {
-    const int g = b->grid, m = g * g;
-    double *ata = calloc((size_t)m * (m + 3), sizeof *ata), *atb = ata + (size_t)m * m;
+    const int g = b->grid, m = g * g, spans = g - 3;
+    double *ata = calloc((size_t)m * (m + 3), sizeof *ata), *atb = ata ? ata + (size_t)m * m : NULL;
+    double *blk = calloc((size_t)spans * spans * (256 + 64), sizeof *blk);
     gsl_vector *x = gsl_vector_alloc(m), *bv = gsl_vector_alloc(m);
     int rc = -1;
-    if (!ata || !x || !bv)
+    if (!ata || !blk || !x || !bv)
         goto out;
     double wsum = 0;
     for (int s = 0; s < n; s++) {
         if (wt[s] <= 0)
             continue;
-        add_sample(ata, atb, m, g, &sb[s], col + 3 * s, wt[s]);
+        int cell = sb[s].first / g * spans + sb[s].first % g;
+        double *cb = blk + (size_t)cell * (256 + 64);
+        add_sample(cb, cb + 256, sb[s].phi, col + 3 * s, wt[s]);
         wsum += wt[s];
+    }
+    for (int cell = 0; cell < spans * spans; cell++) {
+        const double *cb = blk + (size_t)cell * (256 + 64);
+        int first = cell / spans * g + cell % spans; /* control point a = 4 j + i is at first + j g + i */
+        for (int a = 0; a < 16; a++) {
+            int ia = first + a / 4 * g + a % 4;
+            for (int q = 0; q < 16; q++)
+                ata[(size_t)ia * m + first + q / 4 * g + q % 4] += cb[16 * a + q];
+            for (int k = 0; k < 3; k++)
+                atb[3 * ia + k] += cb[256 + 4 * a + k];
+        }
     }
     gsl_matrix_view A = gsl_matrix_view_array(ata, m, m);
     /* The penalty is small next to the data of a control point's support
@@ -199,6 +218,7 @@ static int solve(recon_backdrop *b, const sample_basis *sb, const float *col, co
 out:
     gsl_vector_free(bv);
     gsl_vector_free(x);
+    free(blk);
     free(ata);
     return rc;
 }

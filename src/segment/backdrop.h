@@ -39,6 +39,14 @@ void recon_backdrop_basis_y(const recon_backdrop *b, double y, recon_backdrop_ba
 void recon_backdrop_at_basis(const recon_backdrop *b, const recon_backdrop_basis *bx, const recon_backdrop_basis *by,
                              double out[3]);
 
+/* The surface along one row collapsed by the row's basis by: one colour per
+ * control column (col[0..grid)); a point of that row is then
+ * recon_backdrop_at_collapsed, 12 products instead of 48. */
+void recon_backdrop_collapse_row(const recon_backdrop *b, const recon_backdrop_basis *by,
+                                 double col[RECON_BACKDROP_MAX_GRID][3]);
+void recon_backdrop_at_collapsed(const double col[RECON_BACKDROP_MAX_GRID][3], const recon_backdrop_basis *bx,
+                                 float out[3]);
+
 /* The modelled backdrop colour of every pixel of row y (out: w*3). */
 void recon_backdrop_row(const recon_backdrop *b, int y, float *out);
 

@@ -27,14 +27,21 @@ static void boxes(const int *lab, int w, int h, const long *area, int n, compone
 {
     for (int k = 1; k <= n; k++)
         comp[k] = (component){area[k], w, h, -1, -1};
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            component *c = &comp[lab[(size_t)y * w + x]];
-            c->x0 = x < c->x0 ? x : c->x0;
-            c->x1 = x > c->x1 ? x : c->x1;
+    for (int y = 0; y < h; y++) { /* run by run; background runs (label 0) skipped */
+        const int *row = lab + (size_t)y * w;
+        for (int x = 0; x < w;) {
+            int k = row[x], x0 = x;
+            while (x < w && row[x] == k)
+                x++;
+            if (!k)
+                continue;
+            component *c = &comp[k];
+            c->x0 = x0 < c->x0 ? x0 : c->x0;
+            c->x1 = x - 1 > c->x1 ? x - 1 : c->x1;
             c->y0 = y < c->y0 ? y : c->y0;
             c->y1 = y > c->y1 ? y : c->y1;
         }
+    }
 }
 
 /* The extent [*x0, *x1] of component k's pixels on rows y0..y1 (0 when

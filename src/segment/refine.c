@@ -1,14 +1,29 @@
 /* recon_refine_mask: the vessel's mask at full resolution. The low-resolution
  * cut settles what is object to within a cell; the same energy (colour
  * models, contrast-sensitive links, symmetry links) is minimised again on the
- * full-resolution pixels of a band around its outline, three cells wide, the
- * rest held at the low-resolution labels. See recon_internal.h. */
+ * full-resolution pixels of a band around its outline, the rest held at the
+ * low-resolution labels.
+ *
+ * The band: the two cells of every coarse edge, one on each side, and of
+ * the cells next to those (the wide band, a cell more on each side) the ones
+ * whose own colour does not favour their coarse label by SURE_NATS (a low
+ * contrast outline: the coarse cut may be a cell or more off there). Held
+ * cells are then the ones the colour models are sure of. Where the cut still
+ * reaches the band's edge (a band pixel labelled otherwise than a neighbour
+ * at its coarse label) the band takes in the cells there, within the wide
+ * band, and the energy is minimised again over those cells and the band's
+ * cells around them, the rest held at the labels they have (each such cut
+ * lowers the energy of the whole). On a catalogue photo the band holds about
+ * half the wide band's pixels. See recon_internal.h. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "segment/maxflow.h"
 #include "segment/segment.h"
+
+/* Cuts: the band's, then at most two more where it grew. */
+enum { REFINE_PASSES = 3 };
 
 static void pixel_rgb(const image_t *img, size_t p, float out[3])
 {
@@ -34,31 +49,27 @@ static recon_backdrop_basis *backdrop_bases(const recon_segmentation *seg, int W
     return bb;
 }
 
-/* The modelled backdrop colour at full-resolution pixel (X, Y). */
-static void backdrop_at(const recon_segmentation *seg, const recon_backdrop_basis *bb, int W, int X, int Y,
-                        float out[3])
+/* Marks in edge the cells whose label differs from a 4-neighbour's, and in
+ * wide the 4x4 cells around each such pair (the cells within one cell of
+ * either, and one more row and column on the far side). */
+static void boundary_bands(const uint8_t *m, int w, int h, uint8_t *edge, uint8_t *wide)
 {
-    double bg[3];
-    recon_backdrop_at_basis(&seg->model.backdrop, &bb[X], &bb[W + Y], bg);
-    for (int c = 0; c < 3; c++)
-        out[c] = (float)bg[c];
-}
-
-/* Marks the cells within one cell (8-neighbourhood) of a cell whose label
- * differs from a 4-neighbour's. */
-static void boundary_band(const uint8_t *m, int w, int h, uint8_t *band)
-{
-    memset(band, 0, (size_t)w * h);
+    memset(edge, 0, (size_t)w * h);
+    memset(wide, 0, (size_t)w * h);
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             size_t p = (size_t)y * w + x;
-            int edge = (x + 1 < w && m[p] != m[p + 1]) || (y + 1 < h && m[p] != m[p + w]);
-            if (!edge)
+            int right = x + 1 < w && m[p] != m[p + 1], down = y + 1 < h && m[p] != m[p + w];
+            if (right)
+                edge[p] = edge[p + 1] = 1;
+            if (down)
+                edge[p] = edge[p + w] = 1;
+            if (!right && !down)
                 continue;
             for (int j = y - 1; j <= y + 2; j++)
                 for (int i = x - 1; i <= x + 2; i++)
                     if (i >= 0 && j >= 0 && i < w && j < h)
-                        band[(size_t)j * w + i] = 1;
+                        wide[(size_t)j * w + i] = 1;
         }
 }
 
@@ -73,140 +84,301 @@ static long mirror_full(const recon_segmentation *seg, int W, int H, int X, int 
     return x < 0 || y < 0 || x >= W || y >= H ? -1 : y * W + x;
 }
 
+/* What the passes share. */
+typedef struct {
+    const image_t *img;
+    const recon_segmentation *seg;
+    int W, H;
+    int *node;   /* W*H: the pixel's node, or -1 for a fixed pixel (all -1 between cuts) */
+    uint8_t *mask;
+    const uint8_t *band; /* w*h: the cells that have been in a cut (the rest hold coarse labels) */
+    double beta;         /* of the contrast links: from the first cut's pixels */
+    recon_backdrop_basis *bb;
+    recon_cost_memo *memo;
+} refine_work;
+
+/* The cell of full-resolution row Y or column X (pixels past the last full
+ * cell belong to it). */
+static inline int cell_of(int X, int f, int n) { return X / f < n ? X / f : n - 1; }
+
+static const int OFF[8][2] = {{1, 0}, {0, 1}, {1, 1}, {-1, 1}, {-1, 0}, {0, -1}, {-1, -1}, {1, -1}};
+
+/* One cut on the pixels of the cells marked in active, the others held at
+ * their labels in mask. Then marks in grow the cells not in the band whose
+ * pixels neighbour a cut pixel labelled otherwise. Returns the number of
+ * cells marked, or -1 when out of memory. */
+static long cut_cells(refine_work *r, const uint8_t *active, uint8_t *grow)
+{
+    const int W = r->W, H = r->H, f = r->seg->factor, w = r->seg->w, h = r->seg->h;
+    const recon_segmentation *seg = r->seg;
+    int *node = r->node;
+    uint8_t *mask = r->mask;
+    /* the cut's pixels, row by row */
+    int nn = 0;
+    for (int Y = 0; Y < H; Y++) {
+        const uint8_t *act = active + (size_t)cell_of(Y, f, h) * w;
+        for (int x = 0; x < w; x++) /* the cell's columns; the last cell's run to the border */
+            nn += act[x] ? (x + 1 < w ? f : W - x * f) : 0;
+    }
+    if (nn == 0)
+        return 0;
+    long grown = -1;
+    int *pix = malloc((size_t)nn * sizeof *pix);
+    float *col = malloc((size_t)nn * 6 * sizeof *col);
+    maxflow_graph *g = maxflow_create(nn, 5 * nn);
+    if (!pix || !col || !g)
+        goto out;
+    /* each node's pixel, colour and modelled backdrop colour (the surface
+     * collapsed along the row once per row; a node's mirror is mostly a node
+     * too) */
+    float *bgn = col + 3 * (size_t)nn;
+    for (int Y = 0, a = 0; Y < H; Y++) {
+        const uint8_t *act = active + (size_t)cell_of(Y, f, h) * w;
+        double rowcol[RECON_BACKDROP_MAX_GRID][3];
+        int collapsed = 0;
+        for (int x = 0; x < w; x++) {
+            if (!act[x])
+                continue;
+            if (!collapsed) {
+                recon_backdrop_collapse_row(&seg->model.backdrop, &r->bb[W + Y], rowcol);
+                collapsed = 1;
+            }
+            for (int i = 0, run = x + 1 < w ? f : W - x * f; i < run; i++, a++) {
+                size_t P = (size_t)Y * W + (size_t)x * f + i;
+                node[P] = a;
+                pix[a] = (int)P;
+                pixel_rgb(r->img, P, col + 3 * (size_t)a);
+                recon_backdrop_at_collapsed(rowcol, &r->bb[x * f + i], bgn + 3 * (size_t)a);
+            }
+        }
+    }
+    if (r->beta < 0) {
+        double s = 0;
+        long k = 0;
+        for (int a = 0; a < nn; a++) {
+            int X = pix[a] % W;
+            int b = X + 1 < W ? node[pix[a] + 1] : -1;
+            if (b < 0)
+                continue;
+            for (int c = 0; c < 3; c++) {
+                double d = col[3 * (size_t)a + c] - col[3 * (size_t)b + c];
+                s += d * d;
+            }
+            k++;
+        }
+        r->beta = s > 0 ? k / (2 * s) : 0;
+    }
+    const double beta = r->beta;
+    const double lambda = log((1 - SYMMETRY_EPS) / SYMMETRY_EPS);
+    for (int a = 0; a < nn; a++) {
+        const int X = pix[a] % W, Y = pix[a] / W;
+        const float *ca = col + 3 * (size_t)a;
+        double co, cb;
+        float mc_fixed[3], mbgf_fixed[3];
+        const float *mc = NULL, *mbgf = NULL;
+        long M = seg->have_axis ? mirror_full(seg, W, H, X, Y) : -1;
+        if (M >= 0 && node[M] >= 0) {
+            mc = col + 3 * (size_t)node[M];
+            mbgf = bgn + 3 * (size_t)node[M];
+        } else if (M >= 0) {
+            double bg[3];
+            pixel_rgb(r->img, (size_t)M, mc_fixed);
+            recon_backdrop_at_basis(&seg->model.backdrop, &r->bb[M % W], &r->bb[W + M / W], bg);
+            for (int c = 0; c < 3; c++)
+                mbgf_fixed[c] = (float)bg[c];
+            mc = mc_fixed;
+            mbgf = mbgf_fixed;
+        }
+        recon_colour_costs(&seg->model, r->memo, ca, bgn + 3 * (size_t)a, mc, mbgf, &co, &cb);
+        double src = cb, snk = co; /* the cost of ending as backdrop / as object */
+        /* Links: to band neighbours once (forward half), to fixed neighbours
+         * as terminal costs (all eight directions). */
+        for (int k = 0; k < 8; k++) {
+            int QX = X + OFF[k][0], QY = Y + OFF[k][1];
+            if (QX < 0 || QY < 0 || QX >= W || QY >= H)
+                continue;
+            size_t Q = (size_t)QY * W + QX;
+            int b = node[Q];
+            if (b >= 0 && k >= 4)
+                continue;
+            float cq[3];
+            if (b >= 0)
+                memcpy(cq, col + 3 * (size_t)b, sizeof cq);
+            else
+                pixel_rgb(r->img, Q, cq);
+            double wt = recon_contrast_link(ca, cq, beta, OFF[k][0] && OFF[k][1]);
+            if (b >= 0)
+                maxflow_add_edge(g, a, b, wt, wt);
+            else if (mask[Q])
+                src += wt;
+            else
+                snk += wt;
+        }
+        if (seg->have_axis) {
+            if (M >= 0 && node[M] < 0) {
+                if (mask[M])
+                    src += lambda;
+                else
+                    snk += lambda;
+            } else if (M >= 0 && node[M] > a) { /* each band pair once */
+                maxflow_add_edge(g, a, node[M], lambda, lambda);
+            }
+        }
+        double lo = src < snk ? src : snk;
+        maxflow_add_terminals(g, a, src - lo, snk - lo);
+    }
+    maxflow_solve(g);
+    for (int a = 0; a < nn; a++)
+        mask[pix[a]] = (uint8_t)maxflow_source_side(g, a);
+    /* where the cut met the band's edge */
+    grown = 0;
+    for (int a = 0; a < nn; a++) {
+        const int X = pix[a] % W, Y = pix[a] / W;
+        for (int k = 0; k < 8; k++) {
+            int QX = X + OFF[k][0], QY = Y + OFF[k][1];
+            if (QX < 0 || QY < 0 || QX >= W || QY >= H)
+                continue;
+            size_t Q = (size_t)QY * W + QX, q = (size_t)cell_of(QY, f, h) * w + cell_of(QX, f, w);
+            if (r->band[q] || mask[Q] == mask[pix[a]])
+                continue;
+            grown += !grow[q];
+            grow[q] = 1;
+        }
+    }
+    for (int a = 0; a < nn; a++)
+        node[pix[a]] = -1;
+out:
+    maxflow_destroy(g);
+    free(col);
+    free(pix);
+    return grown;
+}
+
+/* The margin, in nats, by which a low-resolution cell's colour must favour
+ * its label for the cell to stay out of the band. */
+#define SURE_NATS 3.0
+
+/* Low-resolution cell (x, y)'s colour favours its coarse label by
+ * SURE_NATS or more (its data term; the mirror cell's colour counts as in
+ * the low-resolution rounds). */
+static int cell_sure(const recon_segmentation *seg, recon_cost_memo *memo, const uint8_t *coarse, int x, int y)
+{
+    const recon_backdrop *b = &seg->model.backdrop;
+    int p = y * seg->w + x, q = seg->have_axis ? recon_segment_mirror(seg, p) : -1;
+    double bg[3], mbg[3];
+    float bc[3], mbc[3];
+    recon_backdrop_at(b, x + 0.5, y + 0.5, bg);
+    if (q >= 0)
+        recon_backdrop_at(b, q % seg->w + 0.5, q / seg->w + 0.5, mbg);
+    for (int c = 0; c < 3; c++) {
+        bc[c] = (float)bg[c];
+        mbc[c] = q >= 0 ? (float)mbg[c] : 0;
+    }
+    double o, k;
+    recon_colour_costs(&seg->model, memo, seg->rgb + 3 * (size_t)p, bc, q >= 0 ? seg->rgb + 3 * (size_t)q : NULL,
+                       q >= 0 ? mbc : NULL, &o, &k);
+    return coarse[p] ? k - o >= SURE_NATS : o - k >= SURE_NATS;
+}
+
+/* Adds to band the cells of the wide band that hold the mirror image of a
+ * band cell's pixels (the bounding box of its mirrored corners): a band
+ * pixel's symmetry link then goes to a pixel that is free too, not to one
+ * held at a coarse label. tmp: w*h bytes. */
+static void add_mirror_cells(const recon_segmentation *seg, const uint8_t *wide, uint8_t *band, uint8_t *tmp)
+{
+    const int w = seg->w, h = seg->h;
+    const double x0 = seg->axis_x0, dx = seg->axis_slope, inv = 1 / (dx * dx + 1);
+    memcpy(tmp, band, (size_t)w * h);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            if (!tmp[(size_t)y * w + x])
+                continue;
+            double lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY, hi_y = -INFINITY;
+            for (int k = 0; k < 4; k++) { /* the cell's corners, mirrored (low-resolution units) */
+                double px = x + (k & 1), py = y + (k >> 1);
+                double t = ((px - x0) * dx + py) * inv;
+                double qx = x0 + 2 * t * dx - (px - x0), qy = 2 * t - py;
+                lo_x = fmin(lo_x, qx);
+                hi_x = fmax(hi_x, qx);
+                lo_y = fmin(lo_y, qy);
+                hi_y = fmax(hi_y, qy);
+            }
+            for (int j = (int)floor(lo_y); j < hi_y; j++)
+                for (int i = (int)floor(lo_x); i < hi_x; i++)
+                    if (i >= 0 && j >= 0 && i < w && j < h && wide[(size_t)j * w + i])
+                        band[(size_t)j * w + i] = 1;
+        }
+}
+
 int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const uint8_t *coarse, uint8_t *mask)
 {
     const int W = img->width, H = img->height, f = seg->factor, w = seg->w, h = seg->h;
-    uint8_t *band = malloc((size_t)w * h);
-    int *node = malloc((size_t)W * H * sizeof *node);
-    int rc = -1, nn = 0;
-    maxflow_graph *g = NULL;
-    float *col = NULL;
-    recon_backdrop_basis *bb = NULL;
-    recon_cost_memo *memo = NULL;
-    if (!band || !node)
+    const size_t n = (size_t)w * h;
+    uint8_t *band = malloc(4 * n);
+    uint8_t *wide = band ? band + n : NULL, *active = band ? band + 2 * n : NULL, *grow = band ? band + 3 * n : NULL;
+    refine_work r = {img, seg, W, H, malloc((size_t)W * H * sizeof(int)), mask, band, -1, backdrop_bases(seg, W, H),
+                     calloc(1, sizeof(recon_cost_memo))};
+    int rc = -1;
+    if (!band || !r.node || !r.bb || !r.memo)
         goto out;
-    boundary_band(coarse, w, h, band);
-    /* Fixed pixels take their cell's label (pixels past the last full cell
-     * take the nearest cell's); band pixels become nodes. */
+    memset(r.node, 0xff, (size_t)W * H * sizeof(int)); /* all -1 */
+    /* every pixel its cell's label to start with: a cell row's first
+     * full-resolution row, copied to the others */
     for (int Y = 0; Y < H; Y++) {
-        int y = Y / f < h ? Y / f : h - 1;
-        for (int x = 0; x < w; x++) { /* the cell's columns; the last cell's run to the border */
-            size_t p = (size_t)y * w + x, P0 = (size_t)Y * W + (size_t)x * f;
-            int run = x + 1 < w ? f : W - x * f;
-            memset(mask + P0, coarse[p], (size_t)run);
-            for (int i = 0; i < run; i++)
-                node[P0 + i] = band[p] ? nn++ : -1;
+        uint8_t *row = mask + (size_t)Y * W;
+        if (Y > 0 && cell_of(Y, f, h) == cell_of(Y - 1, f, h)) {
+            memcpy(row, row - W, (size_t)W);
+            continue;
         }
+        const uint8_t *c = coarse + (size_t)cell_of(Y, f, h) * w;
+        for (int X = 0; X < W; X++)
+            row[X] = c[cell_of(X, f, w)];
     }
-    if (nn == 0) {
-        rc = 0;
-        goto out;
-    }
-    /* each node's colour and modelled backdrop colour (a node's mirror is
-     * mostly a node too) */
-    col = malloc((size_t)nn * 6 * sizeof *col);
-    g = maxflow_create(nn, 5 * nn);
-    bb = backdrop_bases(seg, W, H);
-    memo = calloc(1, sizeof *memo);
-    if (!col || !g || !bb || !memo)
-        goto out;
-    float *bgn = col + 3 * (size_t)nn;
-    for (int Y = 0; Y < H; Y++)
-        for (int X = 0; X < W; X++) {
-            size_t P = (size_t)Y * W + X;
-            if (node[P] >= 0) {
-                pixel_rgb(img, P, col + 3 * (size_t)node[P]);
-                backdrop_at(seg, bb, W, X, Y, bgn + 3 * (size_t)node[P]);
-            }
+    boundary_bands(coarse, w, h, band, wide);
+    /* the wide band's other cells join the band unless their colour alone
+     * says surely what their coarse label says */
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            size_t p = (size_t)y * w + x;
+            if (wide[p] && !band[p] && !cell_sure(seg, r.memo, coarse, x, y))
+                band[p] = 1;
         }
-    double beta = 0;
-    {
-        double s = 0;
-        long k = 0;
-        for (int Y = 0; Y < H; Y++)
-            for (int X = 0; X + 1 < W; X++) {
-                int a = node[(size_t)Y * W + X], b = node[(size_t)Y * W + X + 1];
-                if (a < 0 || b < 0)
-                    continue;
-                for (int c = 0; c < 3; c++) {
-                    double d = col[3 * (size_t)a + c] - col[3 * (size_t)b + c];
-                    s += d * d;
-                }
-                k++;
-            }
-        beta = s > 0 ? k / (2 * s) : 0;
-    }
-    const double lambda = log((1 - SYMMETRY_EPS) / SYMMETRY_EPS);
-    static const int off[8][2] = {{1, 0}, {0, 1}, {1, 1}, {-1, 1}, {-1, 0}, {0, -1}, {-1, -1}, {1, -1}};
-    for (int Y = 0; Y < H; Y++)
-        for (int X = 0; X < W; X++) {
-            size_t P = (size_t)Y * W + X;
-            int a = node[P];
-            if (a < 0)
-                continue;
-            const float *ca = col + 3 * (size_t)a;
-            double co, cb;
-            float mc_fixed[3], mbgf_fixed[3];
-            const float *mc = NULL, *mbgf = NULL;
-            long M = seg->have_axis ? mirror_full(seg, W, H, X, Y) : -1;
-            if (M >= 0 && node[M] >= 0) {
-                mc = col + 3 * (size_t)node[M];
-                mbgf = bgn + 3 * (size_t)node[M];
-            } else if (M >= 0) {
-                pixel_rgb(img, (size_t)M, mc_fixed);
-                backdrop_at(seg, bb, W, (int)(M % W), (int)(M / W), mbgf_fixed);
-                mc = mc_fixed;
-                mbgf = mbgf_fixed;
-            }
-            recon_colour_costs(&seg->model, memo, ca, bgn + 3 * (size_t)a, mc, mbgf, &co, &cb);
-            double src = cb, snk = co; /* the cost of ending as backdrop / as object */
-            /* Links: to band neighbours once (forward half), to fixed
-             * neighbours as terminal costs (all eight directions). */
-            for (int k = 0; k < 8; k++) {
-                int QX = X + off[k][0], QY = Y + off[k][1];
-                if (QX < 0 || QY < 0 || QX >= W || QY >= H)
-                    continue;
-                size_t Q = (size_t)QY * W + QX;
-                int b = node[Q];
-                if (b >= 0 && k >= 4)
-                    continue;
-                float cq[3];
-                if (b >= 0)
-                    memcpy(cq, col + 3 * (size_t)b, sizeof cq);
-                else
-                    pixel_rgb(img, Q, cq);
-                double wt = recon_contrast_link(ca, cq, beta, off[k][0] && off[k][1]);
-                if (b >= 0)
-                    maxflow_add_edge(g, a, b, wt, wt);
-                else if (mask[Q])
-                    src += wt;
-                else
-                    snk += wt;
-            }
-            if (seg->have_axis) {
-                if (M >= 0 && node[M] < 0) {
-                    if (mask[M])
-                        src += lambda;
-                    else
-                        snk += lambda;
-                } else if (M >= 0 && node[M] > a) { /* each band pair once */
-                    maxflow_add_edge(g, a, node[M], lambda, lambda);
-                }
-            }
-            double lo = src < snk ? src : snk;
-            maxflow_add_terminals(g, a, src - lo, snk - lo);
+    if (seg->have_axis)
+        add_mirror_cells(seg, wide, band, active);
+    memcpy(active, band, n);
+    for (int pass = 0; pass < REFINE_PASSES; pass++) {
+        memset(grow, 0, n);
+        long grown = cut_cells(&r, active, grow);
+        if (grown < 0)
+            goto out;
+        if (grown == 0)
+            break;
+        /* the band takes in the cells the cut reached, within the wide band;
+         * the next cut is on them and the band's cells around them */
+        long added = 0;
+        for (size_t p = 0; p < n; p++) {
+            grow[p] = grow[p] && wide[p];
+            band[p] |= grow[p];
+            added += grow[p];
         }
-    maxflow_solve(g);
-    for (size_t P = 0; P < (size_t)W * H; P++)
-        if (node[P] >= 0)
-            mask[P] = (uint8_t)maxflow_source_side(g, node[P]);
+        if (added == 0)
+            break;
+        memset(active, 0, n);
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++) {
+                if (!grow[(size_t)y * w + x])
+                    continue;
+                for (int j = y - 1; j <= y + 1; j++)
+                    for (int i = x - 1; i <= x + 1; i++)
+                        if (i >= 0 && j >= 0 && i < w && j < h)
+                            active[(size_t)j * w + i] = band[(size_t)j * w + i];
+            }
+    }
     rc = 0;
 out:
-    maxflow_destroy(g);
-    free(memo);
-    free(bb);
-    free(col);
-    free(node);
+    free(r.memo);
+    free(r.bb);
+    free(r.node);
     free(band);
     return rc;
 }

@@ -10,6 +10,7 @@
 
 #include "segment/maxflow.h"
 #include "segment/robust.h"
+#include "segment/vector_clones.h"
 
 /* The working resolution: the longer side is brought down to about this many
  * pixels (an integer box factor), enough for a vessel's outline to within a
@@ -55,35 +56,48 @@ enum { ROUNDS = 3 };
  * distance above the chi-square(3) quantile at 1e-4. */
 #define INIT_CHI2 21.1
 
-/* A colour value clamped to [0, 1]; NaN becomes 0. */
-static inline float finite01(float v) { return v > 0 ? (v < 1 ? v : 1) : 0; }
+/* out[i] = row[i] clamped to [0, 1] (NaN or HDR values from broken files
+ * count as black / white), n values. */
+RECON_VECTOR_CLONES static void clamp01(float *restrict out, const float *restrict row, size_t n)
+{
+#pragma omp simd
+    for (size_t i = 0; i < n; i++) {
+        float v = row[i];
+        out[i] = v > 0 ? (v < 1 ? v : 1) : 0;
+    }
+}
 
-/* Box-filtered colour at factor f (three channels). */
+/* Box-filtered colour at factor f (three channels); each row of the photo
+ * clamped first, in one vector pass. */
 static float *downsample(const image_t *img, int f, int w, int h)
 {
-    float *out = calloc((size_t)w * h * 3, sizeof *out);
-    if (!out)
-        return NULL;
     const int c = img->channels, colour = c >= 3, gc = colour ? 1 : 0, bc = colour ? 2 : 0;
+    const size_t n = (size_t)w * f * c;
+    float *out = calloc((size_t)w * h * 3, sizeof *out), *row = malloc(n * sizeof *row);
+    if (!out || !row) {
+        free(out);
+        free(row);
+        return NULL;
+    }
     const float inv = 1.0f / (f * f);
     for (int y = 0; y < h; y++)
         for (int j = 0; j < f; j++) {
-            const float *row = img->data + ((size_t)(y * f + j) * img->width) * c;
+            clamp01(row, img->data + ((size_t)(y * f + j) * img->width) * c, n);
             float *o = out + (size_t)y * w * 3;
             for (int x = 0; x < w; x++) {
                 const float *p = row + (size_t)x * f * c;
                 float s0 = o[3 * x], s1 = o[3 * x + 1], s2 = o[3 * x + 2];
                 for (int i = 0; i < f; i++, p += c) {
-                    /* NaN or HDR values from broken files count as black / white */
-                    s0 += inv * finite01(p[0]);
-                    s1 += inv * finite01(p[gc]);
-                    s2 += inv * finite01(p[bc]);
+                    s0 += inv * p[0];
+                    s1 += inv * p[gc];
+                    s2 += inv * p[bc];
                 }
                 o[3 * x] = s0;
                 o[3 * x + 1] = s1;
                 o[3 * x + 2] = s2;
             }
         }
+    free(row);
     return out;
 }
 

@@ -195,7 +195,9 @@ int recon_cut_support(recon_segmentation *seg, uint8_t *m, recon_excluded *parts
 
 /* The vessel's mask at full resolution (img's size) from the low-resolution
  * one: coarse labels held fixed except on a band of full-resolution pixels
- * three cells wide around their outline, where the segmentation's energy is
+ * around their outline (the two cells of each coarse edge, the cells next to
+ * them whose colour is not sure of their label, their mirror cells; grown
+ * where the cut reaches the band's edge), where the segmentation's energy is
  * minimised again. Returns 0, or -1 when out of memory. */
 int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const uint8_t *coarse,
                       uint8_t *mask);
