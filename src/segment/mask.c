@@ -60,6 +60,11 @@ RECON_VECTOR_CLONES recon_mask_mode recon_mask_threshold(const image_t *img, int
             return RECON_MASK_ALPHA;
         }
     }
+    /* A colour photo's outline is measured on its colours (extract.c): the
+     * segmentation needs no gray, and skipping it spares a pass over the
+     * photo and the pages of a W*H float buffer. */
+    if (threshold < 0 && c >= 3)
+        return RECON_MASK_GRAPH_CUT;
     for (int j = 0; j < h; j++)
         gray_row(px + (size_t)j * row, c, w, gray + (size_t)j * w);
     if (threshold < 0)
@@ -234,6 +239,22 @@ static size_t run_capacity(const uint8_t *mask, int w, int h)
         }
     }
     return ones + (size_t)h;
+}
+
+int recon_mask_components(const uint8_t *mask, int w, int h)
+{
+    size_t cap = run_capacity(mask, w, h);
+    run_t *runs = malloc(cap * sizeof *runs);
+    int *parent = malloc(cap * sizeof *parent), n = -1;
+    if (runs && parent) {
+        int nr = label_runs(mask, w, h, 1, 1, runs, parent);
+        n = 0;
+        for (int k = 0; k < nr; k++)
+            n += runs[k].label == k;
+    }
+    free(runs);
+    free(parent);
+    return n;
 }
 
 int recon_mask_label(const uint8_t *mask, int w, int h, int *lab, long **area_out)

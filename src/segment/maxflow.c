@@ -9,10 +9,12 @@
  *
  * Layout: the n-links are kept as added (edges[]) and laid out at solve time
  * as arcs sorted by their tail (first[i] .. first[i+1]), each arc with the
- * index of its reverse arc; a node's links are contiguous in memory. The
- * layout costs about as much as a search on an easy graph, so a round that
- * changes only the t-links keeps it and restores the arcs' capacities from
- * cap0[] instead. A t-link pair is held as one signed residual (tr_cap > 0:
+ * index of its reverse arc; a node's links are contiguous in memory. A
+ * round after maxflow_reset_terminals lays the arcs out again from edges[]
+ * (the same layout): a copy of every arc's first capacity would save that
+ * counting sort but add 16 bytes an edge that the segmentation, which
+ * solves each graph once or goes on from its flow, pays for in fresh pages
+ * at every call. A t-link pair is held as one signed residual (tr_cap > 0:
  * source -> node, < 0: node -> sink) after pushing min(cap_source, cap_sink)
  * straight through.
  *
@@ -76,8 +78,6 @@ struct maxflow_graph {
     mf_edge *edges;
     int *first; /* n + 1 */
     mf_arc *arcs;
-    double *cap0;  /* each arc's capacity as added */
-    int laid_out;  /* first, arcs and cap0 hold the layout of edges[] */
     mf_queue active, orphans;
     double *tcap;  /* per node: the source and the sink capacity as given (for the flow's value) */
     int *changed;  /* nodes whose t-links maxflow_set_terminals changed since the last solve */
@@ -118,13 +118,12 @@ maxflow_graph *maxflow_create(int n_nodes, int max_edges)
     g->edges = malloc(((size_t)max_edges + 1) * sizeof *g->edges);
     g->first = malloc(((size_t)n_nodes + 1) * sizeof *g->first);
     g->arcs = malloc((2 * (size_t)max_edges + 1) * sizeof *g->arcs);
-    g->cap0 = malloc((2 * (size_t)max_edges + 1) * sizeof *g->cap0);
     g->active.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
     g->orphans.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
     g->tcap = malloc(((size_t)n_nodes + 1) * 2 * sizeof *g->tcap);
     g->changed = malloc(((size_t)n_nodes + 1) * sizeof *g->changed);
     g->is_changed = calloc((size_t)n_nodes + 1, 1);
-    if (!g->nodes || !g->edges || !g->first || !g->arcs || !g->cap0 || !g->active.slot || !g->orphans.slot || !g->tcap ||
+    if (!g->nodes || !g->edges || !g->first || !g->arcs || !g->active.slot || !g->orphans.slot || !g->tcap ||
         !g->changed || !g->is_changed) {
         maxflow_destroy(g);
         return NULL;
@@ -142,7 +141,6 @@ void maxflow_destroy(maxflow_graph *g)
     free(g->edges);
     free(g->first);
     free(g->arcs);
-    free(g->cap0);
     free(g->active.slot);
     free(g->orphans.slot);
     free(g->tcap);
@@ -167,7 +165,6 @@ void maxflow_reset(maxflow_graph *g)
 {
     maxflow_reset_terminals(g);
     g->n_edges = 0;
-    g->laid_out = 0;
 }
 
 void maxflow_add_terminals(maxflow_graph *g, int node, double cap_source, double cap_sink)
@@ -195,7 +192,6 @@ void maxflow_add_edge(maxflow_graph *g, int i, int j, double cap_ij, double cap_
         return;
     assert(g->n_edges < g->max_edges);
     g->edges[g->n_edges++] = (mf_edge){i, j, cap_ij, cap_ji};
-    g->laid_out = 0;
 }
 
 void maxflow_set_terminals(maxflow_graph *g, int node, double cap_source, double cap_sink)
@@ -238,17 +234,7 @@ static void build_arcs(maxflow_graph *g)
         int a = --first[ed->i], b = --first[ed->j];
         g->arcs[a] = (mf_arc){ed->j, b, ed->cap_ij};
         g->arcs[b] = (mf_arc){ed->i, a, ed->cap_ji};
-        g->cap0[a] = ed->cap_ij;
-        g->cap0[b] = ed->cap_ji;
     }
-    g->laid_out = 1;
-}
-
-/* The layout as built, with the flow of the last solve removed. */
-static void restore_arcs(maxflow_graph *g)
-{
-    for (int a = 0; a < 2 * g->n_edges; a++)
-        g->arcs[a].rcap = g->cap0[a];
 }
 
 /* Every node with a t-link residual is a child of its terminal and active;
@@ -513,10 +499,7 @@ double maxflow_solve(maxflow_graph *g)
     if (g->trees) {
         reuse_trees(g);
     } else {
-        if (g->laid_out)
-            restore_arcs(g);
-        else
-            build_arcs(g);
+        build_arcs(g); /* anew after a reset: the last solve's flow is in the arcs */
         init_trees(g);
     }
     /* A node that found a path stays current: it may touch the other tree

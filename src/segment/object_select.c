@@ -112,6 +112,10 @@ static void join_all(int *lab, int w, int h, int gap, component *comp, int n, in
 
 int recon_mask_join_bands(uint8_t *mask, int w, int h, int gap)
 {
+    /* one object (the common case) has nothing to join: no per-pixel labels */
+    int nc = recon_mask_components(mask, w, h);
+    if (nc <= 1)
+        return nc < 0 ? -1 : 0;
     int *lab = malloc((size_t)w * h * sizeof *lab);
     long *area = NULL;
     component *comp = NULL;

@@ -84,12 +84,17 @@ static long mirror_full(const recon_segmentation *seg, int W, int H, int X, int 
     return x < 0 || y < 0 || x >= W || y >= H ? -1 : y * W + x;
 }
 
-/* What the passes share. */
+/* What the passes share. A cut's nodes are its pixels row by row, each
+ * row's active cells left to right: the node of pixel (X, Y) is
+ * row_base[Y] + first[its cell] + X - (its cell's first column), without a
+ * W*H table (whose pages cost more than the lookups). */
 typedef struct {
     const image_t *img;
     const recon_segmentation *seg;
     int W, H;
-    int *node;   /* W*H: the pixel's node, or -1 for a fixed pixel (all -1 between cuts) */
+    int *col_cell, *row_cell; /* W, H: the cell column of each pixel column, the cell row of each row */
+    int *first;    /* w*h: offset of an active cell's first pixel in its rows' nodes, or -1 */
+    int *row_base; /* H: the node of each row's first active pixel */
     uint8_t *mask;
     const uint8_t *band; /* w*h: the cells that have been in a cut (the rest hold coarse labels) */
     double beta;         /* of the contrast links: from the first cut's pixels */
@@ -101,6 +106,13 @@ typedef struct {
  * cell belong to it). */
 static inline int cell_of(int X, int f, int n) { return X / f < n ? X / f : n - 1; }
 
+/* The node of pixel (X, Y) in the current cut, or -1 when it is held. */
+static inline int node_at(const refine_work *r, int X, int Y)
+{
+    const int cx = r->col_cell[X], off = r->first[(size_t)r->row_cell[Y] * r->seg->w + cx];
+    return off < 0 ? -1 : r->row_base[Y] + off + X - cx * r->seg->factor;
+}
+
 static const int OFF[8][2] = {{1, 0}, {0, 1}, {1, 1}, {-1, 1}, {-1, 0}, {0, -1}, {-1, -1}, {1, -1}};
 
 /* One cut on the pixels of the cells marked in active, the others held at
@@ -111,14 +123,18 @@ static long cut_cells(refine_work *r, const uint8_t *active, uint8_t *grow)
 {
     const int W = r->W, H = r->H, f = r->seg->factor, w = r->seg->w, h = r->seg->h;
     const recon_segmentation *seg = r->seg;
-    int *node = r->node;
     uint8_t *mask = r->mask;
-    /* the cut's pixels, row by row */
+    /* the cut's pixels, row by row: each cell row's layout of nodes */
     int nn = 0;
-    for (int Y = 0; Y < H; Y++) {
-        const uint8_t *act = active + (size_t)cell_of(Y, f, h) * w;
-        for (int x = 0; x < w; x++) /* the cell's columns; the last cell's run to the border */
-            nn += act[x] ? (x + 1 < w ? f : W - x * f) : 0;
+    for (int y = 0; y < h; y++) {
+        const uint8_t *act = active + (size_t)y * w;
+        int *first = r->first + (size_t)y * w, in_row = 0;
+        for (int x = 0; x < w; x++) { /* the cell's columns; the last cell's run to the border */
+            first[x] = act[x] ? in_row : -1;
+            in_row += act[x] ? (x + 1 < w ? f : W - x * f) : 0;
+        }
+        for (int Y = y * f, Y1 = y + 1 < h ? Y + f : H; Y < Y1; Y++, nn += in_row)
+            r->row_base[Y] = nn;
     }
     if (nn == 0)
         return 0;
@@ -145,7 +161,6 @@ static long cut_cells(refine_work *r, const uint8_t *active, uint8_t *grow)
             }
             for (int i = 0, run = x + 1 < w ? f : W - x * f; i < run; i++, a++) {
                 size_t P = (size_t)Y * W + (size_t)x * f + i;
-                node[P] = a;
                 pix[a] = (int)P;
                 pixel_rgb(r->img, P, col + 3 * (size_t)a);
                 recon_backdrop_at_collapsed(rowcol, &r->bb[x * f + i], bgn + 3 * (size_t)a);
@@ -157,7 +172,7 @@ static long cut_cells(refine_work *r, const uint8_t *active, uint8_t *grow)
         long k = 0;
         for (int a = 0; a < nn; a++) {
             int X = pix[a] % W;
-            int b = X + 1 < W ? node[pix[a] + 1] : -1;
+            int b = X + 1 < W ? node_at(r, X + 1, pix[a] / W) : -1;
             if (b < 0)
                 continue;
             for (int c = 0; c < 3; c++) {
@@ -177,9 +192,10 @@ static long cut_cells(refine_work *r, const uint8_t *active, uint8_t *grow)
         float mc_fixed[3], mbgf_fixed[3];
         const float *mc = NULL, *mbgf = NULL;
         long M = seg->have_axis ? mirror_full(seg, W, H, X, Y) : -1;
-        if (M >= 0 && node[M] >= 0) {
-            mc = col + 3 * (size_t)node[M];
-            mbgf = bgn + 3 * (size_t)node[M];
+        const int m_node = M >= 0 ? node_at(r, (int)(M % W), (int)(M / W)) : -1;
+        if (m_node >= 0) {
+            mc = col + 3 * (size_t)m_node;
+            mbgf = bgn + 3 * (size_t)m_node;
         } else if (M >= 0) {
             double bg[3];
             pixel_rgb(r->img, (size_t)M, mc_fixed);
@@ -198,7 +214,7 @@ static long cut_cells(refine_work *r, const uint8_t *active, uint8_t *grow)
             if (QX < 0 || QY < 0 || QX >= W || QY >= H)
                 continue;
             size_t Q = (size_t)QY * W + QX;
-            int b = node[Q];
+            int b = node_at(r, QX, QY);
             if (b >= 0 && k >= 4)
                 continue;
             float cq[3];
@@ -215,13 +231,13 @@ static long cut_cells(refine_work *r, const uint8_t *active, uint8_t *grow)
                 snk += wt;
         }
         if (seg->have_axis) {
-            if (M >= 0 && node[M] < 0) {
+            if (M >= 0 && m_node < 0) {
                 if (mask[M])
                     src += lambda;
                 else
                     snk += lambda;
-            } else if (M >= 0 && node[M] > a) { /* each band pair once */
-                maxflow_add_edge(g, a, node[M], lambda, lambda);
+            } else if (M >= 0 && m_node > a) { /* each band pair once */
+                maxflow_add_edge(g, a, m_node, lambda, lambda);
             }
         }
         double lo = src < snk ? src : snk;
@@ -238,15 +254,13 @@ static long cut_cells(refine_work *r, const uint8_t *active, uint8_t *grow)
             int QX = X + OFF[k][0], QY = Y + OFF[k][1];
             if (QX < 0 || QY < 0 || QX >= W || QY >= H)
                 continue;
-            size_t Q = (size_t)QY * W + QX, q = (size_t)cell_of(QY, f, h) * w + cell_of(QX, f, w);
+            size_t Q = (size_t)QY * W + QX, q = (size_t)r->row_cell[QY] * w + r->col_cell[QX];
             if (r->band[q] || mask[Q] == mask[pix[a]])
                 continue;
             grown += !grow[q];
             grow[q] = 1;
         }
     }
-    for (int a = 0; a < nn; a++)
-        node[pix[a]] = -1;
 out:
     maxflow_destroy(g);
     free(col);
@@ -316,12 +330,17 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
     const size_t n = (size_t)w * h;
     uint8_t *band = malloc(4 * n);
     uint8_t *wide = band ? band + n : NULL, *active = band ? band + 2 * n : NULL, *grow = band ? band + 3 * n : NULL;
-    refine_work r = {img, seg, W, H, malloc((size_t)W * H * sizeof(int)), mask, band, -1, backdrop_bases(seg, W, H),
+    int *cells = malloc(((size_t)W + 2 * H + n) * sizeof *cells);
+    refine_work r = {img,  seg,  W, H, cells, cells ? cells + W : NULL, cells ? cells + W + H : NULL,
+                     cells ? cells + W + H + n : NULL, mask, band, -1, backdrop_bases(seg, W, H),
                      calloc(1, sizeof(recon_cost_memo))};
     int rc = -1;
-    if (!band || !r.node || !r.bb || !r.memo)
+    if (!band || !cells || !r.bb || !r.memo)
         goto out;
-    memset(r.node, 0xff, (size_t)W * H * sizeof(int)); /* all -1 */
+    for (int X = 0; X < W; X++)
+        r.col_cell[X] = cell_of(X, f, w);
+    for (int Y = 0; Y < H; Y++)
+        r.row_cell[Y] = cell_of(Y, f, h);
     /* every pixel its cell's label to start with: a cell row's first
      * full-resolution row, copied to the others */
     for (int Y = 0; Y < H; Y++) {
@@ -378,7 +397,7 @@ int recon_refine_mask(const image_t *img, const recon_segmentation *seg, const u
 out:
     free(r.memo);
     free(r.bb);
-    free(r.node);
+    free(cells);
     free(band);
     return rc;
 }

@@ -215,8 +215,16 @@ int recon_mask_axis(const uint8_t *mask, int w, int h, double *x0, double *slope
             if (fabs(b) > 0.58)
                 continue;
             double a = xs[i] - b * ys[i];
-            for (int k = 0; k < n; k++)
+            /* the median (the (n/2 + 1)-th smallest) is under best only if
+             * that many residuals are: most lines fail this count, and skip
+             * the selection */
+            int under = 0;
+            for (int k = 0; k < n; k++) {
                 tmp[k] = fabs(xs[k] - a - b * ys[k]);
+                under += tmp[k] < best;
+            }
+            if (under <= n / 2)
+                continue;
             double med = gsl_stats_select(tmp, 1, (size_t)n, (size_t)n / 2);
             if (med < best) {
                 best = med;

@@ -133,7 +133,9 @@ int recon_mask_axis(const uint8_t *mask, int w, int h, double *x0, double *slope
  * when the image has a transparent background, else luminance). With alpha,
  * or a forced threshold (0..255; -1 = automatic), also fills mask (w*h, 1 =
  * object, before component filtering) and returns how; otherwise returns
- * RECON_MASK_GRAPH_CUT and leaves mask to the segmentation (segment.h).
+ * RECON_MASK_GRAPH_CUT and leaves mask to the segmentation (segment.h), and
+ * gray unset for a colour photo (three channels or more: its outline is
+ * measured on the colours).
  * *threshold_used: the forced threshold, else -1. */
 recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *gray, uint8_t *mask,
                                      int *threshold_used);
@@ -143,6 +145,10 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
  * outermost object pixels (a vessel's outline meets a row once on each side).
  * Returns the object's pixel count, or -1 when out of memory. */
 long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *holes_filled);
+
+/* The number of 8-connected components of mask, or -1 when out of memory
+ * (over runs: no per-pixel labels). */
+int recon_mask_components(const uint8_t *mask, int w, int h);
 
 /* Labels the 8-connected components of mask: lab[p] (w*h ints) = 1..n, 0 for
  * background; *area (malloc'd, n + 1 entries, [0] unused) their pixel counts.
