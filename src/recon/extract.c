@@ -347,9 +347,12 @@ static int fill_holes_but_windows(uint8_t *mask, int w, int h, vec2 origin, vec2
         stat[4 * lab[x]] = stat[4 * lab[(size_t)(bh - 1) * bw + x]] = 1;
     for (int y = 0; y < bh; y++)
         stat[4 * lab[(size_t)y * bw]] = stat[4 * lab[(size_t)y * bw + bw - 1]] = 1;
+    int holes = 0;
+    for (int c = 1; c <= n; c++)
+        holes += !stat[4 * c];
     /* the rest only for the holes (the background around the object is
      * never filled) */
-    for (int y = 0; y < bh; y++)
+    for (int y = 0; holes && y < bh; y++)
         for (int x = 0; x < bw; x++) {
             int c = lab[(size_t)y * bw + x];
             if (!c || stat[4 * c])
@@ -362,7 +365,7 @@ static int fill_holes_but_windows(uint8_t *mask, int w, int h, vec2 origin, vec2
             int qx = (int)floor(q.x), qy = (int)floor(q.y);
             s[3] += qx < 0 || qy < 0 || qx >= w || qy >= h || !mask[(size_t)qy * w + qx];
         }
-    for (int y = 0; y < bh; y++)
+    for (int y = 0; holes && y < bh; y++)
         for (int x = 0; x < bw; x++) {
             int c = lab[(size_t)y * bw + x];
             if (!c || stat[4 * c])
@@ -440,9 +443,14 @@ static void row_extents(const uint8_t *mask, int w, int h, vec2 origin, vec2 dir
         for (int s = 0; s < 2; s++) {
             int step = s ? 1 : -1, x = c;
             for (;;) {
-                int nx = x + step;
-                while (nx >= 0 && nx < w && m[nx])
-                    x = nx, nx += step;
+                /* to the end of the run of object from x */
+                if (s) {
+                    const uint8_t *z = memchr(m + x + 1, 0, (size_t)(w - x - 1));
+                    x = z ? (int)(z - m) - 1 : w - 1;
+                } else {
+                    const uint8_t *z = memrchr(m, 0, (size_t)x);
+                    x = z ? (int)(z - m) + 1 : 0;
+                }
                 int g = 1;
                 while (g <= 3 && x + g * step >= 0 && x + g * step < w && !m[x + g * step])
                     g++;
