@@ -11,6 +11,7 @@
 
 #include "core/core.h"
 #include "recon/recon_internal.h"
+#include "segment/vector_clones.h"
 
 /* The largest lean of a vessel's axis from the image's vertical. */
 #define MAX_TILT_DEG 30.0
@@ -190,19 +191,20 @@ static int trace_side(const image_t *img, const float *gray, int alpha, const in
 }
 
 /* Every value of the photo is in [0, 1] (not -0, not NaN): the bits of such
- * a float are at most those of 1. */
-static int in_unit_range(const image_t *img)
+ * a float, read as an unsigned integer, are at most those of 1. One compare
+ * and an OR a value (no running maximum: SSE2 has no unsigned max). */
+RECON_VECTOR_CLONES static int in_unit_range(const image_t *img)
 {
     const float *v = img->data;
     const size_t n = (size_t)img->width * img->height * img->channels;
-    uint32_t worst = 0;
-#pragma omp simd reduction(max : worst)
+    uint32_t over = 0;
+#pragma omp simd reduction(| : over)
     for (size_t i = 0; i < n; i++) {
         uint32_t bits;
         memcpy(&bits, v + i, sizeof bits);
-        worst = bits > worst ? bits : worst;
+        over |= bits > 0x3f800000u;
     }
-    return worst <= 0x3f800000u;
+    return !over;
 }
 
 /* Roughness of an outline: median |second difference| of x over its middle. */
@@ -284,26 +286,55 @@ out:
 /* Fills the holes of the vessel's mask except its windows: a hole entirely on
  * one side of the axis whose mirror image is mostly background is the loop of
  * a handle (the body continues behind it), whereas a hole inside the body (a
- * decoration as light as the backdrop) has the body around its mirror image. */
+ * decoration as light as the backdrop) has the body around its mirror image.
+ *
+ * Only the object's bounding box, grown by a pixel (within the image), is
+ * labelled: a background component of the whole image reaches the image's
+ * border exactly when its part in the box reaches the box's border (a path
+ * out of the box crosses that border; from a background pixel on it a
+ * straight line outwards, outside the object's box, reaches the image's
+ * border), so the holes, and every pixel of them, are the same. */
 static int fill_holes_but_windows(uint8_t *mask, int w, int h, vec2 origin, vec2 dir)
 {
-    uint8_t *inv = malloc((size_t)w * h);
-    int *lab = malloc((size_t)w * h * sizeof *lab);
+    int x0 = w, x1 = -1, y0 = h, y1 = -1;
+    for (int y = 0; y < h; y++) {
+        const uint8_t *m = mask + (size_t)y * w, *a = memchr(m, 1, (size_t)w);
+        if (!a)
+            continue;
+        y0 = y0 < y ? y0 : y;
+        y1 = y;
+        x0 = x0 < a - m ? x0 : (int)(a - m);
+        int r = (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m);
+        x1 = x1 > r ? x1 : r;
+    }
+    if (y1 < 0)
+        return 0; /* no object: no hole */
+    x0 = x0 > 0 ? x0 - 1 : 0;
+    y0 = y0 > 0 ? y0 - 1 : 0;
+    x1 = x1 + 1 < w ? x1 + 1 : w - 1;
+    y1 = y1 + 1 < h ? y1 + 1 : h - 1;
+    const int bw = x1 - x0 + 1, bh = y1 - y0 + 1;
+    uint8_t *inv = malloc((size_t)bw * bh);
+    int *lab = malloc((size_t)bw * bh * sizeof *lab);
     long *area = NULL;
     if (!inv || !lab) {
         free(inv);
         free(lab);
         return -1;
     }
-    for (size_t p = 0; p < (size_t)w * h; p++)
-        inv[p] = !mask[p];
-    int n = recon_mask_label(inv, w, h, lab, &area);
+    for (int y = 0; y < bh; y++) {
+        const uint8_t *m = mask + (size_t)(y0 + y) * w + x0;
+        uint8_t *v = inv + (size_t)y * bw;
+        for (int x = 0; x < bw; x++)
+            v[x] = !m[x];
+    }
+    int n = recon_mask_label(inv, bw, bh, lab, &area);
     if (n < 0) {
         free(inv);
         free(lab);
         return -1;
     }
-    /* per component: touches the border, sides seen, mirrored pixels on background */
+    /* per component: touches the box's border, sides seen, mirrored pixels on background */
     long *stat = calloc((size_t)(n + 1) * 4, sizeof *stat);
     if (!stat) {
         free(area);
@@ -312,33 +343,37 @@ static int fill_holes_but_windows(uint8_t *mask, int w, int h, vec2 origin, vec2
         return -1;
     }
     vec2 nrm = v2(-dir.y, dir.x);
-    for (int x = 0; x < w; x++)
-        stat[4 * lab[x]] = stat[4 * lab[(size_t)(h - 1) * w + x]] = 1;
-    for (int y = 0; y < h; y++)
-        stat[4 * lab[(size_t)y * w]] = stat[4 * lab[(size_t)y * w + w - 1]] = 1;
+    for (int x = 0; x < bw; x++)
+        stat[4 * lab[x]] = stat[4 * lab[(size_t)(bh - 1) * bw + x]] = 1;
+    for (int y = 0; y < bh; y++)
+        stat[4 * lab[(size_t)y * bw]] = stat[4 * lab[(size_t)y * bw + bw - 1]] = 1;
+    int holes = 0;
+    for (int c = 1; c <= n; c++)
+        holes += !stat[4 * c];
     /* the rest only for the holes (the background around the object is
-     * most of the photo and is never filled) */
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            int c = lab[(size_t)y * w + x];
+     * never filled) */
+    for (int y = 0; holes && y < bh; y++)
+        for (int x = 0; x < bw; x++) {
+            int c = lab[(size_t)y * bw + x];
             if (!c || stat[4 * c])
                 continue;
             long *s = stat + 4 * c;
-            vec2 p = v2(x + 0.5, y + 0.5);
+            vec2 p = v2(x0 + x + 0.5, y0 + y + 0.5);
             double r = v2_dot(v2_sub(p, origin), nrm);
             s[r < 0 ? 1 : 2] = 1;
             vec2 q = v2_sub(p, v2_scale(nrm, 2 * r));
             int qx = (int)floor(q.x), qy = (int)floor(q.y);
             s[3] += qx < 0 || qy < 0 || qx >= w || qy >= h || !mask[(size_t)qy * w + qx];
         }
-    for (size_t p = 0; p < (size_t)w * h; p++) {
-        int c = lab[p];
-        if (!c || stat[4 * c])
-            continue;
-        int window = !(stat[4 * c + 1] && stat[4 * c + 2]) && stat[4 * c + 3] > area[c] / 2;
-        if (!window)
-            mask[p] = 1;
-    }
+    for (int y = 0; holes && y < bh; y++)
+        for (int x = 0; x < bw; x++) {
+            int c = lab[(size_t)y * bw + x];
+            if (!c || stat[4 * c])
+                continue;
+            int window = !(stat[4 * c + 1] && stat[4 * c + 2]) && stat[4 * c + 3] > area[c] / 2;
+            if (!window)
+                mask[(size_t)(y0 + y) * w + x0 + x] = 1;
+        }
     free(stat);
     free(area);
     free(inv);
@@ -408,9 +443,14 @@ static void row_extents(const uint8_t *mask, int w, int h, vec2 origin, vec2 dir
         for (int s = 0; s < 2; s++) {
             int step = s ? 1 : -1, x = c;
             for (;;) {
-                int nx = x + step;
-                while (nx >= 0 && nx < w && m[nx])
-                    x = nx, nx += step;
+                /* to the end of the run of object from x */
+                if (s) {
+                    const uint8_t *z = memchr(m + x + 1, 0, (size_t)(w - x - 1));
+                    x = z ? (int)(z - m) - 1 : w - 1;
+                } else {
+                    const uint8_t *z = memrchr(m, 0, (size_t)x);
+                    x = z ? (int)(z - m) + 1 : 0;
+                }
                 int g = 1;
                 while (g <= 3 && x + g * step >= 0 && x + g * step < w && !m[x + g * step])
                     g++;
