@@ -16,5 +16,6 @@
 #include "core/progress.h"
 #include "core/record.h"
 #include "core/temp_files.h"
+#include "core/vector_clones.h"
 
 #endif

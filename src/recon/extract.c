@@ -11,7 +11,6 @@
 
 #include "core/core.h"
 #include "recon/recon_internal.h"
-#include "segment/vector_clones.h"
 
 /* The largest lean of a vessel's axis from the image's vertical. */
 #define MAX_TILT_DEG 30.0

@@ -10,7 +10,7 @@
 #include <gsl/gsl_statistics_double.h>
 
 #include "segment/robust.h"
-#include "segment/vector_clones.h"
+#include "core/core.h"
 
 /* Uniform cubic B-spline with g control points on [0, len]: the g-3 spans
  * share the length; writes the first control index and the 4 weights. */

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "segment/segment.h"
-#include "segment/vector_clones.h"
+#include "core/core.h"
 
 /* Clamps a signal value to [0, 1]; NaN (HDR or broken files) becomes 0. */
 static inline float finite01(float v) { return v > 0 ? (v < 1 ? v : 1) : 0; }

@@ -10,7 +10,7 @@
 
 #include "segment/maxflow.h"
 #include "segment/robust.h"
-#include "segment/vector_clones.h"
+#include "core/core.h"
 
 /* The working resolution: the longer side is brought down to about this many
  * pixels (an integer box factor), enough for a vessel's outline to within a
