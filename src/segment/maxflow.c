@@ -41,6 +41,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <threads.h>
 
 /* values of mf_node.parent other than an arc index */
 enum { PARENT_NONE = -1, PARENT_TERMINAL = -2, PARENT_ORPHAN = -3 };
@@ -74,6 +75,7 @@ typedef struct {
 
 struct maxflow_graph {
     int n, max_edges, n_edges;
+    int n_cap, max_edges_cap; /* what its buffers hold (a spare graph is reused for fewer) */
     mf_node *nodes;
     mf_edge *edges;
     int *first; /* n + 1 */
@@ -103,37 +105,7 @@ static int queue_pop(mf_queue *q)
     return v;
 }
 
-maxflow_graph *maxflow_create(int n_nodes, int max_edges)
-{
-    assert(n_nodes >= 0 && max_edges >= 0);
-    if (max_edges > INT_MAX / 2) /* arcs are indexed by int */
-        return NULL;
-    maxflow_graph *g = calloc(1, sizeof *g);
-    if (!g)
-        return NULL;
-    g->n = n_nodes;
-    g->max_edges = max_edges;
-    /* +1: malloc(0) may return NULL */
-    g->nodes = malloc(((size_t)n_nodes + 1) * sizeof *g->nodes);
-    g->edges = malloc(((size_t)max_edges + 1) * sizeof *g->edges);
-    g->first = malloc(((size_t)n_nodes + 1) * sizeof *g->first);
-    g->arcs = malloc((2 * (size_t)max_edges + 1) * sizeof *g->arcs);
-    g->active.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
-    g->orphans.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
-    g->tcap = malloc(((size_t)n_nodes + 1) * 2 * sizeof *g->tcap);
-    g->changed = malloc(((size_t)n_nodes + 1) * sizeof *g->changed);
-    g->is_changed = calloc((size_t)n_nodes + 1, 1);
-    if (!g->nodes || !g->edges || !g->first || !g->arcs || !g->active.slot || !g->orphans.slot || !g->tcap ||
-        !g->changed || !g->is_changed) {
-        maxflow_destroy(g);
-        return NULL;
-    }
-    g->active.size = g->orphans.size = n_nodes;
-    maxflow_reset(g);
-    return g;
-}
-
-void maxflow_destroy(maxflow_graph *g)
+static void graph_free(maxflow_graph *g)
 {
     if (!g)
         return;
@@ -147,6 +119,119 @@ void maxflow_destroy(maxflow_graph *g)
     free(g->changed);
     free(g->is_changed);
     free(g);
+}
+
+/* Graphs given back by maxflow_destroy, kept for the thread's next
+ * maxflow_create: a photo's segmentation builds three graphs of a few MB,
+ * and fresh pages for them cost about a fifth of its CPU time (in the
+ * kernel). A thread keeps the SPARES largest, freed when it exits. */
+enum { SPARES = 2 };
+typedef struct {
+    maxflow_graph *g[SPARES];
+} spare_graphs;
+
+static tss_t spare_key;
+static int spare_key_ok;
+static once_flag spare_once = ONCE_FLAG_INIT;
+
+static void spares_free(void *p)
+{
+    spare_graphs *s = p;
+    for (int k = 0; k < SPARES; k++)
+        graph_free(s->g[k]);
+    free(s);
+}
+
+static void spare_key_create(void) { spare_key_ok = tss_create(&spare_key, spares_free) == thrd_success; }
+
+/* The thread's spare graphs, or NULL (no key, out of memory). */
+static spare_graphs *thread_spares(void)
+{
+    call_once(&spare_once, spare_key_create);
+    if (!spare_key_ok)
+        return NULL;
+    spare_graphs *s = tss_get(spare_key);
+    if (!s && (s = calloc(1, sizeof *s)) != NULL && tss_set(spare_key, s) != thrd_success) {
+        free(s);
+        s = NULL;
+    }
+    return s;
+}
+
+/* The smallest spare graph with room for n nodes and m edges, taken out of
+ * s, or NULL. */
+static maxflow_graph *take_spare(spare_graphs *s, int n, int m)
+{
+    int best = -1;
+    for (int k = 0; k < SPARES; k++)
+        if (s->g[k] && s->g[k]->n_cap >= n && s->g[k]->max_edges_cap >= m &&
+            (best < 0 || s->g[k]->max_edges_cap < s->g[best]->max_edges_cap))
+            best = k;
+    if (best < 0)
+        return NULL;
+    maxflow_graph *g = s->g[best];
+    s->g[best] = NULL;
+    return g;
+}
+
+maxflow_graph *maxflow_create(int n_nodes, int max_edges)
+{
+    assert(n_nodes >= 0 && max_edges >= 0);
+    if (max_edges > INT_MAX / 2) /* arcs are indexed by int */
+        return NULL;
+    spare_graphs *s = thread_spares();
+    maxflow_graph *g = s ? take_spare(s, n_nodes, max_edges) : NULL;
+    if (!g) {
+        if (!(g = calloc(1, sizeof *g)))
+            return NULL;
+        g->n_cap = n_nodes;
+        g->max_edges_cap = max_edges;
+        /* +1: malloc(0) may return NULL */
+        g->nodes = malloc(((size_t)n_nodes + 1) * sizeof *g->nodes);
+        g->edges = malloc(((size_t)max_edges + 1) * sizeof *g->edges);
+        g->first = malloc(((size_t)n_nodes + 1) * sizeof *g->first);
+        g->arcs = malloc((2 * (size_t)max_edges + 1) * sizeof *g->arcs);
+        g->active.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
+        g->orphans.slot = malloc(((size_t)n_nodes + 1) * sizeof(int));
+        g->tcap = malloc(((size_t)n_nodes + 1) * 2 * sizeof *g->tcap);
+        g->changed = malloc(((size_t)n_nodes + 1) * sizeof *g->changed);
+        g->is_changed = calloc((size_t)n_nodes + 1, 1);
+        if (!g->nodes || !g->edges || !g->first || !g->arcs || !g->active.slot || !g->orphans.slot || !g->tcap ||
+            !g->changed || !g->is_changed) {
+            graph_free(g);
+            return NULL;
+        }
+    }
+    g->n = n_nodes;
+    g->max_edges = max_edges;
+    g->active.size = g->orphans.size = n_nodes;
+    maxflow_reset(g);
+    return g;
+}
+
+void maxflow_destroy(maxflow_graph *g)
+{
+    if (!g)
+        return;
+    spare_graphs *s = thread_spares();
+    if (!s) {
+        graph_free(g);
+        return;
+    }
+    /* a spare marks no node changed (its next graph may have fewer nodes) */
+    for (int k = 0; k < g->n_changed; k++)
+        g->is_changed[g->changed[k]] = 0;
+    g->n_changed = 0;
+    /* keep the SPARES largest: g takes the place of a smaller one, which
+     * moves on down the list or is freed */
+    for (int k = 0; k < SPARES; k++)
+        if (!s->g[k] || s->g[k]->max_edges_cap < g->max_edges_cap) {
+            maxflow_graph *t = s->g[k];
+            s->g[k] = g;
+            if (!(g = t))
+                return;
+        }
+    graph_free(g);
 }
 
 void maxflow_reset_terminals(maxflow_graph *g)
