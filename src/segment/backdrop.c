@@ -40,22 +40,23 @@ void recon_backdrop_basis_y(const recon_backdrop *b, double y, recon_backdrop_ba
 
 /* The surface at a point whose 16 basis weights (wx[i] wy[j] at 4 j + i)
  * start at control point `first` (the others follow: + j g + i), summed in
- * registers (sums in out[], which might alias coef, would be stored at every
- * step); the fit's residuals and every evaluation sum in this one order. */
-static void surface_sum(const recon_backdrop *b, int first, const double phi[16], double out[3])
+ * registers, the three channels (and the padding) as one 4-lane vector; the
+ * fit's residuals and every evaluation sum in this one order. */
+RECON_VECTOR_CLONES static void surface_sum(const recon_backdrop *b, int first, const double phi[16], double out[3])
 {
-    double o0 = 0, o1 = 0, o2 = 0;
+    double s[4] = {0, 0, 0, 0};
     for (int j = 0; j < 4; j++) {
-        const double(*c)[3] = b->coef + first + j * b->grid;
+        const double(*c)[4] = b->coef + first + j * b->grid;
         for (int i = 0; i < 4; i++) {
-            o0 += phi[4 * j + i] * c[i][0];
-            o1 += phi[4 * j + i] * c[i][1];
-            o2 += phi[4 * j + i] * c[i][2];
+            const double p = phi[4 * j + i];
+#pragma omp simd
+            for (int k = 0; k < 4; k++)
+                s[k] += p * c[i][k];
         }
     }
-    out[0] = o0;
-    out[1] = o1;
-    out[2] = o2;
+    out[0] = s[0];
+    out[1] = s[1];
+    out[2] = s[2];
 }
 
 void recon_backdrop_at_basis(const recon_backdrop *b, const recon_backdrop_basis *bx, const recon_backdrop_basis *by,
@@ -147,18 +148,23 @@ static void sample_basis_at(const recon_backdrop *b, double x, double y, sample_
 
 /* Adds a sample of weight w to its span cell's block of the normal
  * equations: the 16x16 products of its basis weights (blk, dense) and its
- * colour's (rhs, 16x4, the fourth column unused). The samples of one cell share their 16 control
- * points, so the block is summed contiguously and goes into the whole
- * system once. */
+ * colour's (rhs, 16x4, the fourth column unused). The samples of one cell
+ * share their 16 control points, so the block is summed contiguously and
+ * goes into the whole system once. Only the lower triangle is read (the
+ * Cholesky factorisation reads no other): row a is summed up to the end of
+ * its group of four, a vector at a time. */
 RECON_VECTOR_CLONES static void add_sample(double *restrict blk, double *restrict rhs, const double *restrict phi,
                                            const float *c, double w)
 {
     const double c4[4] = {c[0], c[1], c[2], 0};
+#pragma GCC unroll 16
     for (int a = 0; a < 16; a++) {
         double wa = w * phi[a], *row = blk + 16 * a, *r = rhs + 4 * a;
+#pragma GCC unroll 4
+        for (int q0 = 0; q0 <= a; q0 += 4)
 #pragma omp simd
-        for (int q = 0; q < 16; q++)
-            row[q] += wa * phi[q];
+            for (int q = q0; q < q0 + 4; q++)
+                row[q] += wa * phi[q];
 #pragma omp simd
         for (int k = 0; k < 4; k++)
             r[k] += wa * c4[k];
@@ -191,7 +197,7 @@ static int solve(recon_backdrop *b, const sample_basis *sb, const float *col, co
         int first = cell / spans * g + cell % spans; /* control point a = 4 j + i is at first + j g + i */
         for (int a = 0; a < 16; a++) {
             int ia = first + a / 4 * g + a % 4;
-            for (int q = 0; q < 16; q++)
+            for (int q = 0; q <= a; q++) /* ia >= iq: the lower triangle */
                 ata[(size_t)ia * m + first + q / 4 * g + q % 4] += cb[16 * a + q];
             for (int k = 0; k < 3; k++)
                 atb[3 * ia + k] += cb[256 + 4 * a + k];

@@ -12,7 +12,7 @@ enum { RECON_BACKDROP_MAX_GRID = 16 };
 typedef struct {
     int grid;            /* control points per side (4..RECON_BACKDROP_MAX_GRID) */
     int width, height;   /* the image it models */
-    double coef[RECON_BACKDROP_MAX_GRID * RECON_BACKDROP_MAX_GRID][3];
+    double coef[RECON_BACKDROP_MAX_GRID * RECON_BACKDROP_MAX_GRID][4]; /* colour, 0 (a vector's padding) */
     double cov[9];       /* covariance of the residuals of the backdrop pixels (noise, texture, misfit) */
 } recon_backdrop;
 

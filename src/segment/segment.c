@@ -56,46 +56,66 @@ enum { ROUNDS = 3 };
  * distance above the chi-square(3) quantile at 1e-4. */
 #define INIT_CHI2 21.1
 
-/* out[i] = row[i] clamped to [0, 1] (NaN or HDR values from broken files
- * count as black / white), n values. */
-RECON_VECTOR_CLONES static void clamp01(float *restrict out, const float *restrict row, size_t n)
+/* out[i] = inv times row[i] clamped to [0, 1] (NaN or HDR values from
+ * broken files count as black / white), n values. */
+RECON_VECTOR_CLONES static void clamp01_scaled(float *restrict out, const float *restrict row, size_t n, float inv)
 {
 #pragma omp simd
     for (size_t i = 0; i < n; i++) {
-        float v = row[i];
-        out[i] = v > 0 ? (v < 1 ? v : 1) : 0;
+        float v = row[i], u = v < 1 ? v : 1; /* two selects: the compiler vectorises this form */
+        out[i] = inv * (v > 0 ? u : 0);
     }
 }
 
-/* Box-filtered colour at factor f (three channels); each row of the photo
- * clamped first, in one vector pass. */
+/* Adds one photo row's scaled values q (w * f pixels of c channels) to the
+ * w output colours o, each output's f pixels in order. A colour pixel's
+ * three channels go as one 4-lane vector (the fourth lane reads the next
+ * value, or the padding after the row, and is dropped); a gray pixel's one
+ * value goes to all three. */
+static void add_row(float *restrict o, const float *restrict q, int w, int f, int c)
+{
+    if (c >= 3) {
+        for (int x = 0; x < w; x++) {
+            const float *p = q + (size_t)x * f * c;
+            float s[4] = {o[3 * x], o[3 * x + 1], o[3 * x + 2], 0};
+            for (int i = 0; i < f; i++, p += c) {
+#pragma omp simd
+                for (int k = 0; k < 4; k++)
+                    s[k] += p[k];
+            }
+            o[3 * x] = s[0];
+            o[3 * x + 1] = s[1];
+            o[3 * x + 2] = s[2];
+        }
+        return;
+    }
+    for (int x = 0; x < w; x++) {
+        const float *p = q + (size_t)x * f * c;
+        float s = o[3 * x];
+        for (int i = 0; i < f; i++, p += c)
+            s += p[0];
+        o[3 * x] = o[3 * x + 1] = o[3 * x + 2] = s;
+    }
+}
+
+/* Box-filtered colour at factor f (three channels): each output the sum, in
+ * order, of its f * f pixels' clamped values times 1 / f^2. */
 static float *downsample(const image_t *img, int f, int w, int h)
 {
-    const int c = img->channels, colour = c >= 3, gc = colour ? 1 : 0, bc = colour ? 2 : 0;
+    const int c = img->channels;
     const size_t n = (size_t)w * f * c;
-    float *out = calloc((size_t)w * h * 3, sizeof *out), *row = malloc(n * sizeof *row);
+    float *out = calloc((size_t)w * h * 3, sizeof *out), *row = malloc((n + 1) * sizeof *row);
     if (!out || !row) {
         free(out);
         free(row);
         return NULL;
     }
+    row[n] = 0; /* the last colour pixel's fourth lane */
     const float inv = 1.0f / (f * f);
     for (int y = 0; y < h; y++)
         for (int j = 0; j < f; j++) {
-            clamp01(row, img->data + ((size_t)(y * f + j) * img->width) * c, n);
-            float *o = out + (size_t)y * w * 3;
-            for (int x = 0; x < w; x++) {
-                const float *p = row + (size_t)x * f * c;
-                float s0 = o[3 * x], s1 = o[3 * x + 1], s2 = o[3 * x + 2];
-                for (int i = 0; i < f; i++, p += c) {
-                    s0 += inv * p[0];
-                    s1 += inv * p[gc];
-                    s2 += inv * p[bc];
-                }
-                o[3 * x] = s0;
-                o[3 * x + 1] = s1;
-                o[3 * x + 2] = s2;
-            }
+            clamp01_scaled(row, img->data + ((size_t)(y * f + j) * img->width) * c, n, inv);
+            add_row(out + (size_t)y * w * 3, row, w, f, c);
         }
     free(row);
     return out;
