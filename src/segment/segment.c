@@ -145,7 +145,15 @@ int recon_colour_model_prepare(recon_colour_model *m)
     return 0;
 }
 
-static double logsumexp2(double a, double b) { return a > b ? a + log1p(exp(b - a)) : b + log1p(exp(a - b)); }
+/* log(e^a + e^b) = hi + log1p(exp(d)), hi the larger, d = lo - hi <= 0. For
+ * d < -40, exp(d) < 4.3e-18 is under a quarter of hi's last bit when |hi| >=
+ * 1/4, so the sum rounds to hi exactly: the two calls are skipped (a pixel
+ * plainly of one kind, most of a photo). */
+static double logsumexp2(double a, double b)
+{
+    double hi = a > b ? a : b, d = a > b ? b - a : a - b;
+    return d < -40 && fabs(hi) >= 0.25 ? hi : hi + log1p(exp(d));
+}
 
 /* The factor k that scales the backdrop colour bc closest to c. */
 static double shadow_factor(const float *c, const float *bc)
@@ -324,8 +332,11 @@ double recon_contrast_beta(const float *rgb, int w, int h)
 
 double recon_contrast_link(const float *a, const float *b, double beta, int diagonal)
 {
-    double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
-    return SMOOTHNESS_GAMMA * exp(-beta * (d0 * d0 + d1 * d1 + d2 * d2)) / (diagonal ? M_SQRT2 : 1);
+    double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2], x = -beta * (d0 * d0 + d1 * d1 + d2 * d2);
+    /* exp(0) is 1 and exp(x) is 0 below -746, without the call (equal
+     * neighbours are common in a photo's flat parts) */
+    double e = x == 0 ? 1.0 : (x < -746 ? 0.0 : exp(x));
+    return SMOOTHNESS_GAMMA * e / (diagonal ? M_SQRT2 : 1);
 }
 
 double recon_segment_link(const recon_segmentation *seg, int p, int q, int diagonal)
