@@ -37,6 +37,7 @@
 #include "segment/maxflow.h"
 
 #include <assert.h>
+#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
@@ -252,10 +253,15 @@ void maxflow_reset(maxflow_graph *g)
     g->n_edges = 0;
 }
 
+/* The preconditions the add and set calls assert, in few instructions (they
+ * are called for every link): 0 <= node < n; 0 <= cap <= DBL_MAX (NaN fails
+ * both comparisons, infinity the second). */
+static inline int valid_node(const maxflow_graph *g, int i) { return (unsigned)i < (unsigned)g->n; }
+static inline int valid_cap(double c) { return c >= 0 && c <= DBL_MAX; }
+
 void maxflow_add_terminals(maxflow_graph *g, int node, double cap_source, double cap_sink)
 {
-    assert(!g->trees && node >= 0 && node < g->n);
-    assert(cap_source >= 0 && cap_sink >= 0 && isfinite(cap_source) && isfinite(cap_sink));
+    assert(!g->trees && valid_node(g, node) && valid_cap(cap_source) && valid_cap(cap_sink));
     /* the node's earlier residual joins the new capacities; the common part
      * of the two flows straight from the source to the sink */
     g->tcap[2 * node] += cap_source;
@@ -271,8 +277,7 @@ void maxflow_add_terminals(maxflow_graph *g, int node, double cap_source, double
 
 void maxflow_add_edge(maxflow_graph *g, int i, int j, double cap_ij, double cap_ji)
 {
-    assert(!g->trees && i >= 0 && i < g->n && j >= 0 && j < g->n);
-    assert(cap_ij >= 0 && cap_ji >= 0 && isfinite(cap_ij) && isfinite(cap_ji));
+    assert(!g->trees && valid_node(g, i) && valid_node(g, j) && valid_cap(cap_ij) && valid_cap(cap_ji));
     if (i == j || (cap_ij == 0 && cap_ji == 0))
         return;
     assert(g->n_edges < g->max_edges);
@@ -281,8 +286,7 @@ void maxflow_add_edge(maxflow_graph *g, int i, int j, double cap_ij, double cap_
 
 void maxflow_set_terminals(maxflow_graph *g, int node, double cap_source, double cap_sink)
 {
-    assert(g->trees && node >= 0 && node < g->n);
-    assert(cap_source >= 0 && cap_sink >= 0 && isfinite(cap_source) && isfinite(cap_sink));
+    assert(g->trees && valid_node(g, node) && valid_cap(cap_source) && valid_cap(cap_sink));
     double *t = g->tcap + 2 * node;
     if (t[0] == cap_source && t[1] == cap_sink)
         return;
@@ -609,6 +613,6 @@ double maxflow_solve(maxflow_graph *g)
 
 int maxflow_source_side(const maxflow_graph *g, int node)
 {
-    assert(g->solved && node >= 0 && node < g->n);
+    assert(g->solved && valid_node(g, node));
     return g->nodes[node].parent != PARENT_NONE && !g->nodes[node].in_sink_tree;
 }
