@@ -113,6 +113,18 @@ static inline int node_at(const refine_work *r, int X, int Y)
     return off < 0 ? -1 : r->row_base[Y] + off + X - cx * r->seg->factor;
 }
 
+/* Pixel (X, Y)'s eight neighbours lie in its own cell (it is on neither its
+ * cell's border nor the image's): a node's neighbours are then nodes too,
+ * found from its own index. */
+static inline int inside_cell(const refine_work *r, int X, int Y)
+{
+    if (X == 0 || Y == 0 || X + 1 == r->W || Y + 1 == r->H)
+        return 0;
+    const int cx = r->col_cell[X], cy = r->row_cell[Y];
+    return r->col_cell[X - 1] == cx && r->col_cell[X + 1] == cx && r->row_cell[Y - 1] == cy &&
+           r->row_cell[Y + 1] == cy;
+}
+
 static const int OFF[8][2] = {{1, 0}, {0, 1}, {1, 1}, {-1, 1}, {-1, 0}, {0, -1}, {-1, -1}, {1, -1}};
 
 /* One cut on the pixels of the cells marked in active, the others held at
@@ -208,15 +220,23 @@ static long cut_cells(refine_work *r, const uint8_t *active, uint8_t *grow)
         recon_colour_costs(&seg->model, r->memo, ca, bgn + 3 * (size_t)a, mc, mbgf, &co, &cb);
         double src = cb, snk = co; /* the cost of ending as backdrop / as object */
         /* Links: to band neighbours once (forward half), to fixed neighbours
-         * as terminal costs (all eight directions). */
+         * as terminal costs (all eight directions). Inside a cell the
+         * neighbour below is as many nodes on as the row holds. */
+        const int inner = inside_cell(r, X, Y), down = inner ? r->row_base[Y + 1] - r->row_base[Y] : 0;
         for (int k = 0; k < 8; k++) {
-            int QX = X + OFF[k][0], QY = Y + OFF[k][1];
-            if (QX < 0 || QY < 0 || QX >= W || QY >= H)
-                continue;
+            int QX = X + OFF[k][0], QY = Y + OFF[k][1], b;
+            if (inner) {
+                if (k >= 4)
+                    break;
+                b = a + OFF[k][0] + (OFF[k][1] ? down : 0);
+            } else {
+                if (QX < 0 || QY < 0 || QX >= W || QY >= H)
+                    continue;
+                b = node_at(r, QX, QY);
+                if (b >= 0 && k >= 4)
+                    continue;
+            }
             size_t Q = (size_t)QY * W + QX;
-            int b = node_at(r, QX, QY);
-            if (b >= 0 && k >= 4)
-                continue;
             float cq[3];
             if (b >= 0)
                 memcpy(cq, col + 3 * (size_t)b, sizeof cq);
@@ -250,6 +270,8 @@ static long cut_cells(refine_work *r, const uint8_t *active, uint8_t *grow)
     grown = 0;
     for (int a = 0; a < nn; a++) {
         const int X = pix[a] % W, Y = pix[a] / W;
+        if (inside_cell(r, X, Y)) /* its neighbours are in its cell, which is in the band */
+            continue;
         for (int k = 0; k < 8; k++) {
             int QX = X + OFF[k][0], QY = Y + OFF[k][1];
             if (QX < 0 || QY < 0 || QX >= W || QY >= H)
