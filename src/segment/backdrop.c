@@ -45,8 +45,10 @@ void recon_backdrop_basis_y(const recon_backdrop *b, double y, recon_backdrop_ba
 RECON_VECTOR_CLONES static void surface_sum(const recon_backdrop *b, int first, const double phi[16], double out[3])
 {
     double s[4] = {0, 0, 0, 0};
+#pragma GCC unroll 4
     for (int j = 0; j < 4; j++) {
         const double(*c)[4] = b->coef + first + j * b->grid;
+#pragma GCC unroll 4
         for (int i = 0; i < 4; i++) {
             const double p = phi[4 * j + i];
 #pragma omp simd
