@@ -13,18 +13,25 @@
  * photo) would otherwise be singular. (2/255)^2. */
 #define GMM_VARIANCE_FLOOR (4.0 / (255.0 * 255.0))
 
+/* sq holds the upper triangle (i <= j at 3 i + j): the products commute
+ * exactly, so the lower one would be the same sums. */
 typedef struct {
     double n, sum[3], sq[9];
 } moments;
 
 static void moments_add(moments *m, const float *c)
 {
+    const double c0 = c[0], c1 = c[1], c2 = c[2];
     m->n += 1;
-    for (int i = 0; i < 3; i++) {
-        m->sum[i] += c[i];
-        for (int j = 0; j < 3; j++)
-            m->sq[3 * i + j] += (double)c[i] * c[j];
-    }
+    m->sum[0] += c0;
+    m->sum[1] += c1;
+    m->sum[2] += c2;
+    m->sq[0] += c0 * c0;
+    m->sq[1] += c0 * c1;
+    m->sq[2] += c0 * c2;
+    m->sq[4] += c1 * c1;
+    m->sq[5] += c1 * c2;
+    m->sq[8] += c2 * c2;
 }
 
 /* Mean and covariance (with the variance floor) of the moments. */
@@ -34,7 +41,7 @@ static void moments_stats(const moments *m, double mu[3], double cov[9])
         mu[i] = m->sum[i] / m->n;
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)
-            cov[3 * i + j] = m->sq[3 * i + j] / m->n - mu[i] * mu[j] + (i == j ? GMM_VARIANCE_FLOOR : 0);
+            cov[3 * i + j] = m->sq[i <= j ? 3 * i + j : 3 * j + i] / m->n - mu[i] * mu[j] + (i == j ? GMM_VARIANCE_FLOOR : 0);
 }
 
 int recon_invert_sym3(const double a[9], double inv[9], double *logdet)
