@@ -30,7 +30,8 @@ typedef struct maxflow_graph maxflow_graph;
  * room for max_edges >= 0 calls of maxflow_add_edge. NULL when out of memory
  * or when max_edges > INT_MAX / 2.
  * Memory: about 65 * n_nodes + 56 * max_edges bytes (of which the edges
- * added and their nodes are touched). */
+ * added and their nodes are touched), or a spare graph's that had room (see
+ * maxflow_destroy). */
 maxflow_graph *maxflow_create(int n_nodes, int max_edges);
 
 /* Adds cap_source to the capacity of the link source -> node and cap_sink to
@@ -72,6 +73,9 @@ void maxflow_reset(maxflow_graph *g);
  * cheaper than adding the n-links again (the next solve lays them out anew). */
 void maxflow_reset_terminals(maxflow_graph *g);
 
+/* Gives the graph back. Its memory is kept for the calling thread's next
+ * maxflow_create (a thread keeps its two largest graphs, freed when it
+ * exits): fresh pages for a segmentation's graphs cost a fifth of its CPU. */
 void maxflow_destroy(maxflow_graph *g);
 
 #endif
