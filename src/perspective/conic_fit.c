@@ -22,6 +22,7 @@
 
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_sort.h>
+#include <gsl/gsl_statistics_double.h>
 
 #include "perspective/perspective_internal.h"
 
@@ -153,13 +154,12 @@ static double msac_cost(const vec2 *p, int n, double w0, double a, double b, dou
     return cost;
 }
 
-/* Median of |v[0..n)| (v is reordered). */
+/* Median of |v[0..n)| (v is reordered; a selection, not a sort). */
 static double median_abs(double *v, int n)
 {
     for (int i = 0; i < n; i++)
         v[i] = fabs(v[i]);
-    gsl_sort(v, 1, (size_t)n);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    return gsl_stats_median(v, 1, (size_t)n);
 }
 
 /* Solves the symmetric 3x3 system M x = y by Cholesky; 0 when not positive
@@ -330,46 +330,60 @@ static double half_distance(const double th[3], int half, vec2 p, double J[3])
     return across > 0 ? d - 2 * across : d;
 }
 
-/* MSAC cost with the half distance: how refined candidates compare. */
-static double msac_cost_exact(const arc *A, const double th[3], double tol)
+/* MSAC cost of the residuals r[0..n) (half distances): how refined
+ * candidates compare. */
+static double msac_cost_exact(const double *r, int n, double tol)
 {
     double cost = 0;
-    for (int i = 0; i < A->n; i++) {
-        double d = half_distance(th, A->half, A->p[i], NULL);
-        cost += fmin(d * d, tol * tol);
-    }
+    for (int i = 0; i < n; i++)
+        cost += fmin(r[i] * r[i], tol * tol);
     return cost;
 }
 
-/* Weighted sum of squared distances. */
-static double weighted_ssr(const arc *A, const double th[3], const double *wt)
+/* The distances r of all the points from the ellipse th and their
+ * gradients J (half_distance), and the weighted sum of squares of those of
+ * weight wt > 0. The sum only grows, so once it passes `limit` the pass
+ * stops and returns INFINITY (r and J then incomplete). */
+static double weighted_ssr(const arc *A, const double th[3], const double *wt, double limit, double *r,
+                           double (*J)[3])
 {
     double s = 0;
-    for (int i = 0; i < A->n; i++)
-        if (wt[i] > 0) {
-            double d = half_distance(th, A->half, A->p[i], NULL);
-            s += wt[i] * d * d;
-        }
+    for (int i = 0; i < A->n; i++) {
+        r[i] = half_distance(th, A->half, A->p[i], J[i]);
+        if (wt[i] > 0 && (s += wt[i] * r[i] * r[i]) > limit)
+            return INFINITY;
+    }
     return s;
 }
+
+/* Scratch arrays of a fit of n points: the residuals and gradients at the
+ * current parameters (r, J) and at a trial step (r_try, J_try), the
+ * weights. */
+typedef struct {
+    double *r, *r_try, *wt;
+    double (*J)[3], (*J_try)[3];
+} fit_work;
 
 /* Iteratively reweighted Levenberg–Marquardt from th: Tukey weights from
  * the current residuals (scale 1.4826 MAD), then one damped step that must
  * lower the weighted sum of squares (the distance is far from linear in the
  * parameters of a thin ellipse: undamped Gauss–Newton steps overshoot into
- * the line limit b -> 0, a -> inf). r, wt: n doubles of work each; sigma
- * receives the final scale. Returns 1 when it converged with enough
- * inliers. */
-static int refine(const arc *A, double th[3], double *r, double *wt, double (*J)[3], double *sigma)
+ * the line limit b -> 0, a -> inf). An accepted step's residuals and
+ * gradients are the next round's. sigma receives the final scale. Returns
+ * 1 when it converged with enough inliers, w->r then holding the
+ * residuals at th. */
+static int refine(const arc *A, double th[3], fit_work *w, double *sigma)
 {
     int n = A->n;
     double lambda = 1e-3;
+    for (int i = 0; i < n; i++)
+        w->r[i] = half_distance(th, A->half, A->p[i], w->J[i]);
     for (int it = 0; it < IRLS_STEPS; it++) {
-        for (int i = 0; i < n; i++)
-            r[i] = half_distance(th, A->half, A->p[i], J[i]);
+        const double *r = w->r, (*J)[3] = w->J;
+        double *wt = w->wt;
         memcpy(wt, r, (size_t)n * sizeof *wt);
         *sigma = fmax(MAD_TO_SIGMA * median_abs(wt, n), MIN_SIGMA_PX);
-        double c = TUKEY_C * *sigma, M[3][3] = {{0}}, g[3] = {0};
+        double c = TUKEY_C * *sigma, M[3][3] = {{0}}, g[3] = {0}, cost = 0;
         int inliers = 0;
         for (int i = 0; i < n; i++) {
             double q = fabs(r[i]) < c ? 1 - (r[i] / c) * (r[i] / c) : 0;
@@ -383,7 +397,10 @@ static int refine(const arc *A, double th[3], double *r, double *wt, double (*J)
         }
         if (inliers < 6)
             return 0;
-        double cost = weighted_ssr(A, th, wt), next[3], moved = 0;
+        for (int i = 0; i < n; i++)
+            if (wt[i] > 0)
+                cost += wt[i] * r[i] * r[i];
+        double next[3], moved = 0;
         int accepted = 0;
         for (int tries = 0; tries < 30 && !accepted; tries++) {
             double D[3][3], step[3];
@@ -400,11 +417,14 @@ static int refine(const arc *A, double th[3], double *r, double *wt, double (*J)
                 break;
             for (int j = 0; j < 3; j++)
                 next[j] = th[j] - step[j];
-            if (next[1] > 0 && next[2] > 0 && weighted_ssr(A, next, wt) <= cost) {
+            if (next[1] > 0 && next[2] > 0 && weighted_ssr(A, next, wt, cost, w->r_try, w->J_try) <= cost) {
                 accepted = 1;
                 for (int j = 0; j < 3; j++)
                     moved = fmax(moved, fabs(step[j]));
                 memcpy(th, next, sizeof next);
+                double *tr = w->r, (*tJ)[3] = w->J;
+                w->r = w->r_try, w->J = w->J_try;
+                w->r_try = tr, w->J_try = tJ;
                 lambda = fmax(lambda / 3, 1e-9);
             } else {
                 lambda *= 4;
@@ -469,8 +489,7 @@ static void fit_line(const vec2 *p, int n, double *r, recon_ellipse *e)
 {
     for (int i = 0; i < n; i++)
         r[i] = p[i].y;
-    gsl_sort(r, 1, (size_t)n);
-    double med = r[n / 2];
+    double med = gsl_stats_select(r, 1, (size_t)n, (size_t)n / 2); /* the upper median */
     for (int i = 0; i < n; i++)
         r[i] = p[i].y - med;
     double sigma = fmax(MAD_TO_SIGMA * median_abs(r, n), MIN_SIGMA_PX), sum = 0, umax = 0, ss = 0, dmax = 0;
@@ -499,7 +518,7 @@ int recon_fit_axis_ellipse(const vec2 *pts, int n, int half, recon_ellipse *out)
     memset(out, 0, sizeof *out);
     if (n < 6)
         return -1;
-    double *r = malloc(2 * (size_t)n * sizeof *r), (*J)[3] = malloc((size_t)n * sizeof *J);
+    double *r = malloc(3 * (size_t)n * sizeof *r), (*J)[3] = malloc(2 * (size_t)n * sizeof *J);
     if (!r || !J) {
         free(r);
         free(J);
@@ -512,9 +531,10 @@ int recon_fit_axis_ellipse(const vec2 *pts, int n, int half, recon_ellipse *out)
     int n_starts = start_fits(pts, n, starts), ok = 0;
     for (int k = 0; k < n_starts; k++) {
         double s_k;
-        if (!refine(&A, starts[k], r, r + n, J, &s_k))
+        fit_work w = {r, r + n, r + 2 * (size_t)n, J, J + n};
+        if (!refine(&A, starts[k], &w, &s_k))
             continue;
-        double c = msac_cost_exact(&A, starts[k], INLIER_PX);
+        double c = msac_cost_exact(w.r, n, INLIER_PX);
         if (c < best) {
             best = c, sigma = s_k, ok = 1;
             memcpy(th, starts[k], sizeof th);

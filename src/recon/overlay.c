@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "recon/recon.h"
+
 /* Okabe–Ito colours, distinguishable with colour-blindness; black for the axis. */
 const uint8_t overlay_colours[OVERLAY_LAYER_COUNT][3] = {
     [OVERLAY_CONTOUR] = {0, 114, 178}, [OVERLAY_PCA] = {230, 159, 0}, [OVERLAY_AXIS] = {0, 0, 0},
@@ -271,17 +273,20 @@ uint8_t *overlay_render(const image_t *photo, const recon_result *res, const bsp
         free(cv.cov);
         return NULL;
     }
-    int C = photo->channels;
-    for (size_t i = 0; i < n; i++)
-        for (int k = 0; k < 3; k++) {
-            float v = photo->data[i * C + (C >= 3 ? k : 0)];
-            if (photo->has_alpha) { /* over white: a transparent background shows as white */
-                float a = photo->data[i * C + C - 1];
-                v = a * v + (1.0f - a);
-            }
-            v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
-            cv.rgb[3 * i + k] = (uint8_t)lrint(OVERLAY_PHOTO_WEIGHT * lrintf(255.0f * v) + (1.0 - OVERLAY_PHOTO_WEIGHT) * 255.0);
-        }
+    /* The photo faded toward white, by the 8-bit level each channel rounds to. */
+    uint8_t faded[256];
+    for (long q = 0; q < 256; q++)
+        faded[q] = (uint8_t)lrint(OVERLAY_PHOTO_WEIGHT * q + (1.0 - OVERLAY_PHOTO_WEIGHT) * 255.0);
+    int C = photo->channels, colour = C >= 3;
+    for (size_t i = 0; i < n; i++) {
+        /* over white: a transparent background shows as white (opaque: a * v + 0 is v) */
+        const float *px = photo->data + i * C;
+        float a = photo->has_alpha ? px[C - 1] : 1.0f, white = 1.0f - a;
+        uint8_t *out = cv.rgb + 3 * i;
+        out[0] = faded[recon_to_u8(a * px[0] + white)];
+        out[1] = faded[recon_to_u8(a * px[colour] + white)];
+        out[2] = faded[recon_to_u8(a * px[2 * colour] + white)];
+    }
     double width = overlay_line_width(cv.w, cv.h);
 
     for (int i = 0; i < res->n_excluded; i++)

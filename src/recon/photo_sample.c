@@ -21,9 +21,3 @@ void recon_sample_rgb(const image_t *img, vec2 p, float out[3])
         out[k] = top + ty * (bottom - top);
     }
 }
-
-uint8_t recon_to_u8(float v)
-{
-    v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
-    return (uint8_t)lrintf(v * 255.0f);
-}

@@ -47,7 +47,15 @@ recon_edge recon_subpixel_edge_flat(const recon_signal *s, int i0, int side, dou
  * gray. */
 void recon_sample_rgb(const image_t *img, vec2 p, float out[3]);
 
-/* An 8-bit channel value of v in [0, 1] (clamped, rounded). */
-uint8_t recon_to_u8(float v);
+/* An 8-bit channel value of v in [0, 1] (clamped, NaN to 0, rounded to
+ * nearest as lrintf). Inline, as it runs per pixel: adding 2^23 to a float
+ * in [0, 255] leaves no bits for a fraction, so the sum is rounded to an
+ * integer in the current rounding mode, as lrintf rounds. */
+static inline uint8_t recon_to_u8(float v)
+{
+    v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+    float r = v * 255.0f + 0x1p23f;
+    return (uint8_t)(r - 0x1p23f);
+}
 
 #endif
