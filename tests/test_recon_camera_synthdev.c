@@ -8,7 +8,7 @@
  * JPEG of each photo. The image outline's B-spline (the profile before the
  * camera model) is logged beside it. One photo is a known failure
  * (docs/algorithms-recon.md, sections 12 and 13.7): the melon vase, whose
- * washed-out side the extraction's corners miss by 50-110 px; on it the
+ * washed-out side the extraction's corners miss by 15-60 px; on it the
  * test only asks for a profile. bench/bench_perspective prints the stage
  * alone as a table. */
 #include <criterion/criterion.h>

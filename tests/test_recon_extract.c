@@ -229,6 +229,36 @@ Test(recon_extract, washed_out_side)
     image_free(&img);
 }
 
+/* A lit foot, as on a glossy glaze under a rim light: a patch of the foot
+ * beside the axis as light as the backdrop, from the base up a sixth of the
+ * height, opens a bay from below in the mask (the melon vase of synth-dev).
+ * A surface of revolution meets every row in one interval: the bay is
+ * filled, and the base corners stay the foot's (without that, the caps take
+ * the bay's corners). */
+Test(recon_extract, lit_foot_bay)
+{
+    synth_params p = synth_defaults(SYNTH_VASE, 300, 400);
+    image_t img;
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    synth_truth t = synth_truth_of(&p);
+    double xc = t.axis_origin.x, rb = synth_radius(&p, 0);
+    for (int j = 0; j < img.height; j++) {
+        double y = j + 0.5;
+        if (y > t.axis_origin.y + 1 || y < t.axis_origin.y - t.height_px / 6)
+            continue;
+        for (int i = (int)(xc + 0.15 * rb); i < (int)(xc + 0.55 * rb); i++)
+            for (int c = 0; c < 3; c++)
+                img.data[((size_t)j * img.width + i) * 3 + c] = (float)p.bg[c];
+    }
+    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_result r;
+    char err[256];
+    cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
+    expect_within("vase, lit patch in the foot", measure(&p, &r, 4), CLEAN);
+    recon_result_free(&r);
+    image_free(&img);
+}
+
 Test(recon_extract, side_option_is_honoured)
 {
     synth_params p = synth_defaults(SYNTH_VASE, 300, 400);

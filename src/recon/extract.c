@@ -282,6 +282,43 @@ out:
     return st;
 }
 
+/* A surface of revolution meets every row in one interval (each imaged
+ * cross-section is an ellipse around the axis, and the silhouette is their
+ * union), so background between two of the object's runs of a row is not
+ * the outline: a window (a hole, kept), or a washed-out part of the body.
+ * Background open to the outside only from below, under object everywhere
+ * (a foot's lit centre as light as the backdrop: a bay cut up into the
+ * foot), is the body: filled row by row from the top, each gap between two
+ * runs of the row whose every pixel lies under object (already filled
+ * included). A gap under background (between a spout and the neck, between
+ * two handles above the rim) opens upwards and stays. lab, stat: the
+ * labelling of the background in the box (x0, y0, bw, bh) and its
+ * components' flags, stat[4 c] set where component c reaches the box's
+ * border (outside; the rest are the windows kept). */
+static void fill_bays_from_below(uint8_t *mask, int w, int x0, int y0, int bw, int bh, const int *lab,
+                                 const long *stat)
+{
+    for (int y = 1; y < bh; y++) {
+        uint8_t *m = mask + (size_t)(y0 + y) * w + x0;
+        const uint8_t *up = m - w;
+        const int *l = lab + (size_t)y * bw;
+        int x = 0;
+        while (x < bw && !m[x])
+            x++;
+        while (x < bw) {
+            while (x < bw && m[x])
+                x++;
+            int g0 = x, capped = 1;
+            while (x < bw && !m[x]) {
+                capped = capped && up[x] && stat[4 * l[x]];
+                x++;
+            }
+            if (x < bw && capped)
+                memset(m + g0, 1, (size_t)(x - g0));
+        }
+    }
+}
+
 /* Fills the holes of the vessel's mask except its windows: a hole entirely on
  * one side of the axis whose mirror image is mostly background is the loop of
  * a handle (the body continues behind it), whereas a hole inside the body (a
@@ -373,6 +410,7 @@ static int fill_holes_but_windows(uint8_t *mask, int w, int h, vec2 origin, vec2
             if (!window)
                 mask[(size_t)(y0 + y) * w + x0 + x] = 1;
         }
+    fill_bays_from_below(mask, w, x0, y0, bw, bh, lab, stat);
     free(stat);
     free(area);
     free(inv);
