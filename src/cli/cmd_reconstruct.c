@@ -261,6 +261,12 @@ static void print_summary(const report *r)
                         "is the meridian\n",
                 r->elevation_deg, r->focal_px,
                 !strcmp(r->method, "flag") ? "--fov" : !strcmp(r->method, "exif") ? "EXIF" : "ellipses");
+    else if (r->elevation_deg > 0)
+        /* Parallel rays pitched by e (b/a = sin e): the meridian is solved
+         * from the outline under that view, as for a perspective camera. */
+        fprintf(stderr, "  camera: orthographic, seen from %.1f deg above (the ellipses' aspect); the profile is the "
+                        "meridian under that view: %s\n",
+                r->elevation_deg, r->camera_note);
     else
         fprintf(stderr, "  camera: orthographic, the profile is the image outline: %s\n", r->camera_note);
     if (!r->quality.passed)
