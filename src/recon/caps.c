@@ -19,6 +19,8 @@
  * evenly: its end is its pole). */
 #define CORNER_MIN_TURN (20 * M_PI / 180)
 #define CORNER_PEAK_RATIO 3.0
+/* A chamfer or a rounded foot takes at most 5% off the radius. */
+#define BEVEL_MAX_INSET 0.05
 
 /* Turning angle of the closed contour at i between the chords from i-k and to
  * i+k, signed so that a convex turn of the outline is positive (orient: +1
@@ -215,6 +217,16 @@ static int ellipse_corners(const end_point *p, int n, double zone, int pick[2], 
     return 0;
 }
 
+/* The mean distance of the picked points (one per side) from the axis. */
+static double pick_half_width(const end_point *p, int n, const int pick[2])
+{
+    double w = 0;
+    for (int i = 0; i < n; i++)
+        if (p[i].i == pick[0] || p[i].i == pick[1])
+            w += 0.5 * fabs(p[i].r);
+    return w;
+}
+
 int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT])
 {
     double *turns = malloc((size_t)(n > 0 ? n : 1) * sizeof *turns);
@@ -312,30 +324,51 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
         }
         for (int b = 0; b < nb; b++) /* the half-width per bin where both sides have a point */
             bw[b] = bo[b] >= 0 && bo[nb + b] >= 0 ? 0.5 * (br[b] + br[nb + b]) : -1;
-        int best_b = -1, pick[2] = {-1, -1};
-        double best = -INFINITY;
+        /* The corners are where the outline turns onto the rim's (base's)
+         * ellipse: the pair at the height where the weaker side turns
+         * most. But a chamfer or a rounded foot turns twice, onto the
+         * ellipse and again onto the wall above it, and the upper turn may
+         * be the sharper (the chords see the lower one half on the
+         * ellipse's own curve); the base is the lower, the bevel part of
+         * the wall. So of the runs of bins whose score passes the bar, the
+         * first from the end wins over the sharpest when it lies within a
+         * bevel's inset of it (a bump on the near arc of a base seen from
+         * above, far inside the arc's ends, does not). Ties: the bin
+         * nearest the end. */
+        double bar = m > 0 ? fmax(CORNER_MIN_TURN, CORNER_PEAK_RATIO * gsl_stats_median(turns, 1, (size_t)m))
+                           : CORNER_MIN_TURN;
+        int best_b = -1, pick[2] = {-1, -1}, first_b = -1, first_pick[2] = {-1, -1}, first_done = 0;
+        double best = -INFINITY, first = -INFINITY;
         for (int b = 0; b < nb; b++) {
-            double side_best[2];
-            int side_pick[2];
-            for (int s = 0; s < 2; s++) {
-                side_best[s] = -INFINITY;
-                side_pick[s] = -1;
+            double side_best[2] = {-INFINITY, -INFINITY};
+            int side_pick[2] = {-1, -1};
+            for (int s = 0; s < 2; s++)
                 for (int c = b - 2; c <= b + 2; c++)
                     if (c >= 0 && c < nb && bt[s * nb + c] > side_best[s]) {
                         side_best[s] = bt[s * nb + c];
                         side_pick[s] = bi[s * nb + c];
                     }
-            }
             double score = fmin(side_best[0], side_best[1]);
-            if (score > best + 1e-9) { /* ties: the bin nearest the end */
+            if (score < bar) {
+                first_done |= first_b >= 0;
+                continue;
+            }
+            if (!first_done && score > first + 1e-9) {
+                first = score;
+                first_b = b;
+                first_pick[0] = side_pick[0], first_pick[1] = side_pick[1];
+            }
+            if (score > best + 1e-9) {
                 best = score;
                 best_b = b;
-                pick[0] = side_pick[0];
-                pick[1] = side_pick[1];
+                pick[0] = side_pick[0], pick[1] = side_pick[1];
             }
         }
-        if (m > 0 && best < fmax(CORNER_MIN_TURN, CORNER_PEAK_RATIO * gsl_stats_median(turns, 1, (size_t)m)))
-            best_b = -1;
+        if (first_b >= 0 && first_b != best_b &&
+            pick_half_width(zp, m, first_pick) >= (1 - BEVEL_MAX_INSET) * pick_half_width(zp, m, pick)) {
+            best_b = first_b;
+            pick[0] = first_pick[0], pick[1] = first_pick[1];
+        }
         /* The circle's ellipse is where the outline is widest near the end:
          * a rounded edge, or a wall that meets that ellipse tangentially,
          * does not turn sharply there, but the outline narrows above it. The
