@@ -280,6 +280,33 @@ Test(crosscheck, fit_from_restricts_the_fit, .timeout = 60)
     render_fixture_close(&f);
 }
 
+/* -a DIR: the scene's profile.json, not beside the scene, is found in an
+ * extra search folder, as `render -a` finds it; without -a the scene is
+ * refused in one line naming the file, and nothing is written. */
+Test(crosscheck, an_a_folder_is_searched, .timeout = 60)
+{
+    render_fixture f;
+    char scene[256], moved[300], dir[256], report[300], err[4096];
+    render_fixture_with_scene(&f, "cylinder", scene_xml, scene, sizeof scene);
+    snprintf(moved, sizeof moved, "%s/scenes", f.dir);
+    cr_assert_eq(mkdir(moved, 0755), 0);
+    snprintf(moved, sizeof moved, "%s/scenes/scene.xml", f.dir);
+    cr_assert_eq(rename(scene, moved), 0);
+    snprintf(dir, sizeof dir, "%s/xc", f.dir);
+    snprintf(report, sizeof report, "%s/report.json", dir);
+    const char *without[] = {"crosscheck", moved, "--segments", "8,16", "-o", dir, "--res", "12x10", "--spp", "1",
+                             NULL};
+    int status = run_celadon(&f, without, err, sizeof err);
+    cr_expect(status == 2 && count_newlines(err) == 1 && strstr(err, "profile.json"), "%d: %s", status, err);
+    cr_expect(!exists(dir), "a refused crosscheck wrote %s", dir);
+    const char *with[] = {"crosscheck", moved, "--segments", "8,16", "-o", dir, "--res", "12x10", "--spp", "1",
+                          "-a", f.dir, NULL};
+    status = run_celadon(&f, with, err, sizeof err);
+    cr_expect_eq(status, 0, "stderr: %s", err);
+    cr_expect(exists(report), "no %s", report);
+    render_fixture_close(&f);
+}
+
 /* A plate lying exactly in the vessel's mouth cap (y = 1, the SOR's height):
  * which of the two coincident surfaces a ray hits is decided by rounding,
  * differently for the analytic cap and the meshed one, at every N. The

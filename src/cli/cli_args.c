@@ -57,3 +57,22 @@ int cli_parse_int_list(const char *s, long long lo, long long hi, int *out, int 
     }
     return *n > 0 ? 0 : -1;
 }
+
+_Static_assert(CLI_MAX_SEARCH_DIRS == 64, "the -a limit's usage error names it");
+
+int cli_add_search_dirs(const char *cmd, const char *val, char **dirs, int *n)
+{
+    for (const char *p = val;; p++) {
+        size_t len = strcspn(p, ";");
+        if (len == 0)
+            return cli_usage_error(cmd, "-a wants a folder (or folders separated by ';'), not '%s'", val);
+        if (*n == CLI_MAX_SEARCH_DIRS)
+            return cli_usage_error(cmd, "at most 64 -a folders, not more ('%s')", val);
+        if (!(dirs[*n] = strndup(p, len)))
+            return 1;
+        ++*n;
+        p += len;
+        if (!*p)
+            return 0;
+    }
+}

@@ -27,4 +27,12 @@ int cli_parse_int(const char *s, long long lo, long long hi, long long *out);
  * out[0..*n): 0, or -1 when s is anything else. */
 int cli_parse_int_list(const char *s, long long lo, long long hi, int *out, int max, int *n);
 
+/* The -a folders of a scene's file search (Mitsuba's -a): at most this many. */
+enum { CLI_MAX_SEARCH_DIRS = 64 };
+
+/* -a's value: folders separated by ';' as Mitsuba takes them, each appended
+ * (strndup'd: the caller frees them) to dirs[*n..CLI_MAX_SEARCH_DIRS). 0, or
+ * the exit code (2 after a usage line naming cmd, 1 out of memory). */
+int cli_add_search_dirs(const char *cmd, const char *val, char **dirs, int *n);
+
 #endif

@@ -24,7 +24,7 @@ static void usage(FILE *f)
 {
     fprintf(f, "usage: celadon crosscheck SCENE.xml --segments N1,N2,... -o DIR [--spp N] [--res WxH]\n"
                "                          [--threads N] [--seed S] [--grid K] [--fit-from N]\n"
-               "                          [-D name=value]... [--part K/N | --merge PARTDIR...]\n\n"
+               "                          [-D name=value]... [-a DIR[;DIR]]... [--part K/N | --merge PARTDIR...]\n\n"
                "Renders the scene with its SORs intersected exactly and revolved into each N\n"
                "angular segments (same sampler seeds), and measures how the meshed images and\n"
                "first hits converge to the analytic ones (docs/crosscheck.md). DIR receives\n"
@@ -39,6 +39,7 @@ static void usage(FILE *f)
                "  --fit-from N    fit the slopes over the segment counts >= N only (default: all),\n"
                "                  e.g. to leave out coarse meshes outside the asymptotic range\n"
                "  -D name=value   sets a scene <default> parameter\n"
+               "  -a DIR[;DIR]    more folders to look for the scene's files in (Mitsuba's -a)\n"
                "  --part K/N      render only the K-th of N shares of every render's samples into\n"
                "                  DIR (analytic.exr, mesh-N.exr parts: docs/distributed.md)\n"
                "  --merge DIR...  merge the renders from the folders of all N parts, then measure\n");
@@ -192,6 +193,8 @@ int cmd_crosscheck(int argc, char **argv)
     if (!part_dirs)
         return 1;
     scene_define defs[MAX_DEFINES];
+    char *dirs[CLI_MAX_SEARCH_DIRS];
+    int ndirs = 0;
     crosscheck_params p = {.defs = defs, .build = scene_options_default(), .segments = segments, .geo_grid = 4,
                            .progress = 1};
     int rc = -1;
@@ -254,6 +257,9 @@ int cmd_crosscheck(int argc, char **argv)
                 rc = 1;
             else
                 defs[p.ndefs].fallback = false, defs[p.ndefs++].value = eq + 1;
+        } else if (!strcmp(a, "-a") || !strcmp(a, "--append")) {
+            rc = cli_add_search_dirs("crosscheck", val, dirs, &ndirs);
+            rc = rc == 0 ? -1 : rc;
         } else {
             rc = cli_usage_error("crosscheck", "unknown option '%s'", a);
         }
@@ -274,11 +280,14 @@ int cmd_crosscheck(int argc, char **argv)
     }
     if (rc < 0) {
         p.nsegments = nseg;
+        p.build.search_dirs = (const char *const *)dirs, p.build.n_search_dirs = ndirs;
         p.part_dirs = part_dirs, p.npart_dirs = nextra;
         rc = run(&p, part, dir);
     }
     free(part_dirs);
     for (int i = 0; i < p.ndefs; i++)
         free((char *)defs[i].name);
+    for (int i = 0; i < ndirs; i++)
+        free(dirs[i]);
     return rc;
 }

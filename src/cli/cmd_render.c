@@ -16,8 +16,8 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 
-enum { MAX_DEFINES = 64, MAX_SEARCH_DIRS = 64, MAX_FRAMES = 1000000 };
-_Static_assert(MAX_DEFINES == 64 && MAX_SEARCH_DIRS == 64, "the -D and -a limits' usage errors name them");
+enum { MAX_DEFINES = 64, MAX_FRAMES = 1000000 };
+_Static_assert(MAX_DEFINES == 64, "the -D limit's usage error names it");
 
 static void usage(FILE *f)
 {
@@ -58,7 +58,7 @@ typedef struct {
     render_options ro;
     scene_define defs[MAX_DEFINES + 2]; /* + $spp's fallback + the frame's */
     int ndefs;
-    char *dirs[MAX_SEARCH_DIRS]; /* -a folders, malloc'd */
+    char *dirs[CLI_MAX_SEARCH_DIRS]; /* -a folders, malloc'd */
     int ndirs;
     const char *spp; /* --spp's text, or NULL */
     render_part part; /* n == 0: the whole render */
@@ -91,24 +91,6 @@ static int parse_frames(const char *s, render_args *a)
     a->frame_from = from, a->frame_to = to, a->frame_step = step;
     a->frames = (int)(((long long)to - from + step - 1) / step);
     return 0;
-}
-
-/* -a's value: folders separated by ';' as Mitsuba takes them, each one
- * more search folder. 0, or the exit code. */
-static int add_search_dirs(const char *val, render_args *a)
-{
-    for (const char *p = val;; p++) {
-        size_t n = strcspn(p, ";");
-        if (n == 0)
-            return cli_usage_error("render", "-a wants a folder (or folders separated by ';'), not '%s'", val);
-        if (a->ndirs == MAX_SEARCH_DIRS)
-            return cli_usage_error("render", "at most 64 -a folders, not more ('%s')", val);
-        if (!(a->dirs[a->ndirs++] = strndup(p, n)))
-            return 1;
-        p += n;
-        if (!*p)
-            return 0;
-    }
 }
 
 /* Parses the options; -1 to go on, else the exit code. */
@@ -174,7 +156,7 @@ static int parse_args(int argc, char **argv, render_args *a)
                 return 1;
             a->defs[a->ndefs++] = (scene_define){name, eq + 1, false};
         } else if (!strcmp(arg, "-a") || !strcmp(arg, "--append")) {
-            int rc = add_search_dirs(val, a);
+            int rc = cli_add_search_dirs("render", val, a->dirs, &a->ndirs);
             if (rc != 0)
                 return rc;
         } else if (!strcmp(arg, "--aov")) {
