@@ -192,8 +192,9 @@ static void run_stages(const image_t *img, const char *path, double ms[ST_COUNT]
     vec2 o = v2(x0 + slope * h, h), d = v2_norm(v2(-slope, -1));
     int washed;
     t = cpu_ms();
+    recon_symmetry_fit fit = {0, res.edge_noise_px[0], 0};
     recon_axis_symmetry(res.silhouette[0], res.n_silhouette[0], res.silhouette[1], res.n_silhouette[1], &o, &d,
-                        0.05 * h, 0.95 * h, 0, res.edge_noise_px[0], &washed);
+                        0.05 * h, 0.95 * h, &fit, &washed);
     ms[ST_AXIS] = cpu_ms() - t;
     int base_is_cut = 0;
     for (int i = 0; i < res.n_excluded; i++)

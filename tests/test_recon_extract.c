@@ -229,6 +229,46 @@ Test(recon_extract, washed_out_side)
     image_free(&img);
 }
 
+/* A highlight washing out nearly the whole left edge, as on synth-dev's
+ * melon vase: from 4% to 96% of the height the glaze is the backdrop's colour
+ * over a band drifting between 6 and 20 px inside the outline (then ramps
+ * to the glaze over 8 px), so no more
+ * than the few rows at the ends are symmetric in the mask; only the limb, the
+ * outline's last two pixels as drawn, survives on a third of the rows (runs
+ * of 30). The axis must come from the limb's symmetry with the clean side
+ * (without it, the segmentation's start stays: 0.38 deg, corners 19 px). */
+Test(recon_extract, washed_out_limb)
+{
+    synth_params p = synth_defaults(SYNTH_VASE, 450, 600);
+    p.tilt_deg = 1.5;
+    image_t img;
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    synth_truth t = synth_truth_of(&p);
+    double y_lo = t.axis_origin.y - 0.04 * t.height_px, y_hi = t.axis_origin.y - 0.96 * t.height_px;
+    for (int j = 0; j < img.height; j++) {
+        double y = j + 0.5, xl, xr;
+        if (y > y_lo || y < y_hi || !synth_silhouette_x(&p, y, &xl, &xr))
+            continue;
+        int limb = (j / 30) % 3 == 0;
+        double band = 13 + 7 * sin(j / 23.0);
+        for (int i = (int)floor(xl) + (limb ? 2 : 0); i < img.width && i + 0.5 < xl + band + 8; i++) {
+            double f = fmin(1, fmax(0, (i + 0.5 - xl - band) / 8));
+            for (int c = 0; c < 3; c++) {
+                float *v = &img.data[((size_t)j * img.width + i) * 3 + c];
+                *v = (float)(p.bg[c] + f * (*v - p.bg[c]));
+            }
+        }
+    }
+    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_result r;
+    char err[256];
+    cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
+    cr_expect_eq(r.side_used, RECON_SIDE_RIGHT);
+    expect_within("vase, limb of a washed side", measure(&p, &r, 4), (limits){0.01, 0.05, 2.0, 1.6});
+    recon_result_free(&r);
+    image_free(&img);
+}
+
 /* A lit foot, as on a glossy glaze under a rim light: a patch of the foot
  * beside the axis as light as the backdrop, from the base up a sixth of the
  * height, opens a bay from below in the mask (the melon vase of synth-dev).

@@ -69,6 +69,20 @@ static double left_at(const hr_t *L, int nl, double h, double *slope)
     return L[lo].r + (h - L[lo].h) / dh * (L[hi].r - L[lo].r);
 }
 
+/* dr/dh of the right outline at its point i, over its points i-3 and i+3
+ * (rows of the photo) in the frame (o, d); 0 when they are missing. */
+static int right_slope(const vec2 *right, int nr, int i, vec2 o, vec2 d, double *slope)
+{
+    if (i < 3 || i + 3 >= nr || fabs(right[i + 3].y - right[i - 3].y) > 8)
+        return 0;
+    vec2 n = v2(-d.y, d.x), a = v2_sub(right[i - 3], o), b = v2_sub(right[i + 3], o);
+    double dh = v2_dot(b, d) - v2_dot(a, d);
+    if (fabs(dh) < 1e-9)
+        return 0;
+    *slope = (v2_dot(b, n) - v2_dot(a, n)) / dh;
+    return 1;
+}
+
 /* The line e = a + b x of the symmetric rows when one outline may be washed
  * out. A washed-out outline can only lie inside the true one, so every row's
  * residual e = r_right - r_left lies on one side of the true line (above it
@@ -80,16 +94,16 @@ static double left_at(const hr_t *L, int nl, double h, double *slope)
  * highlight along most of an edge leaves few clean rows, outvoted by
  * washed-out rows whose error drifts slowly (a line through those passes
  * above the clean rows, which the penalty counts). */
-static void washed_consensus_line(const double *e, const double *x, int m, int washed, double tau, double *a,
-                                  double *b)
+static void washed_consensus_line(const double *e, const double *x, int m, int washed, double tau, int samples,
+                                  double *a, double *b)
 {
-    enum { SAMPLES = 32, STRIDE = 2 };
+    enum { STRIDE = 2 };
     double xlo = x[0], xhi = x[0], best = -INFINITY;
     for (int i = 1; i < m; i++)
         xlo = fmin(xlo, x[i]), xhi = fmax(xhi, x[i]);
-    for (int p = 0; p < SAMPLES; p++)
-        for (int q = p + 1; q < SAMPLES; q++) {
-            int i = (int)((long)p * (m - 1) / (SAMPLES - 1)), k = (int)((long)q * (m - 1) / (SAMPLES - 1));
+    for (int p = 0; p < samples; p++)
+        for (int q = p + 1; q < samples; q++) {
+            int i = (int)((long)p * (m - 1) / (samples - 1)), k = (int)((long)q * (m - 1) / (samples - 1));
             if (fabs(x[k] - x[i]) < 0.05 * (xhi - xlo))
                 continue;
             double bb = (e[k] - e[i]) / (x[k] - x[i]), aa = e[i] - bb * x[i], score = 0;
@@ -106,8 +120,9 @@ static void washed_consensus_line(const double *e, const double *x, int m, int w
 }
 
 int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec2 *origin, vec2 *dir, double h_lo,
-                        double h_hi, int suspect, double noise_px, int *washed_side)
+                        double h_hi, const recon_symmetry_fit *fit, int *washed_side)
 {
+    const int suspect = fit->suspect;
     int washed = 0;
     *washed_side = 0;
     hr_t *L = malloc((size_t)(nl > 0 ? nl : 1) * sizeof *L);
@@ -138,7 +153,12 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
                 continue;
             /* Rotating the axis by dth also moves each point's height by
              * -+dth r, which shifts the left outline by its slope: the
-             * residual's derivative in dth is 2 (h + slope r). */
+             * residual's derivative in dth is 2 (h + slope r). The two
+             * outlines' slopes agree (mirror images); a left limb, found
+             * row by row, is too rough for one, and the right outline's
+             * slope over +-3 rows serves. */
+            if (fit->limb && suspect > 0 && !right_slope(right, nr, i, o, d, &slope))
+                continue;
             e[m] = v2_dot(q, n) - rl;
             hs[m++] = h + slope * rl;
         }
@@ -153,8 +173,8 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
          * further off is not symmetric, whatever the spread of the rest). */
         double a = 0, b = 0, tol = 0.75;
         if (iter == 0 && suspect) {
-            tol = fmax(0.25, fmin(0.75, 3 * noise_px));
-            washed_consensus_line(e, hs, m, suspect, tol, &a, &b);
+            tol = fmax(0.25, fmin(0.75, 3 * fit->noise_px));
+            washed_consensus_line(e, hs, m, suspect, tol, fit->limb ? 64 : 32, &a, &b);
             int agree = 0;
             for (int i = 0; i < m; i++)
                 agree += fabs(e[i] - a - b * hs[i]) <= tol;
@@ -178,7 +198,10 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
                 hm += hs[i];
                 cnt++;
             }
-        if (cnt < 20 || cnt < (washed ? 0.15 : 0.3) * m)
+        /* Enough rows: 30% of them; 15% of a washed-out outline's. A limb
+         * survives on fewer rows, scattered: at least 20 that give the tilt
+         * within 0.05 deg (one standard error, below). */
+        if (cnt < 20 || cnt < (washed ? (fit->limb ? 0.0 : 0.15) : 0.3) * m)
             break;
         hm /= cnt;
         double se = 0, shh = 0, seh = 0;
@@ -192,6 +215,17 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
         if (shh <= 0)
             break;
         double dc = 0.5 * se / cnt, dth = 0.5 * seh / shh, delta = dc - dth * hm;
+        if (fit->limb) {
+            /* e = 2 dc + 2 dth (x - xm) + noise: dth's standard error is s / (2 sqrt shh) */
+            double rss = 0;
+            for (int i = 0; i < m; i++)
+                if (fabs(e[i] - a - b * hs[i]) <= tol) {
+                    double r = e[i] - 2 * dc - 2 * dth * (hs[i] - hm);
+                    rss += r * r;
+                }
+            if (0.5 * sqrt(rss / (cnt - 2) / shh) > 0.05 * M_PI / 180)
+                break;
+        }
         o = v2_add(o, v2_scale(n, delta));
         d = v2_norm(v2_add(d, v2_scale(n, dth)));
         ok = 1;

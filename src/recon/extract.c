@@ -129,26 +129,6 @@ static int drop_outliers(vec2 *pts, double *contrast, uint8_t *gap, int n)
  * is the body's outermost pixel of row j on that side (-1: none), outer[j]
  * the object's. Fills pts, contrast and gap (object again beyond a gap);
  * returns the count. */
-/* Row j of the signal the outline is measured on: the photo's colours in
- * [0, 1] (a gray photo's one channel), or the alpha-based gray when the mask
- * came from alpha. buf: width * 3 floats, or NULL when the photo has three
- * channels already in [0, 1] (its rows serve as they are). */
-static recon_signal signal_row(const image_t *img, const float *gray, int alpha, int j, float *buf)
-{
-    const int w = img->width, c = img->channels, colour = c >= 3 && !alpha;
-    if (alpha || c < 3)
-        return (recon_signal){alpha ? gray + (size_t)j * w : (gray + (size_t)j * w), w, 1};
-    const float *p = img->data + (size_t)j * w * c;
-    if (!buf)
-        return (recon_signal){p, w, 3};
-    for (int i = 0; i < w; i++)
-        for (int k = 0; k < 3; k++) {
-            float v = p[(size_t)i * c + k];
-            buf[3 * i + k] = v > 0 ? (v < 1 ? v : 1) : 0;
-        }
-    return (recon_signal){buf, w, colour ? 3 : 1};
-}
-
 static int trace_side(const image_t *img, const float *gray, int alpha, const int *ext, const int *outer, int side,
                       double delta, vec2 *pts, double *contrast, uint8_t *gap, float *buf)
 {
@@ -168,7 +148,7 @@ static int trace_side(const image_t *img, const float *gray, int alpha, const in
          * quarter of this row's step (the pixel 3 px inside against the one
          * 12 px outside) or by delta (the noise), whichever is more: JPEG
          * ringing beside a strong edge is not the edge. */
-        recon_signal sig = signal_row(img, gray, alpha, j, buf);
+        recon_signal sig = recon_signal_row(img, gray, alpha, j, buf);
         int in = ext[j] - 3 * side, outp = ext[j] + 12 * side;
         double d = delta;
         if (in >= 0 && in < w && outp >= 0 && outp < w) {
@@ -698,15 +678,40 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
             ht = fmax(ht, hh);
         }
     int washed = 0, suspect = median[0] < 0.5 * median[1] ? 1 : (median[1] < 0.5 * median[0] ? -1 : 0);
+    const double h_lo = hb + 0.05 * (ht - hb) + 2, h_hi = ht - 0.05 * (ht - hb) - 2;
     {
         vec2 o = origin, d = dir;
+        recon_symmetry_fit fit = {suspect, res->edge_noise_px[suspect > 0] / 1.65, 0};
         if (recon_axis_symmetry(res->silhouette[0], res->n_silhouette[0], res->silhouette[1], res->n_silhouette[1],
-                                &o, &d, hb + 0.05 * (ht - hb) + 2, ht - 0.05 * (ht - hb) - 2, suspect,
-                                res->edge_noise_px[suspect > 0] / 1.65, &washed)) {
+                                &o, &d, h_lo, h_hi, &fit, &washed)) {
             origin = o;
             dir = d;
             res->axis_from_symmetry = 1;
         }
+    }
+    /* When too few of a washed-out side's rows agree to move the axis (its
+     * mask outline lies inside the true one on most rows), its limb, on the
+     * rows where it still departs from the backdrop, is the outline: the
+     * symmetry of the limbs, under the same one-sided consensus (a row whose
+     * limb is washed out too lies inside), gives the axis. */
+    if (washed && !res->axis_from_symmetry) {
+        vec2 *limb = malloc((size_t)2 * h * sizeof *limb);
+        int nl, nr, unused;
+        if (!limb || recon_limb_points(img, gray, res->mask_mode == RECON_MASK_ALPHA, ext, origin, dir, washed, delta,
+                                       rowbuf, limb, &nl, limb + h, &nr) != 0) {
+            free(limb);
+            st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
+            goto out;
+        }
+        /* the limb's points are pixel-rough: noise 0.25 px */
+        vec2 o = origin, d = dir;
+        recon_symmetry_fit fit = {washed, 0.25, 1};
+        if (recon_axis_symmetry(limb, nl, limb + h, nr, &o, &d, h_lo, h_hi, &fit, &unused)) {
+            origin = o;
+            dir = d;
+            res->axis_from_symmetry = 1;
+        }
+        free(limb);
     }
 
     /* 5. The caps: where the outline meets its top and bottom, on each side. */

@@ -1,4 +1,5 @@
-/* Bilinear samples of a photo (recon/recon.h). */
+/* Samples of a photo: bilinear colours, and the rows the outline is measured
+ * on (recon/recon.h). */
 #include "recon/recon.h"
 
 #include <math.h>
@@ -20,4 +21,20 @@ void recon_sample_rgb(const image_t *img, vec2 p, float out[3])
         float top = p00[c] + tx * (p10[c] - p00[c]), bottom = p01[c] + tx * (p11[c] - p01[c]);
         out[k] = top + ty * (bottom - top);
     }
+}
+
+recon_signal recon_signal_row(const image_t *img, const float *gray, int alpha, int j, float *buf)
+{
+    const int w = img->width, c = img->channels;
+    if (alpha || c < 3)
+        return (recon_signal){gray + (size_t)j * w, w, 1};
+    const float *p = img->data + (size_t)j * w * c;
+    if (!buf)
+        return (recon_signal){p, w, 3};
+    for (int i = 0; i < w; i++)
+        for (int k = 0; k < 3; k++) {
+            float v = p[(size_t)i * c + k];
+            buf[3 * i + k] = v > 0 ? (v < 1 ? v : 1) : 0;
+        }
+    return (recon_signal){buf, w, 3};
 }

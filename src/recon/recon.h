@@ -40,7 +40,14 @@ recon_edge recon_subpixel_edge(const recon_signal *s, int i0, int side, double s
  * inside the edge and the drift rule would read it as a glaze. */
 recon_edge recon_subpixel_edge_flat(const recon_signal *s, int i0, int side, double slope, double delta);
 
-/* ---- bilinear samples of a photo (photo_sample.c) */
+/* ---- samples of a photo (photo_sample.c) */
+
+/* Row j of the signal the outline is measured on: the photo's colours in
+ * [0, 1] (a gray photo's one channel), or gray (the alpha-based gray when the
+ * mask came from alpha). buf: width * 3 floats, or NULL when the photo has
+ * three channels already in [0, 1] (its rows serve as they are). */
+recon_signal recon_signal_row(const image_t *img, const float *gray, int alpha, int j, float *buf);
+
 
 /* The photo's colour at the continuous point p (pixel (i, j) has its centre
  * at (i + 0.5, j + 0.5); clamped to the image), bilinear; gray photos give

@@ -78,17 +78,44 @@ void recon_border_set_free(recon_border_set *s);
 /* PCA of points: mean, unit eigenvectors (major first) and eigenvalues. */
 void recon_pca(const vec2 *pts, int n, vec2 *mean, vec2 axes[2], double eig[2]);
 
+/* How recon_axis_symmetry reads the two outlines. */
+typedef struct {
+    int suspect;     /* +1 when the left outline may be washed out (a highlight along it lowers its edge contrast;
+                      * its outline then lies inside the true one), -1 for the right, 0 for neither */
+    double noise_px; /* the clean side's edge noise (sigma), px */
+    int limb;        /* the suspect side's points are its limb (recon_limb_points): one per row, pixel-rough,
+                      * the true outline on scattered rows only */
+} recon_symmetry_fit;
+
 /* Refines the axis (origin on it, unit direction toward the rim) so that the
  * left and right outlines are mirror images: Gauss–Newton on offset and angle
- * with trimmed residuals, between the heights h_lo and h_hi. suspect: +1 when
- * the left outline may be washed out (a highlight along it lowers its edge
- * contrast; its outline then lies inside the true one), -1 for the right, 0
- * for neither. When most rows are not symmetric, the suspect side is taken
- * as washed out and the fit rests on the rows that a one-sided consensus
- * finds symmetric (at least 15% of them); *washed_side is then the suspect
- * side, else 0, whether or not the axis moves. Returns 1 when refined, 0 when
- * the outlines disagree too much to trust (axis unchanged). */
+ * with trimmed residuals, between the heights h_lo and h_hi. When most rows
+ * are not symmetric, the suspect side is taken as washed out and the fit
+ * rests on the rows that a one-sided consensus finds symmetric (at least 15%
+ * of them; for a limb at least 20 rows that give the tilt within 0.05 deg);
+ * *washed_side is then the suspect side, else 0, whether or not the axis
+ * moves. Returns 1 when refined, 0 when the outlines disagree too much to
+ * trust (axis unchanged). */
 int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec2 *origin, vec2 *dir, double h_lo,
-                        double h_hi, int suspect, double noise_px, int *washed_side);
+                        double h_hi, const recon_symmetry_fit *fit, int *washed_side);
+
+/* ---- the limb (limb.c) */
+
+/* Where a washed-out side really ends. A highlight can make a glossy glaze
+ * as light as the backdrop (clipped white) for many pixels inside the true
+ * outline, so the mask's outline lies inside it; yet the object's last
+ * pixel (the limb, a thin line of glaze seen edge-on, the anti-aliased
+ * border) often still departs from the backdrop. Per row that has body on
+ * both sides (ext: row_extents' layout, [0, h) left body, [h, 2h) right),
+ * the outermost pixel on each side whose colour differs from the backdrop
+ * beyond it (the pixel 12 px outside the farther of the side's mask extent
+ * and the other side's mirror image across the axis origin + t dir) by more
+ * than t = max(delta, twice the 99th percentile of the backdrop's departure
+ * 2-8 px beside the clean side's edge: JPEG ringing); the mask's extent where
+ * none does. Pixel centres, one point per row and side, in left and right
+ * (h each). washed: +1 when the left side is washed out, -1 the right.
+ * buf: as recon_signal_row's. Returns 0, or -1 when out of memory. */
+int recon_limb_points(const image_t *img, const float *gray, int alpha, const int *ext, vec2 origin, vec2 dir,
+                      int washed, double delta, float *buf, vec2 *left, int *nl, vec2 *right, int *nr);
 
 #endif
