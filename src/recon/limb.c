@@ -55,17 +55,34 @@ static double ringing(const image_t *img, const float *gray, int alpha, const in
     return q;
 }
 
-/* The fraction of pixel x that the object covers, x being the outermost
- * pixel departing from the backdrop pixel bg and step pointing inward: its
+/* Where a row first departs from its backdrop: from the backdrop pixel bg
+ * inward (step +1 from the left, -1 from the right) to the first pixel
+ * differing from it by more than t, at the latest stop. *edge: the outline's
+ * sub-pixel position there, the pixel's covered fraction being its
  * departure over the largest of it and the next two pixels' (1 for a limb
- * one pixel wide; the anti-aliased ramp's fraction at a step edge). */
-static double coverage(const recon_signal *s, int x, int step, int bg)
+ * one pixel wide, the anti-aliased ramp's fraction at a step edge). Returns
+ * 1 when the departure is sharp, as an outline is (within a pixel, blurred a
+ * little): the pixels 4-5 further in depart at most 1.5 times as much as the
+ * first three; a highlight's soft inner boundary, still rising there, is no
+ * outline. */
+static int departure(const recon_signal *s, int bg, int stop, int step, double t, double *edge)
 {
-    double d = dist(s, x, bg), peak = d;
-    for (int k = 1; k <= 2; k++)
-        if (x + k * step >= 0 && x + k * step < s->width)
-            peak = fmax(peak, dist(s, x + k * step, bg));
-    return peak > 0 ? d / peak : 1;
+    int x = bg + step;
+    while (x != stop && dist(s, x, bg) <= t)
+        x += step;
+    double d = dist(s, x, bg), peak = d, later = 0;
+    for (int k = 1; k <= 5; k++) {
+        int i = x + k * step;
+        if (i < 0 || i >= s->width)
+            break;
+        if (k <= 2)
+            peak = fmax(peak, dist(s, i, bg));
+        else if (k >= 4)
+            later = fmax(later, dist(s, i, bg));
+    }
+    double covered = peak > 0 ? d / peak : 1;
+    *edge = step > 0 ? x + 1 - covered : x + covered;
+    return later <= 1.5 * peak;
 }
 
 int recon_limb_points(const image_t *img, const float *gray, int alpha, const int *ext, vec2 origin, vec2 dir,
@@ -95,14 +112,12 @@ int recon_limb_points(const image_t *img, const float *gray, int alpha, const in
         if (lo < 0 || hi >= w)
             continue;
         recon_signal sig = recon_signal_row(img, gray, alpha, j, buf);
-        int x = lo + 1;
-        while (x < el && dist(&sig, x, lo) <= t)
-            x++;
-        left[(*nl)++] = v2(x + 1 - coverage(&sig, x, 1, lo), j + 0.5);
-        x = hi - 1;
-        while (x > er && dist(&sig, x, hi) <= t)
-            x--;
-        right[(*nr)++] = v2(x + coverage(&sig, x, -1, hi), j + 0.5);
+        double xl, xr;
+        /* the washed-out side's soft departures are not its outline */
+        if (departure(&sig, lo, el, 1, t, &xl) || washed < 0)
+            left[(*nl)++] = v2(xl, j + 0.5);
+        if (departure(&sig, hi, er, -1, t, &xr) || washed > 0)
+            right[(*nr)++] = v2(xr, j + 0.5);
     }
     return 0;
 }
