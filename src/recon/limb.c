@@ -1,5 +1,5 @@
 /* The limb: per row, the outermost pixel on each side that departs from the
- * backdrop beyond it. See recon_internal.h. */
+ * backdrop beyond it (recon_internal.h; algorithms-recon.md section 5). */
 #include <math.h>
 #include <stdlib.h>
 

@@ -108,13 +108,16 @@ int recon_axis_symmetry(const vec2 *left, int nl, const vec2 *right, int nr, vec
  * border) often still departs from the backdrop. Per row that has body on
  * both sides (ext: row_extents' layout, [0, h) left body, [h, 2h) right),
  * the outermost pixel on each side whose colour differs from the backdrop
- * beyond it (the pixel 12 px outside the farther of the side's mask extent
- * and the other side's mirror image across the axis origin + t dir) by more
- * than t = max(delta, twice the 99th percentile of the backdrop's departure
- * 2-8 px beside the clean side's edge: JPEG ringing); the mask's extent where
- * none does. Pixel centres, one point per row and side, in left and right
- * (h each). washed: +1 when the left side is washed out, -1 the right.
- * buf: as recon_signal_row's. Returns 0, or -1 when out of memory. */
+ * beyond it (the pixel 12 px plus a tenth of the row's width outside the
+ * farther of the side's mask extent and the other side's mirror image
+ * across the axis origin + t dir) by more than t = max(delta, twice the
+ * backdrop's departure 3-9 px beside the clean side's edge, 90th percentile
+ * over its rows: JPEG ringing); the mask's extent where none does. The
+ * outline's sub-pixel position in that pixel, one point per row on the
+ * clean side; on the washed-out side only where the departure is sharp, as
+ * an outline is (a highlight's soft inner boundary is not). washed: +1 when
+ * the left side is washed out, -1 the right. buf: as recon_signal_row's.
+ * Returns 0, or -1 when out of memory. */
 int recon_limb_points(const image_t *img, const float *gray, int alpha, const int *ext, vec2 origin, vec2 dir,
                       int washed, double delta, float *buf, vec2 *left, int *nl, vec2 *right, int *nr);
 
