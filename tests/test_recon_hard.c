@@ -163,10 +163,10 @@ Test(recon_hard, a_line_in_the_backdrop_colour_does_not_cut_the_vessel, .timeout
 
 /* ---- cut at the foot */
 
-static void expect_foot_cut(const char *name, recon_part_kind kind)
+static void expect_foot_cut(const char *name, void (*edit)(synth_scene_params *), recon_part_kind kind)
 {
     run_t x;
-    run_case(name, NULL, 0, &x);
+    run_case(name, edit, 0, &x);
     cr_assert_eq(x.status, 0, "%s refused: %s", name, x.err);
     cr_assert(isfinite(x.t.foot_y), "%s has a foot row", name);
     double d = fabs(base_row(&x) - x.t.foot_y);
@@ -176,11 +176,22 @@ static void expect_foot_cut(const char *name, recon_part_kind kind)
     reconstruction_free(&x.r);
 }
 
+/* The footed bowl's pillar in dark lacquer: a stand no colour model takes
+ * for backdrop or shadow, so the cut at the foot must find it, and it is
+ * taller than the bowl (the vessel's seeds, the object's upper half, fell on
+ * it; support.c takes them above the column that rises from the border). */
+static void lacquer_stand(synth_scene_params *p)
+{
+    static const float c[3] = {0.16f, 0.10f, 0.08f};
+    memcpy(p->stand.colour, c, sizeof c);
+}
+
 Test(recon_hard, cast_shadow_and_stand_cut_at_the_foot, .timeout = 120)
 {
-    expect_foot_cut("maebyeong_shadow", RECON_PART_SHADOW);
-    expect_foot_cut("bottle_stand", RECON_PART_STAND);
-    expect_foot_cut("footed_bowl_stand", RECON_PART_STAND);
+    expect_foot_cut("maebyeong_shadow", NULL, RECON_PART_SHADOW);
+    expect_foot_cut("bottle_stand", NULL, RECON_PART_STAND);
+    expect_foot_cut("footed_bowl_stand", NULL, RECON_PART_STAND);
+    expect_foot_cut("footed_bowl_stand", lacquer_stand, RECON_PART_STAND);
 }
 
 /* ---- handles */
