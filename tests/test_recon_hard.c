@@ -226,7 +226,9 @@ Test(recon_hard, handles_are_left_out, .timeout = 120)
 static void level_camera(synth_scene_params *p) { p->vessels[0].body.elevation_deg = 0; }
 /* The studio jar glazed celadon: its white foot on the pale sweep is lost
  * (docs/algorithms-recon.md, "Known failures"); the lid is what this tests,
- * its flange washed by the highlight on one side (3.5 px). */
+ * its flange washed by the highlight on one side (3.52 px; 3.42 px when the
+ * shadow model, counting its colours as a point, took the other side's dark
+ * flange rows for shadow). */
 static void celadon_glaze(synth_scene_params *p)
 {
     static const float c[3] = {0.50f, 0.62f, 0.53f};
@@ -239,7 +241,7 @@ Test(recon_hard, lid_and_knob_are_kept, .timeout = 60)
         const char *name;
         void (*edit)(synth_scene_params *);
         double top, max;
-    } cases[] = {{"lidded_jar_flat_high", level_camera, 2.0, 1.0}, {"lidded_jar", celadon_glaze, 4.0, 3.5}};
+    } cases[] = {{"lidded_jar_flat_high", level_camera, 2.0, 1.0}, {"lidded_jar", celadon_glaze, 4.0, 3.6}};
     for (int k = 0; k < 2; k++) {
         run_t x;
         run_case(cases[k].name, cases[k].edit, 0, &x);
