@@ -163,10 +163,10 @@ Test(recon_hard, a_line_in_the_backdrop_colour_does_not_cut_the_vessel, .timeout
 
 /* ---- cut at the foot */
 
-static void expect_foot_cut(const char *name, recon_part_kind kind)
+static void expect_foot_cut(const char *name, void (*edit)(synth_scene_params *), recon_part_kind kind)
 {
     run_t x;
-    run_case(name, NULL, 0, &x);
+    run_case(name, edit, 0, &x);
     cr_assert_eq(x.status, 0, "%s refused: %s", name, x.err);
     cr_assert(isfinite(x.t.foot_y), "%s has a foot row", name);
     double d = fabs(base_row(&x) - x.t.foot_y);
@@ -176,11 +176,22 @@ static void expect_foot_cut(const char *name, recon_part_kind kind)
     reconstruction_free(&x.r);
 }
 
+/* The footed bowl's pillar in dark lacquer: a stand no colour model takes
+ * for backdrop or shadow, so the cut at the foot must find it, and it is
+ * taller than the bowl (the vessel's seeds, the object's upper half, fell on
+ * it; support.c takes them above the column that rises from the border). */
+static void lacquer_stand(synth_scene_params *p)
+{
+    static const float c[3] = {0.16f, 0.10f, 0.08f};
+    memcpy(p->stand.colour, c, sizeof c);
+}
+
 Test(recon_hard, cast_shadow_and_stand_cut_at_the_foot, .timeout = 120)
 {
-    expect_foot_cut("maebyeong_shadow", RECON_PART_SHADOW);
-    expect_foot_cut("bottle_stand", RECON_PART_STAND);
-    expect_foot_cut("footed_bowl_stand", RECON_PART_STAND);
+    expect_foot_cut("maebyeong_shadow", NULL, RECON_PART_SHADOW);
+    expect_foot_cut("bottle_stand", NULL, RECON_PART_STAND);
+    expect_foot_cut("footed_bowl_stand", NULL, RECON_PART_STAND);
+    expect_foot_cut("footed_bowl_stand", lacquer_stand, RECON_PART_STAND);
 }
 
 /* ---- handles */
@@ -215,7 +226,9 @@ Test(recon_hard, handles_are_left_out, .timeout = 120)
 static void level_camera(synth_scene_params *p) { p->vessels[0].body.elevation_deg = 0; }
 /* The studio jar glazed celadon: its white foot on the pale sweep is lost
  * (docs/algorithms-recon.md, "Known failures"); the lid is what this tests,
- * its flange washed by the highlight on one side (3.5 px). */
+ * its flange washed by the highlight on one side (3.52 px; 3.42 px when the
+ * shadow model, counting its colours as a point, took the other side's dark
+ * flange rows for shadow). */
 static void celadon_glaze(synth_scene_params *p)
 {
     static const float c[3] = {0.50f, 0.62f, 0.53f};
@@ -228,7 +241,7 @@ Test(recon_hard, lid_and_knob_are_kept, .timeout = 60)
         const char *name;
         void (*edit)(synth_scene_params *);
         double top, max;
-    } cases[] = {{"lidded_jar_flat_high", level_camera, 2.0, 1.0}, {"lidded_jar", celadon_glaze, 4.0, 3.5}};
+    } cases[] = {{"lidded_jar_flat_high", level_camera, 2.0, 1.0}, {"lidded_jar", celadon_glaze, 4.0, 3.6}};
     for (int k = 0; k < 2; k++) {
         run_t x;
         run_case(cases[k].name, cases[k].edit, 0, &x);

@@ -103,7 +103,10 @@ static int drop_outliers(vec2 *pts, double *contrast, uint8_t *gap, int n)
         return n;
     for (int k = 0; k < n; k++) {
         int a = k < 3 ? 0 : (k + 3 >= n ? n - 7 : k - 3);
-        double slope = (pts[a + 6].x - pts[a].x) / (pts[a + 6].y - pts[a].y);
+        /* the slope across the window, from ends other than the point tested
+         * (a bad end row would tilt its own line toward itself) */
+        int i0 = a + (k == a), i1 = a + 6 - (k == a + 6);
+        double slope = (pts[i1].x - pts[i0].x) / (pts[i1].y - pts[i0].y);
         double v[7]; /* insertion-sorted: qsort's call overhead dominates for 7 */
         for (int i = 0; i < 7; i++) {
             double x = pts[a + i].x - slope * (pts[a + i].y - pts[k].y);

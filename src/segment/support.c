@@ -97,8 +97,37 @@ static int part_seeds(const recon_segmentation *seg, const uint8_t *m, hypothesi
     return n;
 }
 
-/* The vessel's seeds: the upper half of the object, within a quarter of the
- * row's width of the axis (and not a part seed). */
+/* The extent [*l, *r] of a row's object pixels; 0 when it has none. */
+static int row_extent(const uint8_t *row, int w, int *l, int *r)
+{
+    const uint8_t *a = memchr(row, 1, (size_t)w);
+    if (!a)
+        return 0;
+    *l = (int)(a - row);
+    *r = (int)((const uint8_t *)memrchr(row, 1, (size_t)w) - row);
+    return 1;
+}
+
+/* The first row of the straight column that rises from the bottom border:
+ * the rows whose object extent stays within a pixel, on each side, of the
+ * bottom row's (a stand's cylinder or box, or a vessel's wall cut by the
+ * border: nothing there is surely the vessel). bottom + 1 when the object
+ * does not reach the border. */
+static int column_top(const uint8_t *m, int w, int h, int bottom)
+{
+    int l0, r0, l, r, y = h - 1;
+    if (bottom < h - 1 || !row_extent(m + (size_t)y * w, w, &l0, &r0))
+        return bottom + 1;
+    while (y > 0 && row_extent(m + (size_t)(y - 1) * w, w, &l, &r) && abs(l - l0) <= 1 && abs(r - r0) <= 1)
+        y--;
+    return y;
+}
+
+/* The vessel's seeds: the upper half of the object above the column that
+ * rises from the bottom border (all of it when that column is all), within a
+ * quarter of the row's width of the axis (and not a part seed). A stand
+ * taller than the vessel (a bowl on a pillar) put the upper half's lower
+ * rows on the stand. */
 static int vessel_seeds(const recon_segmentation *seg, const uint8_t *m, const uint8_t *part, uint8_t *seed,
                         int *idx)
 {
@@ -107,7 +136,9 @@ static int vessel_seeds(const recon_segmentation *seg, const uint8_t *m, const u
     memset(seed, 0, (size_t)w * h);
     if (row_span(m, w, h, &top, &bottom) != 0)
         return 0;
-    for (int y = top; y <= top + (bottom - top) / 2; y++) {
+    int end = column_top(m, w, h, bottom);
+    end = end > top ? end : bottom + 1;
+    for (int y = top; y <= top + (end - 1 - top) / 2; y++) {
         const uint8_t *row = m + (size_t)y * w, *a = memchr(row, 1, (size_t)w);
         if (!a)
             continue;
