@@ -187,24 +187,26 @@ static double median(double *v, int n)
 int recon_rim_near_arc_visible(const image_t *img, const recon_camera *cam, const recon_ellipse *rim)
 {
     enum { SAMPLES = 64 };
-    /* The band between the rim's two halves, sampled on its centre line w0,
-     * must lie 1.5 px clear of both edges so that no sample mixes in the
-     * backdrop or the wall. */
+    /* The samples above the near half (up to 4 px) must stay 1.5 px below
+     * the far half, 1.6 b above it at the outermost samples (u = 0.6 a). */
     if (!(rim->b >= 1.5) || !(rim->a >= 20.0))
         return -1;
+    const int reach = (int)fmin(4, floor(1.6 * rim->b - 1.5));
     double step[SAMPLES], wall[SAMPLES];
     for (int k = 0; k < SAMPLES; k++) {
         double u = rim->a * 0.6 * (2.0 * (k + 0.5) / SAMPLES - 1);
         double near = rim->w0 - rim->b * sqrt(1 - (u / rim->a) * (u / rim->a));
-        double below = frame_luma(img, cam, u, near - 3);
-        step[k] = fabs(frame_luma(img, cam, u, rim->w0) - below);
+        double below = frame_luma(img, cam, u, near - 2);
+        step[k] = 0;
+        for (int d = 1; d <= reach; d++)
+            step[k] = fmax(step[k], fabs(frame_luma(img, cam, u, near + d) - below));
         wall[k] = fabs(below - frame_luma(img, cam, u, near - 6));
     }
-    /* From above, the band is the lip or the inside of the mouth, which the
-     * near half's edge parts from the outer wall; from below it is the wall
-     * itself. Visible: the band differs from the wall 3 px below the near
-     * half by at least 4/255 and by three times the wall's own change over
-     * the next 3 px. */
+    /* From above, the near half's edge parts the outer wall from the lip or
+     * the inside of the mouth: within `reach` px above it the photo departs from
+     * the wall 2 px below it by at least 4/255 and by three times the wall's
+     * own change over the 4 px further down. From below, the wall goes on
+     * across it, shaded as a glossy flare may be, but without a step. */
     double band = median(step, SAMPLES), quiet = median(wall, SAMPLES);
     return band > 3 * quiet && band > 4.0 / 255;
 }

@@ -76,10 +76,10 @@ double recon_circle_of_ellipse(const recon_camera *cam, const recon_ellipse *e, 
 
 /* ---- cross_section_arcs.c (needs the camera frame) */
 
-/* Whether the camera sees the top of the rim or into the mouth: the band
- * between the rim ellipse's two halves then differs from the outer wall
- * below its near (lower) half; from below the rim that band is the wall
- * itself. 1 yes (the camera is above the rim), 0 no, -1 when the ellipse
+/* Whether the camera sees the top of the rim or into the mouth: the photo
+ * then steps at the rim ellipse's near (lower) half, from the outer wall
+ * below to the lip or the mouth above; from below the rim the wall goes on
+ * across it. 1 yes (the camera is above the rim), 0 no, -1 when the ellipse
  * is too thin to tell (b under 1.5 px). */
 int recon_rim_near_arc_visible(const image_t *img, const recon_camera *cam, const recon_ellipse *rim);
 

@@ -26,45 +26,57 @@ static double dist(const recon_signal *s, const float *a, const float *b)
 }
 
 /* Object length inside [a0, a1] measured from its inner end, and the contrast
- * |fg - bg|. A glossy glaze at grazing angles reflects its surroundings, i.e.
- * the backdrop: its colour drifts toward the backdrop's over the last pixels
- * before the outline, so the nearest pure pixel lags behind the colour under
- * the edge. When glaze is set and the two pixels inside trend toward bg, fg is
- * extrapolated one pixel along that trend (by at most half the contrast). */
+ * |fg - bg| at that end. A glossy glaze at grazing angles reflects its
+ * surroundings, i.e. the backdrop (Fresnel): its colour drifts toward the
+ * backdrop's over the last pixels before the outline, faster and faster, so
+ * the nearest pure pixel lags behind the colour under the edge and the
+ * object's fraction of each window pixel comes out short (0.3-0.5 px inward
+ * on synth-dev's melon vase). When glaze is set and the three pixels inside
+ * trend toward bg, the glaze's colour at the window's k-th pixel from its
+ * inner end is extrapolated along that trend, m = min(k + 1, 2) steps, and
+ * along its acceleration when that too points toward bg and is no larger
+ * than the step (a second-order step, m (m + 1) / 2 times the change of the
+ * step; JPEG noise makes larger ones), by at most half the contrast. */
 static int ramp(const recon_signal *s, int a0, int a1, int side, int glaze, double *len, double *contrast)
 {
     const int w = s->width, ch = s->channels;
     if (a0 < 2 || a1 > w - 3 || a1 < a0)
         return 0;
-    const float *pfg = px(s, side > 0 ? a0 - 1 : a1 + 1), *pbg = px(s, side > 0 ? a1 + 1 : a0 - 1);
-    const float *pfg2 = px(s, side > 0 ? a0 - 2 : a1 + 2);
-    double fg[3], bg[3], d[3], dd = 0, ext_along = 0, ext_len2 = 0;
+    const int in = side > 0 ? -1 : 1, inner = side > 0 ? a0 : a1; /* toward the object; the window's inner end */
+    const int third = inner + 3 * in >= 0 && inner + 3 * in < w ? inner + 3 * in : inner + 2 * in;
+    const float *pfg = px(s, inner + in), *pfg2 = px(s, inner + 2 * in), *pfg3 = px(s, third);
+    const float *pbg = px(s, side > 0 ? a1 + 1 : a0 - 1);
+    double bg[3], step[3], acc[3], dd = 0, along = 0, acc_along = 0, s2 = 0, a2 = 0;
     for (int c = 0; c < ch; c++) {
-        fg[c] = pfg[c];
         bg[c] = pbg[c];
-        double e = pfg[c] - pfg2[c]; /* the extrapolation step fg - fg2 */
-        ext_along += e * (bg[c] - fg[c]);
-        ext_len2 += e * e;
-        dd += (bg[c] - fg[c]) * (bg[c] - fg[c]);
+        step[c] = pfg[c] - pfg2[c];
+        acc[c] = step[c] - (pfg2[c] - pfg3[c]);
+        along += step[c] * (bg[c] - pfg[c]);
+        acc_along += acc[c] * (bg[c] - pfg[c]);
+        dd += (bg[c] - pfg[c]) * (bg[c] - pfg[c]);
+        s2 += step[c] * step[c];
+        a2 += acc[c] * acc[c];
     }
-    /* extrapolate when the step points toward bg and is under half the contrast */
-    if (glaze && ext_along > 0 && ext_len2 < 0.25 * dd)
-        for (int c = 0; c < ch; c++)
-            fg[c] += pfg[c] - pfg2[c];
-    double n2 = 0;
-    for (int c = 0; c < ch; c++) {
-        d[c] = fg[c] - bg[c];
-        n2 += d[c] * d[c];
-    }
-    *contrast = sqrt(n2);
-    if (*contrast < 1e-4)
-        return 0;
+    const int trend = glaze && along > 0, accelerates = trend && acc_along > 0 && a2 <= s2;
     double sum = 0;
-    for (int i = a0; i <= a1; i++) {
-        const float *p = px(s, i);
-        double t = 0;
-        for (int c = 0; c < ch; c++)
-            t += (p[c] - bg[c]) * d[c];
+    *contrast = 0;
+    for (int k = 0; k <= a1 - a0; k++) {
+        const float *p = px(s, inner - k * in);
+        double m = fmin(k + 1, 2), q = accelerates ? 0.5 * m * (m + 1) : 0, x[3], x2 = 0;
+        for (int c = 0; c < ch; c++) {
+            x[c] = trend ? m * step[c] + q * acc[c] : 0;
+            x2 += x[c] * x[c];
+        }
+        double lim = x2 > 0.25 * dd ? sqrt(0.25 * dd / x2) : 1, n2 = 0, t = 0;
+        for (int c = 0; c < ch; c++) {
+            double d = pfg[c] + lim * x[c] - bg[c];
+            n2 += d * d;
+            t += (p[c] - bg[c]) * d;
+        }
+        if (k == 0)
+            *contrast = sqrt(n2);
+        if (n2 < 1e-8)
+            return 0;
         sum += t / n2;
     }
     *len = sum;
