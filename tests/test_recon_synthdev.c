@@ -15,29 +15,14 @@
 #include "celadon/recon.h"
 #include "support/shared_data.h"
 
-/* Targets: outline mean <= 0.25 px and max <= 1.5 px on the chosen side, 5 px
- * or more from the corners; axis direction within 0.1 deg; all four corners
- * within 12 px (perspective rounds them into ellipse arcs). Two cases cannot
- * meet them; their bounds are what we achieve, with the reason. */
-typedef struct {
-    const char *name;
-    double mean, max, axis_deg, corner;
-    const char *why;
-} expectation;
+/* Targets, every photo: outline mean <= 0.25 px and max <= 1.5 px on the
+ * chosen side, 5 px or more from the corners; axis direction within 0.1 deg;
+ * all four corners within 12 px (perspective rounds them into ellipse arcs). */
+static const double MEAN_PX = 0.25, MAX_PX = 1.5, AXIS_DEG = 0.1, CORNER_PX = 12;
 
-static const expectation CASES[] = {
-    {"squat_jar_crane", 0.25, 1.5, 0.1, 12, NULL},
-    {"baluster_vase_e1.5_r1", 0.25, 1.5, 0.1, 12, NULL},
-    {"conical_tea_bowl_e5", 0.25, 1.5, 0.1, 12, NULL},
-    {"melon_vase_specular", 0.36, 1.5, 0.1, 30,
-     "a highlight washes out most of the left edge, as light as the white backdrop (clipped): the left corners are "
-     "mirrored from the right across an axis whose direction is right (0.003 deg) but which lies 9.5 px off, 23-24 px; "
-     "the right outline keeps a 0.3-0.5 px inward bias all along (the glaze reflects the white studio at grazing "
-     "angles) (docs/algorithms-recon.md, Known failures)"},
-    {"stem_cup_r2", 0.25, 1.5, 0.1, 12, NULL},
-    {"pear_bottle_e3", 0.25, 1.5, 0.1, 12, NULL},
-    {"brush_pot_lowcontrast_r1.5", 0.25, 1.5, 0.1, 12, NULL},
-    {"incense_bowl_sweep_e4", 0.25, 1.5, 0.1, 12, NULL},
+static const char *const CASES[] = {
+    "squat_jar_crane", "baluster_vase_e1.5_r1", "conical_tea_bowl_e5", "melon_vase_specular",
+    "stem_cup_r2",     "pear_bottle_e3",        "brush_pot_lowcontrast_r1.5", "incense_bowl_sweep_e4",
 };
 enum { NCASES = sizeof CASES / sizeof CASES[0] };
 
@@ -158,21 +143,19 @@ static void run_all(const char *file)
     shared_data_path(dir, sizeof dir, "data/synth-dev");
     shared_data_require(dir);
     for (int c = 0; c < NCASES; c++) {
-        const expectation *x = &CASES[c];
+        const char *name = CASES[c];
         outcome o;
-        if (!evaluate(dir, x->name, file, &o))
+        if (!evaluate(dir, name, file, &o))
             continue;
         cr_log_info("%-28s %s side %-5s rows %4d  outline mean %.3f max %.3f px  axis %.3f deg off %.2f px  "
                     "corners <= %.2f px  %.1f ms",
-                    x->name, file, o.side ? "right" : "left", o.n, o.mean_err, o.max_err, o.axis_deg,
-                    o.axis_offset, o.corner_err, o.ms);
-        cr_expect_gt(o.n, 100, "%s/%s: %d outline rows compared", x->name, file, o.n);
-        const char *known = x->why ? "; known: " : "", *why = x->why ? x->why : "";
-        cr_expect_leq(o.mean_err, x->mean, "%s/%s: outline mean %.3f px%s%s", x->name, file, o.mean_err, known, why);
-        cr_expect_leq(o.max_err, x->max, "%s/%s: outline max %.3f px%s%s", x->name, file, o.max_err, known, why);
-        cr_expect_leq(o.axis_deg, x->axis_deg, "%s/%s: axis %.3f deg%s%s", x->name, file, o.axis_deg, known, why);
-        cr_expect_leq(o.corner_err, x->corner, "%s/%s: a corner %.1f px off%s%s", x->name, file, o.corner_err, known,
-                      why);
+                    name, file, o.side ? "right" : "left", o.n, o.mean_err, o.max_err, o.axis_deg, o.axis_offset,
+                    o.corner_err, o.ms);
+        cr_expect_gt(o.n, 100, "%s/%s: %d outline rows compared", name, file, o.n);
+        cr_expect_leq(o.mean_err, MEAN_PX, "%s/%s: outline mean %.3f px", name, file, o.mean_err);
+        cr_expect_leq(o.max_err, MAX_PX, "%s/%s: outline max %.3f px", name, file, o.max_err);
+        cr_expect_leq(o.axis_deg, AXIS_DEG, "%s/%s: axis %.3f deg", name, file, o.axis_deg);
+        cr_expect_leq(o.corner_err, CORNER_PX, "%s/%s: a corner %.1f px off", name, file, o.corner_err);
     }
 }
 
