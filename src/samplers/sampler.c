@@ -56,11 +56,6 @@ double sampler_shuffled_strata_1d(sampler_stream *st)
     return x;
 }
 
-uint32_t sampler_dim_hash(const sampler_stream *st, uint32_t salt)
-{
-    return seq_hash(st->key, ((uint64_t)salt << 32) | st->dim);
-}
-
 int sampler_ceil_log2(long long n)
 {
     int k = 0;
