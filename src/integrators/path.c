@@ -90,13 +90,20 @@ static rgb next_event(const integrator_scene *sc, const surface_hit *h, const bs
 {
     emitter_ref ref = {h->p, h->ng};
     double pmf, part;
+    /* A light that cannot reach h gets no numbers drawn (each dimension's
+     * numbers are the same whatever was drawn before: samplers.h). */
+    const emitter_t *only = emitter_list_only(sc->emitters);
+    if (only && emitter_faces_away(only, h->p))
+        return rgb_gray(0.0);
     sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_PICK));
     const emitter_t *e = emitter_list_pick(sc->emitters, &ref, sampler_next_1d(smp), &pmf, &part);
+    if (!e || (!only && emitter_faces_away(e, h->p)))
+        return rgb_gray(0.0);
     sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_POINT));
     vec2 uxy = sampler_next_2d(smp);
     vec3 u = v3(uxy.x, uxy.y, part);
     emitter_sample_rec es;
-    if (!e || !emitter_sample(e, h->p, u, &es) || !(es.pdf > 0.0) || rgb_is_black(es.value))
+    if (!emitter_sample(e, h->p, u, &es) || !(es.pdf > 0.0) || rgb_is_black(es.value))
         return rgb_gray(0.0);
     vec3 wo = frame3_to_local(h->sh, es.wi);
     rgb f = bsdf_eval(b, q, wo);
