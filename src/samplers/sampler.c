@@ -31,6 +31,7 @@ void sampler_read_common(scene_obj *o, bool with_jitter, sampler_t *out)
     out->sample_count = scene_obj_int(o, "sample_count", 4);
     out->seed = (uint64_t)scene_obj_int(o, "seed", 0);
     out->jitter = with_jitter ? scene_obj_bool(o, "jitter", true) : false;
+    out->in_order = false;
     out->strength = 0;
 }
 
