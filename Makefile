@@ -17,7 +17,12 @@ PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lembree3 -lcsv
 WARN     := -Wall -Wextra -Werror
 CFLAGS   ?= -O2 -g
 CXXFLAGS ?= -O2 -g
-ALL_CFLAGS   = -std=c11 -D_GNU_SOURCE $(WARN) -fopenmp -Iinclude -Isrc $(PKG_CFLAGS) $(MPI_CFLAGS) $(CFLAGS)
+# -fno-math-errno: nothing reads errno after sqrt, atan2 and the like, so
+# GCC may inline them (a square root no longer calls libm for a negative
+# argument's errno); results are bit for bit the same (docs/BENCHMARKS.md,
+# "Noise per CPU second").
+MATH     := -fno-math-errno
+ALL_CFLAGS   = -std=c11 -D_GNU_SOURCE $(WARN) $(MATH) -fopenmp -Iinclude -Isrc $(PKG_CFLAGS) $(MPI_CFLAGS) $(CFLAGS)
 ALL_CXXFLAGS = -std=c++17 $(WARN) -Iinclude -Isrc $(PKG_CFLAGS) $(CXXFLAGS)
 LDLIBS   = $(PKG_LIBS) $(MPI_LIBS) -fopenmp -lstdc++ -lm
 SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer

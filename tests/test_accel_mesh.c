@@ -1,11 +1,14 @@
 /* Triangle meshes through the Embree scene: hits on a cube and a quad against
  * the slab method and planar barycentrics the test computes itself, under
  * rigid, non-uniform and mirroring transforms; nearest-of-two; occlusion;
- * rejected input. */
+ * rejected input; the float bounds of a double ray interval. */
 #include <criterion/criterion.h>
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "accel/accel_internal.h"
 #include "celadon/accel.h"
 #include "test_accel_support.h"
 
@@ -277,4 +280,29 @@ Test(accel_mesh, rejects_bad_meshes_and_transforms)
     cr_assert_eq(accel_add_mesh(acc, &m, NULL, err, sizeof err), 0u, "%s", err);
     accel_destroy(acc);
     free_mesh(&m);
+}
+
+/* float_up(x) is the least float >= x and float_down(x) the greatest <= x
+ * (libm's nextafterf as the truth), across zeros, subnormals, both signs,
+ * the ends of the float range and values that are floats already. */
+Test(accel_mesh, float_bounds_enclose_the_double)
+{
+    const double fixed[] = {0.0, -0.0, 1e-50, -1e-50, 1e-40, -1e-40, 1.0, -1.0, 0.1, -0.1, 3.0e38, -3.0e38,
+                            3.5e38, -3.5e38, 1e300, -1e300, (double)FLT_MAX, -(double)FLT_MAX};
+    uint64_t z = 0x9e3779b97f4a7c15ull;
+    for (int k = 0; k < 20000; k++) {
+        double x;
+        if (k < (int)(sizeof fixed / sizeof fixed[0])) {
+            x = fixed[k];
+        } else {
+            z = z * 6364136223846793005ull + 1442695040888963407ull;
+            x = ldexp((double)(z >> 11) * 0x1p-53 - 0.5, (int)(z % 280) - 150);
+        }
+        float f = (float)x, up = float_up(x), down = float_down(x);
+        float want_up = (double)f < x ? nextafterf(f, INFINITY) : f, want_down = (double)f > x ? nextafterf(f, -INFINITY) : f;
+        cr_assert(memcmp(&up, &want_up, sizeof up) == 0 && memcmp(&down, &want_down, sizeof down) == 0,
+                  "x %a: up %a (want %a), down %a (want %a)", x, (double)up, (double)want_up, (double)down,
+                  (double)want_down);
+        cr_assert((double)up >= x && (double)down <= x, "x %a", x);
+    }
 }

@@ -4,7 +4,7 @@
  * bound that follows from it; the independent sampler's discrepancy that of
  * uniform random points; sample counts rounded by Mitsuba's and pbrt-v4's
  * rules; the numbers a pure function of (seed, pixel, sample, dimension);
- * and the building blocks (permutations, Sobol tables, Owen scrambling). */
+ * and the building blocks (permutations, bit reversal, the Sobol points, Owen scrambling). */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -345,7 +345,7 @@ Test(sequences, permutations_are_bijections)
     cr_expect_gt(differ, 4);
 }
 
-Test(sequences, sobol_tables_match_the_direction_numbers)
+Test(sequences, sobol_second_dimension_matches_the_direction_numbers)
 {
     uint32_t v[32];
     v[0] = 1u << 31;
@@ -361,6 +361,17 @@ Test(sequences, sobol_tables_match_the_direction_numbers)
     }
     cr_expect_eq(seq_sobol0(1), 1u << 31);
     cr_expect_eq(seq_sobol1(3), (1u << 31) ^ (3u << 30));
+}
+
+/* seq_reverse_bits mirrors the 32 bits, checked bit by bit. */
+Test(sequences, bit_reversal_mirrors_every_bit)
+{
+    uint32_t v = 0x9e3779b9u;
+    for (int trial = 0; trial < 1000; trial++, v = v * 1664525u + 1013904223u) {
+        uint32_t r = seq_reverse_bits(v);
+        for (int k = 0; k < 32; k++)
+            cr_assert_eq((r >> k) & 1u, (v >> (31 - k)) & 1u, "%08x bit %d", v, k);
+    }
 }
 
 /* The first 2^m Sobol points form a (0,m,2)-net, and Owen scrambling

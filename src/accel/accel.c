@@ -349,7 +349,8 @@ static void embree_ray(struct RTCRay *r, const ray3 *ray, double tmin, double tm
     r->dir_x = (float)ray->d.x;
     r->dir_y = (float)ray->d.y;
     r->dir_z = (float)ray->d.z;
-    r->tnear = fmaxf(0.0f, float_down(tmin));
+    float tnear = float_down(tmin);
+    r->tnear = tnear > 0.0f ? tnear : 0.0f; /* NaN too: fmaxf's 0, without its call */
     r->tfar = float_up(tmax);
     r->time = 0.0f;
     r->mask = 0xffffffffu;

@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "celadon/accel.h"
 
@@ -110,16 +111,33 @@ void accel_accept_hit(accel_context *ctx, const struct RTCIntersectFunctionNArgu
 
 /* The float nearest x on the far (resp. near) side: Embree's float ray
  * interval must contain the double one. */
+/* The float next to f toward +infinity (away: -1) for finite or infinite
+ * f that is not that end itself: nextafterf's result, without its call
+ * into libm (a zero steps to the smallest subnormal of that sign). */
+static inline float float_step(float f, int away)
+{
+    uint32_t b;
+    memcpy(&b, &f, sizeof b);
+    if (f == 0.0f)
+        b = away > 0 ? 1u : 0x80000001u;
+    else if ((b >> 31) == (away > 0 ? 1u : 0u))
+        b--; /* toward zero */
+    else
+        b++;
+    memcpy(&f, &b, sizeof f);
+    return f;
+}
+
 static inline float float_up(double x)
 {
     float f = (float)x;
-    return (double)f < x ? nextafterf(f, INFINITY) : f;
+    return (double)f < x ? float_step(f, 1) : f;
 }
 
 static inline float float_down(double x)
 {
     float f = (float)x;
-    return (double)f > x ? nextafterf(f, -INFINITY) : f;
+    return (double)f > x ? float_step(f, -1) : f;
 }
 
 #endif

@@ -26,12 +26,11 @@ static vec3 turn(vec3 w, vec3 t) { return v3(w.x * t.x + w.y * t.y, w.y * t.x - 
 static vec3 turn_back(vec3 w, vec3 t) { return v3(w.x * t.x - w.y * t.y, w.x * t.y + w.y * t.x, w.z); }
 
 /* An anisotropic BSDF's query in Mitsuba's shading frame (its dpdu then
- * lies along +x, so turning it again changes nothing); t the rotation. */
-static bsdf_query oriented(const bsdf_t *b, const bsdf_query *q, vec3 *t)
+ * lies along +x, so turning it again changes nothing); t the rotation. An
+ * isotropic BSDF takes the query as it is (the dispatchers below call it
+ * directly: no copy of the query, no turn by the identity). */
+static bsdf_query oriented(const bsdf_query *q, vec3 *t)
 {
-    *t = v3(1.0, 0.0, 0.0);
-    if (!(b->flags & BSDF_ANISOTROPIC))
-        return *q;
     *t = bsdf_query_tangent(q);
     bsdf_query r = *q;
     r.wi = turn(q->wi, *t), r.dpdu = turn(q->dpdu, *t), r.dpdv = turn(q->dpdv, *t), r.ng = turn(q->ng, *t);
@@ -41,8 +40,10 @@ static bsdf_query oriented(const bsdf_t *b, const bsdf_query *q, vec3 *t)
 int bsdf_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_sample_rec *out)
 {
     memset(out, 0, sizeof *out);
+    if (!(b->flags & BSDF_ANISOTROPIC))
+        return b->ops->sample(b, q, u1, u2, out);
     vec3 t;
-    bsdf_query r = oriented(b, q, &t);
+    bsdf_query r = oriented(q, &t);
     int ok = b->ops->sample(b, &r, u1, u2, out);
     out->wo = turn_back(out->wo, t);
     return ok;
@@ -50,15 +51,19 @@ int bsdf_sample(const bsdf_t *b, const bsdf_query *q, double u1, vec2 u2, bsdf_s
 
 rgb bsdf_eval(const bsdf_t *b, const bsdf_query *q, vec3 wo)
 {
+    if (!(b->flags & BSDF_ANISOTROPIC))
+        return b->ops->eval(b, q, wo);
     vec3 t;
-    bsdf_query r = oriented(b, q, &t);
+    bsdf_query r = oriented(q, &t);
     return b->ops->eval(b, &r, turn(wo, t));
 }
 
 double bsdf_pdf(const bsdf_t *b, const bsdf_query *q, vec3 wo)
 {
+    if (!(b->flags & BSDF_ANISOTROPIC))
+        return b->ops->pdf(b, q, wo);
     vec3 t;
-    bsdf_query r = oriented(b, q, &t);
+    bsdf_query r = oriented(q, &t);
     return b->ops->pdf(b, &r, turn(wo, t));
 }
 
@@ -84,9 +89,13 @@ rgb bsdf_straight_transmittance(const bsdf_t *b, const bsdf_query *q)
 
 vec3 bsdf_shading_normal(const bsdf_t *b, const bsdf_query *q)
 {
+    if (!b->ops->shading_normal)
+        return v3(0.0, 0.0, 1.0);
+    if (!(b->flags & BSDF_ANISOTROPIC))
+        return b->ops->shading_normal(b, q);
     vec3 t;
-    bsdf_query r = oriented(b, q, &t);
-    return b->ops->shading_normal ? turn_back(b->ops->shading_normal(b, &r), t) : v3(0.0, 0.0, 1.0);
+    bsdf_query r = oriented(q, &t);
+    return turn_back(b->ops->shading_normal(b, &r), t);
 }
 
 void bsdf_destroy(bsdf_t *b)

@@ -64,7 +64,7 @@ static void area_bounds(const emitter_t *e, light_bounds *out)
                           .cos_theta_o = sh->normal_cos, .cos_theta_e = 0.0, .phi = radiance * projected};
 }
 
-static const emitter_ops area_ops = {area_sample, area_eval_hit, area_pdf_hit, NULL, NULL, NULL, area_bounds};
+static const emitter_ops area_ops = {area_sample, area_eval_hit, area_pdf_hit, NULL, NULL, NULL, area_bounds, true};
 
 static emitter_t *area_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

@@ -44,7 +44,7 @@ static void constant_bounds(const emitter_t *e, light_bounds *out)
 }
 
 static const emitter_ops constant_ops = {constant_sample,   NULL, NULL, constant_eval_env, constant_pdf_env,
-                                         NULL,              constant_bounds};
+                                         NULL,              constant_bounds,   false};
 
 static emitter_t *constant_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

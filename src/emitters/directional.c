@@ -25,7 +25,7 @@ static void directional_bounds(const emitter_t *e, light_bounds *out)
     emitter_bounds_infinite(rgb_max(d->irradiance), out);
 }
 
-static const emitter_ops directional_ops = {directional_sample, NULL, NULL, NULL, NULL, NULL, directional_bounds};
+static const emitter_ops directional_ops = {directional_sample, NULL, NULL, NULL, NULL, NULL, directional_bounds, false};
 
 static emitter_t *directional_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

@@ -13,6 +13,11 @@ int emitter_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_sample_rec *out
     return e->ops->sample(e, ref, u, out);
 }
 
+bool emitter_faces_away(const emitter_t *e, vec3 ref)
+{
+    return e->ops->front_only && shape_faces_away(e->shape, ref);
+}
+
 rgb emitter_eval_hit(const emitter_t *e, const surface_hit *hit, vec3 dir)
 {
     return e->ops->eval_hit(e, hit, dir);

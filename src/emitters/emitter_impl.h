@@ -22,6 +22,9 @@ typedef struct {
     void (*release)(void *data);
     /* What light selection needs (emitters.h): required. */
     void (*bounds)(const emitter_t *e, light_bounds *out);
+    /* Surface emitters: only the front of the shape radiates (sample
+     * refuses a point seen from behind): emitter_faces_away. */
+    bool front_only;
 } emitter_ops;
 
 struct emitter {

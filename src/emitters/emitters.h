@@ -35,6 +35,10 @@ typedef struct {
 
 /* u: three uniform numbers. Returns 0 when the sample carries nothing. */
 int emitter_sample(const emitter_t *e, vec3 ref, vec3 u, emitter_sample_rec *out);
+/* True only where emitter_sample from ref certainly returns 0 whatever u:
+ * ref behind a flat emitter that radiates from its front only
+ * (shape_faces_away); next-event estimation then draws no numbers for it. */
+bool emitter_faces_away(const emitter_t *e, vec3 ref);
 /* A surface emitter: the radiance leaving its shape's hit toward -dir, and
  * the solid-angle density with which emitter_sample would have picked it
  * from ref. */
@@ -119,6 +123,9 @@ typedef struct {
  * which emitter was picked. NULL when no emitter can contribute. */
 const emitter_t *emitter_list_pick(const emitter_list *l, const emitter_ref *ref, double u, double *pmf,
                                    double *u_reuse);
+/* The list's one light when emitter_list_pick always picks it (one finite
+ * light, no infinite one), else NULL. */
+const emitter_t *emitter_list_only(const emitter_list *l);
 /* The probability emitter_list_pick picks e at ref (what MIS weighs a
  * BSDF-sampled hit of e with). */
 double emitter_list_pmf(const emitter_list *l, const emitter_ref *ref, const emitter_t *e);

@@ -149,7 +149,7 @@ static void envmap_bounds(const emitter_t *e, light_bounds *out)
 }
 
 static const emitter_ops envmap_ops = {envmap_sample, NULL,           NULL,         envmap_eval_env,
-                                       envmap_pdf_env, envmap_release, envmap_bounds};
+                                       envmap_pdf_env, envmap_release, envmap_bounds, false};
 
 static emitter_t *envmap_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

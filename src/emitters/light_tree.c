@@ -252,6 +252,12 @@ void light_tree_destroy(light_tree *t)
 
 static double below_one(double u) { return u < 0x1.fffffffffffffp-1 ? u : 0x1.fffffffffffffp-1; }
 
+const emitter_t *emitter_list_only(const emitter_list *l)
+{
+    const light_tree *t = l->tree;
+    return t && t->only_one ? l->items[t->nodes[t->root].light] : NULL;
+}
+
 /* With one light to pick, picking it where it cannot shine costs nothing
  * its sampler would not refuse anyway: no importance is computed. */
 const emitter_t *emitter_list_pick(const emitter_list *l, const emitter_ref *ref, double u, double *pmf,

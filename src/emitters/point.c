@@ -31,7 +31,7 @@ static void point_bounds(const emitter_t *e, light_bounds *out)
     emitter_bounds_point(d->position, rgb_max(d->intensity), out);
 }
 
-static const emitter_ops point_ops = {point_sample, NULL, NULL, NULL, NULL, NULL, point_bounds};
+static const emitter_ops point_ops = {point_sample, NULL, NULL, NULL, NULL, NULL, point_bounds, false};
 
 static emitter_t *point_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

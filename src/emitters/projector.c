@@ -53,7 +53,7 @@ static void projector_bounds(const emitter_t *e, light_bounds *out)
     emitter_bounds_point(transform_point(&s->to_world, v3(0, 0, 0)), M_PI * s->scale * rgb_max(e_mean), out);
 }
 
-static const emitter_ops projector_ops = {projector_sample, NULL, NULL, NULL, NULL, NULL, projector_bounds};
+static const emitter_ops projector_ops = {projector_sample, NULL, NULL, NULL, NULL, NULL, projector_bounds, false};
 
 static emitter_t *projector_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

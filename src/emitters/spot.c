@@ -55,7 +55,7 @@ static void spot_bounds(const emitter_t *e, light_bounds *out)
     emitter_bounds_point(transform_point(&s->to_world, v3(0, 0, 0)), rgb_max(value), out);
 }
 
-static const emitter_ops spot_ops = {spot_sample, NULL, NULL, NULL, NULL, NULL, spot_bounds};
+static const emitter_ops spot_ops = {spot_sample, NULL, NULL, NULL, NULL, NULL, spot_bounds, false};
 
 static emitter_t *spot_create(scene_obj *o, shape_t *shape, texture_set *textures, char *err, size_t errlen)
 {

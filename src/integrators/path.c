@@ -90,13 +90,27 @@ static rgb next_event(const integrator_scene *sc, const surface_hit *h, const bs
 {
     emitter_ref ref = {h->p, h->ng};
     double pmf, part;
+    /* A light that cannot reach h gets no numbers drawn (each dimension's
+     * numbers are the same whatever was drawn before: samplers.h), but for
+     * a sampler whose numbers come in the order drawn: it draws them all. */
+    bool in_order = smp->sampler->in_order;
+    const emitter_t *only = emitter_list_only(sc->emitters);
+    bool away = only && emitter_faces_away(only, h->p);
+    if (away && !in_order)
+        return rgb_gray(0.0);
     sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_PICK));
     const emitter_t *e = emitter_list_pick(sc->emitters, &ref, sampler_next_1d(smp), &pmf, &part);
+    if (e && !only)
+        away = emitter_faces_away(e, h->p);
+    if ((!e || away) && !in_order)
+        return rgb_gray(0.0);
     sampler_seek(smp, vertex_dim(depth, DIM_LIGHT_POINT));
     vec2 uxy = sampler_next_2d(smp);
+    if (!e || away)
+        return rgb_gray(0.0);
     vec3 u = v3(uxy.x, uxy.y, part);
     emitter_sample_rec es;
-    if (!e || !emitter_sample(e, h->p, u, &es) || !(es.pdf > 0.0) || rgb_is_black(es.value))
+    if (!emitter_sample(e, h->p, u, &es) || !(es.pdf > 0.0) || rgb_is_black(es.value))
         return rgb_gray(0.0);
     vec3 wo = frame3_to_local(h->sh, es.wi);
     rgb f = bsdf_eval(b, q, wo);

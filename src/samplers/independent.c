@@ -38,6 +38,7 @@ static int independent_create(scene_obj *o, sampler_t *out, char *err, size_t er
     (void)err, (void)errlen;
     out->ops = &independent_ops;
     sampler_read_common(o, false, out);
+    out->in_order = true;
     return 0;
 }
 

@@ -19,11 +19,12 @@ static void ldsampler_prepare(sampler_t *s, int width, int height)
     s->sample_count = 1ll << s->log2_count;
 }
 
-/* The sample's point in the shuffled sequence of this pixel and dimension. */
+/* The sample's point in the shuffled sequence of this pixel and dimension
+ * (sample_count a power of 2). */
 static uint32_t shuffled_point(const sampler_stream *st)
 {
     uint32_t count = (uint32_t)st->sampler->sample_count;
-    return seq_permute(st->index % count, count, sampler_dim_hash(st, 0));
+    return seq_permute(st->index & (count - 1u), count, sampler_dim_hash(st, 0));
 }
 
 static double ldsampler_next_1d(sampler_stream *st)

@@ -31,6 +31,7 @@ void sampler_read_common(scene_obj *o, bool with_jitter, sampler_t *out)
     out->sample_count = scene_obj_int(o, "sample_count", 4);
     out->seed = (uint64_t)scene_obj_int(o, "seed", 0);
     out->jitter = with_jitter ? scene_obj_bool(o, "jitter", true) : false;
+    out->in_order = false;
     out->strength = 0;
 }
 
@@ -54,11 +55,6 @@ double sampler_shuffled_strata_1d(sampler_stream *st)
     double x = seq_below_one((cell + sampler_jitter(st, 0)) / count);
     st->dim++;
     return x;
-}
-
-uint32_t sampler_dim_hash(const sampler_stream *st, uint32_t salt)
-{
-    return seq_hash(st->key, ((uint64_t)salt << 32) | st->dim);
 }
 
 int sampler_ceil_log2(long long n)

@@ -4,6 +4,7 @@
 #define CELADON_SAMPLER_IMPL_H
 
 #include "samplers/samplers.h"
+#include "samplers/sequences.h"
 
 struct sampler_ops {
     /* Rounds s->sample_count and sets up the plugin's fields (samplers.h). */
@@ -41,7 +42,10 @@ double sampler_shuffled_strata_1d(sampler_stream *st);
 
 /* A hash of the stream's pixel key and dimension (plus salt), for the
  * permutations and scrambles of that dimension in that pixel. */
-uint32_t sampler_dim_hash(const sampler_stream *st, uint32_t salt);
+static inline uint32_t sampler_dim_hash(const sampler_stream *st, uint32_t salt)
+{
+    return seq_hash(st->key, ((uint64_t)salt << 32) | st->dim);
+}
 
 /* The smallest power of two >= n (n >= 1), and its log2. */
 int sampler_ceil_log2(long long n);

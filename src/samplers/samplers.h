@@ -47,6 +47,7 @@ typedef struct {
     long long sample_count; /* samples per pixel (rounded by sampler_prepare) */
     uint64_t seed;
     bool jitter;            /* stratified, multijitter, orthogonal: random offsets within the cells */
+    bool in_order;          /* independent: its numbers come in the order drawn, whatever the dimension */
     int strength;           /* orthogonal: the array's strength */
     /* Set by sampler_prepare: */
     uint32_t cells[2];      /* cells per axis of a 2D stratum grid */

@@ -18,19 +18,48 @@ static inline uint32_t seq_hash(uint64_t key, uint64_t salt)
     return (uint32_t)(rng_mix64(key ^ (salt * 0x9E3779B97F4A7C15ull)) >> 32);
 }
 
+/* One round of a keyed bijection of the k-bit words (mask = 2^k - 1): xor a
+ * key, multiply by an odd number (carries move entropy up), xorshift right
+ * (moves it down); each step is invertible modulo 2^k. */
+static inline uint32_t seq_permute_round(uint32_t x, uint32_t mask, int shift, uint32_t key, uint32_t mult)
+{
+    x = (x ^ key) & mask;
+    x = (x * (mult | 1u)) & mask;
+    return x ^ (x >> shift);
+}
+
 /* Element i of a pseudo-random permutation of [0, n) chosen by seed
  * (i < n; n >= 1): for a fixed seed, i -> seq_permute(i, n, seed) is a
  * bijection of [0, n). A keyed bijection of the next power of two, walked
- * until it lands below n. */
-uint32_t seq_permute(uint32_t i, uint32_t n, uint32_t seed);
+ * until it lands below n. Inline: the samplers call it for every dimension
+ * of every sample. */
+static inline uint32_t seq_permute(uint32_t i, uint32_t n, uint32_t seed)
+{
+    if (n <= 1)
+        return 0;
+    uint32_t mask = ~0u >> __builtin_clz(n - 1); /* the next power of two, less 1 */
+    int bits = 32 - __builtin_clz(mask), shift = bits > 1 ? (bits + 1) / 2 : 1;
+    /* Only the low k bits of a key act on k-bit words: each round takes its
+     * key and multiplier from a different slice of a hash of the seed, so
+     * small counts get many permutations too. */
+    uint64_t h = rng_mix64(seed), g = rng_mix64(h);
+    /* Cycle walking: a bijection of [0, mask] applied until the value is
+     * below n is a bijection of [0, n) (under two steps on average). */
+    do {
+        i = seq_permute_round(i, mask, shift, (uint32_t)h, (uint32_t)g);
+        i = seq_permute_round(i, mask, shift, (uint32_t)(h >> 16), (uint32_t)(g >> 16));
+        i = seq_permute_round(i, mask, shift, (uint32_t)(h >> 32), (uint32_t)(g >> 32));
+        i = seq_permute_round(i, mask, shift, (uint32_t)(h >> 48), (uint32_t)(g >> 48));
+    } while (i >= n);
+    return i;
+}
 
 static inline uint32_t seq_reverse_bits(uint32_t v)
 {
     v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
     v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
     v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
-    v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
-    return (v >> 16) | (v << 16);
+    return __builtin_bswap32(v);
 }
 
 /* Dimension 0 of the Sobol sequence (the van der Corput sequence in base 2:
@@ -38,7 +67,21 @@ static inline uint32_t seq_reverse_bits(uint32_t v)
  * Together, each aligned block of 2^m consecutive points is a (0,m,2)-net in
  * base 2: every elementary interval of area 2^-m holds exactly one point. */
 static inline uint32_t seq_sobol0(uint32_t i) { return seq_reverse_bits(i); }
-uint32_t seq_sobol1_reversed(uint32_t i);
+/* Dimension 1 (primitive polynomial x + 1) has the direction numbers
+ * v_1 = 1/2, v_(k+1) = v_k xor v_k / 2: reversed, v_(k+1) is (1 + X)^k over
+ * GF(2), whose digit j is C(k, j) mod 2, 1 exactly when the bits of j are a
+ * subset of those of k (Lucas). Point i, the xor of v_(k+1) over the bits k
+ * of i, therefore has reversed digit j = the parity of i's bits k whose
+ * positions hold j's bits: a superset-sum transform over the five bits of a
+ * position, one shift-and-xor per bit. */
+static inline uint32_t seq_sobol1_reversed(uint32_t i)
+{
+    i ^= (i >> 1) & 0x55555555u;
+    i ^= (i >> 2) & 0x33333333u;
+    i ^= (i >> 4) & 0x0f0f0f0fu;
+    i ^= (i >> 8) & 0x00ff00ffu;
+    return i ^ (i >> 16);
+}
 static inline uint32_t seq_sobol1(uint32_t i) { return seq_reverse_bits(seq_sobol1_reversed(i)); }
 
 /* Owen's nested uniform scrambling, keyed by seed, of reversed digits r,

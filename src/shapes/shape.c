@@ -125,6 +125,23 @@ void shape_sample_from(const shape_t *sh, vec3 ref, vec3 u, surface_hit *hit, do
     *pdf = dist2 > 0.0 && cos_l > 0.0 ? pdf_area * dist2 * sqrt(dist2) / cos_l : 0.0;
 }
 
+bool shape_faces_away(const shape_t *sh, vec3 ref)
+{
+    vec3 n = sh->plane_n;
+    if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0)
+        return false;
+    /* For a point p of the shape, with unit normal ng: dot(ng, p - ref) =
+     * dot(n, p - o) - h + dot(ng - n, p - ref) >= -plane_off - h -
+     * plane_turn |p - ref|, and |p - ref| <= |ref - o|_1 + plane_extent;
+     * the slack (1e-9 of that, 1e-12 of the coordinates) covers the
+     * rounding of p and of these sums. */
+    vec3 o = sh->plane_o, r = v3_sub(ref, o);
+    double h = v3_dot(n, r);
+    double reach = fabs(r.x) + fabs(r.y) + fabs(r.z) + sh->plane_extent;
+    double size = fabs(o.x) + fabs(o.y) + fabs(o.z) + fabs(ref.x) + fabs(ref.y) + fabs(ref.z);
+    return -h > 2.0 * sh->plane_off + (sh->plane_turn + 1e-9) * reach + 1e-12 * size;
+}
+
 double shape_pdf_from(const shape_t *sh, vec3 ref, const surface_hit *hit)
 {
     double pdf;

@@ -131,6 +131,35 @@ int shape_mesh_prepare_sampling(shape_mesh_data *m)
     return rc != 0 || !(m->area > 0.0) ? -1 : 0;
 }
 
+/* Every triangle's unit normal within 1e-6 of one axis (a rectangle, a
+ * flat polygon): the plane through vertex 0 with that normal, how far the
+ * vertices lie off it and the normals, as mesh_point computes them, off
+ * the axis (shape_faces_away's margins). */
+static void mesh_plane(shape_t *sh)
+{
+    const shape_mesh_data *m = &sh->mesh;
+    vec3 n = sh->normal_axis, o = mesh_pos(m, 0);
+    sh->plane_n = v3(0.0, 0.0, 0.0);
+    if (!(sh->normal_cos > 1.0 - 1e-6))
+        return;
+    double off = 0.0, turn = 0.0;
+    for (int i = 0; i < m->n_verts; i++)
+        off = fmax(off, fabs(v3_dot(n, v3_sub(mesh_pos(m, (unsigned)i), o))));
+    for (int t = 0; t < m->n_tris; t++) {
+        const unsigned *v = &m->tri[3 * t];
+        vec3 p0 = mesh_pos(m, v[0]), c = v3_cross(v3_sub(mesh_pos(m, v[1]), p0), v3_sub(mesh_pos(m, v[2]), p0));
+        if (!(v3_len(c) > 0.0))
+            continue; /* no area: never sampled */
+        vec3 ng = v3_norm(c);
+        turn = fmax(turn, v3_len(v3_sub(sh->flip_normals ? v3_neg(ng) : ng, n)));
+    }
+    if (!(turn < 1e-6) || !isfinite(off))
+        return;
+    sh->plane_o = o, sh->plane_n = n;
+    sh->plane_off = off, sh->plane_turn = turn;
+    sh->plane_extent = v3_len(v3_sub(sh->bounds_hi, sh->bounds_lo));
+}
+
 void shape_mesh_extent(shape_t *sh)
 {
     const shape_mesh_data *m = &sh->mesh;
@@ -154,6 +183,7 @@ void shape_mesh_extent(shape_t *sh)
     }
     sh->normal_axis = v3_len(sum) > 0.0 ? (sh->flip_normals ? v3_neg(axis) : axis) : v3(0.0, 0.0, 1.0);
     sh->normal_cos = fmax(-1.0, cos_min);
+    mesh_plane(sh);
 }
 
 void shape_mesh_sample(const shape_t *sh, vec3 u, surface_hit *hit, double *pdf_area)

@@ -111,6 +111,12 @@ struct shape {
     vec3 bounds_lo, bounds_hi;      /* world, axis-aligned */
     vec3 normal_axis;     /* every normal within acos(normal_cos) of it */
     double normal_cos;    /* -1: normals in every direction */
+    /* a flat emitting mesh (every triangle in one plane, facing one way):
+     * a vertex, the unit normal (zero for any other shape), how far the
+     * vertices lie off that plane and the triangles' unit normals off
+     * plane_n at most, and the bounds' diagonal: shape_faces_away */
+    vec3 plane_o, plane_n;
+    double plane_off, plane_turn, plane_extent;
 };
 
 /* How shapes are built: options of the whole render. */
@@ -163,6 +169,12 @@ double shape_pdf_area(const shape_t *sh, const surface_hit *hit);
  * density per unit solid angle at ref in *pdf (0: no usable sample, e.g.
  * ref on the shape). */
 void shape_sample_from(const shape_t *sh, vec3 ref, vec3 u, surface_hit *hit, double *pdf);
+/* Whether ref lies behind the shape beyond rounding, so that every point
+ * of it shape_sample_from can draw has its geometric normal turned away
+ * from ref (dot(ng, p - ref) > 0): a flat mesh (shape_prepare_sampling)
+ * with ref behind its plane by more than its vertices' and normals' spread
+ * can account for. False whenever that is not certain. */
+bool shape_faces_away(const shape_t *sh, vec3 ref);
 /* The density per solid angle with which shape_sample_from draws hit, the
  * first point of the shape along the ray from ref. */
 double shape_pdf_from(const shape_t *sh, vec3 ref, const surface_hit *hit);
