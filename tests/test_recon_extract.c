@@ -194,16 +194,19 @@ Test(recon_extract, sensor_noise)
 }
 
 /* Washes the left outline into the backdrop on the lines y in [y_top,
- * y_clean]: a band that drifts between 4 and 16 px, then a ramp to the glaze
- * over 8 px. */
-static void wash_left_edge(const synth_params *p, image_t *img, double y_clean, double y_top)
+ * y_clean]: a band of mid +- amp px that drifts along the height, then a
+ * ramp to the glaze over 8 px. keep_limb: a third of the lines (runs of 30)
+ * keep the outline's last two pixels as drawn. */
+static void wash_left_edge(const synth_params *p, image_t *img, double y_clean, double y_top, double mid, double amp,
+                           int keep_limb)
 {
     for (int j = 0; j < img->height; j++) {
         double y = j + 0.5, xl, xr;
         if (y > y_clean || y < y_top || !synth_silhouette_x(p, y, &xl, &xr))
             continue;
-        double band = 10 + 6 * sin(j / 23.0);
-        for (int i = (int)floor(xl); i < img->width && i + 0.5 < xl + band + 8; i++) {
+        double band = mid + amp * sin(j / 23.0);
+        int limb = keep_limb && (j / 30) % 3 == 0;
+        for (int i = (int)floor(xl) + (limb ? 2 : 0); i < img->width && i + 0.5 < xl + band + 8; i++) {
             double f = fmin(1, fmax(0, (i + 0.5 - xl - band) / 8));
             for (int c = 0; c < 3; c++) {
                 float *v = &img->data[((size_t)j * img->width + i) * 3 + c];
@@ -225,7 +228,7 @@ Test(recon_extract, washed_out_side)
     image_t img;
     cr_assert_eq(synth_draw(&p, &img), 0);
     synth_truth t = synth_truth_of(&p);
-    wash_left_edge(&p, &img, t.axis_origin.y - 0.3 * t.height_px, t.axis_origin.y - t.height_px - 3);
+    wash_left_edge(&p, &img, t.axis_origin.y - 0.3 * t.height_px, t.axis_origin.y - t.height_px - 3, 10, 6, 0);
     recon_options opt = {-1, RECON_SIDE_AUTO};
     recon_result r;
     char err[256];
@@ -251,21 +254,7 @@ Test(recon_extract, washed_out_limb)
     image_t img;
     cr_assert_eq(synth_draw(&p, &img), 0);
     synth_truth t = synth_truth_of(&p);
-    double y_lo = t.axis_origin.y - 0.04 * t.height_px, y_hi = t.axis_origin.y - 0.96 * t.height_px;
-    for (int j = 0; j < img.height; j++) {
-        double y = j + 0.5, xl, xr;
-        if (y > y_lo || y < y_hi || !synth_silhouette_x(&p, y, &xl, &xr))
-            continue;
-        int limb = (j / 30) % 3 == 0;
-        double band = 13 + 7 * sin(j / 23.0);
-        for (int i = (int)floor(xl) + (limb ? 2 : 0); i < img.width && i + 0.5 < xl + band + 8; i++) {
-            double f = fmin(1, fmax(0, (i + 0.5 - xl - band) / 8));
-            for (int c = 0; c < 3; c++) {
-                float *v = &img.data[((size_t)j * img.width + i) * 3 + c];
-                *v = (float)(p.bg[c] + f * (*v - p.bg[c]));
-            }
-        }
-    }
+    wash_left_edge(&p, &img, t.axis_origin.y - 0.04 * t.height_px, t.axis_origin.y - 0.96 * t.height_px, 13, 7, 1);
     recon_options opt = {-1, RECON_SIDE_AUTO};
     recon_result r;
     char err[256];
@@ -312,7 +301,7 @@ Test(recon_extract, light_grey_lip_beside_a_washed_one)
                 v[c] = (float)(bg[c] + cover * (grey - bg[c]));
         }
     }
-    wash_left_edge(&p, &img, t.axis_origin.y - 0.3 * t.height_px, t.axis_origin.y - neck_h);
+    wash_left_edge(&p, &img, t.axis_origin.y - 0.3 * t.height_px, t.axis_origin.y - neck_h, 10, 6, 0);
     recon_options opt = {-1, RECON_SIDE_AUTO};
     recon_result r;
     char err[256];
