@@ -115,9 +115,37 @@ static double r_at(const recon_outline_point *o, int n, double h, int *gap)
     return dh <= 1e-9 ? o[lo].r : o[lo].r + (h - o[lo].h) / dh * (o[hi].r - o[lo].r);
 }
 
-/* Marks the rows within `reach` of a window row (reach: the window's run
- * length, at least 10 rows): where a handle may be attached. */
-static void window_zone(const uint8_t *gap, int n, uint8_t *zone)
+/* The last row of a window's attachment, walking from row k0 away from the
+ * window by step (+1 or -1) for at most reach rows: the handle's edge bulges
+ * out of the body there and comes back onto it, so the attachment ends at
+ * the outline's narrowest row after its widest, once the outline widens
+ * again by more than tol (the body beyond: a flaring neck, a belly). An
+ * outline that never widens again is all attachment within reach. */
+static int attachment_end(const double *r, int n, int k0, int step, int reach, double tol)
+{
+    int last = k0 - step, narrowest = -1;
+    double widest = -INFINITY, low = INFINITY;
+    for (int k = k0, m = 0; k >= 0 && k < n && m < reach; k += step, m++) {
+        last = k;
+        if (isnan(r[k]))
+            continue;
+        if (narrowest < 0 && r[k] >= widest - tol) {
+            widest = fmax(widest, r[k]);
+        } else if (narrowest < 0 || r[k] < low) {
+            low = r[k];
+            narrowest = k;
+        } else if (r[k] > low + tol) {
+            return narrowest;
+        }
+    }
+    return last;
+}
+
+/* Marks the zone of each window run on one side (gap, r: its rows): the
+ * rows a handle may be attached on, from the window out to the end of each
+ * attachment (attachment_end, within the window's run length, at least 10
+ * rows, of it) and ATTACH_ROWS beyond for its fillet. */
+static void window_zone(const uint8_t *gap, const double *r, int n, double tol, uint8_t *zone)
 {
     memset(zone, 0, (size_t)n);
     for (int i = 0; i < n;) {
@@ -129,7 +157,9 @@ static void window_zone(const uint8_t *gap, int n, uint8_t *zone)
         while (i < n && gap[i])
             i++;
         int reach = i - a > 10 ? i - a : 10;
-        for (int j = a - reach < 0 ? 0 : a - reach; j < n && j < i + reach; j++)
+        int lo = attachment_end(r, n, a - 1, -1, reach, tol) - ATTACH_ROWS;
+        int hi = attachment_end(r, n, i, 1, reach, tol) + ATTACH_ROWS;
+        for (int j = lo < 0 ? 0 : lo; j < n && j <= hi; j++)
             zone[j] = 1;
     }
 }
@@ -203,8 +233,8 @@ int recon_resolve_parts(recon_outline_point *main_side, int n, const recon_outli
         r[n + i] = r_at(other, n_other, main_side[i].h, &g);
         gap[n + i] = (uint8_t)g;
     }
-    window_zone(gap, n, zone);
-    window_zone(gap + n, n, zone + n);
+    window_zone(gap, r, n, tol, zone);
+    window_zone(gap + n, r + n, n, tol, zone + n);
     /* The body seen through a window is held in, but not in the window's
      * first and last rows: there the hole closes along the attachment's
      * fillet, outside the body. */
