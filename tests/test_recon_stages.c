@@ -1,8 +1,9 @@
 /* The hand-written stages against independent truths: Suzuki–Abe border
  * following on hand-made masks (checked against a brute-force border set),
  * and the sub-pixel edge on rows whose pixels are the exact coverage of a
- * straight edge at a known fractional position; and the parts of outlines
- * drawn from a known body: a flaring neck above a tall handle is the body's. */
+ * straight edge at a known fractional position (also behind a dark limb
+ * with a band like the backdrop inside it); and the parts of outlines drawn
+ * from a known body: a flaring neck above a tall handle is the body's. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
@@ -283,6 +284,42 @@ Test(recon_subpixel, known_fractional_edges)
                 cr_expect_leq(err, 0.01, "side %d edge %.2f slope %.1f: found at %.4f", side, xe, sl, e.x);
             }
     cr_log_info("sub-pixel edge: worst error %.5f px over 40 rows", worst);
+}
+
+/* A dark limb with a band just inside it as light as the backdrop, or
+ * lighter (a glaze's shaded edge under a painted ring): the pixel inside
+ * the ramp is no longer the colour the edge mixes with the backdrop. The
+ * outline is still the dark limb's: every pixel the edge does not touch is
+ * the band's colour, and the slope given is the mask's (a notch makes it
+ * 2 px more than the edge's). */
+Test(recon_subpixel, dark_limb_before_a_band_like_the_backdrop)
+{
+    static const float limb[3] = {0.26f, 0.32f, 0.28f}, bg[3] = {0.53f, 0.53f, 0.54f};
+    static const float bands[2][3] = {{0.49f, 0.52f, 0.46f}, {0.60f, 0.61f, 0.59f}};
+    static const double xs[] = {20.0, 20.3, 20.57, 20.9}, slopes[] = {0, 0.6, 1.0};
+    float row[3 * 48];
+    double worst = 0;
+    for (int side = -1; side <= 1; side += 2)
+        for (int b = 0; b < 2; b++)
+            for (size_t k = 0; k < sizeof xs / sizeof xs[0]; k++)
+                for (size_t m = 0; m < sizeof slopes / sizeof slopes[0]; m++) {
+                    double xe = xs[k], sl = slopes[m], half = 0.5 * sl;
+                    edge_row(row, 48, xe, sl, side, limb, bg);
+                    for (int i = 0; i < 48; i++) {
+                        /* the pixels the edge does not cross, on the object's side */
+                        int inside = side > 0 ? i + 1 <= xe - half - 1 : i >= xe + half + 1;
+                        if (inside)
+                            memcpy(row + 3 * i, bands[b], sizeof bands[b]);
+                    }
+                    int i0 = side > 0 ? (int)ceil(xe + half) - 1 : (int)floor(xe - half);
+                    recon_edge e = recon_subpixel_edge(&(recon_signal){row, 48, 3}, i0, side, sl + 2, 0.01);
+                    cr_assert(e.ok, "side %d band %d edge %.2f slope %.1f: no edge", side, b, xe, sl);
+                    double err = fabs(e.x - xe);
+                    worst = fmax(worst, err);
+                    cr_expect_leq(err, 0.01, "side %d band %d edge %.2f slope %.1f: found at %.4f", side, b, xe, sl,
+                                  e.x);
+                }
+    cr_log_info("sub-pixel edge, dark limb before a light band: worst error %.5f px over 48 rows", worst);
 }
 
 /* ---- parts: a tall handle's zone ends where its attachment does */

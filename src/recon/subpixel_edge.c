@@ -25,6 +25,29 @@ static double dist(const recon_signal *s, const float *a, const float *b)
     return sqrt(d2);
 }
 
+/* The object's length in the window when its k-th pixel from the inner end,
+ * j, is the object's colour at the edge: j and the pixels inside it are
+ * covered, the ones outside it are fractions of |p_j - bg| (n the window's
+ * last index; *contrast = |p_j - bg|). */
+static double covered_to(const recon_signal *s, int n, int in, int inner, int j, const double *bg, double *contrast)
+{
+    const float *pj = px(s, inner - j * in);
+    double d[3], n2 = 0, sum = j + 1;
+    for (int c = 0; c < s->channels; c++) {
+        d[c] = pj[c] - bg[c];
+        n2 += d[c] * d[c];
+    }
+    for (int k = j + 1; k <= n; k++) {
+        const float *p = px(s, inner - k * in);
+        double t = 0;
+        for (int c = 0; c < s->channels; c++)
+            t += (p[c] - bg[c]) * d[c];
+        sum += t / n2;
+    }
+    *contrast = sqrt(n2);
+    return sum;
+}
+
 /* Object length inside [a0, a1] measured from its inner end, and the contrast
  * |fg - bg| at that end. A glossy glaze at grazing angles reflects its
  * surroundings, i.e. the backdrop (Fresnel): its colour drifts toward the
@@ -36,8 +59,16 @@ static double dist(const recon_signal *s, const float *a, const float *b)
  * inner end is extrapolated along that trend, m = min(k + 1, 2) steps, and
  * along its acceleration when that too points toward bg and is no larger
  * than the step (a second-order step, m (m + 1) / 2 times the change of the
- * step; JPEG noise makes larger ones), by at most half the contrast. */
-static int ramp(const recon_signal *s, int a0, int a1, int side, int glaze, double *len, double *contrast)
+ * step; JPEG noise makes larger ones), by at most half the contrast.
+ * A window pixel p farther from bg than fg is (by more than the noise
+ * delta), and nearer to bg than to p (|fg - bg| < |fg - p|, i.e.
+ * |p - bg|^2 > 2 (p - bg).(fg - bg)), says fg is not the colour that p mixes
+ * with the backdrop (a dark limb with a band painted just inside it as light
+ * as the backdrop, or lighter): the farthest such p is the object's colour
+ * under the edge, and the length is counted from it (covered_to). A
+ * highlight beside a dark glaze is not: both are far from the backdrop. */
+static int ramp(const recon_signal *s, int a0, int a1, int side, int glaze, double delta, double *len,
+                double *contrast)
 {
     const int w = s->width, ch = s->channels;
     if (a0 < 2 || a1 > w - 3 || a1 < a0)
@@ -58,7 +89,8 @@ static int ramp(const recon_signal *s, int a0, int a1, int side, int glaze, doub
         a2 += acc[c] * acc[c];
     }
     const int trend = glaze && along > 0, accelerates = trend && acc_along > 0 && a2 <= s2;
-    double sum = 0;
+    double sum = 0, far = 0;
+    int j = -1; /* the window pixel that is the object's colour, when fg is not */
     *contrast = 0;
     for (int k = 0; k <= a1 - a0; k++) {
         const float *p = px(s, inner - k * in);
@@ -67,18 +99,25 @@ static int ramp(const recon_signal *s, int a0, int a1, int side, int glaze, doub
             x[c] = trend ? m * step[c] + q * acc[c] : 0;
             x2 += x[c] * x[c];
         }
-        double lim = x2 > 0.25 * dd ? sqrt(0.25 * dd / x2) : 1, n2 = 0, t = 0;
+        double lim = x2 > 0.25 * dd ? sqrt(0.25 * dd / x2) : 1, n2 = 0, t = 0, q2 = 0;
         for (int c = 0; c < ch; c++) {
             double d = pfg[c] + lim * x[c] - bg[c];
             n2 += d * d;
             t += (p[c] - bg[c]) * d;
+            q2 += (p[c] - bg[c]) * (p[c] - bg[c]);
         }
         if (k == 0)
             *contrast = sqrt(n2);
         if (n2 < 1e-8)
             return 0;
         sum += t / n2;
+        if (sqrt(q2) > far && sqrt(q2) > sqrt(n2) + delta && q2 > 2 * t) {
+            far = sqrt(q2);
+            j = k;
+        }
     }
+    if (j >= 0)
+        sum = covered_to(s, a1 - a0, in, inner, j, bg, contrast);
     *len = sum;
     return 1;
 }
@@ -106,14 +145,14 @@ static recon_edge edge_at(const recon_signal *s, int i0, int side, double slope,
         return out;
     int a0 = side > 0 ? p - span : p, a1 = side > 0 ? p : p + span;
     double len, contrast;
-    if (!ramp(s, a0, a1, side, glaze, &len, &contrast))
+    if (!ramp(s, a0, a1, side, glaze, delta, &len, &contrast))
         return out;
     double e = side > 0 ? a0 + len : a1 + 1 - len;
     /* Pass 2: only the pixels the edge can cross, so fg and bg come from the
      * pixels nearest to it. */
     a0 = (int)floor(e - half - 0.25);
     a1 = (int)floor(e + half + 0.25);
-    if (!ramp(s, a0, a1, side, glaze, &len, &contrast))
+    if (!ramp(s, a0, a1, side, glaze, delta, &len, &contrast))
         return out;
     out.x = side > 0 ? a0 + len : a1 + 1 - len;
     out.contrast = contrast;
