@@ -60,13 +60,15 @@ static double covered_to(const recon_signal *s, int n, int in, int inner, int j,
  * along its acceleration when that too points toward bg and is no larger
  * than the step (a second-order step, m (m + 1) / 2 times the change of the
  * step; JPEG noise makes larger ones), by at most half the contrast.
- * A window pixel p farther from bg than fg is (by more than the noise
- * delta), and nearer to bg than to p (|fg - bg| < |fg - p|, i.e.
- * |p - bg|^2 > 2 (p - bg).(fg - bg)), says fg is not the colour that p mixes
- * with the backdrop (a dark limb with a band painted just inside it as light
- * as the backdrop, or lighter): the farthest such p is the object's colour
- * under the edge, and the length is counted from it (covered_to). A
- * highlight beside a dark glaze is not: both are far from the backdrop. */
+ * A window pixel p farther from bg than the pixel inside, fg as seen (by
+ * more than the noise delta), with fg nearer to bg than to p (|fg - bg| <
+ * |fg - p|, i.e. |p - bg|^2 > 2 (p - bg).(fg - bg)), says fg is not the
+ * colour that p mixes with the backdrop (a dark limb with a band painted
+ * just inside it as light as the backdrop, or lighter): the farthest such p
+ * is the object's colour under the edge, and the length is counted from it
+ * (covered_to). A highlight beside a dark glaze is not such a case (both
+ * are far from the backdrop), nor is fg's extrapolation toward bg: p is
+ * compared with the pixel, not with the guess. */
 static int ramp(const recon_signal *s, int a0, int a1, int side, int glaze, double delta, double *len,
                 double *contrast)
 {
@@ -99,19 +101,20 @@ static int ramp(const recon_signal *s, int a0, int a1, int side, int glaze, doub
             x[c] = trend ? m * step[c] + q * acc[c] : 0;
             x2 += x[c] * x[c];
         }
-        double lim = x2 > 0.25 * dd ? sqrt(0.25 * dd / x2) : 1, n2 = 0, t = 0, q2 = 0;
+        double lim = x2 > 0.25 * dd ? sqrt(0.25 * dd / x2) : 1, n2 = 0, t = 0, q2 = 0, t0 = 0;
         for (int c = 0; c < ch; c++) {
             double d = pfg[c] + lim * x[c] - bg[c];
             n2 += d * d;
             t += (p[c] - bg[c]) * d;
             q2 += (p[c] - bg[c]) * (p[c] - bg[c]);
+            t0 += (p[c] - bg[c]) * (pfg[c] - bg[c]);
         }
         if (k == 0)
             *contrast = sqrt(n2);
         if (n2 < 1e-8)
             return 0;
         sum += t / n2;
-        if (sqrt(q2) > far && sqrt(q2) > sqrt(n2) + delta && q2 > 2 * t) {
+        if (sqrt(q2) > far && sqrt(q2) > sqrt(dd) + delta && q2 > 2 * t0) {
             far = sqrt(q2);
             j = k;
         }
