@@ -143,7 +143,7 @@ static void expect_profile(const char *name, double mean, double max)
 /* The bounds are what the reconstruction achieves (docs/algorithms-recon.md,
  * "Accuracy"): in one flat colour the outline is exact; under studio light
  * the painted rings meet the edge just inside its dark shaded limb, as light
- * as the backdrop (max 0.79 px; 3.2-4.5 px when the edge took the ring's
+ * as the backdrop (max 0.80 px; 3.2-4.5 px when the edge took the ring's
  * colour for the glaze's under the edge). */
 Test(recon_hard, maebyeong_and_ewer_shapes_reconstruct, .timeout = 120)
 {
