@@ -20,8 +20,10 @@
  * b/a times that radius when deeper: a rim's near half seen from above); where none turns much more than the rest
  * of the zone (a dome), the extreme point, its pole; also at the top when it
  * lies deeper below the top than the base's ellipse allows (a knob), unless
- * base_is_cut (a stand or a shadow cut it). Returns 0, or -1 when out of
- * memory. */
+ * base_is_cut (a stand or a shadow cut it). A corner that turns most is
+ * then found again on outline[s] (s 0 left, 1 right: the sides' sub-pixel
+ * outlines, n_outline[s] points, one per row) by recon_corner_knot, except
+ * at a base that is cut. Returns 0, or -1 when out of memory. */
 int recon_find_caps(const vec2 *contour, int n, const vec2 *const outline[2], const int n_outline[2], vec2 origin,
                     vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT]);
 
