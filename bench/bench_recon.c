@@ -201,7 +201,9 @@ static void run_stages(const image_t *img, const char *path, double ms[ST_COUNT]
         base_is_cut |= res.excluded[i].what == RECON_PART_STAND || res.excluded[i].what == RECON_PART_SHADOW;
     vec2 corners[CORNER_COUNT];
     t = cpu_ms();
-    if (recon_find_caps(res.contour, res.n_contour, res.axis_origin, res.axis_direction, base_is_cut, corners) != 0)
+    const vec2 *const outline[2] = {res.silhouette[0], res.silhouette[1]};
+    if (recon_find_caps(res.contour, res.n_contour, outline, res.n_silhouette, res.axis_origin, res.axis_direction,
+                        base_is_cut, corners) != 0)
         die("out of memory");
     ms[ST_CAPS] = cpu_ms() - t;
     /* The parts on the result's outlines (their gap flags are not kept:

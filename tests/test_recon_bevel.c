@@ -7,7 +7,9 @@
  * ellipse, the chamfer's foot (the truth's corner: where the chamfer's
  * apparent contour meets the base circle), not its top; the upper turn is
  * the sharper one, so taking the sharpest turn of the end zone put the
- * corner at the top, 14 and 17 px off (docs/algorithms-recon.md, section 6). */
+ * corner at the top, 14 and 17 px off; the first run of turns from the end
+ * finds the foot's pixel, and the sub-pixel outline the foot itself
+ * (docs/algorithms-recon.md, section 6). */
 #include <criterion/criterion.h>
 #include <math.h>
 
@@ -54,13 +56,15 @@ static void expect_base_at_the_foot(double elevation_deg, double tol_px)
     image_free(&img);
 }
 
-/* From a level camera the corner is 3.05 px from the foot: the mask takes
- * the ellipse's half-covered pixel under the foot (1.7 px when the shadow
- * model's overestimate put it in the backdrop, before the shadow's density
- * was integrated over its darkening); the sharpest turn gave 14 px. */
-Test(recon_bevel, chamfer_level, .timeout = 60) { expect_base_at_the_foot(0, 3.2); }
+/* From a level camera the pixel contour's corner is 3.05 px from the foot
+ * (the sharpest turn gave 14 px): a pixel centre past the junction, on the
+ * base's ellipse, which the mask's mixed pixels move. Found again on the
+ * sub-pixel outline, as the knot where the chamfer's line leaves onto the
+ * ellipse (caps.c, corner_knot.c), it is 0.20 px from the foot. */
+Test(recon_bevel, chamfer_level, .timeout = 60) { expect_base_at_the_foot(0, 0.5); }
 
-/* Seen from 5 degrees above the base, the chamfer meets the base's ellipse
- * below the ellipse's end, and the turn the chords measure peaks on the
- * end itself: 3.4 px from the foot (17 px with the sharpest turn). */
-Test(recon_bevel, chamfer_from_above, .timeout = 60) { expect_base_at_the_foot(2, 4.0); }
+/* Seen from 2 degrees above (5 degrees above the base), the chamfer meets
+ * the base's ellipse below the ellipse's end, and the turn the chords
+ * measure peaks on the end itself: the pixel contour's corner is 3.4 px from
+ * the foot (17 px with the sharpest turn), the knot 0.16 px. */
+Test(recon_bevel, chamfer_from_above, .timeout = 60) { expect_base_at_the_foot(2, 0.5); }

@@ -227,7 +227,8 @@ static double pick_half_width(const end_point *p, int n, const int pick[2])
     return w;
 }
 
-int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT])
+int recon_find_caps(const vec2 *contour_px, int n, const vec2 *const outline[2], const int n_outline[2], vec2 origin,
+                    vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT])
 {
     double *turns = malloc((size_t)(n > 0 ? n : 1) * sizeof *turns);
     vec2 *contour = malloc((size_t)(n > 0 ? n : 1) * sizeof *contour);
@@ -259,7 +260,7 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
     int orient = signed_area(contour, n) > 0 ? 1 : -1;
     int k = (int)fmax(5, 0.01 * height);
     /* per end: the picked points, and the extreme point (pole) per side */
-    int picked[2][2], poles[2][2];
+    int picked[2][2], poles[2][2], turned[2] = {0, 0};
     double base_aspect = 0; /* b/a of the base's ellipse where it was left tangentially, else 0 */
     for (int pass = 0; pass < 2; pass++) {
         int end = 1 - pass; /* 1: bottom (base) first, 0: top (rim) */
@@ -399,9 +400,11 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
         if (wide_b >= 0 && best_b > wide_b + 2)
             for (int b = wide_b + 1; b < best_b && !ring; b++)
                 ring = bw[b] >= 0 && bw[b] < bw[wide_b] - fmax(1.0, 0.01 * bw[wide_b]);
+        turned[end] = best_b >= 0;
         if (wide_b >= 0 && (best_b < 0 || ring)) {
             pick[0] = bo[wide_b];
             pick[1] = bo[nb + wide_b];
+            turned[end] = 0;
         } else if (best_b < 0 && ellipse_corners(zp, m, zone, pick, end && !base_is_cut ? &base_aspect : NULL) != 0) {
             pick[0] = pole[0];
             pick[1] = pole[1];
@@ -432,14 +435,20 @@ int recon_find_caps(const vec2 *contour_px, int n, vec2 origin, vec2 dir, int ba
             }
     }
     if (!base_is_cut && rad[0] > 1 && rad[1] > 1 && poles[0][0] >= 0 && poles[0][1] >= 0 &&
-        depth[0] > rad[0] * depth[1] / rad[1] + 2 * rad[0] / rad[1] + 3)
+        depth[0] > rad[0] * depth[1] / rad[1] + 2 * rad[0] / rad[1] + 3) {
         for (int s = 0; s < 2; s++)
             picked[0][s] = poles[0][s];
+        turned[0] = 0;
+    }
     for (int end = 0; end < 2; end++)
         for (int s = 0; s < 2; s++) {
             int q = end ? (s ? CORNER_BASE_RIGHT : CORNER_BASE_LEFT) : (s ? CORNER_RIM_RIGHT : CORNER_RIM_LEFT);
             double h_end = end ? h_bot : h_top;
             corners[q] = picked[end][s] >= 0 ? contour_px[picked[end][s]] : v2_add(origin, v2_scale(dir, h_end));
+            /* A turn's pick is a pixel centre on the ellipse's side of the
+             * junction; a base cut by a stand or a shadow meets no ellipse. */
+            if (turned[end] && picked[end][s] >= 0 && !(end && base_is_cut))
+                recon_corner_knot(outline[s], n_outline[s], origin, dir, !end, k, &corners[q]);
         }
     free(turns);
     free(contour);

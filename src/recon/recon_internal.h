@@ -20,9 +20,22 @@
  * b/a times that radius when deeper: a rim's near half seen from above); where none turns much more than the rest
  * of the zone (a dome), the extreme point, its pole; also at the top when it
  * lies deeper below the top than the base's ellipse allows (a knob), unless
- * base_is_cut (a stand or a shadow cut it). Returns 0, or -1 when out of
- * memory. */
-int recon_find_caps(const vec2 *contour, int n, vec2 origin, vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT]);
+ * base_is_cut (a stand or a shadow cut it). A corner that turns most is
+ * then found again on outline[s] (s 0 left, 1 right: the sides' sub-pixel
+ * outlines, n_outline[s] points, one per row) by recon_corner_knot, except
+ * at a base that is cut. Returns 0, or -1 when out of memory. */
+int recon_find_caps(const vec2 *contour, int n, const vec2 *const outline[2], const int n_outline[2], vec2 origin,
+                    vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT]);
+
+/* The corner *corner (a point of the closed contour, on the side of the axis
+ * of outline[0..n), that side's sub-pixel outline, one point per row) moved
+ * to where that outline leaves the wall's line onto its end's ellipse
+ * (toward_top: the rim, else the base), the knot of a quadratic spline fitted
+ * to the outline's points within window px of its height (corner_knot.c).
+ * Returns 1 when moved, 0 when the outline shows no such junction there (or
+ * out of memory). */
+int recon_corner_knot(const vec2 *outline, int n, vec2 origin, vec2 dir, int toward_top, double window,
+                      vec2 *corner);
 
 /* ---- parts that are not revolved (parts.c) */
 
