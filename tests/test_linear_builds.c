@@ -3,7 +3,10 @@
  * quadratic, so 10^5 control points or shapes hung the renderer). Each test
  * times the build at n and at 4n in CPU time of this process and expects a
  * ratio well below the 16 of a quadratic build; the slack absorbs the noise
- * of short timings. */
+ * of short timings. Each timing is the fastest of three runs: a size's
+ * first run pays for its fresh pages, which on a virtual machine cost more
+ * than the build (the scene reader's 16000 shapes took 0.26 s cold and
+ * 0.16 s warm against 0.03 s for 4000: 9.5x cold, 5.2x warm). */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -73,6 +76,15 @@ static int timings_are_meaningful(void)
     return !(build && !strcmp(build, "asan"));
 }
 
+/* The fastest of three builds of size n. */
+static double fastest(double (*time_build)(int), int n)
+{
+    double best = INFINITY;
+    for (int k = 0; k < 3; k++)
+        best = fmin(best, time_build(n));
+    return best;
+}
+
 static void expect_scaling(const char *what, double t1, double t4)
 {
     if (!timings_are_meaningful())
@@ -82,12 +94,12 @@ static void expect_scaling(const char *what, double t1, double t4)
 
 Test(linear_builds, bezier_split_of_a_profile, .timeout = 300)
 {
-    expect_scaling("bspline_to_bezier", time_bezier_split(50000), time_bezier_split(200000));
+    expect_scaling("bspline_to_bezier", fastest(time_bezier_split, 50000), fastest(time_bezier_split, 200000));
 }
 
 Test(linear_builds, sor_of_a_profile, .timeout = 300)
 {
-    expect_scaling("sor_create", time_sor_build(5000), time_sor_build(20000));
+    expect_scaling("sor_create", fastest(time_sor_build, 5000), fastest(time_sor_build, 20000));
 }
 
 /* n spheres, each with an id, a nested BSDF and a reference to a shared
@@ -126,7 +138,7 @@ static double time_scene(int n)
 
 Test(linear_builds, scene_of_many_shapes, .timeout = 300)
 {
-    expect_scaling("scene reader and build", time_scene(4000), time_scene(16000));
+    expect_scaling("scene reader and build", fastest(time_scene, 4000), fastest(time_scene, 16000));
 }
 
 /* Loads the scene text; NULL with the reason in err when refused. */
