@@ -36,17 +36,6 @@ static recon_signal column_signal(const image_t *img, int alpha, int i, int j0, 
     return (recon_signal){col, j1 - j0 + 1, ch};
 }
 
-/* Distance between the signal's pixels a and b. */
-static double signal_step(const recon_signal *s, int a, int b)
-{
-    double d2 = 0;
-    for (int k = 0; k < s->channels; k++) {
-        double t = (double)s->row[(size_t)a * s->channels + k] - s->row[(size_t)b * s->channels + k];
-        d2 += t * t;
-    }
-    return sqrt(d2);
-}
-
 /* The mask's outermost object row in column i, from the top (side -1) or
  * the bottom (+1); -1 when the column is empty. */
 static int extreme_row(const recon_result *res, int i, int side)
@@ -74,9 +63,9 @@ static int outermost_step(const image_t *img, int alpha, int i, int here, int si
     recon_signal s = column_signal(img, alpha, i, j0, j1, col);
     double big = 0; /* rows j are s's pixels j - j0 from here on */
     for (int j = j_in; j != j_out + side; j += side)
-        big = fmax(big, signal_step(&s, j - j0, j - side - j0));
+        big = fmax(big, recon_signal_distance(&s, j - j0, j - side - j0));
     for (int j = j_out; j != j_in - side; j -= side)
-        if (signal_step(&s, j - j0, j - side - j0) >= big / 3)
+        if (recon_signal_distance(&s, j - j0, j - side - j0) >= big / 3)
             return j - side;
     return here;
 }

@@ -154,14 +154,8 @@ static int trace_side(const image_t *img, const float *gray, int alpha, const in
         recon_signal sig = recon_signal_row(img, gray, alpha, j, buf);
         int in = ext[j] - 3 * side, outp = ext[j] + 12 * side;
         double d = delta;
-        if (in >= 0 && in < w && outp >= 0 && outp < w) {
-            double d2 = 0;
-            for (int c = 0; c < sig.channels; c++) {
-                double t = sig.row[(size_t)in * sig.channels + c] - sig.row[(size_t)outp * sig.channels + c];
-                d2 += t * t;
-            }
-            d = fmax(d, 0.25 * sqrt(d2));
-        }
+        if (in >= 0 && in < w && outp >= 0 && outp < w)
+            d = fmax(d, 0.25 * recon_signal_distance(&sig, in, outp));
         recon_edge e = recon_subpixel_edge(&sig, ext[j], side, slope, d);
         if (!e.ok)
             continue;

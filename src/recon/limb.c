@@ -3,24 +3,9 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include <gsl/gsl_statistics_double.h>
+
 #include "recon/recon_internal.h"
-
-/* Colour distance between pixels a and b of a row. */
-static double dist(const recon_signal *s, int a, int b)
-{
-    double d2 = 0;
-    for (int c = 0; c < s->channels; c++) {
-        double t = (double)s->row[(size_t)a * s->channels + c] - s->row[(size_t)b * s->channels + c];
-        d2 += t * t;
-    }
-    return sqrt(d2);
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* How far the backdrop beside a clean edge strays from the backdrop further
  * out: JPEG ringing, the anti-aliasing a pixel beyond the mask still
@@ -43,14 +28,10 @@ static double ringing(const image_t *img, const float *gray, int alpha, const in
         recon_signal sig = recon_signal_row(img, gray, alpha, j, buf);
         double m = 0;
         for (int k = NEAR0; k <= NEAR1; k++)
-            m = fmax(m, dist(&sig, ext[j] + side * k, far));
+            m = fmax(m, recon_signal_distance(&sig, ext[j] + side * k, far));
         v[n++] = m;
     }
-    double q = 0;
-    if (n > 0) {
-        qsort(v, n, sizeof *v, cmp_double);
-        q = v[(size_t)(0.9 * (double)(n - 1))];
-    }
+    double q = n > 0 ? gsl_stats_select(v, 1, n, (size_t)(0.9 * (double)(n - 1))) : 0;
     free(v);
     return q;
 }
@@ -68,17 +49,17 @@ static double ringing(const image_t *img, const float *gray, int alpha, const in
 static int departure(const recon_signal *s, int bg, int stop, int step, double t, double *edge)
 {
     int x = bg + step;
-    while (x != stop && dist(s, x, bg) <= t)
+    while (x != stop && recon_signal_distance(s, x, bg) <= t)
         x += step;
-    double d = dist(s, x, bg), peak = d, later = 0;
+    double d = recon_signal_distance(s, x, bg), peak = d, later = 0;
     for (int k = 1; k <= 5; k++) {
         int i = x + k * step;
         if (i < 0 || i >= s->width)
             break;
         if (k <= 2)
-            peak = fmax(peak, dist(s, i, bg));
+            peak = fmax(peak, recon_signal_distance(s, i, bg));
         else if (k >= 4)
-            later = fmax(later, dist(s, i, bg));
+            later = fmax(later, recon_signal_distance(s, i, bg));
     }
     double covered = peak > 0 ? d / peak : 1;
     *edge = step > 0 ? x + 1 - covered : x + covered;

@@ -4,6 +4,7 @@
 #ifndef CELADON_RECON_RECON_H
 #define CELADON_RECON_RECON_H
 
+#include <math.h>
 #include <stdint.h>
 
 #include "celadon/image.h"
@@ -23,6 +24,18 @@ typedef struct {
     const float *row;
     int width, channels;
 } recon_signal;
+
+/* Colour distance between the signal's pixels a and b. Inline: the edge
+ * searches run it per pixel. */
+static inline double recon_signal_distance(const recon_signal *s, int a, int b)
+{
+    double d2 = 0;
+    for (int c = 0; c < s->channels; c++) {
+        double t = (double)s->row[(size_t)a * s->channels + c] - s->row[(size_t)b * s->channels + c];
+        d2 += t * t;
+    }
+    return sqrt(d2);
+}
 
 /* Sub-pixel position of the outermost edge of the object on a row, on side
  * (-1 left, +1 right), from the anti-aliased ramp: the fraction of each pixel

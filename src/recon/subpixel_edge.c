@@ -17,14 +17,6 @@
 
 static const float *px(const recon_signal *s, int i) { return s->row + (size_t)i * s->channels; }
 
-static double dist(const recon_signal *s, const float *a, const float *b)
-{
-    double d2 = 0;
-    for (int c = 0; c < s->channels; c++)
-        d2 += ((double)a[c] - b[c]) * ((double)a[c] - b[c]);
-    return sqrt(d2);
-}
-
 /* The object's length in the window when its k-th pixel from the inner end,
  * j, is the object's colour at the edge: j and the pixels inside it are
  * covered, the ones outside it are fractions of |p_j - bg| (n the window's
@@ -140,9 +132,8 @@ static recon_edge edge_at(const recon_signal *s, int i0, int side, double slope,
     far = far < 1 ? 1 : (far > w - 2 ? w - 2 : far);
     if ((far - i0) * side < span + 2)
         return out;
-    const float *bgv = px(s, far);
     int p = far - side, stop = i0 - side * (span + 3);
-    while (p != stop && dist(s, px(s, p), bgv) <= delta)
+    while (p != stop && recon_signal_distance(s, p, far) <= delta)
         p -= side;
     if (p == stop)
         return out;
