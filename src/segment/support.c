@@ -139,10 +139,10 @@ static int vessel_seeds(const recon_segmentation *seg, const uint8_t *m, const u
     int end = column_top(m, w, h, bottom);
     end = end > top ? end : bottom + 1;
     for (int y = top; y <= top + (end - 1 - top) / 2; y++) {
-        const uint8_t *row = m + (size_t)y * w, *a = memchr(row, 1, (size_t)w);
-        if (!a)
+        const uint8_t *row = m + (size_t)y * w;
+        int l, r;
+        if (!row_extent(row, w, &l, &r))
             continue;
-        int l = (int)(a - row), r = (int)((const uint8_t *)memrchr(row, 1, (size_t)w) - row);
         double c = seg->have_axis ? seg->axis_x0 + seg->axis_slope * (y + 0.5) : 0.5 * (l + r + 1);
         double half = 0.25 * (r - l + 1);
         for (int x = l; x <= r; x++)
