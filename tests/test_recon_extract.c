@@ -216,6 +216,22 @@ static void wash_left_edge(const synth_params *p, image_t *img, double y_clean, 
     }
 }
 
+/* Reconstructs the vase p drawn in img (then freed) with its left edge
+ * washed out: the profile comes from the right side, and the axis and the
+ * corners (the washed side's from the clean side's) are as accurate as on
+ * a clean photo. */
+static void expect_measured_on_the_right(const char *what, const synth_params *p, image_t *img)
+{
+    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_result r;
+    char err[256];
+    cr_assert_eq(recon_extract(img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
+    cr_expect_eq(r.side_used, RECON_SIDE_RIGHT);
+    expect_within(what, measure(p, &r, 4), (limits){0.01, 0.05, 2.0, 1.6});
+    recon_result_free(&r);
+    image_free(img);
+}
+
 /* A highlight washing out the left edge, as on a glossy glaze against a white
  * backdrop: on the upper 70% of the height the left outline fades into the
  * backdrop over a band that drifts between 4 and 16 px, then ramps to the
@@ -229,14 +245,7 @@ Test(recon_extract, washed_out_side)
     cr_assert_eq(synth_draw(&p, &img), 0);
     synth_truth t = synth_truth_of(&p);
     wash_left_edge(&p, &img, t.axis_origin.y - 0.3 * t.height_px, t.axis_origin.y - t.height_px - 3, 10, 6, 0);
-    recon_options opt = {-1, RECON_SIDE_AUTO};
-    recon_result r;
-    char err[256];
-    cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
-    cr_expect_eq(r.side_used, RECON_SIDE_RIGHT);
-    expect_within("vase, left edge washed out", measure(&p, &r, 4), (limits){0.01, 0.05, 2.0, 1.6});
-    recon_result_free(&r);
-    image_free(&img);
+    expect_measured_on_the_right("vase, left edge washed out", &p, &img);
 }
 
 /* A highlight washing out nearly the whole left edge, as on synth-dev's
@@ -255,14 +264,7 @@ Test(recon_extract, washed_out_limb)
     cr_assert_eq(synth_draw(&p, &img), 0);
     synth_truth t = synth_truth_of(&p);
     wash_left_edge(&p, &img, t.axis_origin.y - 0.04 * t.height_px, t.axis_origin.y - 0.96 * t.height_px, 13, 7, 1);
-    recon_options opt = {-1, RECON_SIDE_AUTO};
-    recon_result r;
-    char err[256];
-    cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
-    cr_expect_eq(r.side_used, RECON_SIDE_RIGHT);
-    expect_within("vase, limb of a washed side", measure(&p, &r, 4), (limits){0.01, 0.05, 2.0, 1.6});
-    recon_result_free(&r);
-    image_free(&img);
+    expect_measured_on_the_right("vase, limb of a washed side", &p, &img);
 }
 
 /* The melon vase's mouth (synth-dev): a glossy glaze reflects the white
