@@ -18,10 +18,15 @@ void atomic_temp_name(const char *final_path, char *tmp, size_t tmplen)
     int stemlen = dot ? (int)(dot - base) : (int)strlen(base);
     snprintf(tmp, tmplen, "%.*s.%.*s.tmp-%ld-%u%s", dirlen, final_path, stemlen, base,
              (long)getpid(), atomic_fetch_add(&temp_counter, 1u), dot ? dot : "");
+    temp_files_hold();
     temp_files_track(tmp);
 }
 
-void atomic_temp_done(const char *tmp) { temp_files_forget(tmp); }
+void atomic_temp_done(const char *tmp)
+{
+    temp_files_forget(tmp);
+    temp_files_release();
+}
 
 int atomic_file_open(atomic_file *af, const char *final_path)
 {

@@ -8,8 +8,8 @@
 
 /* Builds a temporary sibling of final_path that keeps its extension (so
  * format-by-extension writers still work): "dir/.name.tmp-PID-N.ext". It is
- * tracked (temp_files.h) until atomic_temp_done: call that once the
- * temporary is renamed into place or removed. */
+ * tracked and held (temp_files.h) until atomic_temp_done: call that once
+ * the temporary is renamed into place or removed, on every path. */
 void atomic_temp_name(const char *final_path, char *tmp, size_t tmplen);
 void atomic_temp_done(const char *tmp);
 

@@ -60,11 +60,13 @@ int folder_make_temp(const char *final, char *tmp, size_t len)
         errno = ENAMETOOLONG;
         return -1;
     }
+    temp_files_hold();
     temp_files_track(tmp); /* before it exists: no moment without it */
-    if (mkdir(tmp, 0777) == 0)
-        return 0;
-    temp_files_forget(tmp);
-    return -1;
+    int rc = mkdir(tmp, 0777);
+    if (rc != 0)
+        temp_files_forget(tmp);
+    temp_files_release();
+    return rc == 0 ? 0 : -1;
 }
 
 void folder_remove(const char *dir)

@@ -3,9 +3,12 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdatomic.h>
+#include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 enum { SLOT_FREE, SLOT_FILLING, SLOT_LIVE };
@@ -15,8 +18,17 @@ static struct {
     char path[4200];
 } slots[TEMP_FILES_MAX];
 
-static atomic_int holds;          /* moves into place under way */
-static volatile sig_atomic_t held_signal; /* a signal that came during one */
+static atomic_int changes; /* holds under way, over every thread */
+static atomic_int dying;   /* a handler is removing the temporaries */
+static _Thread_local int depth;          /* this thread's nested holds */
+static _Thread_local sigset_t mask_before; /* its signal mask outside them */
+
+/* CELADON_TEST_SIGNAL_AT=N:SIG (docs/faults.md): the Nth hold of the
+ * process sends the process SIG once it has begun, so that tests can
+ * interrupt at every change to the file system in turn. */
+static long signal_at;
+static int signal_at_sig;
+static atomic_long holds_begun;
 
 void temp_files_track(const char *path)
 {
@@ -72,24 +84,34 @@ static int remove_tree_at(int dirfd, const char *name, int depth)
     return unlinkat(dirfd, name, AT_REMOVEDIR);
 }
 
-/* Removes every tracked temporary, then ends the process by sig. */
+/* Waits for the holds under way (at most 2 s: a thread that never ends
+ * its hold must not keep the process alive), then removes every tracked
+ * temporary and ends the process by sig. No new hold begins meanwhile. */
 static void clean_up_and_die(int sig)
 {
+    atomic_store(&dying, 1);
+    for (int ms = 0; atomic_load(&changes) > 0 && ms < 2000; ms++)
+        nanosleep(&(struct timespec){0, 1000000}, NULL);
     for (int i = 0; i < TEMP_FILES_MAX; i++)
         if (atomic_load(&slots[i].state) == SLOT_LIVE)
             remove_tree_at(AT_FDCWD, slots[i].path, 8);
     signal(sig, SIG_DFL);
-    raise(sig);
+    raise(sig); /* delivered when the handler returns */
 }
 
 static void on_signal(int sig)
 {
     int saved = errno;
-    if (atomic_load(&holds) > 0)
-        held_signal = sig;
-    else
-        clean_up_and_die(sig); /* delivered when this handler returns */
+    clean_up_and_die(sig);
     errno = saved;
+}
+
+static void fill_ending_signals(sigset_t *set)
+{
+    sigemptyset(set);
+    sigaddset(set, SIGINT);
+    sigaddset(set, SIGTERM);
+    sigaddset(set, SIGHUP);
 }
 
 void temp_files_install(void)
@@ -97,19 +119,46 @@ void temp_files_install(void)
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaddset(&sa.sa_mask, SIGINT);
-    sigaddset(&sa.sa_mask, SIGTERM);
-    sigaddset(&sa.sa_mask, SIGHUP);
+    fill_ending_signals(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
     sigaction(SIGHUP, &sa, NULL);
+    const char *at = getenv("CELADON_TEST_SIGNAL_AT");
+    if (at) {
+        char *end;
+        signal_at = strtol(at, &end, 10);
+        signal_at_sig = *end == ':' ? (int)strtol(end + 1, &end, 10) : 0;
+        if (*end || signal_at_sig <= 0)
+            signal_at = 0;
+    }
 }
 
-void temp_files_hold(void) { atomic_fetch_add(&holds, 1); }
+/* The three signals are blocked in this thread during its holds, so a
+ * handler never runs inside one: it runs in another thread and waits for
+ * the hold to end, or here once the hold ends and the signal is unblocked.
+ * The count goes up before dying is read and the handler sets dying before
+ * it reads the count, so one of the two always sees the other. */
+void temp_files_hold(void)
+{
+    if (depth++ > 0)
+        return;
+    sigset_t block;
+    fill_ending_signals(&block);
+    pthread_sigmask(SIG_BLOCK, &block, &mask_before);
+    atomic_fetch_add(&changes, 1);
+    if (atomic_load(&dying)) { /* the process is ending: no more changes */
+        atomic_fetch_sub(&changes, 1);
+        for (;;)
+            pause();
+    }
+    if (signal_at > 0 && atomic_fetch_add(&holds_begun, 1) + 1 == signal_at)
+        kill(getpid(), signal_at_sig);
+}
 
 void temp_files_release(void)
 {
-    if (atomic_fetch_sub(&holds, 1) == 1 && held_signal)
-        clean_up_and_die(held_signal);
+    if (--depth > 0)
+        return;
+    atomic_fetch_sub(&changes, 1);
+    pthread_sigmask(SIG_SETMASK, &mask_before, NULL);
 }

@@ -4,9 +4,12 @@
  * remove what is tracked, then end the process by the same signal, so the
  * shell reports 128 + N (130 for Ctrl-C). A command that handles SIGINT
  * itself (render's Ctrl-C: the image so far) restores the previous handler
- * when done. Moves into place (several renames) are held together:
- * a signal that comes meanwhile waits for the end of the move
- * (docs/faults.md). */
+ * when done. Every change to the file system that makes or moves a
+ * temporary (a temporary from its naming until it is renamed or removed, a
+ * temporary folder's creation, moves into place of several renames) is a
+ * hold: a signal waits for the holds under way in every thread to end and
+ * lets no new one begin before it removes the temporaries, so no thread
+ * can make one behind its back (docs/faults.md). */
 #ifndef CELADON_CORE_TEMP_FILES_H
 #define CELADON_CORE_TEMP_FILES_H
 
@@ -22,7 +25,9 @@ void temp_files_install(void);
 void temp_files_track(const char *path);
 void temp_files_forget(const char *path);
 
-/* Around moves into place: a signal between them is acted on at the end. */
+/* Around a change to the file system: a signal that comes meanwhile is
+ * acted on at its end. Holds nest; the three signals are blocked in the
+ * calling thread until its outermost hold ends. */
 void temp_files_hold(void);
 void temp_files_release(void);
 

@@ -89,10 +89,14 @@ int museum_folder_begin(const char *dir, char *tmp, size_t len, char *err, size_
     }
     int n = snprintf(tmp, len, "%.*s.celadon-museum-%ld-%u", slash ? (int)(slash - dir) + 1 : 0, dir,
                      (long)getpid(), atomic_fetch_add(&temp_counter, 1u));
+    temp_files_hold();
     if (n >= 0 && (size_t)n < len)
         temp_files_track(tmp);
-    if (n < 0 || (size_t)n >= len || mkdir(tmp, 0777) != 0) {
+    int made_tmp = n >= 0 && (size_t)n < len && mkdir(tmp, 0777) == 0;
+    if (!made_tmp)
         temp_files_forget(tmp);
+    temp_files_release();
+    if (!made_tmp) {
         snprintf(err, errlen, "%s: cannot create a folder beside it: %s", dir,
                  n < 0 || (size_t)n >= len ? "name too long" : strerror(errno));
         for (int k = n_made - 1; k >= 0; k--)
