@@ -6,6 +6,7 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <ftw.h>
+#include <pthread.h>
 #include <signal.h>
 #include <spawn.h>
 #include <stdio.h>
@@ -260,15 +261,17 @@ Test(faults, signals_at_every_change_of_a_batch_reconstruct_leave_whole_vessels_
     cr_expect_geq(n, 3 * 8 + 1, "only %d changes to the file system", n - 1);
 }
 
-/* The promise under the tests above, for each kind of writer: a
- * signal that comes while outputs are half-written removes their
- * temporaries, whichever way a writer named them (atomic_file_open, as the
- * OBJ, PLY, JSON and glTF writers do; atomic_temp_name, as the image
- * writers do), and the process ends by the signal. The child raises it
- * itself with both files open and written to. */
-Test(faults, a_signal_while_outputs_are_open_removes_their_temporaries)
+/* The promise under the tests above, for each kind of writer (atomic_file_open,
+ * as the OBJ, PLY, JSON and glTF writers do; atomic_temp_name, as the image
+ * writers do): a signal that comes while outputs are being written waits
+ * for the writes to end, then the process ends by the signal with each
+ * output whole or absent and no temporary left. The child raises the
+ * signal itself with both files open and written to, then finishes the
+ * mesh and gives the image up, as a failing writer does. */
+Test(faults, a_signal_while_outputs_are_open_waits_for_them_and_leaves_no_temporary)
 {
     static const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+    static const char mesh_text[] = "v 0 0 0\nv 1 1 1\n";
     char mesh[300], image[300];
     snprintf(mesh, sizeof mesh, "%s/signalled/out.obj", dir);
     snprintf(image, sizeof image, "%s/signalled/out.exr", dir);
@@ -292,14 +295,66 @@ Test(faults, a_signal_while_outputs_are_open_removes_their_temporaries)
             if (access(af.temp_path, F_OK) != 0 || access(tmp, F_OK) != 0)
                 _exit(5); /* the temporaries exist when the signal comes */
             raise(sigs[k]);
-            _exit(6);
+            if (fputs("v 1 1 1\n", af.fp) < 0 || atomic_file_commit(&af) != 0)
+                _exit(6);
+            fclose(f);
+            remove(tmp);
+            atomic_temp_done(tmp); /* the last hold ends: the signal acts */
+            _exit(7);
         }
         int status;
         cr_assert_eq(waitpid(pid, &status, 0), pid);
         cr_expect(WIFSIGNALED(status) && WTERMSIG(status) == sigs[k], "signal %d gave status %#x", sigs[k], status);
         cr_expect_eq(temporaries_under(sub), 0, "after signal %d", sigs[k]);
-        cr_expect(access(mesh, F_OK) != 0 && access(image, F_OK) != 0, "a half-written output was published");
+        cr_expect(access(image, F_OK) != 0, "the image given up was published");
+        char text[64] = "";
+        FILE *m = fopen(mesh, "r");
+        cr_assert_not_null(m, "the mesh written whole was not published");
+        size_t got = fread(text, 1, sizeof text - 1, m);
+        fclose(m);
+        cr_expect(got == strlen(mesh_text) && !strcmp(text, mesh_text), "the mesh is not whole: '%s'", text);
     }
+}
+
+static void *sleep_forever(void *arg)
+{
+    (void)arg;
+    for (;;)
+        pause();
+    return NULL;
+}
+
+/* A writer that never ends its hold (a hung disk) delays a signal by 2 s at
+ * most: then the handler, in the other thread, removes the tracked
+ * temporary anyway and ends the process. */
+Test(faults, a_hold_that_never_ends_delays_a_signal_two_seconds_at_most)
+{
+    char image[320], sub[300];
+    snprintf(sub, sizeof sub, "%s/hung", dir);
+    snprintf(image, sizeof image, "%s/out.png", sub);
+    cr_assert_eq(mkdir(sub, 0777), 0);
+    double t0 = now();
+    pid_t pid = fork();
+    cr_assert_geq(pid, 0);
+    if (pid == 0) {
+        temp_files_install();
+        pthread_t other; /* made before the hold: it takes the signal */
+        if (pthread_create(&other, NULL, sleep_forever, NULL) != 0)
+            _exit(3);
+        char tmp[4200];
+        atomic_temp_name(image, tmp, sizeof tmp);
+        FILE *f = fopen(tmp, "wb");
+        if (!f || fputs("half an image", f) < 0 || fflush(f) != 0)
+            _exit(4);
+        kill(getpid(), SIGHUP);
+        sleep_forever(NULL);
+    }
+    int status;
+    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    double t = now() - t0;
+    cr_expect(WIFSIGNALED(status) && WTERMSIG(status) == SIGHUP, "status %#x", status);
+    cr_expect_eq(temporaries_under(sub), 0, "the hung writer's temporary was left");
+    cr_expect(t >= 1.9 && t < 30.0, "the signal took %.2f s, not the 2 s the handler waits", t);
 }
 
 /* A tmpfs of 16 KiB at dir/full; 0, or -1 when this process may not mount. */
