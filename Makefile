@@ -4,7 +4,9 @@
 
 CC      ?= cc
 CXX     ?= c++
-PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd libxxhash zlib
+# OpenImageIO is linked into its own shared object only (OIIO_SO below).
+LINK_PKGS := OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd libxxhash zlib
+PKGS    := OpenImageIO $(LINK_PKGS)
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
             libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
@@ -12,7 +14,8 @@ DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembr
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
-PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lembree3 -lcsv
+PKG_LIBS   = $(shell pkg-config --libs $(LINK_PKGS) 2>/dev/null) -lembree3 -lcsv
+OIIO_LIBS  = $(shell pkg-config --libs OpenImageIO 2>/dev/null)
 
 WARN     := -Wall -Wextra -Werror
 CFLAGS   ?= -O2 -g
@@ -44,7 +47,11 @@ LIB_C      := $(filter-out src/render/distribute_serial.c,$(LIB_C))
 else
 LIB_C      := $(filter-out src/render/distribute_mpi.c,$(LIB_C))
 endif
-LIB_CXX  := $(shell find src -name '*.cpp' | sort)
+# The OpenImageIO backend (src/image/oiio_backend.h): a shared object of its
+# own, loaded at the first image read or written, so that a process that
+# never touches an image does not pay OpenImageIO's ~270 libraries at start.
+OIIO_CXX := src/image/oiio_shim.cpp
+LIB_CXX  := $(filter-out $(OIIO_CXX),$(shell find src -name '*.cpp' | sort))
 CLI_C    := $(shell find src/cli -name '*.c' | sort)
 TEST_C   := $(shell find tests -name '*.c' ! -path 'tests/tools/*' | sort)
 BENCH_C  := $(wildcard bench/*.c)
@@ -117,10 +124,20 @@ build/asan/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) $(ALL_CXXFLAGS) $(SAN) -O1 -MMD -MP -c $< -o $@
 
-build/opt/libceladon.a: $(call objs,opt,$(LIB_C) $(LIB_CXX))
-	@rm -f $@; ar rcs $@ $^
-build/asan/libceladon.a: $(call objs,asan,$(LIB_C) $(LIB_CXX))
-	@rm -f $@; ar rcs $@ $^
+build/opt/libceladon.a: $(call objs,opt,$(LIB_C) $(LIB_CXX)) build/opt/libceladon-oiio.so
+	@rm -f $@; ar rcs $@ $(filter %.o,$^)
+build/asan/libceladon.a: $(call objs,asan,$(LIB_C) $(LIB_CXX)) build/asan/libceladon-oiio.so
+	@rm -f $@; ar rcs $@ $(filter %.o,$^)
+
+# Each build finds its own backend where it was built (or beside the program,
+# or at $CELADON_OIIO_BACKEND).
+build/opt/libceladon-oiio.so: $(call objs,opt,$(OIIO_CXX))
+	$(CXX) -shared -o $@ $^ $(OIIO_LIBS)
+build/asan/libceladon-oiio.so: $(call objs,asan,$(OIIO_CXX))
+	$(CXX) $(SAN) -shared -o $@ $^ $(OIIO_LIBS)
+build/opt/src/image/oiio_shim.o build/asan/src/image/oiio_shim.o: ALL_CXXFLAGS += -fPIC
+build/opt/src/image/oiio_backend.o: ALL_CFLAGS += -DCELADON_OIIO_BACKEND_BUILT='"$(CURDIR)/build/opt/libceladon-oiio.so"'
+build/asan/src/image/oiio_backend.o: ALL_CFLAGS += -DCELADON_OIIO_BACKEND_BUILT='"$(CURDIR)/build/asan/libceladon-oiio.so"'
 
 # ---------------------------------------------------------------- programs
 build/celadon: $(call objs,opt,$(CLI_C)) build/opt/libceladon.a
@@ -335,12 +352,13 @@ build/fuzz/%.o: %.c
 build/fuzz/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -MMD -MP -c $< -o $@
-build/fuzz/libceladon.a: $(call objs,fuzz,$(LIB_C) $(LIB_CXX) tests/support/fuzz_targets.c)
+build/fuzz/libceladon.a: $(call objs,fuzz,$(LIB_C) $(LIB_CXX) $(OIIO_CXX) tests/support/fuzz_targets.c)
 	@rm -f $@; ar rcs $@ $^
 # Linked by clang++: UBSan's C++ checks (vptr) live in its C++ runtime.
 build/fuzz/fuzz_%: fuzz/harness.c build/fuzz/libceladon.a
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -DFUZZ_TARGET=fuzz_$* -c fuzz/harness.c -o build/fuzz/harness_$*.o
-	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ build/fuzz/harness_$*.o build/fuzz/libceladon.a $(LDLIBS)
+	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ build/fuzz/harness_$*.o -Wl,-u,celadon_oiio_backend \
+	  build/fuzz/libceladon.a $(LDLIBS) $(OIIO_LIBS)
 
 fuzz-build: check-deps-stamp deps-fuzz
 	@$(MAKE) --no-print-directory -j2 $(patsubst %,build/fuzz/fuzz_%,$(FUZZ_TARGETS))

@@ -1,7 +1,9 @@
-// The one C++ file: OpenImageIO behind the extern "C" API of celadon/image.h.
+// The one C++ file: OpenImageIO behind the extern "C" backend of
+// image/oiio_backend.h, built as its own shared object (libceladon-oiio.so).
+// It calls nothing of libceladon's: it is loaded into programs that link
+// libceladon statically.
 extern "C" {
-#include "celadon/image.h"
-#include "core/core.h"
+#include "image/oiio_backend.h"
 }
 
 #include <OpenImageIO/imagebuf.h>
@@ -50,20 +52,8 @@ template <typename Body> static int guarded(char *err, size_t errlen, Body body)
     return -1;
 }
 
-// Files the image library opens itself pass the checks every input passes.
-static int check_input(const char *path, char *err, size_t errlen)
-{
-    char why[256];
-    if (input_check(path, INPUT_MAX_DATA_BYTES, nullptr, why, sizeof why) == 0)
-        return 0;
-    set_err(err, errlen, why);
-    return -1;
-}
-
 static int probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen)
 {
-    if (check_input(path, err, errlen) != 0)
-        return -1;
     auto in = ImageInput::open(path);
     if (!in) {
         set_err(err, errlen, geterror());
@@ -77,12 +67,12 @@ static int probe(const char *path, int *width, int *height, int *channels, char 
     return 0;
 }
 
-extern "C" int image_probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen)
+static int guarded_probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen)
 {
     return guarded(err, errlen, [&] { return probe(path, width, height, channels, err, errlen); });
 }
 
-extern "C" double image_exif_focal_35mm(const char *path)
+static double exif_focal_35mm(const char *path)
 {
     double mm = 0;
     char err[8];
@@ -157,10 +147,14 @@ static int finish_read(image_t *img, const ImageSpec &spec, int width, int heigh
     return 0;
 }
 
+static void free_pixels(image_t *img)
+{
+    std::free(img->data);
+    img->data = nullptr;
+}
+
 static int read_image(const char *path, image_t *img, char *err, size_t errlen)
 {
-    if (check_input(path, err, errlen) != 0)
-        return -1;
     auto in = ImageInput::open(path);
     if (!in) {
         set_err(err, errlen, geterror());
@@ -183,7 +177,7 @@ static int read_image(const char *path, image_t *img, char *err, size_t errlen)
         if (alloc_pixels(img, (size_t)spec.width * spec.height * spec.nchannels, err, errlen))
             return -1;
         if (decode_floats(in.get(), spec, img->data, err, errlen)) {
-            image_free(img);
+            free_pixels(img);
             return -1;
         }
         return finish_read(img, spec, spec.width, spec.height, spec.nchannels);
@@ -210,19 +204,19 @@ static int read_image(const char *path, image_t *img, char *err, size_t errlen)
     return finish_read(img, spec, out.width, out.height, out.nchannels);
 }
 
-extern "C" int image_read(const char *path, image_t *img, char *err, size_t errlen)
+static int guarded_read(const char *path, image_t *img, char *err, size_t errlen)
 {
     std::memset(img, 0, sizeof *img);
     int rc = guarded(err, errlen, [&] { return read_image(path, img, err, errlen); });
     if (rc != 0)
-        image_free(img);
+        free_pixels(img);
     return rc;
 }
 
-static int write_pixels(const char *path, const char *tmp, int w, int h, int ch, TypeDesc type, const void *pixels,
-                        char *err, size_t errlen)
+static int write_pixels(const char *format_path, const char *file, int w, int h, int ch, TypeDesc type,
+                        const void *pixels, char *err, size_t errlen)
 {
-    auto out = ImageOutput::create(path);
+    auto out = ImageOutput::create(format_path);
     if (!out) {
         set_err(err, errlen, geterror());
         return -1;
@@ -237,38 +231,18 @@ static int write_pixels(const char *path, const char *tmp, int w, int h, int ch,
     // (docs/BENCHMARKS.md, "Batch throughput").
     spec.attribute("png:compressionLevel", PNG_COMPRESSION_LEVEL);
     spec.attribute("png:filter", PNG_ROW_FILTER);
-    if (!out->open(tmp, spec) || !out->write_image(type, pixels) || !out->close()) {
+    if (!out->open(file, spec) || !out->write_image(type, pixels) || !out->close()) {
         set_err(err, errlen, out->geterror());
-        return -1;
-    }
-    if (std::rename(tmp, path) != 0) {
-        set_err(err, errlen, std::string("cannot rename into place: ") + std::strerror(errno));
         return -1;
     }
     return 0;
 }
 
-// Written to a temporary sibling, renamed when whole; removed on any failure.
-static int write_atomically(const char *path, int w, int h, int ch, TypeDesc type, const void *pixels, char *err,
-                            size_t errlen)
+static int guarded_write(const char *format_path, const char *file, int w, int h, int ch, int bits,
+                         const void *pixels, char *err, size_t errlen)
 {
-    char tmp[4200];
-    atomic_temp_name(path, tmp, sizeof tmp);
-    int rc = guarded(err, errlen, [&] { return write_pixels(path, tmp, w, h, ch, type, pixels, err, errlen); });
-    if (rc != 0)
-        std::remove(tmp);
-    atomic_temp_done(tmp);
-    return rc;
+    TypeDesc type = bits == 16 ? TypeDesc::UINT16 : TypeDesc::UINT8;
+    return guarded(err, errlen, [&] { return write_pixels(format_path, file, w, h, ch, type, pixels, err, errlen); });
 }
 
-extern "C" int image_write_u8(const char *path, int width, int height, int channels, const uint8_t *pixels,
-                              char *err, size_t errlen)
-{
-    return write_atomically(path, width, height, channels, TypeDesc::UINT8, pixels, err, errlen);
-}
-
-extern "C" int image_write_u16(const char *path, int width, int height, int channels, const uint16_t *pixels,
-                               char *err, size_t errlen)
-{
-    return write_atomically(path, width, height, channels, TypeDesc::UINT16, pixels, err, errlen);
-}
+extern "C" const oiio_backend celadon_oiio_backend = {guarded_probe, exif_focal_35mm, guarded_read, guarded_write};
