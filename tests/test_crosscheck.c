@@ -5,10 +5,12 @@
  * deterministic geometry metrics. Also: bad input exits 2 and leaves nothing. */
 #include <fcntl.h>
 #include <jansson.h>
+#include <math.h>
 #include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include "celadon/crosscheck.h"
 #include "celadon/image.h"
 #include "test_render_util.h"
 
@@ -330,6 +332,40 @@ static const char *plate_xml =
     "    <bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.9, 0.1, 0.1\"/></bsdf></shape>\n"
     "  <emitter type=\"constant\"><rgb name=\"radiance\" value=\"1\"/></emitter>\n"
     "</scene>\n";
+
+/* Rows at N = 8..128 whose image and depth errors follow N^image and
+ * N^depth exactly. */
+static crosscheck_stall stall_of_power_laws(double image, double depth)
+{
+    crosscheck_row rows[5];
+    for (int i = 0; i < 5; i++) {
+        double n = 8 << i;
+        rows[i] = (crosscheck_row){.segments = 8 << i, .mean_abs_diff = 0.3 * pow(n, image),
+                                   .depth_rel_err = 0.02 * pow(n, depth)};
+    }
+    return crosscheck_find_stall(rows, 5);
+}
+
+/* The rule itself, on errors of known slope: the image error stalls when
+ * it falls more slowly than N^-1 while the depth error falls faster than
+ * N^-1.5, measured over the finest factor of four (32 to 128). Slopes each
+ * side of both thresholds, the image's at -0.75 (between -1 and -0.5, where
+ * a coincident plate's partial stall lies) and -1.25. */
+Test(crosscheck, stall_rule_on_errors_of_known_slope)
+{
+    crosscheck_stall st = stall_of_power_laws(-0.75, -2.0);
+    cr_expect(st.found, "image N^-0.75 with depth N^-2 is a stall");
+    cr_expect_eq(st.n_from, 32);
+    cr_expect_eq(st.n_to, 128);
+    cr_expect_float_eq(st.image_slope, -0.75, 1e-9);
+    cr_expect_float_eq(st.depth_slope, -2.0, 1e-9);
+    cr_expect(stall_of_power_laws(-0.2, -2.0).found, "image N^-0.2 with depth N^-2 is a stall");
+    cr_expect(!stall_of_power_laws(-1.25, -2.0).found, "image N^-1.25 still converges");
+    cr_expect(!stall_of_power_laws(-2.0, -2.0).found, "both at N^-2: no stall");
+    cr_expect(!stall_of_power_laws(-0.75, -1.25).found, "the depth error too slow: not a mesh converging");
+    crosscheck_row one = {.segments = 8, .mean_abs_diff = 0.1, .depth_rel_err = 0.01};
+    cr_expect(!crosscheck_find_stall(&one, 1).found, "one row has no slope");
+}
 
 Test(crosscheck, coincident_surfaces_stall_the_image_error, .timeout = 120)
 {

@@ -69,44 +69,70 @@ Test(render_furnace, glass_sphere) { furnace("sphere", sphere_params, glass, 0, 
 Test(render_furnace, glass_sor_analytic) { furnace("sor", sor_params, glass, 0, 64, 0.18, 0.01); }
 Test(render_furnace, glass_sor_meshed) { furnace("sor", sor_params, glass, 256, 64, 0.18, 0.01); }
 
-/* The deep-path furnace: inside a closed box whose walls emit L_e = 1 and
- * reflect diffusely with albedo 0.9, the radiance is L_e / (1 - 0.9) = 10
- * everywhere (the Neumann series L_e (1 + 0.9 + 0.9^2 + ...)). Paths
- * average ten bounces and Russian roulette starts at the first (rr_depth
- * 1): without its 1/q compensation the image would come out at about 5.3.
- * Each sample sums a geometric number of terms (sd about 9.5): at 256 spp
- * a pixel's mean is good to 0.6 and the image's to 0.07. */
-Test(render_furnace, closed_box_with_roulette_from_the_first_bounce)
+/* Inside a closed box whose walls emit L_e = 1 and reflect diffusely with
+ * albedo a, the radiance is L_e / (1 - a) everywhere (the Neumann series
+ * L_e (1 + a + a^2 + ...)); Russian roulette starts at the first bounce
+ * (rr_depth 1), so it decides every path's length. Renders the box's 8x8
+ * image at spp samples; the image's mean and its worst pixel. */
+static void closed_box(double albedo, int spp, double *mean, double *worst)
 {
     render_fixture f;
     render_fixture_open(&f);
-    char path[256];
-    render_write_file(&f, "scene.xml",
-                      "<scene version=\"3.0.0\">\n"
-                      "  <integrator type=\"path\"><integer name=\"rr_depth\" value=\"1\"/></integrator>\n"
-                      "  <sensor type=\"perspective\"><float name=\"fov\" value=\"60\"/>\n"
-                      "    <transform name=\"to_world\"><lookat origin=\"0.2, -0.1, 0.3\" target=\"0, 0, -1\" "
-                      "up=\"0, 1, 0\"/></transform>\n"
-                      "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"256\"/></sampler>\n"
-                      "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" "
-                      "value=\"8\"/></film>\n"
-                      "  </sensor>\n"
-                      "  <shape type=\"cube\"><boolean name=\"flip_normals\" value=\"true\"/>\n"
-                      "    <bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.9\"/></bsdf>\n"
-                      "    <emitter type=\"area\"><rgb name=\"radiance\" value=\"1\"/></emitter></shape>\n"
-                      "</scene>\n",
-                      path, sizeof path);
+    char path[256], xml[2048];
+    snprintf(xml, sizeof xml,
+             "<scene version=\"3.0.0\">\n"
+             "  <integrator type=\"path\"><integer name=\"rr_depth\" value=\"1\"/></integrator>\n"
+             "  <sensor type=\"perspective\"><float name=\"fov\" value=\"60\"/>\n"
+             "    <transform name=\"to_world\"><lookat origin=\"0.2, -0.1, 0.3\" target=\"0, 0, -1\" "
+             "up=\"0, 1, 0\"/></transform>\n"
+             "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"%d\"/></sampler>\n"
+             "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" "
+             "value=\"8\"/></film>\n"
+             "  </sensor>\n"
+             "  <shape type=\"cube\"><boolean name=\"flip_normals\" value=\"true\"/>\n"
+             "    <bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"%g\"/></bsdf>\n"
+             "    <emitter type=\"area\"><rgb name=\"radiance\" value=\"1\"/></emitter></shape>\n"
+             "</scene>\n",
+             spp, albedo);
+    render_write_file(&f, "scene.xml", xml, path, sizeof path);
     int w, h, nch;
     float *px = render_to_pixels(path, 0, 11, 2, 0, &w, &h, &nch);
-    double sum = 0.0, worst = 0.0;
+    double sum = 0.0, want = 1.0 / (1.0 - albedo);
+    *worst = 0.0;
     for (int i = 0; i < w * h; i++)
         for (int c = 0; c < 3; c++) {
             sum += px[i * nch + c];
-            worst = fmax(worst, fabs(px[i * nch + c] - 10.0));
+            *worst = fmax(*worst, fabs(px[i * nch + c] - want));
         }
-    double mean = sum / (3.0 * w * h);
-    cr_expect_float_eq(mean, 10.0, 0.25, "mean %g, want 10", mean);
-    cr_expect_leq(worst, 3.0, "a pixel is off by %g", worst);
+    *mean = sum / (3.0 * w * h);
     free(px);
     render_fixture_close(&f);
+}
+
+/* The deep-path furnace, albedo 0.9: paths average ten bounces; without
+ * roulette's 1/q compensation the image would come out at about 5.3. Each
+ * sample sums a geometric number of terms (sd about 9.5): at 256 spp a
+ * pixel's mean is good to 0.6 and the image's to 0.07. */
+Test(render_furnace, closed_box_with_roulette_from_the_first_bounce)
+{
+    double mean, worst;
+    closed_box(0.9, 256, &mean, &worst);
+    cr_expect_float_eq(mean, 10.0, 0.25, "mean %g, want 10", mean);
+    cr_expect_leq(worst, 3.0, "a pixel is off by %g", worst);
+}
+
+/* The dark furnace, albedo 0.25: roulette's survival probability is the
+ * path's throughput, 0.25 at every bounce, far below one half, where a
+ * compensation weight clamped or floored anywhere (1/max(q, 0.5) gives 2
+ * for 4) shows: the radiance is 1/(1 - 0.25) = 4/3, and with the weight
+ * floored at one half it would be 1/(1 - 0.25 * 0.25 * 2) = 1.143. A path
+ * that survives carries throughput 1, so a sample is its number of
+ * vertices, 1 + a geometric count (sd sqrt(0.25)/0.75 = 0.67): at 64 spp
+ * over 64 pixels the image's mean is good to 0.011, a pixel's to 0.09. */
+Test(render_furnace, dark_closed_box_with_roulette_below_one_half)
+{
+    double mean, worst;
+    closed_box(0.25, 64, &mean, &worst);
+    cr_expect_float_eq(mean, 4.0 / 3.0, 0.05, "mean %g, want 4/3", mean);
+    cr_expect_leq(worst, 0.5, "a pixel is off by %g", worst);
 }

@@ -34,6 +34,15 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 # 10 the mesh's normals from a profile derivative of the wrong sign
 # 11 the power heuristic replaced by equal weights
 # 12 the SOR's quadratic root from rho^2 clamped the wrong way
+# 13 Russian roulette's 1/q weight floored at one half
+# 14 the crosscheck's stall threshold on the image slope at -0.5, not -1
+# 15 the sub-pixel edge's first pass rounded to whole pixels
+# 16 the light tree's pmf off its pick's by a little
+# 17 the low-discrepancy sampler's 2D points without their digital shift in y
+# 18 <rotate> angles by 181 degrees a half turn
+# 19 bitmap texels looked up without their half-texel centre in v
+# 20 --part K/N: every part but the last one sample short
+# 21 the perspective camera's pitch left out of a cross-section's radius
 mutants=(
   'src/integrators/path.c|beta = rgb_scale(beta, 1.0 / survive);|(void)survive;|render_furnace/*'
   'src/shapes/shape.c|*pdf = dist2 > 0.0 && cos_l > 0.0 ? pdf_area * dist2 * sqrt(dist2) / cos_l : 0.0;|*pdf = dist2 > 0.0 && cos_l > 0.0 ? pdf_area : 0.0;|@(render_lights|light_sampling)/*'
@@ -47,6 +56,15 @@ mutants=(
   'src/mesh/revolve.c|    double len = v2_len(d1);|    d1 = v2_scale(d1, -1.0);\n    double len = v2_len(d1);|mesh_revolve/*'
   'src/integrators/path.c|double w = es.delta ? 1.0 : mis_power_heuristic(pdf_l, bsdf_pdf(b, q, wo));|double w = es.delta ? 1.0 : 0.5 + 0.0 * bsdf_pdf(b, q, wo);|@(render_lights|render_integrators)/*'
   'src/sor/sor_solve.c|double rho = sqrt(sor_max(rho2, 0.0));|double rho = sqrt(fabs(rho2) + 1e-9);|@(sor_reference|sor_consistency|accel_sor)/*'
+  'src/integrators/path.c|beta = rgb_scale(beta, 1.0 / survive);|beta = rgb_scale(beta, 1.0 / fmax(survive, 0.5));|render_furnace/*'
+  'src/crosscheck/crosscheck.c|st.found = st.image_slope > -1.0|st.found = st.image_slope > -0.5|crosscheck/*'
+  'src/recon/subpixel_edge.c|double e = side > 0 ? a0 + len : a1 + 1 - len;|double e = round(side > 0 ? a0 + len : a1 + 1 - len);|recon_subpixel/*'
+  'src/emitters/light_tree.c|p *= mine / (i0 + i1);|p *= (mine + 0.01 * (i0 + i1 - mine)) / (i0 + i1);|@(light_sampling|render_lights)/*'
+  'src/samplers/ldsampler.c|y = seq_sobol1(i) ^ sampler_dim_hash(st, 2);|y = seq_sobol1(i);|samplers/*'
+  'src/math/transform.c|double rad = angle_deg * (M_PI / 180.0);|double rad = angle_deg * (M_PI / 181.0);|@(transform|scene_xml)/*'
+  'src/textures/bitmap.c|    y -= 0.5;|    (void)0;|texture/*'
+  'src/render/parts.c|*s1 = (int)((long long)p.k * spp / p.n);|*s1 = (int)((long long)p.k * spp / p.n) - (p.k < p.n);|parts/*'
+  'src/perspective/camera_from_sor.c|rho = r * cos(cam->pitch);|rho = r;|recon_camera*/*'
 )
 
 if [ -n "${MUTATE_WORK:-}" ]; then

@@ -110,6 +110,10 @@ double crosscheck_metric_value(const crosscheck_row *row, int metric);
  * the sagitta; coarser meshes can be outside it (docs/crosscheck.md). */
 double crosscheck_local_slope(const crosscheck_row *rows, int i, int metric);
 
+/* The stall of crosscheck_stall's definition over rows[0..nrows) (N
+ * increasing); found is 0 with fewer than two rows. */
+crosscheck_stall crosscheck_find_stall(const crosscheck_row *rows, int nrows);
+
 /* Renders and compares. Writes into outdir (which must exist) analytic.exr,
  * analytic.png, mesh-N.exr and mesh-N.png per N. Returns 0; -2 for bad input
  * (unreadable scene, a scene without an SOR, bad parameters) with one line

@@ -203,8 +203,7 @@ double crosscheck_local_slope(const crosscheck_row *rows, int i, int metric)
     return chord_slope(rows, i - 1, i, metric);
 }
 
-/* The stall of crosscheck.h over the rows measured. */
-static crosscheck_stall find_stall(const crosscheck_row *rows, int nrows)
+crosscheck_stall crosscheck_find_stall(const crosscheck_row *rows, int nrows)
 {
     crosscheck_stall st = {0, 0, 0, NAN, NAN};
     if (nrows < 2)
@@ -318,7 +317,7 @@ int crosscheck_run(const crosscheck_params *p, const char *outdir, crosscheck_re
     }
     for (int m = 0; m < CROSSCHECK_METRIC_COUNT; m++)
         res->fits[m] = fit_metric(res->rows, res->nrows, m, res->fit_from);
-    res->stall = find_stall(res->rows, res->nrows);
+    res->stall = crosscheck_find_stall(res->rows, res->nrows);
     rc = 0;
 done:
     free(img_a);
