@@ -163,25 +163,27 @@ check-deps-stamp:
 # ---------------------------------------------------------------- tests
 # The end-to-end tests find the CLI through CELADON_BIN. The sanitizer run uses
 # the sanitized CLI so bad-input tests prove that nothing a user passes crashes it.
-ASAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:halt_on_error=1 \
-            LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
-            UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+# tools/run-tests.sh runs the two suites side by side (docs/BENCHMARKS.md,
+# "Test suite"); ARGS go to Criterion (e.g. ARGS="--filter 'faults/*'").
 test: check-deps-stamp check-layout
 	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon build/asan/celadon-tests build/asan/celadon web
 	@[ -d "$${CELADON_SHARED:-../shared}/data/synth-dev" ] || echo "celadon: $${CELADON_SHARED:-../shared}/data/synth-dev is missing:" \
 	  "the tests on its photos are skipped (they fail under CELADON_REQUIRE_DATA=1, as in CI)"
-	@echo "== optimised build"
-	CELADON_BIN=$(CURDIR)/build/celadon CELADON_BUILD=opt ./build/opt/celadon-tests --jobs 2
-	@echo "== ASan+UBSan build"
-	$(ASAN_ENV) CELADON_BIN=$(CURDIR)/build/asan/celadon CELADON_BUILD=asan ./build/asan/celadon-tests --jobs 2
+	@tools/run-tests.sh $(ARGS)
 
 test-fast: check-deps-stamp
 	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon web
-	CELADON_BIN=$(CURDIR)/build/celadon CELADON_BUILD=opt ./build/opt/celadon-tests --jobs 2 $(ARGS)
+	@TEST_SUITES=opt tools/run-tests.sh $(ARGS)
 
 test-asan: check-deps-stamp
 	@$(MAKE) --no-print-directory -j2 build/asan/celadon-tests build/asan/celadon web
-	$(ASAN_ENV) CELADON_BIN=$(CURDIR)/build/asan/celadon CELADON_BUILD=asan ./build/asan/celadon-tests --jobs 2 $(ARGS)
+	@TEST_SUITES=asan tools/run-tests.sh $(ARGS)
+
+# Mutation testing (docs/faults.md): each planted bug against the whole
+# optimised suite (MUTATE_QUICK=1: against the suites named for it).
+.PHONY: mutate
+mutate:
+	tools/mutate.sh $(MUTANTS)
 
 # The layout rules of docs/plugins.md: no folder of src/ over 20% of the
 # source lines, headers across folders only as the folder's interface.
