@@ -286,6 +286,33 @@ Test(recon_subpixel, known_fractional_edges)
     cr_log_info("sub-pixel edge: worst error %.5f px over 40 rows", worst);
 }
 
+/* Every position within a pixel, not a few: the edge at xe = 20 + k/40
+ * for k = 0..39 and slopes up to 2.5 px a row, each side. An edge computed
+ * on whole pixels anywhere (in either pass: a window placed from a rounded
+ * first estimate misses the pixel the edge's far end crosses) is off by a
+ * tenth of a pixel or more somewhere in the sweep. */
+Test(recon_subpixel, every_fraction_of_a_pixel)
+{
+    static const float fg[3] = {0.35f, 0.25f, 0.20f}, bg[3] = {0.95f, 0.95f, 0.97f};
+    static const double slopes[] = {0, 0.3, 0.8, 1.4, -1.9, 2.5};
+    float row[3 * 48];
+    double worst = 0, worst_xe = 0, worst_sl = 0;
+    for (int side = -1; side <= 1; side += 2)
+        for (int k = 0; k < 40; k++)
+            for (size_t m = 0; m < sizeof slopes / sizeof slopes[0]; m++) {
+                double xe = 20.0 + k / 40.0, sl = slopes[m];
+                edge_row(row, 48, xe, sl, side, fg, bg);
+                int i0 = side > 0 ? (int)ceil(xe + 0.5 * fabs(sl)) - 1 : (int)floor(xe - 0.5 * fabs(sl));
+                recon_edge e = recon_subpixel_edge(&(recon_signal){row, 48, 3}, i0, side, sl, 0.01);
+                cr_assert(e.ok, "side %d edge %.3f slope %.1f: no edge", side, xe, sl);
+                if (fabs(e.x - xe) > worst)
+                    worst = fabs(e.x - xe), worst_xe = xe, worst_sl = sl;
+            }
+    cr_log_info("sub-pixel edge over 480 positions: worst error %.5f px (edge %.3f, slope %.1f)", worst, worst_xe,
+                worst_sl);
+    cr_expect_leq(worst, 0.01, "off by %.4f px at edge %.3f, slope %.1f", worst, worst_xe, worst_sl);
+}
+
 /* A dark limb with a band just inside it as light as the backdrop, or
  * lighter (a glaze's shaded edge under a painted ring): the pixel inside
  * the ramp is no longer the colour the edge mixes with the backdrop. The

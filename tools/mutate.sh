@@ -59,7 +59,7 @@ mutants=(
   'src/integrators/path.c|beta = rgb_scale(beta, 1.0 / survive);|beta = rgb_scale(beta, 1.0 / fmax(survive, 0.5));|render_furnace/*'
   'src/crosscheck/crosscheck.c|st.found = st.image_slope > -1.0|st.found = st.image_slope > -0.5|crosscheck/*'
   'src/recon/subpixel_edge.c|double e = side > 0 ? a0 + len : a1 + 1 - len;|double e = round(side > 0 ? a0 + len : a1 + 1 - len);|recon_subpixel/*'
-  'src/emitters/light_tree.c|p *= mine / (i0 + i1);|p *= (mine + 0.01 * (i0 + i1 - mine)) / (i0 + i1);|@(light_sampling|render_lights)/*'
+  'src/emitters/light_tree.c|p *= mine / (i0 + i1);|p *= (mine + 0.01 * (i0 + i1 - mine)) / (i0 + i1);|@(light_tree|light_sampling)/*'
   'src/samplers/ldsampler.c|y = seq_sobol1(i) ^ sampler_dim_hash(st, 2);|y = seq_sobol1(i);|samplers/*'
   'src/math/transform.c|double rad = angle_deg * (M_PI / 180.0);|double rad = angle_deg * (M_PI / 181.0);|@(transform|scene_xml)/*'
   'src/textures/bitmap.c|    y -= 0.5;|    (void)0;|texture/*'
