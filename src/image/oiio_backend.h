@@ -31,10 +31,9 @@ typedef struct {
 #define OIIO_BACKEND_SYMBOL "celadon_oiio_backend"
 
 /* The backend, loaded on the first call (thread-safe); NULL with the reason
- * in err when the shared object cannot be found or loaded. It is looked for
- * linked in, or at $CELADON_OIIO_BACKEND, beside the program or library that holds this
- * code (DIR/libceladon-oiio.so, DIR/celadon/, DIR/../lib/celadon/), and
- * where this build put it. */
+ * in err when the shared object cannot be found or loaded. Linked in, or
+ * found as backend_library.h says ($CELADON_OIIO_BACKEND, beside the
+ * program or library, where this build put it). */
 const oiio_backend *oiio_backend_get(char *err, size_t errlen);
 
 #endif
