@@ -8,7 +8,7 @@ PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd libxxh
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
             libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
-            zlib1g-dev
+            zlib1g-dev python3-numpy python3-pytest python3-matplotlib
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
@@ -133,6 +133,20 @@ build/opt/celadon-tests: $(call objs,opt,$(TEST_C)) build/opt/libceladon.a
 build/asan/celadon-tests: $(call objs,asan,$(TEST_C)) build/asan/libceladon.a
 	$(CC) $(SAN) -o $@ $^ $(LDLIBS) -lcriterion
 
+# ---------------------------------------------------------------- shared library
+# libceladon.so: the library's sources again as position-independent objects
+# in build/pic/, for the Python package (python/celadon, docs/python.md) and
+# for programs that find it through pkg-config (celadon.pc, `make install`).
+SO_MAJOR := 0
+build/pic/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -fPIC -MMD -MP -c $< -o $@
+build/pic/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) $(ALL_CXXFLAGS) -fPIC -MMD -MP -c $< -o $@
+build/libceladon.so: $(call objs,pic,$(LIB_C) $(LIB_CXX))
+	$(CC) -shared -Wl,-soname,libceladon.so.$(SO_MAJOR) -o $@ $^ $(LDLIBS)
+
 build/bench/%: bench/%.c build/opt/libceladon.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -O3 -o $@ $< build/opt/libceladon.a $(LDLIBS)
@@ -142,6 +156,53 @@ build/bench/%: bench/%.c build/opt/libceladon.a
 check-deps-stamp:
 	@$(MAKE) --no-print-directory deps
 .PHONY: check-deps-stamp
+
+# ---------------------------------------------------------------- Python
+# The package python/celadon loads build/libceladon.so from the build tree
+# (docs/python.md). Debian's interpreter, where `make deps` puts numpy, pytest
+# and matplotlib: a `python3` earlier on PATH (pyenv, a venv) may lack them.
+PYTHON ?= /usr/bin/python3
+.PHONY: python test-python
+python: check-deps-stamp
+	@$(MAKE) --no-print-directory -j2 build/libceladon.so
+	@PYTHONPATH=$(CURDIR)/python $(PYTHON) -c "import celadon; print('celadon: Python package', celadon.__version__, 'over', celadon.library_path())"
+
+# The pytest suite (python/tests) against the build tree, with the CLI it
+# compares with; pytest's exit status 5 (no test collected, e.g. PYTEST_ARGS="-k
+# none") is not a failure. ARGS of test-fast do not reach it.
+test-python: python
+	@$(MAKE) --no-print-directory build/celadon
+	@cd python && CELADON_BIN=$(CURDIR)/build/celadon PYTHONPATH=$(CURDIR)/python OMP_NUM_THREADS=2 \
+	  $(PYTHON) -m pytest -q -p no:cacheprovider tests $(PYTEST_ARGS); rc=$$?; \
+	  if [ $$rc = 5 ]; then echo "celadon: pytest collected no test"; rc=0; fi; exit $$rc
+
+# ---------------------------------------------------------------- install
+# The command, the shared library, the public headers, celadon.pc and the
+# Python package, under DESTDIR/PREFIX. The installed package finds the
+# library in LIBDIR (recorded in celadon/_installed.py), else through the
+# dynamic loader's path (LD_LIBRARY_PATH with a DESTDIR).
+PREFIX     ?= /usr/local
+BINDIR     ?= $(PREFIX)/bin
+LIBDIR     ?= $(PREFIX)/lib
+INCLUDEDIR ?= $(PREFIX)/include
+PYTHON_VERSION = $(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[:2])')
+PYTHONDIR  ?= $(PREFIX)/lib/python$(PYTHON_VERSION)/dist-packages
+VERSION    := $(shell sed -n 's/^\#define CELADON_VERSION "\(.*\)"/\1/p' include/celadon/version.h)
+.PHONY: install
+install: check-deps-stamp
+	@$(MAKE) --no-print-directory -j2 build/celadon build/libceladon.so
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(INCLUDEDIR)/celadon \
+	  $(DESTDIR)$(PYTHONDIR)/celadon
+	install -m 755 build/celadon $(DESTDIR)$(BINDIR)/celadon
+	install -m 755 build/libceladon.so $(DESTDIR)$(LIBDIR)/libceladon.so.$(SO_MAJOR)
+	ln -sf libceladon.so.$(SO_MAJOR) $(DESTDIR)$(LIBDIR)/libceladon.so
+	install -m 644 include/celadon/*.h $(DESTDIR)$(INCLUDEDIR)/celadon/
+	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$(LIBDIR)' 'includedir=$(INCLUDEDIR)' '' 'Name: celadon' \
+	  'Description: photo of a vessel to an exact surface of revolution; path tracer on Mitsuba 3 scenes' \
+	  'Version: $(VERSION)' 'Requires.private: $(PKGS)' 'Cflags: -I$${includedir}' \
+	  'Libs: -L$${libdir} -lceladon' > $(DESTDIR)$(LIBDIR)/pkgconfig/celadon.pc
+	install -m 644 python/celadon/*.py $(DESTDIR)$(PYTHONDIR)/celadon/
+	printf 'LIBRARY = %s\n' "'$(LIBDIR)/libceladon.so.$(SO_MAJOR)'" > $(DESTDIR)$(PYTHONDIR)/celadon/_installed.py
 
 # ---------------------------------------------------------------- tests
 # The end-to-end tests find the CLI through CELADON_BIN. The sanitizer run uses
@@ -157,6 +218,8 @@ test: check-deps-stamp check-layout
 	CELADON_BIN=$(CURDIR)/build/celadon CELADON_BUILD=opt ./build/opt/celadon-tests --jobs 2
 	@echo "== ASan+UBSan build"
 	$(ASAN_ENV) CELADON_BIN=$(CURDIR)/build/asan/celadon CELADON_BUILD=asan ./build/asan/celadon-tests --jobs 2
+	@echo "== Python package"
+	@$(MAKE) --no-print-directory test-python
 
 test-fast: check-deps-stamp
 	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon web
