@@ -143,7 +143,11 @@ class RenderedImage(np.ndarray):
     ['R', 'G', 'B', 'depth.T']) and .seconds (the render's time)."""
 
     def __array_finalize__(self, obj):
-        self.channels = getattr(obj, "channels", None)
+        # A view that keeps the channel axis keeps the names; a slice of the
+        # channels (image[..., :3]) has no names.
+        names = getattr(obj, "channels", None)
+        keep = names is not None and self.ndim == 3 and self.shape[2] == len(names)
+        self.channels = names if keep else None
         self.seconds = getattr(obj, "seconds", None)
 
     def channel(self, name):
