@@ -180,7 +180,10 @@ def interruptible(work):
     except KeyboardInterrupt:
         while t.is_alive():  # a crosscheck renders several times: stop each
             render_request_stop()
-            t.join(0.01)
+            try:
+                t.join(0.01)
+            except KeyboardInterrupt:  # a second Ctrl-C while it stops
+                pass
         render_image_cancel_stop()
         raise
     if "error" in out:
