@@ -10,7 +10,7 @@ PKGS    := OpenImageIO $(LINK_PKGS)
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
             libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
-            zlib1g-dev
+            zlib1g-dev python3-numpy python3-pytest python3-matplotlib
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
@@ -111,12 +111,17 @@ build/web/museum.js: $(WEB_JS) web/package-lock.json
 build/opt/src/cli/cmd_museum.o build/asan/src/cli/cmd_museum.o: ALL_CFLAGS += -DCELADON_WEB_DIR='"$(CURDIR)/build/web"'
 
 # ---------------------------------------------------------------- objects
+# The optimised objects are position-independent, so that build/celadon
+# and build/libceladon.so link the same ones (one optimised build, not two);
+# -fno-semantic-interposition keeps the library's calls to its own functions
+# direct and inlinable, as in the executable.
+PIC := -fPIC -fno-semantic-interposition
 build/opt/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -MMD -MP -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(PIC) -MMD -MP -c $< -o $@
 build/opt/%.o: %.cpp
 	@mkdir -p $(dir $@)
-	$(CXX) $(ALL_CXXFLAGS) -MMD -MP -c $< -o $@
+	$(CXX) $(ALL_CXXFLAGS) $(PIC) -MMD -MP -c $< -o $@
 build/asan/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(SAN) -O1 -MMD -MP -c $< -o $@
@@ -135,7 +140,7 @@ build/opt/libceladon-oiio.so: $(call objs,opt,$(OIIO_CXX))
 	$(CXX) -shared -o $@ $^ $(OIIO_LIBS)
 build/asan/libceladon-oiio.so: $(call objs,asan,$(OIIO_CXX))
 	$(CXX) $(SAN) -shared -o $@ $^ $(OIIO_LIBS)
-build/opt/src/image/oiio_shim.o build/asan/src/image/oiio_shim.o: ALL_CXXFLAGS += -fPIC
+build/asan/src/image/oiio_shim.o: ALL_CXXFLAGS += -fPIC
 build/opt/src/image/oiio_backend.o: ALL_CFLAGS += -DCELADON_OIIO_BACKEND_BUILT='"$(CURDIR)/build/opt/libceladon-oiio.so"'
 build/asan/src/image/oiio_backend.o: ALL_CFLAGS += -DCELADON_OIIO_BACKEND_BUILT='"$(CURDIR)/build/asan/libceladon-oiio.so"'
 
@@ -150,6 +155,15 @@ build/opt/celadon-tests: $(call objs,opt,$(TEST_C)) build/opt/libceladon.a
 build/asan/celadon-tests: $(call objs,asan,$(TEST_C)) build/asan/libceladon.a
 	$(CC) $(SAN) -o $@ $^ $(LDLIBS) -lcriterion
 
+# ---------------------------------------------------------------- shared library
+# libceladon.so: the optimised objects again (they are position-independent),
+# for the Python package (python/celadon, docs/python.md) and for programs
+# that find it through pkg-config (celadon.pc, `make install`). It loads the
+# OpenImageIO backend as the programs do (src/core/backend_library.h).
+SO_MAJOR := 0
+build/libceladon.so: $(call objs,opt,$(LIB_C) $(LIB_CXX)) build/opt/libceladon-oiio.so
+	$(CC) -shared -Wl,-soname,libceladon.so.$(SO_MAJOR) -o $@ $(filter %.o,$^) $(LDLIBS)
+
 build/bench/%: bench/%.c build/opt/libceladon.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -O3 -o $@ $< build/opt/libceladon.a $(LDLIBS)
@@ -160,16 +174,68 @@ check-deps-stamp:
 	@$(MAKE) --no-print-directory deps
 .PHONY: check-deps-stamp
 
+# ---------------------------------------------------------------- Python
+# The package python/celadon loads build/libceladon.so from the build tree
+# (docs/python.md). Debian's interpreter, where `make deps` puts numpy, pytest
+# and matplotlib: a `python3` earlier on PATH (pyenv, a venv) may lack them.
+PYTHON ?= /usr/bin/python3
+.PHONY: python test-python
+python: check-deps-stamp
+	@$(MAKE) --no-print-directory -j2 build/libceladon.so
+	@PYTHONPATH=$(CURDIR)/python $(PYTHON) -c "import celadon; print('celadon: Python package', celadon.__version__, 'over', celadon.library_path())"
+
+# The pytest suite (python/tests) against the build tree, with the CLI it
+# compares with (tools/run-tests.sh runs it; pytest's exit status 5, no test
+# collected, e.g. PYTEST_ARGS="-k none", is not a failure). ARGS of test-fast
+# do not reach it.
+test-python: python
+	@$(MAKE) --no-print-directory build/celadon
+	@TEST_SUITES=python PYTHON=$(PYTHON) tools/run-tests.sh
+
+# ---------------------------------------------------------------- install
+# The command, the shared library, the public headers, celadon.pc and the
+# Python package, under DESTDIR/PREFIX. The installed package finds the
+# library in LIBDIR (recorded in celadon/_installed.py), else through the
+# dynamic loader's path (LD_LIBRARY_PATH with a DESTDIR).
+PREFIX     ?= /usr/local
+BINDIR     ?= $(PREFIX)/bin
+LIBDIR     ?= $(PREFIX)/lib
+INCLUDEDIR ?= $(PREFIX)/include
+PYTHON_VERSION = $(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[:2])')
+PYTHONDIR  ?= $(PREFIX)/lib/python$(PYTHON_VERSION)/dist-packages
+VERSION    := $(shell sed -n 's/^\#define CELADON_VERSION "\(.*\)"/\1/p' include/celadon/version.h)
+# install-files is install without the dependency check (the tests use it).
+.PHONY: install install-files
+install: check-deps-stamp
+	@$(MAKE) --no-print-directory install-files
+install-files: build/celadon build/libceladon.so
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(INCLUDEDIR)/celadon \
+	  $(DESTDIR)$(PYTHONDIR)/celadon
+	install -m 755 build/celadon $(DESTDIR)$(BINDIR)/celadon
+	install -m 755 build/libceladon.so $(DESTDIR)$(LIBDIR)/libceladon.so.$(SO_MAJOR)
+	install -d $(DESTDIR)$(LIBDIR)/celadon
+	install -m 755 build/opt/libceladon-oiio.so $(DESTDIR)$(LIBDIR)/celadon/libceladon-oiio.so
+	ln -sf libceladon.so.$(SO_MAJOR) $(DESTDIR)$(LIBDIR)/libceladon.so
+	install -m 644 include/celadon/*.h $(DESTDIR)$(INCLUDEDIR)/celadon/
+	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$(LIBDIR)' 'includedir=$(INCLUDEDIR)' '' 'Name: celadon' \
+	  'Description: photo of a vessel to an exact surface of revolution; path tracer on Mitsuba 3 scenes' \
+	  'Version: $(VERSION)' 'Requires.private: $(PKGS)' 'Cflags: -I$${includedir}' \
+	  'Libs: -L$${libdir} -lceladon' > $(DESTDIR)$(LIBDIR)/pkgconfig/celadon.pc
+	install -m 644 python/celadon/*.py $(DESTDIR)$(PYTHONDIR)/celadon/
+	printf 'LIBRARY = %s\n' "'$(LIBDIR)/libceladon.so.$(SO_MAJOR)'" > $(DESTDIR)$(PYTHONDIR)/celadon/_installed.py
+
 # ---------------------------------------------------------------- tests
 # The end-to-end tests find the CLI through CELADON_BIN. The sanitizer run uses
 # the sanitized CLI so bad-input tests prove that nothing a user passes crashes it.
-# tools/run-tests.sh runs the two suites side by side (docs/BENCHMARKS.md,
-# "Test suite"); ARGS go to Criterion (e.g. ARGS="--filter 'faults/*'").
+# tools/run-tests.sh runs the two suites and the Python package's side by side
+# (docs/BENCHMARKS.md, "Test suite"); ARGS go to Criterion (e.g.
+# ARGS="--filter 'faults/*'").
 test: check-deps-stamp check-layout
-	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon build/asan/celadon-tests build/asan/celadon web
+	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon build/libceladon.so \
+	  build/asan/celadon-tests build/asan/celadon web
 	@[ -d "$${CELADON_SHARED:-../shared}/data/synth-dev" ] || echo "celadon: $${CELADON_SHARED:-../shared}/data/synth-dev is missing:" \
 	  "the tests on its photos are skipped (they fail under CELADON_REQUIRE_DATA=1, as in CI)"
-	@tools/run-tests.sh $(ARGS)
+	@PYTHON=$(PYTHON) tools/run-tests.sh $(ARGS)
 
 test-fast: check-deps-stamp
 	@$(MAKE) --no-print-directory -j2 build/opt/celadon-tests build/celadon web

@@ -28,6 +28,7 @@
 #include <stddef.h>
 
 #include "celadon/parts.h"
+#include "celadon/render_image.h"
 #include "celadon/scene.h"
 
 typedef struct {
@@ -115,7 +116,8 @@ double crosscheck_local_slope(const crosscheck_row *rows, int i, int metric);
 crosscheck_stall crosscheck_find_stall(const crosscheck_row *rows, int nrows);
 
 /* Renders and compares. Writes into outdir (which must exist) analytic.exr,
- * analytic.png, mesh-N.exr and mesh-N.png per N. Returns 0; -2 for bad input
+ * analytic.png, mesh-N.exr and mesh-N.png per N; nothing when outdir is
+ * NULL. Returns 0; -2 for bad input
  * (unreadable scene, a scene without an SOR, bad parameters) with one line
  * in err; -1 for other failures. */
 int crosscheck_run(const crosscheck_params *p, const char *outdir, crosscheck_result *res, char *err,
@@ -136,6 +138,20 @@ int crosscheck_render_part(const crosscheck_params *p, render_part part, const c
  * with a reason. */
 int crosscheck_write_report(const crosscheck_result *res, const crosscheck_params *p, const char *path, char *err,
                             size_t errlen);
+/* The text of report.json (the same JSON crosscheck_write_report writes),
+ * malloc'd; NULL when the scene path is not UTF-8. */
+char *crosscheck_report_text(const crosscheck_result *res, const crosscheck_params *p);
+
+/* crosscheck_run for callers that keep no files (the Python package): the
+ * scene with defs and `celadon render`'s overrides o (its mesh_segments and
+ * aovs ignored) rendered at each N of segments, the fits over N >= fit_from
+ * (0: all), the geometry metrics over k = 4 rays per pixel side; *report
+ * receives crosscheck_report_text (free it). Returns 0; -2 for bad input,
+ * -1 for other failures, with one line in err (the line `celadon crosscheck`
+ * prints after "celadon: "). */
+int crosscheck_measure(const char *scene_path, const scene_define *defs, int ndefs, const render_image_options *o,
+                       const int *segments, int nsegments, int fit_from, char **report, char *err, size_t errlen);
+
 int crosscheck_write_plot(const crosscheck_result *res, const char *path, int plot_width, int plot_height,
                           char *err, size_t errlen);
 

@@ -90,6 +90,13 @@ void film_merge(film_t *dst, const film_t *src);
  * has no weight. */
 void film_develop(const film_t *f, float *out);
 
+/* The developed film as its EXR holds it: the channels of the pixel format
+ * (R, G, B; Y; or X, Y, Z; then A and the AOVs), float32, interleaved,
+ * row-major from the top left: a malloc'd array of width * height * *nch
+ * floats (the caller frees it). names (room for f->nchannels) receives the
+ * channels' names, pointing into f's or static strings. */
+float *film_develop_exr(const film_t *f, int *nch, const char **names);
+
 /* Writes the film; the format follows the extension: .exr (every channel,
  * float32, ZIP, in the film's pixel format, with its metadata) or .png /
  * .jpg / .jpeg (RGB, clamped to [0,1], sRGB-encoded, 8-bit). The file

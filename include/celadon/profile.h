@@ -86,6 +86,18 @@ typedef struct {
 
 /* Writes atomically. Returns 0, or -1 with a one-line reason. */
 int profile_write_json(const char *path, const profile_t *p, char *err, size_t errlen);
+/* The text profile_write_json writes, malloc'd (the caller frees it);
+ * NULL with a one-line reason. */
+char *profile_json_text(const profile_t *p, char *err, size_t errlen);
+
+/* The radius of the profile's shape (profile_shape) at height h, both in the
+ * units of a mesh revolved to height 1 (mesh_revolve: the rim at 1, the
+ * base's height as the curve has it, normally 0): the largest radius where
+ * the shape crosses that height (the outer wall, where a lid or an inner
+ * lip crosses it too). Returns 0, or -1 when no point of the shape is at
+ * height h. */
+int profile_radius(const profile_t *p, double h, double *radius);
+
 /* Reads and validates (version, finite numbers, a valid clamped cubic B-spline
  * that sor_profile_check accepts, increasing domains in [0,1], at most
  * PROFILE_MAX_POINTS elements per array). Only `version` and `bspline` are

@@ -23,6 +23,7 @@
 
 #include "celadon/bspline.h"
 #include "celadon/image.h"
+#include "celadon/mesh.h"
 #include "celadon/profile.h"
 #include "celadon/recon.h"
 #include "celadon/recon_camera.h"
@@ -94,6 +95,37 @@ typedef struct {
  * result holds no arrays; either way reconstruction_free releases it. */
 int reconstruct_photo(const char *path, const reconstruct_options *opt, reconstruction *r, char *err,
                       size_t errlen);
+
+/* reconstruct_photo on a photo in memory (pixels as image_read gives them:
+ * floats in [0, 1], 1 to 4 channels, has_alpha for a last alpha channel),
+ * copied; held to the same size limits, with the same words. No EXIF: the
+ * focal length comes from opt->camera or the ellipses. */
+int reconstruct_image(const image_t *photo, const reconstruct_options *opt, reconstruction *r, char *err,
+                      size_t errlen);
+
+/* One option of `celadon reconstruct` by its name without the dashes:
+ * "threshold", "side", "smoothing", "fov" (values as on the command line)
+ * or "force" ("1" or "0"), checked as the command line checks it. Returns
+ * 0, or -1 with one line in err. */
+int reconstruct_option_set(reconstruct_options *opt, const char *name, const char *value, char *err,
+                           size_t errlen);
+
+/* For callers that hold a reconstruction by pointer (the Python package):
+ * the n options names[i] = values[i] (reconstruct_option_set) over the
+ * defaults, then reconstruct_photo(path), or when path is NULL
+ * reconstruct_image(photo). NULL on failure, with *status (2 bad input, 1
+ * other) and err; reconstruction_destroy releases it. */
+reconstruction *reconstruction_create(const char *path, const image_t *photo, const char *const *names,
+                                      const char *const *values, int n, int *status, char *err, size_t errlen);
+void reconstruction_destroy(reconstruction *r);
+
+/* Through the profile view (reconstruction_profile with source): its
+ * profile.json text (profile_json_text), its radius at height h
+ * (profile_radius), and its mesh as reconstruct_write revolves model.obj
+ * (height 1, caps MESH_CAP_*). */
+char *reconstruction_profile_text(const reconstruction *r, const char *source, char *err, size_t errlen);
+int reconstruction_radius(const reconstruction *r, double h, double *radius);
+int reconstruction_mesh(const reconstruction *r, int segments, unsigned caps, mesh_t *m);
 
 /* 1 when the camera is perspective (not the orthographic fallback). */
 int reconstruction_is_perspective(const reconstruction *r);

@@ -60,8 +60,8 @@ static int merge_parts(const crosscheck_params *p, const scene_t *s, const char 
     return rc;
 }
 
-/* Renders s (or merges its parts), writes outdir/stem.exr and .png, returns
- * the RGB pixels; NULL with *rc -2 for refused parts, -1 otherwise. */
+/* Renders s (or merges its parts), writes outdir/stem.exr and .png (unless
+ * outdir is NULL), returns the RGB pixels; NULL with *rc -2 for refused parts, -1 otherwise. */
 static float *render_and_write(const scene_t *s, const crosscheck_params *p, const char *outdir, const char *stem,
                                double *seconds, int *rc, char *err, size_t errlen)
 {
@@ -76,7 +76,7 @@ static float *render_and_write(const scene_t *s, const crosscheck_params *p, con
     float *px = malloc(sizeof *px * 3 * (size_t)film.width * (size_t)film.height);
     char path[4200];
     int ok = px != NULL;
-    for (int k = 0; k < 2 && ok; k++) {
+    for (int k = 0; k < 2 && ok && outdir; k++) {
         snprintf(path, sizeof path, "%s/%s.%s", outdir, stem, k ? "png" : "exr");
         ok = film_write(&film, path, err, errlen) == 0;
     }
@@ -348,4 +348,21 @@ void crosscheck_result_free(crosscheck_result *res)
 {
     free(res->rows);
     memset(res, 0, sizeof *res);
+}
+
+int crosscheck_measure(const char *scene_path, const scene_define *defs, int ndefs, const render_image_options *o,
+                       const int *segments, int nsegments, int fit_from, char **report, char *err, size_t errlen)
+{
+    crosscheck_params p = {.scene_path = scene_path, .defs = defs, .ndefs = ndefs,
+                           .build = render_image_scene_options(o), .threads = o->threads, .segments = segments,
+                           .nsegments = nsegments, .geo_grid = 4, .fit_from = fit_from};
+    crosscheck_result res;
+    *report = NULL;
+    int rc = crosscheck_run(&p, NULL, &res, err, errlen);
+    if (rc == 0 && !(*report = crosscheck_report_text(&res, &p))) {
+        snprintf(err, errlen, "%s: the scene path is not UTF-8", scene_path);
+        rc = -2;
+    }
+    crosscheck_result_free(&res);
+    return rc;
 }

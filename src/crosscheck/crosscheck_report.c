@@ -26,8 +26,8 @@ static json_t *row_json(const crosscheck_row *r)
                      real_or_null(r->normal_err_deg));
 }
 
-int crosscheck_write_report(const crosscheck_result *res, const crosscheck_params *p, const char *path, char *err,
-                            size_t errlen)
+/* report.json's root; NULL when the scene path is not UTF-8. */
+static json_t *report_json(const crosscheck_result *res, const crosscheck_params *p)
 {
     json_t *rows = json_array(), *fits = json_object();
     for (int i = 0; i < res->nrows; i++)
@@ -45,7 +45,7 @@ int crosscheck_write_report(const crosscheck_result *res, const crosscheck_param
     json_t *stall = st->found ? json_pack("{s:i, s:i, s:o, s:o}", "from", st->n_from, "to", st->n_to, "image_slope",
                                           real_or_null(st->image_slope), "depth_slope", real_or_null(st->depth_slope))
                               : json_null();
-    json_t *root = json_pack(
+    return json_pack(
         "{s:i, s:s, s:i, s:i, s:i, s:I, s:i, s:i, s:I, s:{s:s, s:s, s:f}, s:s, s:o, s:i, s:o, s:o, s:o, s:s}",
         "version", 1, "scene", p->scene_path, "width", res->width, "height", res->height, "spp", res->spp, "seed",
         (json_int_t)res->seed, "geo_grid", res->geo_grid, "sor_shapes", res->sor_shapes, "sor_rays",
@@ -53,11 +53,27 @@ int crosscheck_write_report(const crosscheck_result *res, const crosscheck_param
         res->analytic_seconds, "fitted_slope_metric", crosscheck_metric_name(CROSSCHECK_PRIMARY_METRIC),
         "fitted_slope", real_or_null(res->fits[CROSSCHECK_PRIMARY_METRIC].slope), "fit_from", res->fit_from, "fits",
         fits, "image_error_stall", stall, "segments", rows, "plot", "convergence.png");
+}
+
+enum { REPORT_FLAGS = JSON_INDENT(2) | JSON_REAL_PRECISION(10) };
+
+char *crosscheck_report_text(const crosscheck_result *res, const crosscheck_params *p)
+{
+    json_t *root = report_json(res, p);
+    char *text = root ? json_dumps(root, REPORT_FLAGS) : NULL;
+    json_decref(root);
+    return text;
+}
+
+int crosscheck_write_report(const crosscheck_result *res, const crosscheck_params *p, const char *path, char *err,
+                            size_t errlen)
+{
+    json_t *root = report_json(res, p);
     if (!root) {
         snprintf(err, errlen, "cannot write %s: the scene path is not UTF-8", path);
         return -1;
     }
-    int rc = json_write_file_atomic(path, root, JSON_INDENT(2) | JSON_REAL_PRECISION(10), err, errlen);
+    int rc = json_write_file_atomic(path, root, REPORT_FLAGS, err, errlen);
     json_decref(root);
     return rc;
 }

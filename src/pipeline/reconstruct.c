@@ -105,7 +105,7 @@ static void assess(reconstruction *r)
 static void fit_camera(const char *path, const reconstruct_options *opt, reconstruction *r)
 {
     recon_camera_options copt = opt->camera;
-    if (!(copt.fov_deg > 0) && !(copt.focal_35mm > 0))
+    if (path && !(copt.fov_deg > 0) && !(copt.focal_35mm > 0))
         copt.focal_35mm = image_exif_focal_35mm(path);
     if (!(copt.smoothing_px > 0))
         copt.smoothing_px = opt->smoothing_px;
@@ -127,15 +127,12 @@ static int fail(int code, char *err, size_t errlen, const char *what)
     return code;
 }
 
-int reconstruct_photo(const char *path, const reconstruct_options *opt, reconstruction *r, char *err,
-                      size_t errlen)
+/* Every stage after the decoding, on r->photo; path (NULL for a photo from
+ * memory) for its EXIF. t_start: when the run began. */
+static int reconstruct_decoded(const char *path, const reconstruct_options *opt, reconstruction *r, double t_start,
+                               char *err, size_t errlen)
 {
-    memset(r, 0, sizeof *r);
-    double t_start = now_seconds(), t0 = t_start;
-    if (image_read_checked(path, MIN_SIDE_PX, MAX_MEGAPIXELS, &r->photo, err, errlen) != 0)
-        return 2;
-    r->ms.decode = ms_since(t0);
-
+    double t0;
     recon_status rs = recon_extract(&r->photo, &opt->recon, &r->extract, err, errlen);
     if (rs != RECON_OK)
         return rs == RECON_ERR_INTERNAL ? 1 : 2;
@@ -178,6 +175,47 @@ int reconstruct_photo(const char *path, const reconstruct_options *opt, reconstr
     r->ms.texture = ms_since(t0);
     r->ms.total = ms_since(t_start);
     return 0;
+}
+
+int reconstruct_photo(const char *path, const reconstruct_options *opt, reconstruction *r, char *err,
+                      size_t errlen)
+{
+    memset(r, 0, sizeof *r);
+    double t_start = now_seconds();
+    if (image_read_checked(path, MIN_SIDE_PX, MAX_MEGAPIXELS, &r->photo, err, errlen) != 0)
+        return 2;
+    r->ms.decode = ms_since(t_start);
+    return reconstruct_decoded(path, opt, r, t_start, err, errlen);
+}
+
+int reconstruct_image(const image_t *photo, const reconstruct_options *opt, reconstruction *r, char *err,
+                      size_t errlen)
+{
+    memset(r, 0, sizeof *r);
+    double t_start = now_seconds();
+    int w = photo->width, h = photo->height;
+    /* The checks and words of image_read_checked. */
+    if (w < MIN_SIDE_PX || h < MIN_SIDE_PX) {
+        snprintf(err, errlen, "image too small (%dx%d; at least %dx%d needed)", w, h, MIN_SIDE_PX, MIN_SIDE_PX);
+        return 2;
+    }
+    if ((double)w * h > MAX_MEGAPIXELS * 1e6) {
+        snprintf(err, errlen, "image too large (%dx%d; at most %.0f megapixels)", w, h, MAX_MEGAPIXELS);
+        return 2;
+    }
+    if (photo->channels < 1 || photo->channels > 4 || !photo->data)
+        return fail(2, err, errlen, "an image has 1 to 4 channels");
+    size_t n = (size_t)w * h * photo->channels;
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(photo->data[i]))
+            return fail(2, err, errlen, "the image has a value that is not finite");
+    r->photo = image_alloc(w, h, photo->channels);
+    if (!r->photo.data)
+        return fail(1, err, errlen, "out of memory");
+    memcpy(r->photo.data, photo->data, sizeof *photo->data * n);
+    r->photo.bits = photo->bits, r->photo.has_alpha = photo->has_alpha;
+    r->ms.decode = ms_since(t_start);
+    return reconstruct_decoded(NULL, opt, r, t_start, err, errlen);
 }
 
 void reconstruction_profile(const reconstruction *r, const char *source, profile_t *p)

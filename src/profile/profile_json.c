@@ -117,14 +117,17 @@ static int add_perspective(json_t *root, const profile_t *p)
     return 0;
 }
 
-int profile_write_json(const char *path, const profile_t *p, char *err, size_t errlen)
+enum { PROFILE_JSON_FLAGS = JSON_INDENT(1) | JSON_REAL_PRECISION(17) };
+
+/* profile.json's root; NULL with err (naming what) on failure. */
+static json_t *profile_json(const profile_t *p, const char *what, char *err, size_t errlen)
 {
     const char *bad = bspline_validate(&p->curve);
     if (!bad && p->has_meridian)
         bad = bspline_validate(&p->meridian);
     if (bad) {
         snprintf(err, errlen, "invalid B-spline: %s", bad);
-        return -1;
+        return NULL;
     }
     /* "o" steals a reference and fails on NULL: a non-finite number anywhere
      * (json_real refuses them) makes the whole pack fail. */
@@ -149,13 +152,29 @@ int profile_write_json(const char *path, const profile_t *p, char *err, size_t e
         json_decref(root);
         root = NULL;
     }
-    if (!root) {
-        snprintf(err, errlen, "cannot write %s: a value is not finite or a string is not UTF-8", path);
+    if (!root)
+        snprintf(err, errlen, "cannot write %s: a value is not finite or a string is not UTF-8", what);
+    return root;
+}
+
+int profile_write_json(const char *path, const profile_t *p, char *err, size_t errlen)
+{
+    json_t *root = profile_json(p, path, err, errlen);
+    if (!root)
         return -1;
-    }
-    int rc = json_write_file_atomic(path, root, JSON_INDENT(1) | JSON_REAL_PRECISION(17), err, errlen);
+    int rc = json_write_file_atomic(path, root, PROFILE_JSON_FLAGS, err, errlen);
     json_decref(root);
     return rc;
+}
+
+char *profile_json_text(const profile_t *p, char *err, size_t errlen)
+{
+    json_t *root = profile_json(p, "the profile", err, errlen);
+    char *text = root ? json_dumps(root, PROFILE_JSON_FLAGS) : NULL;
+    if (root && !text)
+        snprintf(err, errlen, "out of memory");
+    json_decref(root);
+    return text;
 }
 
 /* ------------------------------------------------------------------ reading */

@@ -146,10 +146,9 @@ static int has_ext(const char *path, const char *ext)
     return dot && !strchr(dot, '/') && strcasecmp(dot + 1, ext) == 0;
 }
 
-/* The developed film with its R, G, B channels turned into the pixel
- * format's Y or X, Y, Z (Rec. 709 primaries, D65: Mitsuba's srgb_to_xyz):
- * the EXR's channels. Sets *nch and the names (pointing into f's). */
-static float *develop_exr(const film_t *f, int *nch, const char **names)
+/* R, G, B turned into the pixel format's Y or X, Y, Z: Rec. 709 primaries,
+ * D65 (Mitsuba's srgb_to_xyz). */
+float *film_develop_exr(const film_t *f, int *nch, const char **names)
 {
     static const double to_xyz[3][3] = {
         {0.412453, 0.357580, 0.180423}, {0.212671, 0.715160, 0.072169}, {0.019334, 0.119193, 0.950227}};
@@ -204,7 +203,7 @@ int film_write(const film_t *f, const char *path, char *err, size_t errlen)
         if (!names)
             abort();
         int nch;
-        float *px = develop_exr(f, &nch, names);
+        float *px = film_develop_exr(f, &nch, names);
         rc = exr_write_float(path, f->width, f->height, nch, names, px, &f->meta, err, errlen);
         free(px);
         free(names);
