@@ -59,7 +59,7 @@ for b in $suites; do
   awk -F'"' '/<testsuite /{s=$2} /<testcase / && !/SKIPPED/{for(i=1;i<NF;i++) if($i~/ time=$/) print $(i+1), s "::" $2}' \
     "$out/$b.xml" 2>/dev/null | sort -rn | head -8
 done
-echo "== both suites in $((end - start)) s ($suites, $jobs jobs each)"
+echo "== $suites in $((end - start)) s (Criterion with $jobs jobs each)"
 # One closing line over every suite, from Criterion's syntheses and
 # pytest's last line ("3 failed, 40 passed in 61.2s").
 {
