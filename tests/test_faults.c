@@ -157,7 +157,7 @@ Test(faults, signals_during_a_render_leave_the_image_whole_or_none, .timeout = 3
         remove_tree(out_dir);
         cr_assert_eq(mkdir(out_dir, 0777), 0);
         snprintf(out, sizeof out, "%s/out.%s", out_dir, ext);
-        const char *args[] = {"render", scene, "-o", out, "--res", "128x128", "--spp", "32", NULL};
+        const char *args[] = {"render", scene, "-o", out, "--res", "64x64", "--spp", "32", NULL};
         static double t;
         if (k == 0) {
             t = time_run(args);
@@ -171,7 +171,7 @@ Test(faults, signals_during_a_render_leave_the_image_whole_or_none, .timeout = 3
             char why[512];
             cr_expect_eq(image_read(out, &img, why, sizeof why), 0, "%s is not whole: %s", out, why);
             if (img.data)
-                cr_expect(img.width == 128 && img.height == 128);
+                cr_expect(img.width == 64 && img.height == 64);
             image_free(&img);
         }
     }

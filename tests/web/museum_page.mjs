@@ -4,8 +4,9 @@
 // playwright-core) and takes two screenshots from the entrance, with and
 // without the vessels. Prints one JSON object on stdout; the C test judges it.
 //
-//   node tests/web/museum_page.mjs CELADON_BIN MUSEUM_DIR OUT_DIR WIDTH HEIGHT
+//   node tests/web/museum_page.mjs CELADON_BIN MUSEUM_DIR OUT_DIR WIDTH HEIGHT [server]
 //
+// With "server" it validates and probes the server only, without the browser.
 // Run from the repository root: the npm packages come from web/node_modules.
 import { spawn } from 'node:child_process';
 import { createRequire } from 'node:module';
@@ -14,7 +15,7 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 
 const require = createRequire(path.resolve('web/package.json'));
-const [bin, dir, out, width, height] = process.argv.slice(2);
+const [bin, dir, out, width, height, mode] = process.argv.slice(2);
 const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
 const TIMEOUT_MS = 120000;
 
@@ -107,7 +108,7 @@ const result = { validator: await validate(path.join(dir, 'museum.glb')) };
 const server = await serve();
 try {
   result.server = await probe(server.url);
-  result.page = await browse(server.url);
+  if (mode !== 'server') result.page = await browse(server.url);
 } catch (e) {
   result.failure = String(e.message || e);
 }
