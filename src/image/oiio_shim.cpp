@@ -1,4 +1,4 @@
-// The one C++ file: OpenImageIO behind the extern "C" API of celadon/image.h.
+// OpenImageIO behind the extern "C" API of celadon/image.h.
 extern "C" {
 #include "celadon/image.h"
 #include "core/core.h"
