@@ -4,10 +4,12 @@
  * `make deps-model` obtains, and skips with one line without it. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
-#include "celadon/recon.h"
+#include "celadon/reconstruct.h"
 #include "prior/prior.h"
+#include "support/scratch_dir.h"
 #include "support/synth_scene.h"
 
 enum { W = 300, H = 400 };
@@ -124,6 +126,64 @@ Test(object_prior, keeps_the_vessel_clear_of_a_wall_band_that_reaches_the_border
     cr_expect_eq(bad, 0);
     recon_result_free(&res);
     free(prob);
+    image_free(&img);
+    image_free(&body);
+}
+
+/* img written as an 8-bit PNG to path. */
+static void write_png(const image_t *img, const char *path)
+{
+    size_t n = (size_t)img->width * img->height * img->channels;
+    uint8_t *px = malloc(n);
+    cr_assert_not_null(px);
+    for (size_t i = 0; i < n; i++)
+        px[i] = (uint8_t)lrintf(255 * fminf(1, fmaxf(0, img->data[i])));
+    char err[256];
+    cr_assert_eq(image_write_u8(path, img->width, img->height, img->channels, px, err, sizeof err), 0, "%s", err);
+    free(px);
+}
+
+static int reconstruct_by(const char *path, reconstruct_segmenter seg, int *used_prior, double *ms_prior)
+{
+    reconstruct_options opt = reconstruct_options_default();
+    opt.segmenter = seg;
+    reconstruction r;
+    char err[1024];
+    int st = reconstruct_photo(path, &opt, &r, err, sizeof err);
+    cr_log_info("segmenter %d: %s", (int)seg, st ? err : "passed");
+    *used_prior = r.used_prior;
+    *ms_prior = r.ms.prior;
+    reconstruction_free(&r);
+    return st;
+}
+
+/* auto's rule: the network runs only where the classical result is refused,
+ * and its result is kept when it passes. The wall band's photo is refused
+ * classically and passes by auto, with the prior; the clean photo passes
+ * classically and auto never runs the network on it. */
+Test(object_prior, auto_runs_the_network_only_where_the_classical_result_is_refused, .timeout = 240)
+{
+    need_network();
+    image_t img, body;
+    synth_scene_truth t;
+    draw("maebyeong_flat", &img, &body, &t);
+    char dir[128], path[256];
+    scratch_dir_make(dir, sizeof dir, "prior");
+    snprintf(path, sizeof path, "%s/photo.png", dir);
+    write_png(&img, path);
+    int used;
+    double ms;
+    cr_expect_eq(reconstruct_by(path, RECONSTRUCT_SEGMENTER_AUTO, &used, &ms), 0);
+    cr_expect_eq(used, 0, "auto ran the network on a photo the classical segmentation passes");
+    cr_expect_eq(ms, 0.0);
+
+    paint_wall_band(&img, &body, (int)(0.25 * H), (int)(0.40 * H), 0.45f);
+    write_png(&img, path);
+    cr_expect_eq(reconstruct_by(path, RECONSTRUCT_SEGMENTER_CLASSIC, &used, &ms), 2);
+    cr_expect_eq(reconstruct_by(path, RECONSTRUCT_SEGMENTER_AUTO, &used, &ms), 0);
+    cr_expect_eq(used, 1);
+    cr_expect_gt(ms, 0.0);
+    scratch_dir_remove(dir);
     image_free(&img);
     image_free(&body);
 }
