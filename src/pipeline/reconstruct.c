@@ -222,6 +222,7 @@ static int segmented_profile(reconstruction *r, const reconstruct_options *opt, 
     memset(&r->extract, 0, sizeof r->extract);
     memset(&r->curve, 0, sizeof r->curve);
     r->domains = NULL;
+    r->n_domains = 0;
     int code2 = profile_stages(r, opt, prior, err2, sizeof err2);
     free(prior);
     if (code2 == 0 && r->quality.passed) {
