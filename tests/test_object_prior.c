@@ -98,14 +98,18 @@ static int rows_outside(const recon_result *res, const synth_scene_truth *t, int
     return bad;
 }
 
+/* The flat maebyeong's wall band: rows 25-40% of the height, darkened to 45%. */
+#define BAND_Y0 ((int)(0.25 * H))
+#define BAND_Y1 ((int)(0.40 * H))
+#define BAND_K 0.45f
+
 Test(object_prior, keeps_the_vessel_clear_of_a_wall_band_that_reaches_the_borders, .timeout = 180)
 {
     need_network();
     image_t img, body;
     synth_scene_truth t;
     draw("maebyeong_flat", &img, &body, &t);
-    const int y0 = (int)(0.25 * H), y1 = (int)(0.40 * H);
-    paint_wall_band(&img, &body, y0, y1, 0.45f);
+    paint_wall_band(&img, &body, BAND_Y0, BAND_Y1, BAND_K);
     char err[256];
     recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
     recon_result classic;
@@ -119,7 +123,7 @@ Test(object_prior, keeps_the_vessel_clear_of_a_wall_band_that_reaches_the_border
     opt.object_prior = prob;
     recon_result res;
     cr_assert_eq(recon_extract(&img, &opt, &res, err, sizeof err), RECON_OK, "%s", err);
-    int bad = rows_outside(&res, &t, y0, y1, 2.0);
+    int bad = rows_outside(&res, &t, BAND_Y0, BAND_Y1, 2.0);
     cr_log_info("with the prior: border contact %u, %d band rows off the true outline by over 2 px", res.border_contact,
                 bad);
     cr_expect_eq(res.border_contact, 0u);
@@ -130,17 +134,25 @@ Test(object_prior, keeps_the_vessel_clear_of_a_wall_band_that_reaches_the_border
     image_free(&body);
 }
 
-/* img written as an 8-bit PNG to path. */
-static void write_png(const image_t *img, const char *path)
+/* The flat maebyeong, with the wall band or without, written as an 8-bit
+ * PNG to path. */
+static void write_drawn_photo(const char *path, int band)
 {
-    size_t n = (size_t)img->width * img->height * img->channels;
+    image_t img, body;
+    synth_scene_truth t;
+    draw("maebyeong_flat", &img, &body, &t);
+    if (band)
+        paint_wall_band(&img, &body, BAND_Y0, BAND_Y1, BAND_K);
+    size_t n = (size_t)img.width * img.height * img.channels;
     uint8_t *px = malloc(n);
     cr_assert_not_null(px);
     for (size_t i = 0; i < n; i++)
-        px[i] = (uint8_t)lrintf(255 * fminf(1, fmaxf(0, img->data[i])));
+        px[i] = (uint8_t)lrintf(255 * fminf(1, fmaxf(0, img.data[i])));
     char err[256];
-    cr_assert_eq(image_write_u8(path, img->width, img->height, img->channels, px, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(image_write_u8(path, img.width, img.height, img.channels, px, err, sizeof err), 0, "%s", err);
     free(px);
+    image_free(&img);
+    image_free(&body);
 }
 
 static int reconstruct_by(const char *path, reconstruct_segmenter seg, int *used_prior, double *ms_prior)
@@ -164,26 +176,20 @@ static int reconstruct_by(const char *path, reconstruct_segmenter seg, int *used
 Test(object_prior, auto_runs_the_network_only_where_the_classical_result_is_refused, .timeout = 240)
 {
     need_network();
-    image_t img, body;
-    synth_scene_truth t;
-    draw("maebyeong_flat", &img, &body, &t);
     char dir[128], path[256];
     scratch_dir_make(dir, sizeof dir, "prior");
     snprintf(path, sizeof path, "%s/photo.png", dir);
-    write_png(&img, path);
     int used;
     double ms;
+    write_drawn_photo(path, 0);
     cr_expect_eq(reconstruct_by(path, RECONSTRUCT_SEGMENTER_AUTO, &used, &ms), 0);
     cr_expect_eq(used, 0, "auto ran the network on a photo the classical segmentation passes");
     cr_expect_eq(ms, 0.0);
 
-    paint_wall_band(&img, &body, (int)(0.25 * H), (int)(0.40 * H), 0.45f);
-    write_png(&img, path);
+    write_drawn_photo(path, 1);
     cr_expect_eq(reconstruct_by(path, RECONSTRUCT_SEGMENTER_CLASSIC, &used, &ms), 2);
     cr_expect_eq(reconstruct_by(path, RECONSTRUCT_SEGMENTER_AUTO, &used, &ms), 0);
     cr_expect_eq(used, 1);
     cr_expect_gt(ms, 0.0);
     scratch_dir_remove(dir);
-    image_free(&img);
-    image_free(&body);
 }
