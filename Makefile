@@ -352,7 +352,7 @@ FUZZ_SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit
 # cannot vectorise every `omp simd` loop under the sanitizers).
 FUZZ_CFLAGS   = -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wno-pass-failed -fopenmp -Iinclude -Isrc -Itests $(MPI_CFLAGS) \
                 $(PKG_CFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
-FUZZ_CXXFLAGS = -std=c++17 -Wall -Wextra -Iinclude -Isrc $(PKG_CFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
+FUZZ_CXXFLAGS = -std=c++17 -Wall -Wextra -Iinclude -Isrc $(PKG_CFLAGS) $(OPENCV_CFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 # Per target: the largest input libFuzzer makes (images stay small, so an
 # execution takes milliseconds), and a dictionary of the format's words.
 FUZZ_OPTS_profile   := -max_len=16384 -dict=fuzz/json.dict
