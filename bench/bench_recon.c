@@ -109,7 +109,7 @@ static void run_stages(const image_t *img, const char *path, double ms[ST_COUNT]
     memset(ms, 0, ST_COUNT * sizeof *ms);
     recon_segmentation seg;
     t = cpu_ms();
-    if (recon_segment_start(img, &seg) != 0)
+    if (recon_segment_start(img, NULL, &seg) != 0)
         die("segmentation failed");
     ms[ST_START] = cpu_ms() - t;
     for (int r = 0; r < 3; r++) {

@@ -9,7 +9,7 @@
 
 static recon_status run(const image_t *img, char *err, size_t len)
 {
-    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
     recon_result r;
     recon_status st = recon_extract(img, &opt, &r, err, len);
     if (st == RECON_OK) {
@@ -67,7 +67,7 @@ Test(recon_errors, border_contact_is_reported)
     p.base_center.y = 250; /* base below the image */
     image_t img;
     cr_assert_eq(synth_draw(&p, &img), 0);
-    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
     recon_result r;
     cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
     cr_expect_eq(r.border_contact, 2u, "border bits %#x: the bottom only", r.border_contact);
@@ -134,7 +134,7 @@ Test(recon_errors, reports_dropped_objects_and_holes)
         for (int x = 92; x < 108; x++)
             for (int c = 0; c < 3; c++)
                 img.data[(y * 200 + x) * 3 + c] = p.bg[c];
-    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
     recon_result r;
     char err[256];
     cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
@@ -150,7 +150,7 @@ Test(recon_errors, forced_threshold_and_polarity)
     synth_params p = synth_defaults(SYNTH_VASE, 200, 260);
     image_t img;
     cr_assert_eq(synth_draw(&p, &img), 0);
-    recon_options opt = {128, RECON_SIDE_AUTO};
+    recon_options opt = {128, RECON_SIDE_AUTO, NULL};
     recon_result r;
     char err[256];
     cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);

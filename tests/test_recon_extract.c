@@ -66,7 +66,7 @@ static accuracy run_case(const synth_params *p, const char *ext, int bits, recon
         cr_assert_eq(image_read(path, &img, err, sizeof err), 0, "%s", err);
         unlink(path);
     }
-    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
     char err[256] = "";
     recon_result r;
     recon_status st = recon_extract(&img, &opt, &r, err, sizeof err);
@@ -184,7 +184,7 @@ Test(recon_extract, sensor_noise)
         }
         img.data[i] += (float)(3.0 / 255 * sqrt(-2 * log(u[0])) * cos(2 * M_PI * u[1]));
     }
-    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
     recon_result r;
     char err[256];
     cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
@@ -222,7 +222,7 @@ static void wash_left_edge(const synth_params *p, image_t *img, double y_clean, 
  * a clean photo. */
 static void expect_measured_on_the_right(const char *what, const synth_params *p, image_t *img)
 {
-    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
     recon_result r;
     char err[256];
     cr_assert_eq(recon_extract(img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
@@ -304,7 +304,7 @@ Test(recon_extract, light_grey_lip_beside_a_washed_one)
         }
     }
     wash_left_edge(&p, &img, t.axis_origin.y - 0.3 * t.height_px, t.axis_origin.y - neck_h, 10, 6, 0);
-    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
     recon_result r;
     char err[256];
     cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
@@ -351,7 +351,7 @@ Test(recon_extract, lit_foot_bay)
             for (int c = 0; c < 3; c++)
                 img.data[((size_t)j * img.width + i) * 3 + c] = (float)p.bg[c];
     }
-    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
     recon_result r;
     char err[256];
     cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
@@ -367,7 +367,7 @@ Test(recon_extract, side_option_is_honoured)
     cr_assert_eq(synth_draw(&p, &img), 0);
     char err[256];
     for (int s = RECON_SIDE_LEFT; s <= RECON_SIDE_RIGHT; s++) {
-        recon_options opt = {-1, (recon_side)s};
+        recon_options opt = {-1, (recon_side)s, NULL};
         recon_result r;
         cr_assert_eq(recon_extract(&img, &opt, &r, err, sizeof err), RECON_OK, "%s", err);
         cr_expect_eq(r.side_used, (recon_side)s);

@@ -72,7 +72,7 @@ static image_t draw(int w, int h, half_width_fn f, double a, double b, double ex
 static void expect_profile(const char *what, int w, int h, half_width_fn f, double a, double b, double extra)
 {
     image_t img = draw(w, h, f, a, b, extra, 0);
-    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
     recon_result r;
     char err[256] = "";
     recon_status st = recon_extract(&img, &opt, &r, err, sizeof err);
@@ -117,7 +117,7 @@ Test(recon_not_vessels, leaning_objects_are_refused)
     const double lean[] = {60, -60};
     for (int k = 0; k < 2; k++) {
         image_t img = draw(300, 300, hw_rounded_box, 40, 90, 15, lean[k]);
-        recon_options opt = {-1, RECON_SIDE_AUTO};
+        recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
         recon_result r;
         char err[256] = "";
         recon_status st = recon_extract(&img, &opt, &r, err, sizeof err);
@@ -140,7 +140,7 @@ Test(recon_not_vessels, drawn_vessels_still_accepted)
             p.tilt_deg = 3 * t;
             image_t img;
             cr_assert_eq(synth_draw(&p, &img), 0);
-            recon_options opt = {-1, RECON_SIDE_AUTO};
+            recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
             recon_result r;
             char err[256] = "";
             recon_status st = recon_extract(&img, &opt, &r, err, sizeof err);

@@ -72,7 +72,7 @@ static int evaluate(const char *dir, const char *name, const char *file, outcome
     snprintf(path, sizeof path, "%s/%s/%s", dir, name, file);
     image_t img;
     cr_assert_eq(image_read(path, &img, err, sizeof err), 0, "%s: %s", path, err);
-    recon_options opt = {-1, RECON_SIDE_AUTO};
+    recon_options opt = {-1, RECON_SIDE_AUTO, NULL};
     recon_result res;
     recon_status st = recon_extract(&img, &opt, &res, err, sizeof err);
     image_free(&img);

@@ -17,6 +17,8 @@ typedef enum { RECON_SIDE_AUTO = 0, RECON_SIDE_LEFT, RECON_SIDE_RIGHT } recon_si
 typedef struct {
     int threshold;   /* 0..255 forces the gray threshold; -1 = automatic */
     recon_side side;
+    const float *object_prior; /* NULL, or the object's probability at each pixel (width * height), a term
+                                  of the segmentation's energy (docs/algorithms-recon.md, "Learned object prior") */
 } recon_options;
 
 /* How the mask was made. */

@@ -45,8 +45,17 @@ typedef struct {
     char failed[400];         /* the figures over their limits, one line ("" when passed) */
 } reconstruct_quality;
 
+/* Which segmentation decides the vessel's mask (docs/algorithms-recon.md,
+ * "Learned object prior"): the classical energy alone; that energy with the
+ * learned object prior as one more term; or the classical one first and the
+ * prior only for a photo whose classical result fails the quality gate (or
+ * is refused by the image stages), the prior's result kept when it passes.
+ * Without the network file (`make deps-model`) every mode is classic. */
+typedef enum { RECONSTRUCT_SEGMENTER_AUTO = 0, RECONSTRUCT_SEGMENTER_CLASSIC, RECONSTRUCT_SEGMENTER_LEARNED } reconstruct_segmenter;
+
 typedef struct {
     recon_options recon;   /* image stages: threshold, side */
+    reconstruct_segmenter segmenter;
     double smoothing_px;   /* largest distance of a profile point from the B-spline */
     int segments;          /* angular segments of model.obj/.ply */
     int lods[RECONSTRUCT_MAX_LODS], n_lods; /* extra meshes model_N.* */
@@ -66,7 +75,7 @@ typedef struct {
 
 /* Wall-clock milliseconds per stage (the paper's Table 1 and more). */
 typedef struct {
-    double decode, image, bspline, domains, hausdorff, camera, texture, mesh, overlay, write, total;
+    double decode, prior, image, bspline, domains, hausdorff, camera, texture, mesh, overlay, write, total;
 } reconstruct_timings;
 
 typedef struct {
@@ -87,6 +96,7 @@ typedef struct {
     char camera_note[256];
     recon_texture_t texture; /* by the camera when it is perspective, else by scanlines */
     reconstruct_quality quality;
+    int used_prior;          /* the mask was made with the learned object prior */
     reconstruct_mesh_stats mesh, lods[RECONSTRUCT_MAX_LODS]; /* filled by reconstruct_write */
     reconstruct_timings ms;
 } reconstruction;

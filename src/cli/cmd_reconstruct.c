@@ -16,6 +16,7 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "core/core.h"
+#include "prior/prior.h"
 
 typedef struct {
     const char *out_dir;
@@ -32,6 +33,7 @@ typedef struct {
     double tilt_deg;
     const char *side;
     int threshold_used, dropped_objects, holes_filled, excluded;
+    int used_prior;
     int contour_points, polyline_points, control_points, domains;
     reconstruct_mesh_stats mesh, lods[RECONSTRUCT_MAX_LODS];
     double err_curve_to_polyline, err_polyline_to_curve;
@@ -56,6 +58,10 @@ static void usage(FILE *f)
             "  --threshold N        gray threshold 0..255 for the mask (default: automatic;\n"
             "                       photos with alpha use the alpha channel)\n"
             "  --side left|right|auto  silhouette side the profile is taken from (default auto)\n"
+            "  --segmenter classic|learned|auto  the mask by the classical segmentation alone,\n"
+            "                       with the learned object prior (a network, `make deps-model`),\n"
+            "                       or the prior only where the classical result is refused\n"
+            "                       (default auto)\n"
             "  --segments N         angular segments of model.obj/.ply (default 360)\n"
             "  --lod N,N,...        also write model_N.obj and model_N.ply for each N\n"
             "  --mouth-cap          close the mouth with a disc (the base is always closed)\n"
@@ -101,13 +107,15 @@ static int parse_lods(const char *s, reconstruct_options *o)
 /* Returns -1 to continue, otherwise the exit code. */
 static int parse_options(int argc, char **argv, options *o)
 {
-    enum { OPT_THRESHOLD = 256, OPT_SIDE, OPT_SEGMENTS, OPT_LOD, OPT_MOUTH_CAP, OPT_JSON, OPT_SMOOTHING, OPT_FORCE, OPT_FOV };
+    enum { OPT_THRESHOLD = 256, OPT_SIDE, OPT_SEGMENTS, OPT_LOD, OPT_MOUTH_CAP, OPT_JSON, OPT_SMOOTHING, OPT_FORCE, OPT_FOV,
+           OPT_SEGMENTER };
     static const struct option longopts[] = {
         {"output", required_argument, NULL, 'o'},      {"threshold", required_argument, NULL, OPT_THRESHOLD},
         {"side", required_argument, NULL, OPT_SIDE},   {"segments", required_argument, NULL, OPT_SEGMENTS},
         {"lod", required_argument, NULL, OPT_LOD},     {"mouth-cap", no_argument, NULL, OPT_MOUTH_CAP},
         {"json", no_argument, NULL, OPT_JSON},         {"smoothing", required_argument, NULL, OPT_SMOOTHING},
         {"force", no_argument, NULL, OPT_FORCE},      {"fov", required_argument, NULL, OPT_FOV},
+        {"segmenter", required_argument, NULL, OPT_SEGMENTER},
         {"help", no_argument, NULL, 'h'},              {NULL, 0, NULL, 0},
     };
     *o = (options){.pipeline = reconstruct_options_default()};
@@ -132,6 +140,16 @@ static int parse_options(int argc, char **argv, options *o)
                 o->pipeline.recon.side = RECON_SIDE_AUTO;
             else
                 return cli_usage_error("reconstruct", "--side wants left, right or auto, not '%s'", optarg);
+            break;
+        case OPT_SEGMENTER:
+            if (!strcmp(optarg, "classic"))
+                o->pipeline.segmenter = RECONSTRUCT_SEGMENTER_CLASSIC;
+            else if (!strcmp(optarg, "learned"))
+                o->pipeline.segmenter = RECONSTRUCT_SEGMENTER_LEARNED;
+            else if (!strcmp(optarg, "auto"))
+                o->pipeline.segmenter = RECONSTRUCT_SEGMENTER_AUTO;
+            else
+                return cli_usage_error("reconstruct", "--segmenter wants classic, learned or auto, not '%s'", optarg);
             break;
         case OPT_SEGMENTS:
             if (parse_int(optarg, 3, 100000, &o->pipeline.segments) != 0)
@@ -226,6 +244,7 @@ static void reconstruct_one(const options *o, report *rep)
         rep->dropped_objects = x->dropped_objects;
         rep->holes_filled = x->holes_filled;
         rep->excluded = x->n_excluded;
+        rep->used_prior = r.used_prior;
         rep->quality = r.quality;
         rep->contour_points = x->n_contour;
         rep->polyline_points = x->n_polyline;
@@ -292,7 +311,8 @@ static json_t *report_json(const options *o, const report *r)
     for (int k = 0; k < o->pipeline.n_lods; k++)
         json_array_append_new(lods, mesh_json(&r->lods[k]));
     json_t *timings = json_pack(
-        "{s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f}", "decode", r->ms.decode, "image_processing", r->ms.image,
+        "{s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f}", "decode", r->ms.decode, "object_prior",
+        r->ms.prior, "image_processing", r->ms.image,
         "bspline", r->ms.bspline, "domains", r->ms.domains, "hausdorff", r->ms.hausdorff, "camera", r->ms.camera, "texture", r->ms.texture,
         "mesh", r->ms.mesh, "overlay", r->ms.overlay, "write", r->ms.write, "total", r->ms.total);
     json_t *errors = json_pack("{s:f, s:f}", "curve_to_polyline", r->err_curve_to_polyline, "polyline_to_curve",
@@ -303,9 +323,10 @@ static json_t *report_json(const options *o, const report *r)
                                 r->quality.hausdorff_px, "lr_disagreement", r->quality.lr_disagreement,
                                 "excluded_fraction", r->quality.excluded_fraction, "border_contact",
                                 (int)r->quality.border_contact, "failed", r->quality.failed);
-    return json_pack("{s:s, s:b, s:s, s:i, s:i, s:f, s:s, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, "
+    return json_pack("{s:s, s:b, s:s, s:s, s:i, s:i, s:f, s:s, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, s:i, "
                      "s:o, s:o, s:o, s:o, s:o}",
-                     "photo", json_text(r->photo, photo, sizeof photo), "ok", 1, "output",
+                     "photo", json_text(r->photo, photo, sizeof photo), "ok", 1, "segmenter",
+                     r->used_prior ? "learned" : "classic", "output",
                      json_text(r->out, out, sizeof out), "width", r->width, "height", r->height,
                      "tilt_deg", r->tilt_deg, "side", r->side, "threshold", r->threshold_used, "dropped_objects",
                      r->dropped_objects, "holes_filled", r->holes_filled, "excluded_parts", r->excluded,
@@ -373,6 +394,12 @@ int cmd_reconstruct(int argc, char **argv)
         free(reps);
         return CLI_CANNOT_WRITE;
     }
+
+    char model[4096];
+    if (o.pipeline.segmenter != RECONSTRUCT_SEGMENTER_CLASSIC && !object_prior_available() &&
+        object_prior_model_path(model, sizeof model) == 0)
+        fprintf(stderr, "celadon: the learned object prior is off: no network at %s (`make deps-model` obtains it); "
+                        "the classical segmentation decides alone\n", model);
 
     /* One photo per thread; nested regions inside the stages stay serial. */
     omp_set_max_active_levels(1);

@@ -1,6 +1,6 @@
 /* celadon/image.h's file I/O: the checks every input passes and the
  * temporary-then-rename of every output, around the OpenImageIO backend
- * that decodes and encodes (oiio_backend.h). */
+ * that decodes and encodes (oiio_backend.h), loaded here. */
 #include "celadon/image.h"
 
 #include <errno.h>
@@ -9,6 +9,16 @@
 
 #include "core/core.h"
 #include "image/oiio_backend.h"
+
+/* Defined here only where a build links the backend in (the fuzzers). */
+extern const oiio_backend celadon_oiio_backend __attribute__((weak));
+
+const oiio_backend *oiio_backend_get(char *err, size_t errlen)
+{
+    static backend_library lib =
+        BACKEND_LIBRARY("libceladon-oiio.so", "CELADON_OIIO_BACKEND", OIIO_BACKEND_SYMBOL, "the image library");
+    return backend_library_get(&lib, &celadon_oiio_backend, err, errlen);
+}
 
 /* The backend, after the checks every input passes (the image library
  * opens the file itself). */

@@ -30,10 +30,9 @@ typedef struct {
 /* The symbol the shared object exports. */
 #define OIIO_BACKEND_SYMBOL "celadon_oiio_backend"
 
-/* The backend, loaded on the first call (thread-safe); NULL with the reason
- * in err when the shared object cannot be found or loaded. Linked in, or
- * found as backend_library.h says ($CELADON_OIIO_BACKEND, beside the
- * program or library, where this build put it). */
+/* The backend, loaded by the first call (thread-safe; backend_library.h
+ * says where it is looked for, $CELADON_OIIO_BACKEND first); NULL with one
+ * line in err when it cannot be loaded. */
 const oiio_backend *oiio_backend_get(char *err, size_t errlen);
 
 #endif

@@ -1,4 +1,4 @@
-// The one C++ file: OpenImageIO behind the extern "C" backend of
+// OpenImageIO behind the extern "C" backend of
 // image/oiio_backend.h, built as its own shared object (libceladon-oiio.so).
 // It calls nothing of libceladon's: it is loaded into programs that link
 // libceladon statically.

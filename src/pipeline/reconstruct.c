@@ -12,6 +12,7 @@
 #include "celadon/curve_domains.h"
 #include "celadon/curve_fit.h"
 #include "core/core.h"
+#include "prior/prior.h"
 
 enum { MIN_SIDE_PX = 32 };
 #define MAX_MEGAPIXELS 100.0
@@ -127,18 +128,20 @@ static int fail(int code, char *err, size_t errlen, const char *what)
     return code;
 }
 
-/* Every stage after the decoding, on r->photo; path (NULL for a photo from
- * memory) for its EXIF. t_start: when the run began. */
-static int reconstruct_decoded(const char *path, const reconstruct_options *opt, reconstruction *r, double t_start,
-                               char *err, size_t errlen)
+/* The image stages, the B-spline, its domains and errors, and the quality
+ * figures, on r->photo with the object prior (or NULL). Returns 0, or the
+ * exit code with err set. */
+static int profile_stages(reconstruction *r, const reconstruct_options *opt, const float *prior, char *err,
+                          size_t errlen)
 {
-    double t0;
-    recon_status rs = recon_extract(&r->photo, &opt->recon, &r->extract, err, errlen);
+    recon_options ro = opt->recon;
+    ro.object_prior = prior;
+    recon_status rs = recon_extract(&r->photo, &ro, &r->extract, err, errlen);
     if (rs != RECON_OK)
         return rs == RECON_ERR_INTERNAL ? 1 : 2;
     r->ms.image = r->extract.ms_image_processing;
 
-    t0 = now_seconds();
+    double t0 = now_seconds();
     if (bspline_fit_profile(r->extract.polyline, r->extract.n_polyline, opt->smoothing_px, &r->curve, NULL) != 0)
         return fail(2, err, errlen, "the profile is too short or degenerate to fit a curve");
     /* A surface of revolution needs r >= 0 at every control point (the
@@ -158,12 +161,96 @@ static int reconstruct_decoded(const char *path, const reconstruct_options *opt,
     bridged_hausdorff(r);
     r->ms.hausdorff = ms_since(t0);
     assess(r);
+    return 0;
+}
+
+/* Releases what profile_stages made, keeping the photo. */
+static void drop_profile(reconstruction *r)
+{
+    free(r->domains);
+    r->domains = NULL;
+    r->n_domains = 0;
+    bspline_free(&r->curve);
+    recon_result_free(&r->extract);
+    memset(&r->extract, 0, sizeof r->extract);
+    memset(&r->quality, 0, sizeof r->quality);
+}
+
+/* The object prior of r->photo (malloc'd), or NULL when the network file is
+ * missing or the network failed (err then says why; *failed is set). */
+static float *photo_prior(reconstruction *r, int *failed, char *err, size_t errlen)
+{
+    double t0 = now_seconds();
+    float *prior = malloc((size_t)r->photo.width * r->photo.height * sizeof *prior);
+    int rc = prior ? object_prior_compute(&r->photo, prior, err, errlen) : -1;
+    r->ms.prior = ms_since(t0);
+    *failed = rc < 0;
+    if (rc != 0) {
+        if (!prior)
+            snprintf(err, errlen, "out of memory");
+        free(prior);
+        return NULL;
+    }
+    return prior;
+}
+
+/* The profile by the chosen segmenter. auto: the classical segmentation, and
+ * where its result is refused (by the image stages or the quality gate) and
+ * it came from the segmentation, again with the prior: the prior's result is
+ * kept when it passes, else the classical one stands. */
+static int segmented_profile(reconstruction *r, const reconstruct_options *opt, char *err, size_t errlen)
+{
+    int failed = 0;
+    if (opt->segmenter == RECONSTRUCT_SEGMENTER_LEARNED) {
+        float *prior = photo_prior(r, &failed, err, errlen);
+        if (failed)
+            return 1;
+        int code = profile_stages(r, opt, prior, err, errlen);
+        r->used_prior = prior != NULL;
+        free(prior);
+        return code;
+    }
+    int code = profile_stages(r, opt, NULL, err, errlen);
+    if (opt->segmenter == RECONSTRUCT_SEGMENTER_CLASSIC || code == 1 || (code == 0 && r->quality.passed) ||
+        r->extract.mask_mode != RECON_MASK_GRAPH_CUT)
+        return code;
+    char err2[1024];
+    float *prior = photo_prior(r, &failed, err2, sizeof err2);
+    if (!prior)
+        return code;
+    reconstruction classic = *r;
+    memset(&r->extract, 0, sizeof r->extract);
+    memset(&r->curve, 0, sizeof r->curve);
+    r->domains = NULL;
+    r->n_domains = 0;
+    int code2 = profile_stages(r, opt, prior, err2, sizeof err2);
+    free(prior);
+    if (code2 == 0 && r->quality.passed) {
+        r->used_prior = 1;
+        drop_profile(&classic); /* its own arrays: r's were reset before the second run */
+        return 0;
+    }
+    double ms_prior = r->ms.prior;
+    drop_profile(r);
+    *r = classic;
+    r->ms.prior = ms_prior;
+    return code;
+}
+
+/* Every stage after the decoding, on r->photo; path (NULL for a photo from
+ * memory) for its EXIF. t_start: when the run began. */
+static int reconstruct_decoded(const char *path, const reconstruct_options *opt, reconstruction *r, double t_start,
+                               char *err, size_t errlen)
+{
+    int code = segmented_profile(r, opt, err, errlen);
+    if (code != 0)
+        return code;
     if (!r->quality.passed && !opt->force) {
         snprintf(err, errlen, "quality gate: %s; --force writes the result anyway", r->quality.failed);
         return 2;
     }
 
-    t0 = now_seconds();
+    double t0 = now_seconds();
     fit_camera(path, opt, r);
     r->ms.camera = ms_since(t0);
     t0 = now_seconds();

@@ -198,11 +198,11 @@ static double roughness(const vec2 *p, int n, double *tmp, double *tmp2)
  * its objects, a stand or shadow cut off at the foot, the full-resolution
  * band. Sets the start axis, the excluded parts found, and the edge search's
  * noise delta. */
-static recon_status segment_vessel(const image_t *img, recon_result *res, vec2 *origin, vec2 *dir, double *delta,
-                                   char *err, size_t errlen)
+static recon_status segment_vessel(const image_t *img, const float *prior, recon_result *res, vec2 *origin,
+                                   vec2 *dir, double *delta, char *err, size_t errlen)
 {
     recon_segmentation seg;
-    int src = recon_segment(img, &seg);
+    int src = recon_segment(img, prior, &seg);
     recon_status st = RECON_OK;
     if (src < 0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
@@ -569,7 +569,7 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     double delta = 0.05;
     res->mask_mode = recon_mask_threshold(img, opt ? opt->threshold : -1, gray, res->mask, &res->threshold_used);
     if (res->mask_mode == RECON_MASK_GRAPH_CUT) {
-        st = segment_vessel(img, res, &origin, &dir, &delta, err, errlen);
+        st = segment_vessel(img, opt ? opt->object_prior : NULL, res, &origin, &dir, &delta, err, errlen);
         if (st != RECON_OK)
             goto out;
     } else {

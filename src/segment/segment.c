@@ -52,6 +52,16 @@ enum { ROUNDS = 3 };
 #define SHADOW_ALIKE 0.1
 /* A stand's colours (when support.c found one) make up 30%. */
 #define SUPPORT_PRIOR 0.3
+/* The learned object prior (prior/prior.h) is a likelihood ratio on each
+ * pixel, PRIOR_WEIGHT log(pi / (1 - pi)) nats for object, the network's
+ * probability pi held in [PRIOR_EPS, 1 - PRIOR_EPS]: a network sure of a
+ * pixel weighs 3.9 nats, as much as a symmetry link, so the colour models,
+ * the contrast links and the mirror still decide where they are sure (a
+ * handle's window, a shadow, a stand's edge) and the network where they are
+ * not (a wall band or a floor the backdrop's surface cannot explain, a glaze
+ * of the backdrop's own grey). */
+#define PRIOR_EPS 0.02
+#define PRIOR_WEIGHT 1.0
 /* Initial object: pixels whose backdrop residual has a squared Mahalanobis
  * distance above the chi-square(3) quantile at 1e-4. */
 #define INIT_CHI2 21.1
@@ -118,6 +128,23 @@ static float *downsample(const image_t *img, int f, int w, int h)
             add_row(out + (size_t)y * w * 3, row, w, f, c);
         }
     free(row);
+    return out;
+}
+
+/* The object prior box-filtered at factor f, like the colours. */
+static float *downsample_prior(const float *prior, int W, int f, int w, int h)
+{
+    float *out = calloc((size_t)w * h, sizeof *out);
+    if (!out)
+        return NULL;
+    const float inv = 1.0f / (f * f);
+    for (int y = 0; y < h; y++)
+        for (int j = 0; j < f; j++) {
+            const float *row = prior + (size_t)(y * f + j) * W;
+            for (int x = 0; x < w; x++)
+                for (int i = 0; i < f; i++)
+                    out[(size_t)y * w + x] += inv * row[x * f + i];
+        }
     return out;
 }
 
@@ -505,7 +532,7 @@ static int same_gmm(const recon_gmm *a, const recon_gmm *b)
     return 1;
 }
 
-int recon_segment_start(const image_t *img, recon_segmentation *seg)
+int recon_segment_start(const image_t *img, const float *prior, recon_segmentation *seg)
 {
     memset(seg, 0, sizeof *seg);
     int longest = img->width > img->height ? img->width : img->height;
@@ -521,6 +548,8 @@ int recon_segment_start(const image_t *img, recon_segmentation *seg)
         return -1;
     seg->rgb = downsample(img, f, w, h);
     seg->object = calloc(n, 1);
+    if (prior && !(seg->prior = downsample_prior(prior, img->width, f, w, h)))
+        return -1;
     k->bgc = malloc(n * 3 * sizeof *k->bgc);
     k->use = malloc(n);
     k->lab = malloc(n * sizeof *k->lab);
@@ -545,12 +574,14 @@ int recon_segment_start(const image_t *img, recon_segmentation *seg)
         recon_colour_model_prepare(&seg->model) != 0)
         return -1;
     eval_backdrop(&seg->model.backdrop, k->bgc);
-    /* The initial object: what the backdrop cannot explain. */
+    /* The initial object: what the backdrop cannot explain, or what the
+     * network sees (a dark wall band or a floor shadow that the backdrop
+     * cannot explain would give the object's model its colours). */
     for (size_t p = 0; p < n; p++) {
         double d[3];
         for (int c = 0; c < 3; c++)
             d[c] = seg->rgb[3 * p + c] - k->bgc[3 * p + c];
-        seg->object[p] = recon_quad3(seg->model.bg_icov, d) > INIT_CHI2;
+        seg->object[p] = seg->prior ? seg->prior[p] > 0.5f : recon_quad3(seg->model.bg_icov, d) > INIT_CHI2;
     }
     seg->beta = recon_contrast_beta(seg->rgb, w, h);
     smoothness_weights(seg, k->nlw);
@@ -607,6 +638,11 @@ void recon_segment_data_terms(recon_segmentation *seg)
             double co = object_cost(&seg->model, &k->memo, c), cb = cost_not_object(&seg->model, c, k->l_bg[p]);
             if (x == 0 || y == 0 || x == w - 1 || y == h - 1)
                 co += border;
+            if (seg->prior) {
+                double pi = fmin(fmax(seg->prior[p], PRIOR_EPS), 1 - PRIOR_EPS);
+                co -= PRIOR_WEIGHT * log(pi);
+                cb -= PRIOR_WEIGHT * log1p(-pi);
+            }
             double lo = co < cb ? co : cb;
             /* the source side is the object: a pixel left on the sink side pays cb */
             k->t_src[p] = cb - lo;
@@ -654,9 +690,9 @@ static void work_free(recon_segment_work *k)
     free(k);
 }
 
-int recon_segment(const image_t *img, recon_segmentation *seg)
+int recon_segment(const image_t *img, const float *prior, recon_segmentation *seg)
 {
-    if (recon_segment_start(img, seg) != 0)
+    if (recon_segment_start(img, prior, seg) != 0)
         return -1;
     for (int r = 0; r < ROUNDS; r++) {
         int rc = recon_segment_models(seg);
@@ -676,6 +712,7 @@ void recon_segmentation_free(recon_segmentation *seg)
 {
     work_free(seg->work);
     free(seg->rgb);
+    free(seg->prior);
     free(seg->object);
     memset(seg, 0, sizeof *seg);
 }

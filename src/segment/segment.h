@@ -10,7 +10,10 @@
  *   smoothness contrast-sensitive Potts links between 8-neighbours;
  *   symmetry   once an axis is known, a link between each pixel and its
  *              mirror image across it: the vessel is mirror-symmetric, its
- *              shadow is not.
+ *              shadow is not;
+ *   prior      optionally, a learned object prior (prior/prior.h): the
+ *              network's probability as a likelihood ratio on each pixel,
+ *              and the initial object it sees.
  *
  * docs/algorithms-recon.md ("Segmentation") derives the weights. */
 #ifndef CELADON_SEGMENT_SEGMENT_H
@@ -49,6 +52,7 @@ typedef struct recon_segmentation_s {
     int factor;         /* full-resolution pixels per low-resolution pixel, per side */
     int w, h;           /* low-resolution size */
     float *rgb;         /* w*h*3 box-filtered colour (gray photos: three equal channels) */
+    float *prior;       /* w*h box-filtered object prior, or NULL without one */
     uint8_t *object;    /* w*h: 1 = object after the last round (every component) */
     recon_colour_model model;
     int have_axis;      /* the symmetry links were used */
@@ -94,15 +98,17 @@ double recon_contrast_link(const float *a, const float *b, double beta, int diag
 /* The same between low-resolution pixels p and q. */
 double recon_segment_link(const recon_segmentation *seg, int p, int q, int diagonal);
 
-/* Runs the segmentation. Returns 0, 1 when nothing in the photo differs from
- * its backdrop, or -1 when out of memory. */
-int recon_segment(const image_t *img, recon_segmentation *seg);
+/* Runs the segmentation. prior: NULL, or the object's probability at each
+ * of img's pixels (prior/prior.h). Returns 0, 1 when nothing in the photo
+ * differs from its backdrop, or -1 when out of memory. */
+int recon_segment(const image_t *img, const float *prior, recon_segmentation *seg);
 
 /* recon_segment's steps, in order (bench/bench_recon.c times each; seg is
  * freed by recon_segmentation_free whatever they return):
  *   start       the box-filtered colours, the backdrop fitted on the border
- *               ring, the initial object (what the backdrop cannot explain),
- *               the contrast-sensitive link weights; 0, or -1;
+ *               ring, the initial object (what the backdrop cannot explain;
+ *               with a prior, what the network sees), the contrast-sensitive
+ *               link weights; 0, or -1;
  * then per round
  *   models      the object's colour mixture from the largest component of
  *               the current labels (the first round also fixes the symmetry
@@ -111,7 +117,7 @@ int recon_segment(const image_t *img, recon_segmentation *seg);
  *   cut         the min-cut: the first round builds the graph, the later
  *               ones change its t-links and go on from the last flow;
  *               updates object and rounds; 0, or -1. */
-int recon_segment_start(const image_t *img, recon_segmentation *seg);
+int recon_segment_start(const image_t *img, const float *prior, recon_segmentation *seg);
 int recon_segment_models(recon_segmentation *seg);
 void recon_segment_data_terms(recon_segmentation *seg);
 int recon_segment_cut(recon_segmentation *seg);

@@ -125,7 +125,9 @@ int main(int argc, char **argv)
         char gate[700];
         snprintf(gate, sizeof gate, "%s%s", refused ? "" : "refused by the quality gate: ", verdict);
         snprintf(rows[i], 8192, "| ![%s](img/real-dev/%s.jpg) | **%s**<br>[source](https://www.metmuseum.org/art/collection/search/%s) | %s | %s | %s |\n",
-                 name, name, name, num ? num + 1 : "", !refused && q->passed ? "**passed**" : gate, figures,
+                 name, name, name, num ? num + 1 : "",
+                 !refused && q->passed ? (r.used_prior ? "**passed** (with the object prior)" : "**passed**") : gate,
+                 figures,
                  parts[0] ? parts : "nothing");
         printf("%-50s %s\n", name, !refused && q->passed ? "passed" : gate);
         reconstruction_free(&r);
@@ -145,7 +147,10 @@ int main(int argc, char **argv)
                "(magenta, on the side it was taken from), the corners, and the parts left\n"
                "out of the profile (handles yellow, asymmetry orange, shadows and stands\n"
                "blue). `make real-dev` writes the same overlays over the photos themselves\n"
-               "into out/real-dev/; `make gallery-real` rewrites this page.\n\n"
+               "into out/real-dev/; `make gallery-real` rewrites this page. The segmenter is\n"
+               "the default, auto: the learned object prior (algorithms-recon.md, section 14)\n"
+               "runs only on a photo the classical segmentation leaves refused, and its\n"
+               "result is kept when it passes (marked \"with the object prior\").\n\n"
                "**%d of %d pass the quality gate**; the median left/right disagreement of\n"
                "those is %.2f%% of the largest radius. How the gate decides and the known\n"
                "failures: [algorithms-recon.md](algorithms-recon.md) (sections 9 and 12).\n\n"
