@@ -58,6 +58,8 @@ endif
 # network does not pay their hundreds of libraries at start.
 BACKEND_CXX := src/image/oiio_shim.cpp src/prior/object_prior_dnn.cpp
 LIB_CXX  := $(filter-out $(BACKEND_CXX),$(shell find src -name '*.cpp' | sort))
+# $(call BACKEND_SO,VARIANT): the backends' shared objects of a build.
+BACKEND_SO = $(foreach b,oiio prior,build/$(1)/libceladon-$(b).so)
 CLI_C    := $(shell find src/cli -name '*.c' | sort)
 TEST_C   := $(shell find tests -name '*.c' ! -path 'tests/tools/*' | sort)
 BENCH_C  := $(wildcard bench/*.c)
@@ -187,7 +189,6 @@ build/asan/$(2:.cpp=.o): ALL_CXXFLAGS += -fPIC
 endef
 $(eval $(call backend,oiio,src/image/oiio_shim.cpp,$$(OIIO_LIBS)))
 $(eval $(call backend,prior,src/prior/object_prior_dnn.cpp,$$(OPENCV_LIBS)))
-BACKEND_SO = $(foreach b,oiio prior,build/$(1)/libceladon-$(b).so)
 build/opt/src/core/backend_library.o: ALL_CFLAGS += -DCELADON_BACKEND_DIR='"$(CURDIR)/build/opt"'
 build/asan/src/core/backend_library.o: ALL_CFLAGS += -DCELADON_BACKEND_DIR='"$(CURDIR)/build/asan"'
 
