@@ -229,11 +229,60 @@ Test(bsdf_models, rough_models_tend_to_smooth_ones)
     m = mean_weight(b, &q, 20000, BSDF_GLOSSY_REFLECTION, NULL, NULL);
     cr_assert_float_eq(m.r, 1.0, 2e-3);
 
+    /* Smooth plastic's linear model returns F + (1 - F) rho; Mitsuba's rough
+     * one takes R_int as a 64-point mean 2 / 64 sum F_in(mu_i) mu_i (mu_i =
+     * i / 63), a little below the integral, so rho is scaled by
+     * (1 - R_int exact) / (1 - R_int Mitsuba). */
     b = bsdf_of("<bsdf type='roughplastic'><float name='alpha' value='0.01'/>"
                 "<rgb name='diffuse_reflectance' value='0.8'/></bsdf>");
-    f = fresnel_dielectric(q.wi.z, 1.49 / 1.000277, NULL, NULL, NULL);
+    double eta = 1.49 / 1.000277, r_mean = 0.0;
+    for (int i = 0; i < 64; i++)
+        r_mean += 2.0 / 64 * fresnel_dielectric(fmax(i / 63.0, 1e-6), 1.0 / eta, NULL, NULL, NULL) * (i / 63.0);
+    double rho = 0.8 * (1.0 - fresnel_diffuse_reflectance(1.0 / eta)) / (1.0 - r_mean);
+    f = fresnel_dielectric(q.wi.z, eta, NULL, NULL, NULL);
     m = mean_weight(b, &q, 100000, BSDF_GLOSSY_REFLECTION, NULL, &se);
-    cr_assert_float_eq(m.r, f + (1 - f) * 0.8, 4.0 * se + 3e-3, "%g vs %g", m.r, f + (1 - f) * 0.8);
+    cr_assert_float_eq(m.r, f + (1 - f) * rho, 4.0 * se + 3e-3, "%g vs %g", m.r, f + (1 - f) * rho);
+}
+
+/* Rough plastic's internal reflectance R_int, read off its public eval: at
+ * normal incidence the diffuse term is rho / (1 - R_int) C in the linear mode
+ * and rho / (1 - rho R_int) C in the nonlinear one, so their ratio r gives
+ * R_int = (1 - r) / (rho - r). Against it, the coating's single-scattering
+ * reflection seen from inside, integrated numerically from the
+ * roughdielectric plugin's own eval (wi below the surface, wo over the lower
+ * hemisphere; total internal reflection included): 2 int R_in(mu) mu dmu.
+ * Mitsuba's R_int is that integral as a 64-point mean, hence 0.01. */
+Test(bsdf_models, roughplastic_internal_reflectance_is_single_scattering)
+{
+    const double rho = 0.5;
+    const char *fmt = "<bsdf type='roughplastic'><string name='distribution' value='ggx'/>"
+                      "<float name='alpha' value='1'/><string name='int_ior' value='bk7'/>"
+                      "<rgb name='diffuse_reflectance' value='%g'/><rgb name='specular_reflectance' value='0'/>"
+                      "<boolean name='nonlinear' value='%s'/></bsdf>";
+    char xml[512];
+    snprintf(xml, sizeof xml, fmt, rho, "false");
+    const bsdf_t *lin = bsdf_of(xml);
+    snprintf(xml, sizeof xml, fmt, rho, "true");
+    const bsdf_t *nonlin = bsdf_of(xml);
+    bsdf_query q = query_at(0.0, 0.0, TRANSPORT_RADIANCE);
+    double r = bsdf_eval(lin, &q, v3(0, 0, 1)).g / bsdf_eval(nonlin, &q, v3(0, 0, 1)).g;
+    double r_int = (1.0 - r) / (rho - r);
+
+    const bsdf_t *coat = bsdf_of("<bsdf type='roughdielectric'><string name='distribution' value='ggx'/>"
+                                 "<float name='alpha' value='1'/><string name='int_ior' value='bk7'/></bsdf>");
+    enum { NMU = 48, NCOS = 96, NPHI = 96 };
+    double want = 0.0;
+    for (int k = 0; k < NMU; k++) {
+        double mu = (k + 0.5) / NMU, r_in = 0.0;
+        bsdf_query qi = {.wi = v3(sqrt(1.0 - mu * mu), 0.0, -mu), .uv = v2(0, 0), .mode = TRANSPORT_RADIANCE};
+        for (int i = 0; i < NCOS; i++)
+            for (int j = 0; j < NPHI; j++) {
+                double c = (i + 0.5) / NCOS, sn = sqrt(1.0 - c * c), phi = 2.0 * M_PI * (j + 0.5) / NPHI;
+                r_in += bsdf_eval(coat, &qi, v3(sn * cos(phi), sn * sin(phi), -c)).g * 2.0 * M_PI / (NCOS * NPHI);
+            }
+        want += 2.0 * r_in * mu / NMU;
+    }
+    cr_assert_float_eq(r_int, want, 0.01, "R_int %g, numerical integration %g", r_int, want);
 }
 
 Test(bsdf_models, twosided_mirrors_the_back)
