@@ -255,7 +255,7 @@ static int read_elements(FILE *fp, int binary, const ply_elem *elems, int nelems
                     else if (s >= 3 && s < 6 && m->nrm)
                         m->nrm[3 * i + s - 3] = (float)x;
                     else if (s >= 6 && m->uv)
-                        m->uv[2 * i + s - 6] = (float)(s == 7 ? 1.0 - x : x); /* PLY v is up, bitmap rows go down */
+                        m->uv[2 * i + s - 6] = (float)x; /* as stored: Mitsuba flips only OBJ's v */
                     continue;
                 }
                 double cnt;
