@@ -10,7 +10,7 @@
  * over the table's cosines with the inverse IOR (total internal reflection
  * included). The energy the rough interface loses to its own shadowing is
  * lost, not reflected back to the base: counting it as reflected (R_int =
- * 1 - transmitted) made the linear mode 18% too bright at alpha 1. Both are
+ * 1 - transmitted) made Mitsuba's linear-mode test image 18% too bright. Both are
  * integrated at construction with stratified visible-normal samples. */
 #include "bsdfs/bsdf_impl.h"
 #include "bsdfs/fresnel.h"
