@@ -198,6 +198,18 @@ Test(render_lights, many_lights_through_the_light_tree)
     cr_expect_float_eq(l, want, 0.01 * want, "twelve spheres: %g, want %g", l, want);
 }
 
+/* The envmap of w x h RGB texels px, written to path as a float EXR. */
+static const emitter_t *envmap_of(plugin_xml *fx, const char *path, int w, int h, const float *px)
+{
+    char err[256], xml[400];
+    const char *names[] = {"R", "G", "B"};
+    cr_assert_eq(exr_write_float(path, w, h, 3, names, px, NULL, err, sizeof err), 0, "%s", err);
+    snprintf(xml, sizeof xml, "<emitter type='envmap'><string name='filename' value='%s'/></emitter>", path);
+    const emitter_t *env = plugin_xml_emitter(fx, xml, err, sizeof err);
+    cr_assert_not_null(env, "%s", err);
+    return env;
+}
+
 /* A 4x2 envmap with a distinct value per texel: Mitsuba's convention puts
  * the top row around +y, u = 0 at -z, u = 0.25 at +x, u = 0.5 at +z. The
  * direction of (u, v) is (sin t sin p, cos t, -sin t cos p), p = 2 pi u,
@@ -207,19 +219,14 @@ Test(render_lights, envmap_orientation_and_density)
 {
     render_fixture f;
     render_fixture_open(&f);
-    char path[256], err[256];
+    char path[256];
     snprintf(path, sizeof path, "%s/env.exr", f.dir);
     float px[4 * 2 * 3];
     for (int i = 0; i < 8; i++)
         px[3 * i] = px[3 * i + 1] = px[3 * i + 2] = (float)(i + 1);
-    const char *names[] = {"R", "G", "B"};
-    cr_assert_eq(exr_write_float(path, 4, 2, 3, names, px, NULL, err, sizeof err), 0, "%s", err);
     plugin_xml fx;
     plugin_xml_open(&fx);
-    char xml[400];
-    snprintf(xml, sizeof xml, "<emitter type='envmap'><string name='filename' value='%s'/></emitter>", path);
-    const emitter_t *env = plugin_xml_emitter(&fx, xml, err, sizeof err);
-    cr_assert_not_null(env, "%s", err);
+    const emitter_t *env = envmap_of(&fx, path, 4, 2, px);
     const double s = sqrt(0.5);
     /* phi = atan2(x, -z): column 0's centre is x > 0, z < 0; column 1 x > 0,
      * z > 0; column 2 x < 0, z > 0; column 3 x < 0, z < 0. At theta = 45
@@ -295,7 +302,7 @@ Test(render_lights, envmap_matches_analytic_environment)
     enum { W = 64, H = 32 };
     render_fixture f;
     render_fixture_open(&f);
-    char path[256], err[256];
+    char path[256];
     snprintf(path, sizeof path, "%s/analytic.exr", f.dir);
     static float px[W * H * 3];
     for (int j = 0; j < H; j++)
@@ -305,14 +312,9 @@ Test(render_lights, envmap_matches_analytic_environment)
             for (int c = 0; c < 3; c++)
                 px[3 * (j * W + i) + c] = (float)l;
         }
-    const char *names[] = {"R", "G", "B"};
-    cr_assert_eq(exr_write_float(path, W, H, 3, names, px, NULL, err, sizeof err), 0, "%s", err);
     plugin_xml fx;
     plugin_xml_open(&fx);
-    char xml[400];
-    snprintf(xml, sizeof xml, "<emitter type='envmap'><string name='filename' value='%s'/></emitter>", path);
-    const emitter_t *env = plugin_xml_emitter(&fx, xml, err, sizeof err);
-    cr_assert_not_null(env, "%s", err);
+    const emitter_t *env = envmap_of(&fx, path, W, H, px);
     for (int j = 1; j < H - 1; j += 5)
         for (int i = 0; i < W; i += 7) {
             double t = M_PI * j / (H - 1), p = 2.0 * M_PI * (i + 0.5) / W;
