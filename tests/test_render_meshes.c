@@ -141,5 +141,10 @@ Test(render_meshes, cube_and_ply_uvs_are_mitsubas)
     cr_expect_float_eq(h.uv.x, 0.25, 1e-6, "ply u %g", h.uv.x);
     cr_expect_float_eq(h.uv.y, 0.75, 1e-6, "ply v %g, want 0.75 (as written)", h.uv.y);
     scene_destroy(s);
+    s = load_one(&f, "<shape type=\"ply\"><string name=\"filename\" value=\"sq.ply\"/>"
+                     "<boolean name=\"flip_tex_coords\" value=\"true\"/></shape>");
+    cr_assert(shape_list_intersect(&s->shapes, &r, 0.0, INFINITY, &h));
+    cr_expect_float_eq(h.uv.y, 0.25, 1e-6, "flipped ply v %g, want 0.25", h.uv.y);
+    scene_destroy(s);
     render_fixture_close(&f);
 }
