@@ -9,6 +9,7 @@
 
 #include "bsdfs/bsdf_impl.h"
 #include "bsdfs/fresnel.h"
+#include "scene_xml/spectrum.h"
 #include "support/plugin_xml.h"
 #include "test_bsdf_support.h"
 
@@ -172,11 +173,30 @@ Test(bsdf_models, conductor_presets_and_fresnel)
         if (strcmp(metals[i], "Ag") == 0)
             cr_assert(a.b > 0.9, "silver is white");
     }
-    /* Amorphous carbon is a dark grey absorber: about a fifth of the light at
-     * normal incidence in every channel (Palik's n ~ 2.2-2.4, k ~ 0.7-0.9). */
+    /* Amorphous carbon from its tabulated complex IOR (Palik's n ~ 1.8-2.4,
+     * k ~ 0.7-0.9, mitsuba-data's ior/a-C.{eta,k}.spd), taken to RGB as
+     * Mitsuba's RGB variants take a preset: CIE 1931 integration without
+     * D65, then XYZ -> linear sRGB. Nearly flat spectra come out warm: red
+     * reflects more than blue at normal incidence. */
+    static const double wl[] = {309.950012, 326.263, 344.389008, 364.647003, 387.437988, 413.266998, 442.78598,
+                                476.846008, 516.583008, 563.545044, 619.900024, 688.778015, 774.875, 885.570984};
+    static const double n_ac[] = {1.84, 1.90, 1.94, 2.00, 2.06, 2.11, 2.17, 2.24, 2.30, 2.38, 2.43, 2.43, 2.33, 2.24};
+    static const double k_ac[] = {0.808, 0.91, 0.92, 0.92, 0.91, 0.90, 0.89, 0.88, 0.87, 0.82, 0.75, 0.70, 0.71, 0.80};
+    double xyz[3];
+    spectrum_list_xyz(wl, n_ac, 14, false, xyz);
+    scene_rgb want_eta = spectrum_xyz_to_rgb(xyz);
+    spectrum_list_xyz(wl, k_ac, 14, false, xyz);
+    scene_rgb want_k = spectrum_xyz_to_rgb(xyz);
     cr_assert_eq(bsdf_conductor_preset("a-C", &eta, &k), 0);
+    cr_assert_float_eq(eta.r, want_eta.r, 1e-5, "a-C eta.r %g, table %g", eta.r, want_eta.r);
+    cr_assert_float_eq(eta.g, want_eta.g, 1e-5);
+    cr_assert_float_eq(eta.b, want_eta.b, 1e-5, "a-C eta.b %g, table %g", eta.b, want_eta.b);
+    cr_assert_float_eq(k.r, want_k.r, 1e-5, "a-C k.r %g, table %g", k.r, want_k.r);
+    cr_assert_float_eq(k.g, want_k.g, 1e-5);
+    cr_assert_float_eq(k.b, want_k.b, 1e-5);
     rgb carbon = bsdf_albedo(bsdf_of("<bsdf type='conductor'><string name='material' value='a-C'/></bsdf>"), v2(0, 0));
-    cr_assert(fmin(carbon.r, fmin(carbon.g, carbon.b)) > 0.15 && rgb_max(carbon) < 0.25, "a-C: %g %g %g", carbon.r, carbon.g, carbon.b);
+    cr_assert(carbon.r > carbon.g && carbon.g > carbon.b && carbon.b > 0.15 && carbon.r < 0.3,
+              "a-C: %g %g %g", carbon.r, carbon.g, carbon.b);
     /* Default material "none": a perfect mirror. */
     const bsdf_t *b = bsdf_of("<bsdf type='conductor'/>");
     bsdf_query q = query_at(70.0, 0.0, TRANSPORT_RADIANCE);
@@ -229,11 +249,60 @@ Test(bsdf_models, rough_models_tend_to_smooth_ones)
     m = mean_weight(b, &q, 20000, BSDF_GLOSSY_REFLECTION, NULL, NULL);
     cr_assert_float_eq(m.r, 1.0, 2e-3);
 
+    /* Smooth plastic's linear model returns F + (1 - F) rho; Mitsuba's rough
+     * one takes R_int as a 64-point mean 2 / 64 sum F_in(mu_i) mu_i (mu_i =
+     * i / 63), a little below the integral, so rho is scaled by
+     * (1 - R_int exact) / (1 - R_int Mitsuba). */
     b = bsdf_of("<bsdf type='roughplastic'><float name='alpha' value='0.01'/>"
                 "<rgb name='diffuse_reflectance' value='0.8'/></bsdf>");
-    f = fresnel_dielectric(q.wi.z, 1.49 / 1.000277, NULL, NULL, NULL);
+    double eta = 1.49 / 1.000277, r_mean = 0.0;
+    for (int i = 0; i < 64; i++)
+        r_mean += 2.0 / 64 * fresnel_dielectric(fmax(i / 63.0, 1e-6), 1.0 / eta, NULL, NULL, NULL) * (i / 63.0);
+    double rho = 0.8 * (1.0 - fresnel_diffuse_reflectance(1.0 / eta)) / (1.0 - r_mean);
+    f = fresnel_dielectric(q.wi.z, eta, NULL, NULL, NULL);
     m = mean_weight(b, &q, 100000, BSDF_GLOSSY_REFLECTION, NULL, &se);
-    cr_assert_float_eq(m.r, f + (1 - f) * 0.8, 4.0 * se + 3e-3, "%g vs %g", m.r, f + (1 - f) * 0.8);
+    cr_assert_float_eq(m.r, f + (1 - f) * rho, 4.0 * se + 3e-3, "%g vs %g", m.r, f + (1 - f) * rho);
+}
+
+/* Rough plastic's internal reflectance R_int, read off its public eval: at
+ * normal incidence the diffuse term is rho / (1 - R_int) C in the linear mode
+ * and rho / (1 - rho R_int) C in the nonlinear one, so their ratio r gives
+ * R_int = (1 - r) / (rho - r). Against it, the coating's single-scattering
+ * reflection seen from inside, integrated numerically from the
+ * roughdielectric plugin's own eval (wi below the surface, wo over the lower
+ * hemisphere; total internal reflection included): 2 int R_in(mu) mu dmu.
+ * Mitsuba's R_int is that integral as a 64-point mean, hence 0.01. */
+Test(bsdf_models, roughplastic_internal_reflectance_is_single_scattering)
+{
+    const double rho = 0.5;
+    const char *fmt = "<bsdf type='roughplastic'><string name='distribution' value='ggx'/>"
+                      "<float name='alpha' value='1'/><string name='int_ior' value='bk7'/>"
+                      "<rgb name='diffuse_reflectance' value='%g'/><rgb name='specular_reflectance' value='0'/>"
+                      "<boolean name='nonlinear' value='%s'/></bsdf>";
+    char xml[512];
+    snprintf(xml, sizeof xml, fmt, rho, "false");
+    const bsdf_t *lin = bsdf_of(xml);
+    snprintf(xml, sizeof xml, fmt, rho, "true");
+    const bsdf_t *nonlin = bsdf_of(xml);
+    bsdf_query q = query_at(0.0, 0.0, TRANSPORT_RADIANCE);
+    double r = bsdf_eval(lin, &q, v3(0, 0, 1)).g / bsdf_eval(nonlin, &q, v3(0, 0, 1)).g;
+    double r_int = (1.0 - r) / (rho - r);
+
+    const bsdf_t *coat = bsdf_of("<bsdf type='roughdielectric'><string name='distribution' value='ggx'/>"
+                                 "<float name='alpha' value='1'/><string name='int_ior' value='bk7'/></bsdf>");
+    enum { NMU = 48, NCOS = 96, NPHI = 96 };
+    double want = 0.0;
+    for (int k = 0; k < NMU; k++) {
+        double mu = (k + 0.5) / NMU, r_in = 0.0;
+        bsdf_query qi = {.wi = v3(sqrt(1.0 - mu * mu), 0.0, -mu), .uv = v2(0, 0), .mode = TRANSPORT_RADIANCE};
+        for (int i = 0; i < NCOS; i++)
+            for (int j = 0; j < NPHI; j++) {
+                double c = (i + 0.5) / NCOS, sn = sqrt(1.0 - c * c), phi = 2.0 * M_PI * (j + 0.5) / NPHI;
+                r_in += bsdf_eval(coat, &qi, v3(sn * cos(phi), sn * sin(phi), -c)).g * 2.0 * M_PI / (NCOS * NPHI);
+            }
+        want += 2.0 * r_in * mu / NMU;
+    }
+    cr_assert_float_eq(r_int, want, 0.01, "R_int %g, numerical integration %g", r_int, want);
 }
 
 Test(bsdf_models, twosided_mirrors_the_back)

@@ -97,3 +97,54 @@ Test(render_meshes, smooth_normals_unless_face_normals)
     scene_destroy(s);
     render_fixture_close(&f);
 }
+
+/* Mitsuba's uv conventions (its cube's vertex table; its PLY reader keeps
+ * the file's texture coordinates, only OBJ flips v): each cube face maps
+ * onto [0,1]^2 from one corner, e.g. +x from (1, -1, 1) with u along +y and
+ * v along -z; a PLY vertex's (u, v) arrive as written. */
+Test(render_meshes, cube_and_ply_uvs_are_mitsubas)
+{
+    render_fixture f;
+    render_fixture_open(&f);
+    scene_t *s = load_one(&f, "<shape type=\"cube\"/>");
+    /* per face: a point on it, the ray's direction, and Mitsuba's uv there */
+    static const struct {
+        vec3 p, d;
+        double u, v;
+    } faces[] = {
+        {{1, 0.5, -0.25}, {-1, 0, 0}, 0.75, 0.625},  /* +x: u = (1 + y)/2, v = (1 - z)/2 */
+        {{-1, 0.5, -0.25}, {1, 0, 0}, 0.75, 0.375},  /* -x: u = (1 + y)/2, v = (1 + z)/2 */
+        {{0.5, 1, -0.25}, {0, -1, 0}, 0.25, 0.625},  /* +y: u = (1 - x)/2, v = (1 - z)/2 */
+        {{0.5, -1, -0.25}, {0, 1, 0}, 0.375, 0.75},  /* -y: u = (1 + z)/2, v = (1 + x)/2 */
+        {{0.5, -0.25, 1}, {0, 0, -1}, 0.375, 0.75},  /* +z: u = (1 + y)/2, v = (1 + x)/2 */
+        {{0.5, -0.25, -1}, {0, 0, 1}, 0.625, 0.75},  /* -z: u = (1 - y)/2, v = (1 + x)/2 */
+    };
+    for (int i = 0; i < 6; i++) {
+        surface_hit h;
+        ray3 r = {v3_sub(faces[i].p, v3_scale(faces[i].d, 3.0)), faces[i].d};
+        cr_assert(shape_list_intersect(&s->shapes, &r, 0.0, INFINITY, &h));
+        cr_expect_float_eq(h.uv.x, faces[i].u, 1e-6, "face %d: u %g, want %g", i, h.uv.x, faces[i].u);
+        cr_expect_float_eq(h.uv.y, faces[i].v, 1e-6, "face %d: v %g, want %g", i, h.uv.y, faces[i].v);
+    }
+    scene_destroy(s);
+    char p[256];
+    render_write_file(&f, "sq.ply",
+                      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                      "property float z\nproperty float u\nproperty float v\nelement face 1\n"
+                      "property list uchar int vertex_indices\nend_header\n"
+                      "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n",
+                      p, sizeof p);
+    s = load_one(&f, "<shape type=\"ply\"><string name=\"filename\" value=\"sq.ply\"/></shape>");
+    surface_hit h;
+    ray3 r = {v3(0.25, 0.75, 1.0), v3(0, 0, -1)};
+    cr_assert(shape_list_intersect(&s->shapes, &r, 0.0, INFINITY, &h));
+    cr_expect_float_eq(h.uv.x, 0.25, 1e-6, "ply u %g", h.uv.x);
+    cr_expect_float_eq(h.uv.y, 0.75, 1e-6, "ply v %g, want 0.75 (as written)", h.uv.y);
+    scene_destroy(s);
+    s = load_one(&f, "<shape type=\"ply\"><string name=\"filename\" value=\"sq.ply\"/>"
+                     "<boolean name=\"flip_tex_coords\" value=\"true\"/></shape>");
+    cr_assert(shape_list_intersect(&s->shapes, &r, 0.0, INFINITY, &h));
+    cr_expect_float_eq(h.uv.y, 0.25, 1e-6, "flipped ply v %g, want 0.25", h.uv.y);
+    scene_destroy(s);
+    render_fixture_close(&f);
+}

@@ -181,6 +181,24 @@ Test(texture, checkerboard_pattern)
     cr_assert_float_eq(texture_eval(t, v2(0.1, 0.05)).g, 0.4, 0);  /* (0.4, 0.2) */
 }
 
+/* Read as a scalar (a roughness, a principled weight), Mitsuba's checkerboard
+ * is the other way round: its eval_1 picks color0 where the two fractional
+ * parts are on different sides of 1/2 (`neq` in its checkerboard.cpp, where
+ * eval has `eq`). Mitsuba's reference images of anisotropic checkerboard
+ * roughness are made with it. */
+Test(texture, checkerboard_scalar_is_mitsubas_eval_1)
+{
+    const texture_t *t = texture_of("<texture type='checkerboard'><float name='color0' value='0.05'/>"
+                                    "<float name='color1' value='0.3'/></texture>");
+    texture_point at = {.uv = v2(0.25, 0.25)};
+    cr_assert_float_eq(texture_eval(t, at.uv).g, 0.05, 1e-15, "eval: color0 on the same side");
+    cr_assert_float_eq(texture_eval_1(t, &at), 0.3, 1e-12, "eval_1: color1 on the same side");
+    at.uv = v2(0.75, 0.25);
+    cr_assert_float_eq(texture_eval_1(t, &at), 0.05, 1e-12, "eval_1: color0 on different sides");
+    at.uv = v2(0.75, 0.75);
+    cr_assert_float_eq(texture_eval_1(t, &at), 0.3, 1e-12);
+}
+
 Test(texture, bad_input)
 {
     char err[512] = "", xml[512], path[160];

@@ -3,8 +3,10 @@
  * `to_world`, with Mitsuba's orientation: local direction
  * (sin t sin p, cos t, -sin t cos p) for image coordinates
  * (u, v) = (p / 2pi, t / pi), so the top row looks along +y.
- * Lookups are nearest-texel (piecewise constant), and importance sampling
- * draws texels from a 2D piecewise-constant distribution of
+ * Lookups interpolate bilinearly on Mitsuba's grid: column i sits at
+ * u = (i + 0.5) / width and wraps around (the last column blends into the
+ * first), row j at v = j / (height - 1), so the top row is the +y pole itself
+ * and the bottom row the -y pole. Importance sampling draws texels from a 2D piecewise-constant distribution of
  * max(0, luminance - its mean over the sphere) x sin(theta), which makes
  * sample and density agree exactly. Subtracting the mean is MIS
  * compensation (Karlik et al. 2019, as pbrt-v4 does): BSDF sampling, weighed
@@ -29,6 +31,26 @@ typedef struct {
     double scale;
 } envmap_data;
 
+/* The map's radiance at (u, v) before `scale`: bilinear on Mitsuba's grid. */
+static rgb envmap_interp(const envmap_data *env, vec2 uv)
+{
+    int w = env->width, h = env->height;
+    double x = uv.x - 0.5 / w;
+    x = (x - floor(x)) * w;
+    double y = fmin(fmax(uv.y, 0.0), 1.0) * (h > 1 ? h - 1 : 0);
+    int ix = (int)x, iy = (int)y;
+    ix = ix < w - 1 ? ix : w - 1;
+    iy = iy < h - 2 ? iy : (h > 1 ? h - 2 : 0);
+    double fx = x - ix, fy = h > 1 ? y - iy : 0.0;
+    int ix1 = (ix + 1) % w, iy1 = h > 1 ? iy + 1 : iy;
+    const rgb *row0 = env->pixels + (size_t)iy * w, *row1 = env->pixels + (size_t)iy1 * w;
+    rgb top = rgb_add(rgb_scale(row0[ix], 1.0 - fx), rgb_scale(row0[ix1], fx));
+    rgb bottom = rgb_add(rgb_scale(row1[ix], 1.0 - fx), rgb_scale(row1[ix1], fx));
+    return rgb_add(rgb_scale(top, 1.0 - fy), rgb_scale(bottom, fy));
+}
+
+static rgb envmap_lookup(const envmap_data *env, vec2 uv) { return rgb_scale(envmap_interp(env, uv), env->scale); }
+
 static int envmap_load(envmap_data *env, const char *path, char *err, size_t errlen)
 {
     image_t img;
@@ -49,26 +71,32 @@ static int envmap_load(envmap_data *env, const char *path, char *err, size_t err
         snprintf(err, errlen, "cannot load '%s' as an environment map", path);
         return -1;
     }
-    double mean = 0.0, weight = 0.0;
-    for (int y = 0; y < h; y++) {
-        double sin_t = sin(M_PI * (y + 0.5) / h);
+    for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             const float *px = &img.data[((size_t)y * w + x) * img.channels];
             rgb c = nc >= 3 ? rgb_make(px[0], px[1], px[2]) : rgb_gray(px[0]);
             if (!linear)
                 c = rgb_srgb_to_linear(c);
-            c = rgb_make(fmax(c.r, 0.0), fmax(c.g, 0.0), fmax(c.b, 0.0));
-            env->pixels[(size_t)y * w + x] = c;
-            mean += rgb_luminance(c) * sin_t, weight += sin_t;
+            env->pixels[(size_t)y * w + x] = rgb_make(fmax(c.r, 0.0), fmax(c.g, 0.0), fmax(c.b, 0.0));
+        }
+    image_free(&img);
+    /* The sampled cells are the w x h cells of (u, v); each weighs the
+     * interpolated radiance at its centre. */
+    double mean = 0.0, weight = 0.0;
+    for (int y = 0; y < h; y++) {
+        double sin_t = sin(M_PI * (y + 0.5) / h);
+        for (int x = 0; x < w; x++) {
+            double l = rgb_luminance(envmap_interp(env, v2((x + 0.5) / w, (y + 0.5) / h)));
+            f[(size_t)y * w + x] = l;
+            mean += l * sin_t, weight += sin_t;
         }
     }
-    image_free(&img);
     mean = weight > 0.0 ? mean / weight : 0.0;
     env->excess = 0.0;
     for (int y = 0; y < h; y++) {
         double sin_t = sin(M_PI * (y + 0.5) / h);
         for (int x = 0; x < w; x++) {
-            double e = fmax(0.0, rgb_luminance(env->pixels[(size_t)y * w + x]) - mean);
+            double e = fmax(0.0, f[(size_t)y * w + x] - mean);
             f[(size_t)y * w + x] = e * sin_t;
             env->excess += e * sin_t / weight;
         }
@@ -91,14 +119,6 @@ static vec2 dir_to_uv(const envmap_data *env, vec3 dir, double *sin_t)
     double theta = acos(fmax(-1.0, fmin(1.0, v.y)));
     *sin_t = sin(theta);
     return v2(fmin(phi / (2.0 * M_PI), 1.0 - 1e-12), fmin(theta / M_PI, 1.0 - 1e-12));
-}
-
-static rgb envmap_lookup(const envmap_data *env, vec2 uv)
-{
-    int x = (int)(uv.x * env->width), y = (int)(uv.y * env->height);
-    x = x < 0 ? 0 : (x >= env->width ? env->width - 1 : x);
-    y = y < 0 ? 0 : (y >= env->height ? env->height - 1 : y);
-    return rgb_scale(env->pixels[(size_t)y * env->width + x], env->scale);
 }
 
 static rgb envmap_eval_env(const emitter_t *e, vec3 dir)

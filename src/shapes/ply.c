@@ -255,7 +255,7 @@ static int read_elements(FILE *fp, int binary, const ply_elem *elems, int nelems
                     else if (s >= 3 && s < 6 && m->nrm)
                         m->nrm[3 * i + s - 3] = (float)x;
                     else if (s >= 6 && m->uv)
-                        m->uv[2 * i + s - 6] = (float)(s == 7 ? 1.0 - x : x); /* PLY v is up, bitmap rows go down */
+                        m->uv[2 * i + s - 6] = (float)x; /* as stored: Mitsuba flips only OBJ's v */
                     continue;
                 }
                 double cnt;
@@ -336,6 +336,9 @@ static int ply_create(scene_obj *o, const shape_options *opt, const transform4 *
     (void)opt, (void)to_world;
     char why[600] = "";
     int rc = ply_read(scene_obj_string(o, "filename", NULL), &sh->mesh, why, sizeof why);
+    if (rc == 0 && sh->mesh.uv && scene_obj_bool(o, "flip_tex_coords", false)) /* Mitsuba's option, off by default */
+        for (int i = 0; i < sh->mesh.n_verts; i++)
+            sh->mesh.uv[2 * i + 1] = 1.0f - sh->mesh.uv[2 * i + 1];
     return shape_mesh_from_file(o, rc, why, sh, err, errlen);
 }
 
@@ -343,6 +346,7 @@ static const scene_param_decl ply_params[] = {
     SHAPE_PARAMS_COMMON,
     {"filename", PARAM_STRING, PARAM_REQUIRED | PARAM_FILE, NULL},
     {"face_normals", PARAM_BOOL, 0, NULL},
+    {"flip_tex_coords", PARAM_BOOL, 0, NULL},
     SHAPE_PARAMS_END,
 };
 

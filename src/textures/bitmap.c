@@ -101,7 +101,7 @@ static void bitmap_release(void *data)
     free(((bitmap *)data)->pixels);
 }
 
-static const texture_ops bitmap_ops = {bitmap_lookup, bitmap_release, bitmap_gradient_1, NULL};
+static const texture_ops bitmap_ops = {bitmap_lookup, bitmap_release, bitmap_gradient_1, NULL, NULL};
 
 /* The decoded pixels of img into t, and their mean. */
 static int fill_pixels(texture_t *t, const image_t *img, int decode_srgb)

@@ -1,5 +1,8 @@
 /* Mitsuba's `checkerboard`: color0 where both fractional uv parts are on the
- * same side of 1/2, color1 elsewhere; constant colors only. */
+ * same side of 1/2, color1 elsewhere; constant colors only. Read as a scalar
+ * (a roughness, a weight: Mitsuba's eval_1) the squares swap: Mitsuba's
+ * eval_1 gives color0 where the sides differ, and its reference images
+ * (anisotropic roughness, principled weights) are made with it. */
 #include "textures/texture_impl.h"
 
 typedef struct {
@@ -13,7 +16,14 @@ static rgb checkerboard_lookup(const texture_t *t, vec2 uv)
     return mu == mv ? c->color0 : c->color1;
 }
 
-static const texture_ops checkerboard_ops = {checkerboard_lookup, NULL, NULL, NULL};
+static double checkerboard_lookup_1(const texture_t *t, vec2 uv)
+{
+    const checkerboard *c = t->data;
+    int mu = uv.x - floor(uv.x) > 0.5, mv = uv.y - floor(uv.y) > 0.5;
+    return rgb_luminance(mu != mv ? c->color0 : c->color1);
+}
+
+static const texture_ops checkerboard_ops = {checkerboard_lookup, NULL, NULL, NULL, checkerboard_lookup_1};
 
 static texture_t *checkerboard_create(scene_obj *o, char *err, size_t errlen)
 {

@@ -29,6 +29,8 @@ rgb texture_mean(const texture_t *t)
 
 double texture_eval_1(const texture_t *t, const texture_point *at)
 {
+    if (t->ops->lookup_1)
+        return t->ops->lookup_1(t, uv_apply(&t->to_uv, at->uv));
     return rgb_luminance(texture_eval_at(t, at));
 }
 

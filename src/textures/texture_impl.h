@@ -21,6 +21,9 @@ typedef struct {
     /* For a texture of the surface point rather than of uv (mesh_attribute):
      * the value at at (no to_uv); NULL: lookup at the moved uv. */
     rgb (*lookup_at)(const texture_t *t, const texture_point *at);
+    /* The value read as a scalar (Mitsuba's eval_1) at the moved uv, where
+     * it is not the luminance of lookup; NULL: that luminance. */
+    double (*lookup_1)(const texture_t *t, vec2 uv);
 } texture_ops;
 
 struct texture {
