@@ -27,6 +27,11 @@ int image_read(const char *path, image_t *img, char *err, size_t errlen);
 int image_read_checked(const char *path, int min_side, double max_megapixels, image_t *img, char *err,
                        size_t errlen);
 
+/* image_read with the decoding libraries' own stderr lines suppressed, as
+ * image_read_checked does them: for files whose error the caller reports
+ * in one line of its own (a scene's textures). */
+int image_read_quiet(const char *path, image_t *img, char *err, size_t errlen);
+
 /* Reads only the header: size and channels, cheap. */
 int image_probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen);
 

@@ -51,7 +51,8 @@ int render_part_write(const film_t *film, const scene_t *s, render_part p, int c
  * complete, each share once and none missing, and sums them (in share
  * order) into film, which is film_init'ed here (film_free it). Returns 0;
  * -2 when the set is refused (a file that is no part, a part of another
- * render, an incomplete, duplicated or missing part), with one line in err
+ * render, an incomplete, duplicated or missing part, a part whose pixels
+ * cannot be decoded: damaged or truncated), with one line in err
  * naming the file or the missing shares; -1 on other failures. */
 int render_parts_merge(const char *const *paths, int n, const scene_t *of, film_t *film, char *err, size_t errlen);
 

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "celadon/parts.h"
 #include "cli/cli_args.h"
@@ -28,6 +29,18 @@ static int output_kind_ok(const char *path)
         return 0;
     return !strcasecmp(dot, ".exr") || !strcasecmp(dot, ".png") || !strcasecmp(dot, ".jpg") ||
            !strcasecmp(dot, ".jpeg");
+}
+
+/* The part that out names (the same file, under any name), or NULL. */
+static const char *part_named_by(const char *out, const char *const *parts, int n)
+{
+    struct stat so, sp;
+    if (stat(out, &so) != 0)
+        return NULL;
+    for (int i = 0; i < n; i++)
+        if (stat(parts[i], &sp) == 0 && sp.st_dev == so.st_dev && sp.st_ino == so.st_ino)
+            return parts[i];
+    return NULL;
 }
 
 int cmd_merge(int argc, char **argv)
@@ -59,7 +72,11 @@ int cmd_merge(int argc, char **argv)
         rc = cli_usage_error("merge", "output '%s' must end in .exr, .png, .jpg or .jpeg", out);
     else if (rc < 0 && n == 0)
         rc = cli_usage_error("merge", "%s", "no PART.exr given");
-    else if (rc < 0 && cli_check_output(out, 0) != 0)
+    else if (rc < 0 && part_named_by(out, parts, n)) {
+        fprintf(stderr, "celadon: %s: is one of the parts being merged (%s): choose another output\n", out,
+                part_named_by(out, parts, n));
+        rc = 2;
+    } else if (rc < 0 && cli_check_output(out, 0) != 0)
         rc = CLI_CANNOT_WRITE;
     if (rc < 0) {
         film_t film;

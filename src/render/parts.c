@@ -211,16 +211,17 @@ static int film_for(const part_info *pi, film_t *film, char *err, size_t errlen)
     return -2;
 }
 
-/* Adds one part's averages times its weights into film. */
+/* Adds one part's averages times its weights into film: -2 when its
+ * pixels cannot be read (a damaged or truncated part is bad input). */
 static int add_part(const part_info *pi, film_t *film, char *err, size_t errlen)
 {
     exr_in *e = exr_in_open(pi->path, err, errlen);
     if (!e)
-        return -1;
+        return -2;
     part_pixels pp = part_pixels_alloc(film);
     int nch = pp.nch;
     size_t npix = (size_t)film->width * film->height;
-    int rc = exr_in_read(e, nch, pp.names, pp.px, err, errlen);
+    int rc = exr_in_read(e, nch, pp.names, pp.px, err, errlen) == 0 ? 0 : -2;
     for (size_t i = 0; rc == 0 && i < npix; i++) {
         double w = pp.px[i * nch + nch - 1];
         for (int c = 0; c < film->nchannels; c++)
