@@ -8,7 +8,7 @@ PKGS    := OpenImageIO OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd libxxh
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
             libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
-            zlib1g-dev
+            zlib1g-dev openimageio-tools
 
 # Flags depend on pkg-config, which may be missing before `make deps`.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)

@@ -49,6 +49,22 @@ int image_write_u8(const char *path, int width, int height, int channels,
 int image_write_u16(const char *path, int width, int height, int channels,
                     const uint16_t *pixels, char *err, size_t errlen);
 
+/* A text attribute of a written image, under OpenImageIO's name for it:
+ * "ImageDescription" (PNG's Description, JPEG's comment, TIFF's
+ * ImageDescription), "Software", "DateTime", or any other name (a PNG
+ * text chunk, a TIFF or EXR header attribute). */
+typedef struct {
+    const char *name, *value;
+} image_text;
+
+typedef enum { IMAGE_U8, IMAGE_U16, IMAGE_F32 } image_sample_type;
+
+/* Writes pixels of that sample type with the text attributes, atomically
+ * like image_write_u8; the format follows the extension (png, jpg, tif,
+ * hdr, ...). Returns 0, or -1 with a one-line reason. */
+int image_write_with_text(const char *path, int width, int height, int channels, image_sample_type type,
+                          const void *pixels, const image_text *text, int ntext, char *err, size_t errlen);
+
 image_t image_alloc(int width, int height, int channels);
 void image_free(image_t *img);
 

@@ -8,7 +8,10 @@
  *
  * A part's EXR: each channel of the film (R, G, B and the AOVs) as the
  * average of the part's samples, so a part is an image of its own; the
- * channel celadon.weight, each pixel's sum of sample weights; and the string
+ * channel celadon.weight, each pixel's sum of sample weights; the channels
+ * celadon.samples, celadon.luminance and celadon.luminance2, the pixel's own
+ * sample count and the sums of their luminance and its square (film_t's
+ * samples, for the spp and variance channels); and the string
  * attributes celadon.part ("K/N"), celadon.spp (the full render's),
  * celadon.samples ("first-last", the share), celadon.seed, celadon.scene
  * (scene_digest in hex), celadon.channels (the film's channels in order),

@@ -51,9 +51,14 @@ int render_aov_parse(const char *list, unsigned *mask);
 int render_scene(const scene_t *s, const render_options *opt, film_t *film, render_stats *stats, char *err,
                  size_t errlen);
 
-/* Asks render_scene to stop after the samples in flight (or, if called
- * before it starts, as soon as it starts); the request is cleared when
- * render_scene returns. Async-signal-safe (meant for a SIGINT handler). */
+/* Asks render_scene to stop once the pass under way is finished (so
+ * every pixel keeps the same count of samples, unless the first pass is
+ * under way), or, called a second time, after the samples in flight (or,
+ * if called before it starts, as soon as it starts); the request is
+ * cleared when render_scene returns. Async-signal-safe (meant for a
+ * signal handler: the first Ctrl-C finishes the pass, the second stops). */
 void render_request_stop(void);
+/* Asks it to stop after the samples in flight. Async-signal-safe. */
+void render_request_stop_now(void);
 
 #endif

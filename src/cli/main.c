@@ -1,10 +1,9 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "celadon/version.h"
 #include "cli/commands.h"
 #include "core/core.h"
-
-#define CELADON_VERSION "0.1.0"
 
 static const cli_command commands[] = {
     {"reconstruct", "photo(s) of a vessel -> profile.json, texture, meshes, overlay", cmd_reconstruct},

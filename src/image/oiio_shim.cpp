@@ -220,7 +220,7 @@ extern "C" int image_read(const char *path, image_t *img, char *err, size_t errl
 }
 
 static int write_pixels(const char *path, const char *tmp, int w, int h, int ch, TypeDesc type, const void *pixels,
-                        char *err, size_t errlen)
+                        const image_text *text, int ntext, char *err, size_t errlen)
 {
     auto out = ImageOutput::create(path);
     if (!out) {
@@ -237,6 +237,8 @@ static int write_pixels(const char *path, const char *tmp, int w, int h, int ch,
     // (docs/BENCHMARKS.md, "Batch throughput").
     spec.attribute("png:compressionLevel", PNG_COMPRESSION_LEVEL);
     spec.attribute("png:filter", PNG_ROW_FILTER);
+    for (int i = 0; i < ntext; i++)
+        spec.attribute(text[i].name, text[i].value);
     if (!out->open(tmp, spec) || !out->write_image(type, pixels) || !out->close()) {
         set_err(err, errlen, out->geterror());
         return -1;
@@ -249,12 +251,13 @@ static int write_pixels(const char *path, const char *tmp, int w, int h, int ch,
 }
 
 // Written to a temporary sibling, renamed when whole; removed on any failure.
-static int write_atomically(const char *path, int w, int h, int ch, TypeDesc type, const void *pixels, char *err,
-                            size_t errlen)
+static int write_atomically(const char *path, int w, int h, int ch, TypeDesc type, const void *pixels,
+                            const image_text *text, int ntext, char *err, size_t errlen)
 {
     char tmp[4200];
     atomic_temp_name(path, tmp, sizeof tmp);
-    int rc = guarded(err, errlen, [&] { return write_pixels(path, tmp, w, h, ch, type, pixels, err, errlen); });
+    int rc = guarded(err, errlen,
+                     [&] { return write_pixels(path, tmp, w, h, ch, type, pixels, text, ntext, err, errlen); });
     if (rc != 0)
         std::remove(tmp);
     atomic_temp_done(tmp);
@@ -264,11 +267,18 @@ static int write_atomically(const char *path, int w, int h, int ch, TypeDesc typ
 extern "C" int image_write_u8(const char *path, int width, int height, int channels, const uint8_t *pixels,
                               char *err, size_t errlen)
 {
-    return write_atomically(path, width, height, channels, TypeDesc::UINT8, pixels, err, errlen);
+    return write_atomically(path, width, height, channels, TypeDesc::UINT8, pixels, nullptr, 0, err, errlen);
 }
 
 extern "C" int image_write_u16(const char *path, int width, int height, int channels, const uint16_t *pixels,
                                char *err, size_t errlen)
 {
-    return write_atomically(path, width, height, channels, TypeDesc::UINT16, pixels, err, errlen);
+    return write_atomically(path, width, height, channels, TypeDesc::UINT16, pixels, nullptr, 0, err, errlen);
+}
+
+extern "C" int image_write_with_text(const char *path, int width, int height, int channels, image_sample_type type,
+                                     const void *pixels, const image_text *text, int ntext, char *err, size_t errlen)
+{
+    TypeDesc t = type == IMAGE_U8 ? TypeDesc::UINT8 : type == IMAGE_U16 ? TypeDesc::UINT16 : TypeDesc::FLOAT;
+    return write_atomically(path, width, height, channels, t, pixels, text, ntext, err, errlen);
 }

@@ -9,11 +9,14 @@
 #include "render/exr_read.h"
 
 #define WEIGHT_CHANNEL "celadon.weight"
+/* film_t.samples: each pixel's own sample count, luminance sum and sum of
+ * squares, after the weight. */
+static const char *const SAMPLE_CHANNELS[3] = {"celadon.samples", "celadon.luminance", "celadon.luminance2"};
 
 enum { MAX_CHANNELS = 64, ATTR_LEN = 1024 };
 
 /* A part's pixels as its EXR holds them: the film's channels, then the
- * weight, interleaved. */
+ * weight and the sample counts, interleaved. */
 typedef struct {
     int nch;
     float *px;
@@ -22,14 +25,16 @@ typedef struct {
 
 static part_pixels part_pixels_alloc(const film_t *film)
 {
-    part_pixels pp = {film->nchannels + 1, NULL, NULL};
+    part_pixels pp = {film->nchannels + 4, NULL, NULL};
     pp.px = malloc(sizeof *pp.px * (size_t)film->width * (size_t)film->height * (size_t)pp.nch);
     pp.names = malloc(sizeof *pp.names * (size_t)pp.nch);
     if (!pp.px || !pp.names)
         abort();
     for (int c = 0; c < film->nchannels; c++)
         pp.names[c] = film->names[c];
-    pp.names[pp.nch - 1] = WEIGHT_CHANNEL;
+    pp.names[film->nchannels] = WEIGHT_CHANNEL;
+    for (int i = 0; i < 3; i++)
+        pp.names[film->nchannels + 1 + i] = SAMPLE_CHANNELS[i];
     return pp;
 }
 
@@ -85,7 +90,9 @@ int render_part_write(const film_t *film, const scene_t *s, render_part p, int c
         double w = film->weight[i];
         for (int c = 0; c < film->nchannels; c++)
             pp.px[i * nch + c] = w > 0 ? (float)(film->sum[i * film->nchannels + c] / w) : 0.0f;
-        pp.px[i * nch + nch - 1] = (float)w;
+        pp.px[i * nch + film->nchannels] = (float)w;
+        for (int k = 0; k < 3; k++)
+            pp.px[i * nch + film->nchannels + 1 + k] = (float)film->samples[3 * i + k];
     }
     int rc = exr_write_float_attrs(path, film->width, film->height, nch, pp.names, pp.px, &film->meta, attrs,
                                    (int)(sizeof attrs / sizeof attrs[0]), err, errlen);
@@ -137,7 +144,8 @@ static int read_info(const char *path, part_info *pi, char *err, size_t errlen)
     else if (render_part_parse(part, &pi->part) != 0 || pi->spp < 1 || !format_ok || !pi->seed[0] || !pi->scene[0] ||
              !pi->channels[0] || sscanf(samples, "%d-%d%n", &first, &last, &len) != 2 || samples[len] ||
              render_part_samples(pi->part, pi->spp, &pi->s0, &pi->s1) != 0 || first != pi->s0 ||
-             last != pi->s1 - 1 || !exr_in_has_channel(e, WEIGHT_CHANNEL))
+             last != pi->s1 - 1 || !exr_in_has_channel(e, WEIGHT_CHANNEL) ||
+             !exr_in_has_channel(e, SAMPLE_CHANNELS[0]))
         snprintf(err, errlen, "%s: its celadon.* header is damaged or not this version's", path);
     else if (!pi->complete)
         snprintf(err, errlen, "%s: part %d/%d is incomplete (its render was interrupted): render it again", path,
@@ -223,10 +231,12 @@ static int add_part(const part_info *pi, film_t *film, char *err, size_t errlen)
     size_t npix = (size_t)film->width * film->height;
     int rc = exr_in_read(e, nch, pp.names, pp.px, err, errlen) == 0 ? 0 : -2;
     for (size_t i = 0; rc == 0 && i < npix; i++) {
-        double w = pp.px[i * nch + nch - 1];
+        double w = pp.px[i * nch + film->nchannels];
         for (int c = 0; c < film->nchannels; c++)
             film->sum[i * film->nchannels + c] += w * pp.px[i * nch + c];
         film->weight[i] += w;
+        for (int k = 0; k < 3; k++)
+            film->samples[3 * i + k] += pp.px[i * nch + film->nchannels + 1 + k];
     }
     part_pixels_free(&pp);
     exr_in_close(e);

@@ -12,6 +12,7 @@
  * the other, the tiles of a colour in parallel. Every pixel then receives
  * its contributions in an order fixed by the tiles and samples alone,
  * whatever the threads and their schedule. */
+#include <inttypes.h>
 #include <math.h>
 #include <omp.h>
 #include <signal.h>
@@ -25,9 +26,13 @@
 
 enum { TILE = 16 };
 
+/* 0: render on; STOP_AFTER_PASS: finish the pass under way; STOP_NOW: stop
+ * after the samples in flight. */
+enum { STOP_AFTER_PASS = 1, STOP_NOW = 2 };
 static volatile sig_atomic_t stop_requested;
 
-void render_request_stop(void) { stop_requested = 1; }
+void render_request_stop(void) { stop_requested = stop_requested ? STOP_NOW : STOP_AFTER_PASS; }
+void render_request_stop_now(void) { stop_requested = STOP_NOW; }
 
 int render_aov_parse(const char *list, unsigned *mask)
 {
@@ -131,7 +136,7 @@ static uint64_t render_tile(const render_job *j, int tx, int ty, int s0, int s1)
     for (int y = ty; y < ty + TILE && y < j->y1; y++)
         for (int x = tx; x < tx + TILE && x < j->x1; x++)
             for (int k = s0; k < s1; k++) {
-                if (stop_requested)
+                if (stop_requested == STOP_NOW)
                     goto done;
                 sampler_stream smp;
                 sampler_start(&s->sampler, &smp, (uint32_t)(x + j->border), (uint32_t)(y + j->border), (uint32_t)k);
@@ -147,6 +152,9 @@ static uint64_t render_tile(const render_job *j, int tx, int ty, int s0, int s1)
                 rgb L = integrator_li(s->integrator, &sc, &cr.ray, cr.tmin, cr.tmax, &smp, need_aov ? aov : NULL);
                 pack_values(j, L, aov, vals);
                 splat(j->film, &s->film.filter, x, y, sx, sy, vals);
+                /* A tile owns its pixels: no other thread counts into them. */
+                if (x >= 0 && y >= 0 && x < j->film->width && y < j->film->height)
+                    film_count_sample(j->film, x, y, rgb_luminance(L));
                 n++;
             }
 done:
@@ -173,6 +181,9 @@ static void describe(const scene_t *s, film_metadata *m)
     }
     transform4 inv = transform_inverse(&cam->to_world);
     memcpy(m->world_to_camera, inv.m, sizeof m->world_to_camera);
+    snprintf(m->sampler, sizeof m->sampler, "%s", s->sampler.plugin);
+    snprintf(m->scene_digest, sizeof m->scene_digest, "%016" PRIx64, scene_digest(s));
+    m->ranks = 1;
 }
 
 /* The film's channels beyond R, G, B and A: the requested AOVs (named as
@@ -249,7 +260,7 @@ void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, 
     /* Tiles of one colour are k tiles apart: (k - 1) TILE > 2 radius. */
     int k = rfilter_is_box(filter) ? 1 : 2 + (int)floor(2.0 * filter->radius / TILE);
     double busy = 0.0, idle = 0.0;
-    for (int colour = 0; colour < k * k && !stop_requested; colour++) {
+    for (int colour = 0; colour < k * k && stop_requested != STOP_NOW; colour++) {
         int cx = colour % k, cy = colour / k;
         int ncx = (tiles_x - cx + k - 1) / k, ncy = (tiles_y - cy + k - 1) / k, ntiles = ncx * ncy, team = 1;
         double spent = 0.0, most = 0.0;
@@ -258,7 +269,7 @@ void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, 
             double mine = 0.0; /* this thread's CPU seconds in tiles */
 #pragma omp for schedule(dynamic, 1)
             for (int t = 0; t < ntiles; t++) {
-                if (stop_requested)
+                if (stop_requested == STOP_NOW)
                     continue;
                 int tx = job.x0 + (cx + k * (t % ncx)) * TILE, ty = job.y0 + (cy + k * (t / ncx)) * TILE;
                 double c0 = thread_cpu_seconds();
@@ -318,11 +329,17 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
     render_tally tally = {.bar = opt->progress ? &bar : NULL, .t_start = now_seconds()};
     if (opt->progress)
         progress_begin(&bar, "render", render_sample_count(s, s0, s1));
-    for (int p0 = s0; p0 < s1 && !stop_requested; p0 += pass_spp)
+    int passes = 0;
+    for (int p0 = s0; p0 < s1 && !stop_requested; p0 += pass_spp) {
         render_samples(s, threads, opt->aovs, film, p0, p0 + pass_spp < s1 ? p0 + pass_spp : s1, 0, cam->height,
                        &tally);
-    render_stats st = {now_seconds() - tally.t_start, atomic_load(&tally.taken), stop_requested != 0,
+        passes += stop_requested != STOP_NOW;
+    }
+    render_stats st = {now_seconds() - tally.t_start, atomic_load(&tally.taken),
+                       stop_requested != 0 && atomic_load(&tally.taken) < render_sample_count(s, s0, s1),
                        tally.busy_cpu_seconds, tally.idle_cpu_seconds};
+    film->meta.seconds = st.seconds, film->meta.interrupted = st.interrupted;
+    film->meta.passes = passes, film->meta.threads = threads;
     if (opt->progress) {
         if (!st.interrupted)
             progress_end(&bar);

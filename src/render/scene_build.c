@@ -64,7 +64,7 @@ static int build_sampler(struct scene *s, scene_obj *sensor, const scene_options
         o = &implicit;
     if (sampler_plugin_find(o->type)->create(o, &s->sampler, err, errlen) != 0)
         return -1;
-    const char *type = o->type;
+    const char *type = sampler_plugin_find(o->type)->decl.type; /* static: o is freed after the build */
     if (opt->sampler && strcmp(opt->sampler, o->type) != 0) {
         const sampler_plugin *named = sampler_plugin_find(opt->sampler);
         if (!named)

@@ -1,0 +1,294 @@
+/* What `celadon render` writes (issue 28): the metadata every format
+ * carries, as `oiiotool --info -v` shows it; an interrupted render's
+ * header and per-pixel sample counts; the formats and view transforms. */
+#include <criterion/criterion.h>
+#include <fcntl.h>
+#include <math.h>
+#include <openexr.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "celadon/film.h"
+#include "celadon/image.h"
+#include "support/cli_run.h"
+#include "support/exr_planes.h"
+#include "support/scratch_dir.h"
+
+extern char **environ;
+
+static char dir[64];
+
+static void open_dir(void) { scratch_dir_make(dir, sizeof dir, "outputs"); }
+static void close_dir(void) { scratch_dir_remove(dir); }
+
+TestSuite(render_outputs, .init = open_dir, .fini = close_dir);
+
+/* A white diffuse sphere under a white sky: every sample is 1 wherever it
+ * lands (the furnace), through a box filter, so a pixel is black exactly
+ * when it has no sample. */
+static const char sphere_xml[] =
+    "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
+    "<lookat origin=\"0,0,4\" target=\"0,0,0\" up=\"0,1,0\"/></transform>"
+    "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"
+    "<film type=\"hdrfilm\"><integer name=\"width\" value=\"24\"/><integer name=\"height\" value=\"16\"/>"
+    "<rfilter type=\"box\"/></film></sensor>"
+    "<emitter type=\"constant\"><rgb name=\"radiance\" value=\"1,1,1\"/></emitter>"
+    "<shape type=\"sphere\"><bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"1,1,1\"/></bsdf></shape>"
+    "</scene>\n";
+
+static void write_scene(char *path, size_t len)
+{
+    snprintf(path, len, "%s/scene.xml", dir);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs(sphere_xml, f);
+    fclose(f);
+}
+
+static void render_ok(const char *const *args)
+{
+    cli_result r = cli_run(dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cli_result_free(&r);
+}
+
+/* What `oiiotool --info -v path` prints (malloc'd). */
+static char *oiio_info(const char *path)
+{
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "oiiotool --info -v '%s' 2>&1", path);
+    FILE *p = popen(cmd, "r");
+    cr_assert_not_null(p);
+    size_t cap = 1 << 16, n = 0;
+    char *text = malloc(cap);
+    cr_assert_not_null(text);
+    n = fread(text, 1, cap - 1, p);
+    text[n] = '\0';
+    cr_assert_eq(pclose(p), 0, "oiiotool (Debian's openimageio-tools, `make deps`) failed: %s", text);
+    return text;
+}
+
+/* Every format carries what made it: the EXR as header attributes, PNG as
+ * text chunks, JPEG in its comment; oiiotool shows them all. */
+Test(render_outputs, every_format_says_what_made_it, .timeout = 120)
+{
+    char scene[128], out[160];
+    write_scene(scene, sizeof scene);
+    static const char *const exts[] = {"exr", "png", "jpg", "tif", "hdr"};
+    static const char *const keys[] = {"celadon/version",      "celadon/scene",     "celadon/sceneDigest",
+                                       "celadon/commandLine",  "celadon/seed",      "celadon/sampler",
+                                       "celadon/integrator",   "celadon/sppRequested", "celadon/sppDone",
+                                       "celadon/passes",       "celadon/renderSeconds", "celadon/interrupted",
+                                       "celadon/threads",      "celadon/ranks"};
+    for (size_t e = 0; e < sizeof exts / sizeof exts[0]; e++) {
+        snprintf(out, sizeof out, "%s/out.%s", dir, exts[e]);
+        render_ok((const char *[]){"render", scene, "-o", out, "--seed", "77", "--threads", "2", NULL});
+        char *info = oiio_info(out);
+        if (strcmp(exts[e], "hdr") == 0) { /* Radiance's header has no room for them */
+            free(info);
+            continue;
+        }
+        for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
+            cr_expect_not_null(strstr(info, keys[k]), "%s: no %s in\n%s", exts[e], keys[k], info);
+        cr_expect_not_null(strstr(info, "77"), "%s: the seed", exts[e]);
+        cr_expect_not_null(strstr(info, "--seed 77"), "%s: the command line", exts[e]);
+        cr_expect_not_null(strstr(info, "independent"), "%s: the sampler", exts[e]);
+        if (!strcmp(exts[e], "exr")) {
+            cr_expect_not_null(strstr(info, "celadon/sppDone: \"4\""), "%s", info);
+            cr_expect_not_null(strstr(info, "celadon/interrupted: \"no\""), "%s", info);
+            cr_expect_not_null(strstr(info, "DateTime: \""), "the standard capDate (OpenImageIO: DateTime): %s", info);
+            cr_expect_not_null(strstr(info, "channel list: R, G, B\n"), "an uninterrupted render has no spp "
+                                                                         "channel: %s", info);
+        }
+        free(info);
+    }
+}
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Runs celadon ARGS (output thrown away), sends sig after delay seconds
+ * once it handles sig; the wait status. */
+static int run_interrupted(const char *const *args, double delay, int sig)
+{
+    const char *argv[32] = {cli_bin()};
+    int n = 1;
+    for (; *args && n < 31; args++)
+        argv[n++] = *args;
+    argv[n] = NULL;
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+    pid_t pid;
+    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, (char *const *)argv, environ), 0);
+    posix_spawn_file_actions_destroy(&fa);
+    cr_assert(cli_wait_for_handler(pid, sig, 60.0), "no handler for signal %d", sig);
+    struct timespec ts = {(time_t)delay, (long)((delay - (time_t)delay) * 1e9)};
+    nanosleep(&ts, NULL);
+    kill(pid, sig);
+    int status;
+    cr_assert_eq(waitpid(pid, &status, 0), pid);
+    return status;
+}
+
+/* The string attribute of the EXR header (into out; "" when missing). */
+static void header_string(const char *path, const char *name, char *out, size_t len)
+{
+    exr_context_t ctx;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    cr_assert_eq(exr_start_read(&ctx, path, &init), EXR_ERR_SUCCESS, "%s", path);
+    const char *s = NULL;
+    int32_t n = 0;
+    out[0] = '\0';
+    if (exr_attr_get_string(ctx, 0, name, &n, &s) == EXR_ERR_SUCCESS)
+        snprintf(out, len, "%.*s", (int)n, s);
+    exr_finish(&ctx);
+}
+
+/* SIGINT and SIGHUP finish the pass (every pixel the same count, a whole
+ * number of passes), SIGTERM stops at once (an spp channel where the
+ * counts differ); each writes the image labelled interrupted and exits
+ * 128 + the signal. The truth of the spp channel: under the furnace with a
+ * box filter a pixel is black exactly when it got no sample. */
+Test(render_outputs, an_interrupted_render_says_so_pixel_by_pixel, .timeout = 300)
+{
+    char scene[128], out[160], spp[16];
+    write_scene(scene, sizeof scene);
+    snprintf(out, sizeof out, "%s/cut.exr", dir);
+    snprintf(spp, sizeof spp, "%d", 4096);
+    const char *args[] = {"render", scene, "-o", out, "--spp", spp, "--res", "48x32", "--threads", "2", NULL};
+    static const int sigs[] = {SIGINT, SIGHUP, SIGTERM};
+    int cut_short = 0;
+    for (int k = 0; k < 3; k++) {
+        unlink(out);
+        double t0 = now();
+        int status = run_interrupted(args, 0.5, sigs[k]);
+        cr_assert(WIFEXITED(status) && WEXITSTATUS(status) == 128 + sigs[k], "signal %d: status %#x (%.1f s)",
+                  sigs[k], status, now() - t0);
+        exr_planes e;
+        read_exr(out, &e);
+        char interrupted[8], done[32];
+        header_string(out, "celadon/interrupted", interrupted, sizeof interrupted);
+        header_string(out, "celadon/sppDone", done, sizeof done);
+        int least = -1, most = -1;
+        cr_assert(sscanf(done, "%d-%d", &least, &most) >= 1, "sppDone '%s'", done);
+        most = most < 0 ? least : most;
+        cr_expect_eq(!strcmp(interrupted, "yes"), most < 4096, "interrupted %s with sppDone %s", interrupted, done);
+        if (sigs[k] != SIGTERM) {
+            cr_expect_eq(least, most, "signal %d stopped inside a pass: %s", sigs[k], done);
+            cr_expect_eq(least % 512, 0, "not a whole number of passes of 512: %s", done);
+            cr_expect(!exr_planes_has(&e, "spp"));
+        }
+        if (exr_planes_has(&e, "spp")) {
+            int s = plane_index(&e, "spp"), r = plane_index(&e, "R");
+            float lo = 1e30f, hi = -1.0f;
+            for (int p = 0; p < e.width * e.height; p++) {
+                float n = e.planes[s][p];
+                lo = fminf(lo, n), hi = fmaxf(hi, n);
+                cr_assert_eq(n, floorf(n));
+                cr_assert_eq(n > 0, e.planes[r][p] > 0, "pixel %d: %g samples, R %g", p, n, e.planes[r][p]);
+            }
+            cr_expect(lo == least && hi == most, "the channel's %g-%g, the header's %s", lo, hi, done);
+            cut_short += lo < hi;
+        }
+        exr_planes_free(&e);
+    }
+    cr_log_info("SIGTERM stopped inside a pass: %d", cut_short);
+}
+
+/* A film whose pixel i holds the value v(i) = 2^(i/8 - 12) in R, half of
+ * it in G, a tenth in B: 2^-12 to about 2^6, across every view's range. */
+enum { RAMP_W = 16, RAMP_H = 9 };
+static double ramp_value(int i) { return exp2(i / 8.0 - 12.0); }
+static void ramp_film(film_t *f)
+{
+    char err[256];
+    cr_assert_eq(film_init(f, RAMP_W, RAMP_H, NULL, 0, err, sizeof err), 0, "%s", err);
+    for (int i = 0; i < RAMP_W * RAMP_H; i++) {
+        double v = ramp_value(i), rgb[3] = {v, 0.5 * v, 0.1 * v};
+        film_add(f, i % RAMP_W, i / RAMP_W, rgb, 1.0);
+    }
+}
+
+/* Writes the ramp as name with the options and reads it back. */
+static image_t write_and_read(const film_t *f, const char *name, film_output o)
+{
+    char path[160], err[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    cr_assert_eq(film_write_as(f, path, &o, err, sizeof err), 0, "%s", err);
+    image_t img;
+    cr_assert_eq(image_read(path, &img, err, sizeof err), 0, "%s: %s", name, err);
+    cr_assert(img.width == RAMP_W && img.height == RAMP_H && img.channels == 3, "%s: %dx%dx%d", name, img.width,
+              img.height, img.channels);
+    return img;
+}
+
+/* Float TIFF is bit-exact, Radiance HDR within its shared 8-bit mantissa,
+ * 16-bit PNG and TIFF within half a code of the sRGB curve (and they are
+ * 16-bit: finer than 8-bit codes), 8-bit PNG the film's sRGB bytes. */
+Test(render_outputs, formats_round_trip)
+{
+    film_t f;
+    ramp_film(&f);
+    film_output plain = {0.0, FILM_VIEW_STANDARD, 0}, deep = {0.0, FILM_VIEW_STANDARD, 16};
+    image_t tif = write_and_read(&f, "ramp.tif", plain), hdr = write_and_read(&f, "ramp.hdr", plain);
+    image_t png16 = write_and_read(&f, "ramp16.png", deep), tif16 = write_and_read(&f, "ramp16.tif", deep);
+    image_t png8 = write_and_read(&f, "ramp8.png", plain);
+    cr_expect_eq(tif.bits, 32);
+    cr_expect_eq(png16.bits, 16);
+    cr_expect_eq(tif16.bits, 16);
+    int finer = 0;
+    for (int i = 0; i < RAMP_W * RAMP_H; i++) {
+        double v[3] = {ramp_value(i), 0.5 * ramp_value(i), 0.1 * ramp_value(i)};
+        for (int c = 0; c < 3; c++) {
+            size_t k = (size_t)i * 3 + c;
+            cr_assert_eq(tif.data[k], (float)v[c], "tif pixel %d", i);
+            cr_assert(fabs(hdr.data[k] - v[c]) <= v[0] / 128.0, "hdr pixel %d: %g for %g", i, hdr.data[k], v[c]);
+            double code = film_view_encode(FILM_VIEW_STANDARD, v[c]);
+            cr_assert(fabs(png16.data[k] - code) <= 0.5 / 65535 + 1e-7, "png16 pixel %d: %g for %g", i,
+                      png16.data[k], code);
+            cr_assert(fabs(tif16.data[k] - code) <= 0.5 / 65535 + 1e-7, "tif16 pixel %d", i);
+            cr_assert_eq(lrintf(png8.data[k] * 255.0f), film_srgb8(v[c]), "png8 pixel %d", i);
+            finer += fabs(png16.data[k] * 255.0 - lrint(png16.data[k] * 255.0)) > 0.01;
+        }
+    }
+    cr_expect_gt(finer, 100, "the 16-bit codes are 8-bit ones in disguise");
+    image_free(&tif), image_free(&hdr), image_free(&png16), image_free(&tif16), image_free(&png8);
+    film_free(&f);
+}
+
+/* --exposure S is the same image with the light times 2^S; the filmic
+ * view is monotone, puts middle grey near the middle, black at 0, reaches
+ * 1 only 6.5 stops above middle grey (where standard clips at 1.0), and
+ * keeps highlights apart that standard clips to one value. */
+Test(render_outputs, exposure_and_views)
+{
+    film_t f;
+    ramp_film(&f);
+    image_t up = write_and_read(&f, "up.png", (film_output){1.0, FILM_VIEW_STANDARD, 0});
+    image_t filmic = write_and_read(&f, "filmic.png", (film_output){0.0, FILM_VIEW_FILMIC, 16});
+    for (int i = 0; i < RAMP_W * RAMP_H; i++)
+        cr_assert_eq(lrintf(up.data[i * 3] * 255.0f), film_srgb8(2.0 * ramp_value(i)), "pixel %d", i);
+    for (int i = 1; i < RAMP_W * RAMP_H; i++)
+        cr_assert_geq(filmic.data[i * 3], filmic.data[(i - 1) * 3], "filmic is not monotone at %d", i);
+    double grey = film_view_encode(FILM_VIEW_FILMIC, 0.18);
+    cr_expect(grey > 0.4 && grey < 0.6, "middle grey at %g", grey);
+    cr_expect_lt(film_view_encode(FILM_VIEW_FILMIC, 1e-9), 1e-3);
+    cr_expect_lt(film_view_encode(FILM_VIEW_FILMIC, 1.0), 0.95, "filmic clips at 1.0");
+    cr_expect_gt(film_view_encode(FILM_VIEW_FILMIC, 0.18 * exp2(6.5)), 0.999);
+    cr_expect_gt(film_view_encode(FILM_VIEW_FILMIC, 4.0), film_view_encode(FILM_VIEW_FILMIC, 2.0) + 0.01);
+    cr_expect_eq(film_view_encode(FILM_VIEW_STANDARD, 4.0), film_view_encode(FILM_VIEW_STANDARD, 2.0));
+    image_free(&up), image_free(&filmic);
+    film_free(&f);
+}
