@@ -77,7 +77,7 @@ typedef struct {
  * the pixel got; written anyway when the pixels' counts differ) and
  * "variance" (the sample variance of the luminance of the pixel's samples
  * over their count: the variance of the estimate of their mean). */
-enum { FILM_EXTRA_SPP = 1u, FILM_EXTRA_VARIANCE = 2u };
+enum { FILM_EXTRA_SPP = 1u, FILM_EXTRA_VARIANCE = 2u, FILM_EXTRA_INDEX = 4u };
 
 typedef struct {
     int width, height;
@@ -91,6 +91,11 @@ typedef struct {
      * it, whatever the filter): their count, the sum of their luminance
      * and of its square; width * height * 3. */
     double *samples;
+    /* The object and material numbers (from 1; 0: nothing) of the first
+     * surface that each pixel's sample 0 meets, written once, never
+     * averaged (FILM_EXTRA_INDEX: "IndexOB.X", "IndexMA.X"); width * height
+     * * 2, 0 elsewhere, so that sums of films keep them. */
+    double *ids;
     unsigned extras; /* FILM_EXTRA_* channels to write */
 } film_t;
 
@@ -119,7 +124,7 @@ static inline void film_count_sample(film_t *f, int x, int y, double lum)
 /* The least and the most camera samples a pixel got. */
 void film_sample_range(const film_t *f, double *least, double *most);
 
-/* Adds src's sums, weights and sample counts into dst (same size and
+/* Adds src's sums, weights, sample counts and ids into dst (same size and
  * channels). */
 void film_merge(film_t *dst, const film_t *src);
 

@@ -13,7 +13,16 @@
 #include "celadon/film.h"
 #include "celadon/scene.h"
 
-enum { RENDER_AOV_DEPTH = 1u, RENDER_AOV_NORMAL = 2u, RENDER_AOV_ALBEDO = 4u };
+/* The --aov outputs (docs/rendering.md, "AOVs"): channels named as
+ * Blender's compositor and Nuke read them. */
+enum {
+    RENDER_AOV_DEPTH = 1u,    /* Z: distance along the camera ray to the first hit */
+    RENDER_AOV_NORMAL = 2u,   /* N.X, N.Y, N.Z: its world shading normal */
+    RENDER_AOV_ALBEDO = 4u,   /* albedo.R, .G, .B: its BSDF's albedo */
+    RENDER_AOV_INDEX = 8u,    /* IndexOB.X, IndexMA.X: its shape's and material's numbers */
+    RENDER_AOV_VARIANCE = 16u,/* variance: of the pixel's estimate (film.h, FILM_EXTRA_VARIANCE) */
+    RENDER_AOV_SPP = 32u      /* spp: the pixel's camera samples */
+};
 
 typedef struct {
     int threads;       /* 0: OpenMP's default */
@@ -37,12 +46,13 @@ typedef struct {
     double idle_cpu_seconds;
 } render_stats;
 
-/* Parses "depth,normal,albedo" (any subset, any order) into a mask; -1 for an
- * unknown name. */
+/* Parses "depth,normal,albedo,index,variance,spp" (any subset, any order;
+ * "Z" and "N" too) into a mask; -1 for an unknown name. */
 int render_aov_parse(const char *list, unsigned *mask);
 
 /* Renders into film (initialised here with the scene's size and the AOVs;
- * film_free it). Samples are taken in about eight passes over all pixels, so
+ * film_free it). Samples are taken in about eight passes over all pixels
+ * (more above 512 spp: a pass takes at most 64 samples of each pixel), so
  * a render stopped after the first pass leaves every pixel with a
  * consistent, noisier average; stopped during the first pass, the pixels not
  * reached yet have no samples (film_develop gives them 0).

@@ -404,6 +404,7 @@ int distribute_render(const scene_t *s, const render_options *opt, film_t *film,
     reduce_to_root(film->sum, npix * (size_t)film->nchannels, rank);
     reduce_to_root(film->weight, npix, rank);
     reduce_to_root(film->samples, npix * 3, rank);
+    reduce_to_root(film->ids, npix * 2, rank); /* one rank took each pixel's sample 0 */
     double t_end = now_seconds();
     /* Interrupted: fewer samples than asked for. Every rank learns it from
      * rank 0, so that they all stop or go on (--frames) together. */

@@ -59,7 +59,8 @@ int film_init_format(film_t *f, int width, int height, film_pixel_format format,
     f->sum = calloc((size_t)width * height * n, sizeof(double));
     f->weight = calloc((size_t)width * height, sizeof(double));
     f->samples = calloc((size_t)width * height * 3, sizeof(double));
-    if (!f->names || !f->sum || !f->weight || !f->samples)
+    f->ids = calloc((size_t)width * height * 2, sizeof(double));
+    if (!f->names || !f->sum || !f->weight || !f->samples || !f->ids)
         abort();
     int k = 0;
     for (int c = 0; c < 3; c++)
@@ -87,6 +88,7 @@ void film_free(film_t *f)
     free(f->sum);
     free(f->weight);
     free(f->samples);
+    free(f->ids);
     memset(f, 0, sizeof *f);
 }
 
@@ -108,6 +110,8 @@ void film_merge(film_t *dst, const film_t *src)
         dst->weight[p] += src->weight[p];
     for (size_t i = 0; i < npix * 3; i++)
         dst->samples[i] += src->samples[i];
+    for (size_t i = 0; i < npix * 2; i++)
+        dst->ids[i] += src->ids[i];
 }
 
 void film_sample_range(const film_t *f, double *least, double *most)

@@ -62,7 +62,8 @@ int film_output_check(const char *path, int depth, char *err, size_t errlen)
 /* The developed film with its R, G, B channels turned into the pixel
  * format's Y or X, Y, Z (Rec. 709 primaries, D65: Mitsuba's srgb_to_xyz),
  * then the extra channels (film_t.extras, and "spp" when the pixels'
- * counts differ): the EXR's channels. Sets *nch and the names (pointing
+ * counts differ: spp, variance, IndexOB.X, IndexMA.X): the EXR's
+ * channels. Sets *nch and the names (pointing
  * into f's or static). */
 static float *develop_exr(const film_t *f, int *nch, const char **names)
 {
@@ -77,16 +78,19 @@ static float *develop_exr(const film_t *f, int *nch, const char **names)
     double least, most;
     film_sample_range(f, &least, &most);
     int spp = (f->extras & FILM_EXTRA_SPP) || least != most, var = (f->extras & FILM_EXTRA_VARIANCE) != 0;
+    int ids = (f->extras & FILM_EXTRA_INDEX) ? 2 : 0;
     int lum = f->format == FILM_LUMINANCE || f->format == FILM_LUMINANCE_ALPHA;
     int xyz = f->format == FILM_XYZ || f->format == FILM_XYZA;
     int base = lum ? 1 : 3, film_ch = f->nchannels - 3 + base;
-    *nch = film_ch + spp + var;
+    *nch = film_ch + spp + var + ids;
     for (int c = 0; c < film_ch; c++)
         names[c] = c >= base ? f->names[c + 3 - base] : lum ? "Y" : xyz ? xyz_names[c] : f->names[c];
     if (spp)
         names[film_ch] = "spp";
     if (var)
         names[film_ch + spp] = "variance";
+    if (ids)
+        names[film_ch + spp + var] = "IndexOB.X", names[film_ch + spp + var + 1] = "IndexMA.X";
     float *px = malloc(sizeof(float) * npix * *nch);
     if (!px)
         abort();
@@ -110,6 +114,8 @@ static float *develop_exr(const film_t *f, int *nch, const char **names)
         /* The sample variance over the count: the variance of the mean. */
         if (var)
             out[film_ch + spp] = s[0] > 1 ? (float)(fmax(s[2] - s[1] * s[1] / s[0], 0.0) / (s[0] - 1) / s[0]) : 0.0f;
+        for (int i = 0; i < ids; i++)
+            out[film_ch + spp + var + i] = (float)f->ids[2 * p + i];
     }
     free(dev);
     return px;
@@ -117,7 +123,7 @@ static float *develop_exr(const film_t *f, int *nch, const char **names)
 
 static int write_exr(const film_t *f, const char *path, const film_info *info, char *err, size_t errlen)
 {
-    const char **names = malloc(sizeof *names * (size_t)(f->nchannels + 2));
+    const char **names = malloc(sizeof *names * (size_t)(f->nchannels + 4));
     if (!names)
         abort();
     int nch;

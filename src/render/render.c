@@ -17,6 +17,7 @@
 #include <omp.h>
 #include <signal.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -24,7 +25,7 @@
 #include "render/render_loop.h"
 #include "render/scene_impl.h"
 
-enum { TILE = 16 };
+enum { TILE = 16, PASS_MAX_SPP = 64 };
 
 /* 0: render on; STOP_AFTER_PASS: finish the pass under way; STOP_NOW: stop
  * after the samples in flight. */
@@ -43,12 +44,18 @@ int render_aov_parse(const char *list, unsigned *mask)
     if (!tok)
         return -1;
     for (; tok; tok = strtok_r(NULL, ",", &save)) {
-        if (!strcmp(tok, "depth"))
+        if (!strcmp(tok, "depth") || !strcmp(tok, "Z"))
             *mask |= RENDER_AOV_DEPTH;
-        else if (!strcmp(tok, "normal"))
+        else if (!strcmp(tok, "normal") || !strcmp(tok, "N"))
             *mask |= RENDER_AOV_NORMAL;
         else if (!strcmp(tok, "albedo"))
             *mask |= RENDER_AOV_ALBEDO;
+        else if (!strcmp(tok, "index"))
+            *mask |= RENDER_AOV_INDEX;
+        else if (!strcmp(tok, "variance"))
+            *mask |= RENDER_AOV_VARIANCE;
+        else if (!strcmp(tok, "spp"))
+            *mask |= RENDER_AOV_SPP;
         else
             return -1;
     }
@@ -71,7 +78,52 @@ typedef struct {
     int nown;            /* the integrator's own channels */
     int x0, y0, x1, y1;  /* the sampled pixels: the film, and the border with sample_border */
     int border;          /* its width: the sampler numbers pixels from the border's corner */
+    const int *material; /* with RENDER_AOV_INDEX: each shape's material number */
 } render_job;
+
+/* A shape's BSDF and number, ordered by BSDF, then number. */
+typedef struct {
+    uintptr_t bsdf;
+    int shape;
+} bsdf_use;
+
+static int by_bsdf(const void *pa, const void *pb)
+{
+    const bsdf_use *a = pa, *b = pb;
+    if (a->bsdf != b->bsdf)
+        return a->bsdf < b->bsdf ? -1 : 1;
+    return (a->shape > b->shape) - (a->shape < b->shape);
+}
+
+/* Each shape's material number: that of the first shape (from 1) with the
+ * same BSDF, so shapes share a number exactly when they share a BSDF. */
+static int *material_numbers(const shape_list *l)
+{
+    int n = l->count;
+    bsdf_use *use = malloc(sizeof *use * (size_t)(n > 0 ? n : 1));
+    int *num = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    if (!use || !num)
+        abort();
+    for (int i = 0; i < n; i++)
+        use[i] = (bsdf_use){(uintptr_t)l->items[i].bsdf, i};
+    qsort(use, (size_t)n, sizeof *use, by_bsdf);
+    for (int i = 0; i < n; i++)
+        num[use[i].shape] = i > 0 && use[i - 1].bsdf == use[i].bsdf ? num[use[i - 1].shape] : use[i].shape + 1;
+    free(use);
+    return num;
+}
+
+/* The shape and material numbers of the first surface the camera ray
+ * meets, into the film's ids of pixel (x, y). */
+static void record_ids(const render_job *j, const camera_ray_t *cr, int x, int y)
+{
+    surface_hit hit;
+    double *ids = j->film->ids + 2 * ((size_t)y * j->film->width + x);
+    if (shape_list_intersect(&j->s->shapes, &cr->ray, cr->tmin, cr->tmax, &hit)) {
+        int k = (int)(hit.shape - j->s->shapes.items);
+        ids[0] = k + 1, ids[1] = j->material[k];
+    }
+}
 
 /* Film values of one sample: RGB, A, then the requested AOVs and the
  * integrator's own channels, in that order. */
@@ -153,8 +205,11 @@ static uint64_t render_tile(const render_job *j, int tx, int ty, int s0, int s1)
                 pack_values(j, L, aov, vals);
                 splat(j->film, &s->film.filter, x, y, sx, sy, vals);
                 /* A tile owns its pixels: no other thread counts into them. */
-                if (x >= 0 && y >= 0 && x < j->film->width && y < j->film->height)
+                if (x >= 0 && y >= 0 && x < j->film->width && y < j->film->height) {
                     film_count_sample(j->film, x, y, rgb_luminance(L));
+                    if (k == 0 && j->material)
+                        record_ids(j, &cr, x, y);
+                }
                 n++;
             }
 done:
@@ -187,10 +242,11 @@ static void describe(const scene_t *s, film_metadata *m)
 }
 
 /* The film's channels beyond R, G, B and A: the requested AOVs (named as
- * Mitsuba's aov integrator names them), then the integrator's own ones. */
+ * Blender's compositor and Nuke read them: Z, N.X/Y/Z, albedo.R/G/B), then
+ * the integrator's own ones; the extras written from the pixels' samples. */
 int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, size_t errlen)
 {
-    static const char *const t[1] = {"T"}, *const xyz[3] = {"X", "Y", "Z"}, *const rgb_names[3] = {"R", "G", "B"};
+    static const char *const xyz[3] = {"X", "Y", "Z"}, *const rgb_names[3] = {"R", "G", "B"};
     static const char *const whole[1] = {""};
     int nown = integrator_channel_count(s->integrator);
     film_aov *list = malloc(sizeof *list * (size_t)(3 + nown));
@@ -198,17 +254,21 @@ int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, s
         abort();
     int naov = 0;
     if (aovs & RENDER_AOV_DEPTH)
-        list[naov++] = (film_aov){"depth", 1, t};
+        list[naov++] = (film_aov){"Z", 1, whole};
     if (aovs & RENDER_AOV_NORMAL)
-        list[naov++] = (film_aov){"normal", 3, xyz};
+        list[naov++] = (film_aov){"N", 3, xyz};
     if (aovs & RENDER_AOV_ALBEDO)
         list[naov++] = (film_aov){"albedo", 3, rgb_names};
     for (int i = 0; i < nown; i++)
         list[naov++] = (film_aov){integrator_channel_name(s->integrator, i), 1, whole};
     int rc = film_init_format(film, s->camera.width, s->camera.height, s->film.format, list, naov, err, errlen);
     free(list);
-    if (rc == 0)
+    if (rc == 0) {
         describe(s, &film->meta);
+        film->extras = ((aovs & RENDER_AOV_SPP) ? FILM_EXTRA_SPP : 0u) |
+                       ((aovs & RENDER_AOV_VARIANCE) ? FILM_EXTRA_VARIANCE : 0u) |
+                       ((aovs & RENDER_AOV_INDEX) ? FILM_EXTRA_INDEX : 0u);
+    }
     return rc;
 }
 
@@ -255,7 +315,8 @@ void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, 
                       y0 == 0 ? -border : y0,
                       cam->width + border,
                       y1 == cam->height ? y1 + border : y1,
-                      border};
+                      border,
+                      (aovs & RENDER_AOV_INDEX) && s0 == 0 ? material_numbers(&s->shapes) : NULL};
     int tiles_x = (job.x1 - job.x0 + TILE - 1) / TILE, tiles_y = (job.y1 - job.y0 + TILE - 1) / TILE;
     /* Tiles of one colour are k tiles apart: (k - 1) TILE > 2 radius. */
     int k = rfilter_is_box(filter) ? 1 : 2 + (int)floor(2.0 * filter->radius / TILE);
@@ -294,6 +355,7 @@ void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, 
     }
     tally->busy_cpu_seconds += busy;
     tally->idle_cpu_seconds += idle;
+    free((int *)job.material);
 }
 
 void render_print_summary(const scene_t *s, const render_options *opt, const render_stats *st, const char *who)
@@ -322,8 +384,11 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
     }
     if (render_film_init(s, opt->aovs, film, err, errlen) != 0)
         return -1;
-    /* About eight passes, so an interrupted render has every pixel sampled. */
+    /* About eight passes, so an interrupted render has every pixel sampled,
+     * of at most PASS_MAX_SPP samples, so that Ctrl-C (which finishes the
+     * pass) is heard soon however many samples were asked for. */
     int spp = s1 - s0, pass_spp = spp < 8 ? 1 : (spp + 7) / 8;
+    pass_spp = pass_spp > PASS_MAX_SPP ? PASS_MAX_SPP : pass_spp;
     int threads = render_thread_count(opt);
     progress_t bar;
     render_tally tally = {.bar = opt->progress ? &bar : NULL, .t_start = now_seconds()};
