@@ -77,16 +77,25 @@ Test(hostile_input, a_gif_that_makes_the_image_library_throw)
     cr_expect_neq(image_probe(gif, &w, &h, &c, why, sizeof why), 0);
 }
 
+/* fx.dir/scene.xml: a sphere whose diffuse reflectance is the bitmap
+ * texture named name. */
+static void write_texture_scene(const char *name, char *scene, size_t len)
+{
+    char xml[1024];
+    snprintf(xml, sizeof xml,
+             "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">"
+             "<integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/></film></sensor>"
+             "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\">"
+             "<string name=\"filename\" value=\"%s\"/></texture></bsdf></shape></scene>",
+             name);
+    render_write_file(&fx, "scene.xml", xml, scene, len);
+}
+
 Test(hostile_input, a_gif_texture_is_refused_by_render)
 {
     char gif[256], scene[256], out[256];
     write_bytes("bad.gif", huge_screen_gif, sizeof huge_screen_gif, gif, sizeof gif);
-    render_write_file(&fx, "scene.xml",
-                      "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">"
-                      "<integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/></film></sensor>"
-                      "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\">"
-                      "<string name=\"filename\" value=\"bad.gif\"/></texture></bsdf></shape></scene>",
-                      scene, sizeof scene);
+    write_texture_scene("bad.gif", scene, sizeof scene);
     snprintf(out, sizeof out, "%s/out.png", fx.dir);
     expect_refused((const char *[]){"render", scene, "-o", out, NULL}, "image library");
     cr_expect(!exists(out));
@@ -110,12 +119,7 @@ Test(hostile_input, a_truncated_png_texture_is_named_in_one_line)
     cr_assert(bytes && len > 4096);
     write_bytes("cut.png", bytes, len / 2, png, sizeof png);
     free(bytes);
-    render_write_file(&fx, "scene.xml",
-                      "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">"
-                      "<integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/></film></sensor>"
-                      "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\">"
-                      "<string name=\"filename\" value=\"cut.png\"/></texture></bsdf></shape></scene>",
-                      scene, sizeof scene);
+    write_texture_scene("cut.png", scene, sizeof scene);
     snprintf(out, sizeof out, "%s/out.png", fx.dir);
     expect_refused((const char *[]){"render", scene, "-o", out, NULL}, "cut.png: ");
     cr_expect(!exists(out));

@@ -2,11 +2,9 @@
  * carries, as `oiiotool --info -v` shows it; an interrupted render's
  * header and per-pixel sample counts; the formats and view transforms. */
 #include <criterion/criterion.h>
-#include <fcntl.h>
 #include <math.h>
 #include <openexr.h>
 #include <signal.h>
-#include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,8 +17,6 @@
 #include "support/cli_run.h"
 #include "support/exr_planes.h"
 #include "support/scratch_dir.h"
-
-extern char **environ;
 
 static char dir[64];
 
@@ -42,14 +38,7 @@ static const char sphere_xml[] =
     "<shape type=\"sphere\"><bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"1,1,1\"/></bsdf></shape>"
     "</scene>\n";
 
-static void write_scene(char *path, size_t len)
-{
-    snprintf(path, len, "%s/scene.xml", dir);
-    FILE *f = fopen(path, "w");
-    cr_assert_not_null(f);
-    fputs(sphere_xml, f);
-    fclose(f);
-}
+static void write_scene(char *path, size_t len) { scratch_write_file(dir, "scene.xml", sphere_xml, path, len); }
 
 static void render_ok(const char *const *args)
 {
@@ -121,25 +110,9 @@ static double now(void)
  * once it handles sig; the wait status. */
 static int run_interrupted(const char *const *args, double delay, int sig)
 {
-    const char *argv[32] = {cli_bin()};
-    int n = 1;
-    for (; *args && n < 31; args++)
-        argv[n++] = *args;
-    argv[n] = NULL;
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-    pid_t pid;
-    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, (char *const *)argv, environ), 0);
-    posix_spawn_file_actions_destroy(&fa);
+    pid_t pid = cli_start_quiet(args);
     cr_assert(cli_wait_for_handler(pid, sig, 60.0), "no handler for signal %d", sig);
-    struct timespec ts = {(time_t)delay, (long)((delay - (time_t)delay) * 1e9)};
-    nanosleep(&ts, NULL);
-    kill(pid, sig);
-    int status;
-    cr_assert_eq(waitpid(pid, &status, 0), pid);
-    return status;
+    return cli_signal_after(pid, delay, sig);
 }
 
 /* The string attribute of the EXR header (into out; "" when missing). */
@@ -320,11 +293,7 @@ Test(render_outputs, variance_is_that_of_the_estimate, .timeout = 240)
 {
     enum { SEEDS = 16, NPIX = 24 * 24 };
     char scene[128], out[160], seed[16];
-    snprintf(scene, sizeof scene, "%s/floor.xml", dir);
-    FILE *fp = fopen(scene, "w");
-    cr_assert_not_null(fp);
-    fputs(lit_floor_xml, fp);
-    fclose(fp);
+    scratch_write_file(dir, "floor.xml", lit_floor_xml, scene, sizeof scene);
     snprintf(out, sizeof out, "%s/floor.exr", dir);
     static double sum[NPIX], sum2[NPIX], reported[NPIX];
     for (int k = 0; k < SEEDS; k++) {
@@ -357,11 +326,7 @@ Test(render_outputs, variance_is_that_of_the_estimate, .timeout = 240)
 Test(render_outputs, index_aovs_hold_whole_numbers, .timeout = 60)
 {
     char scene[128], out[160];
-    snprintf(scene, sizeof scene, "%s/floor.xml", dir);
-    FILE *fp = fopen(scene, "w");
-    cr_assert_not_null(fp);
-    fputs(lit_floor_xml, fp);
-    fclose(fp);
+    scratch_write_file(dir, "floor.xml", lit_floor_xml, scene, sizeof scene);
     snprintf(out, sizeof out, "%s/ids.exr", dir);
     render_ok((const char *[]){"render", scene, "-o", out, "--aov", "index,Z,N,albedo", NULL});
     exr_planes e;
@@ -377,4 +342,104 @@ Test(render_outputs, index_aovs_hold_whole_numbers, .timeout = 60)
     }
     cr_expect(seen[1] > 0 && seen[2] > 0, "floor %d, sphere %d pixels", seen[1], seen[2]);
     exr_planes_free(&e);
+}
+
+/* The sphere scene with the given film (width, height, filter, crop). */
+static void write_film_scene(const char *name, const char *film, char *path, size_t len)
+{
+    snprintf(path, len, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fprintf(f,
+            "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
+            "<lookat origin=\"0.3,0.2,4\" target=\"0,0,0\" up=\"0,1,0\"/></transform>"
+            "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"
+            "<film type=\"hdrfilm\"><integer name=\"width\" value=\"40\"/><integer name=\"height\" value=\"30\"/>"
+            "%s</film></sensor>"
+            "<emitter type=\"point\"><point name=\"position\" x=\"2\" y=\"3\" z=\"3\"/>"
+            "<rgb name=\"intensity\" value=\"20,20,20\"/></emitter>"
+            "<shape type=\"sphere\"><bsdf type=\"roughplastic\"/></shape></scene>\n",
+            film);
+    fclose(f);
+}
+
+/* Pixel (x, y) of the crop is pixel (x + X, y + Y) of the full render with
+ * the same seed: the same sample streams, through a box filter bit for bit,
+ * through a Gaussian (samples from outside the window reach in) within
+ * float rounding; hdrfilm's crop_* parameters and --crop agree. */
+Test(render_outputs, a_crop_is_the_window_of_the_full_render, .timeout = 120)
+{
+    static const struct {
+        const char *filter;
+        double tol;
+    } filters[] = {{"<rfilter type=\"box\"/>", 0.0}, {"<rfilter type=\"gaussian\"/>", 1e-5}};
+    enum { X = 13, Y = 7, W = 17, H = 11 };
+    for (int k = 0; k < 2; k++) {
+        char full_scene[128], crop_scene[128], film[256], full[160], crop[160], cropped[160];
+        write_film_scene("full.xml", filters[k].filter, full_scene, sizeof full_scene);
+        snprintf(film, sizeof film,
+                 "%s<integer name=\"crop_offset_x\" value=\"%d\"/><integer name=\"crop_offset_y\" value=\"%d\"/>"
+                 "<integer name=\"crop_width\" value=\"%d\"/><integer name=\"crop_height\" value=\"%d\"/>",
+                 filters[k].filter, X, Y, W, H);
+        write_film_scene("crop.xml", film, crop_scene, sizeof crop_scene);
+        snprintf(full, sizeof full, "%s/full.exr", dir);
+        snprintf(crop, sizeof crop, "%s/crop.exr", dir);
+        snprintf(cropped, sizeof cropped, "%s/cropped.exr", dir);
+        render_ok((const char *[]){"render", full_scene, "-o", full, "--seed", "5", NULL});
+        render_ok((const char *[]){"render", full_scene, "-o", crop, "--seed", "5", "--crop", "13,7,17,11", NULL});
+        render_ok((const char *[]){"render", crop_scene, "-o", cropped, "--seed", "5", NULL});
+        exr_planes a, b, c;
+        read_exr(full, &a), read_exr(crop, &b), read_exr(cropped, &c);
+        cr_assert(b.width == W && b.height == H && c.width == W && c.height == H);
+        double worst = 0.0, lit = 0.0;
+        for (int ch = 0; ch < 3; ch++)
+            for (int y = 0; y < H; y++)
+                for (int x = 0; x < W; x++) {
+                    double want = a.planes[ch][(y + Y) * a.width + x + X], got = b.planes[ch][y * W + x];
+                    worst = fmax(worst, fabs(got - want) / fmax(fabs(want), 1e-3));
+                    lit += want;
+                    cr_assert_eq(got, c.planes[ch][y * W + x], "--crop and crop_* differ at (%d, %d)", x, y);
+                }
+        cr_expect_gt(lit, 0.0, "the window is black");
+        cr_expect(worst <= filters[k].tol, "%s: the crop differs from the window by %g", filters[k].filter, worst);
+        exr_planes_free(&a), exr_planes_free(&b), exr_planes_free(&c);
+    }
+}
+
+/* Header values as numbers. */
+static double header_number(const char *path, const char *name)
+{
+    char text[64];
+    header_string(path, name, text, sizeof text);
+    cr_assert(text[0], "%s: no %s", path, name);
+    return atof(text);
+}
+
+/* --time: passes (of 64 spp here) until the budget is spent, recorded;
+ * --preview: the image so far, rewritten after every pass (every 0 s). */
+Test(render_outputs, a_time_budget_renders_passes_until_it_is_spent, .timeout = 120)
+{
+    char scene[128], out[160], preview[160];
+    write_film_scene("timed.xml", "<rfilter type=\"box\"/>", scene, sizeof scene);
+    snprintf(out, sizeof out, "%s/timed.exr", dir);
+    snprintf(preview, sizeof preview, "%s/preview.png", dir);
+    const double budget = 2.0;
+    double t0 = now();
+    render_ok((const char *[]){"render", scene, "-o", out, "--spp", "1000000", "--res", "24x16", "--time", "2",
+                               "--preview", preview, "--preview-every", "0", "--threads", "2", NULL});
+    double wall = now() - t0;
+    double passes = header_number(out, "celadon/passes"), done = header_number(out, "celadon/sppDone");
+    double seconds = header_number(out, "celadon/renderSeconds");
+    cr_log_info("--time 2: %g passes, %g spp, %.2f s of rendering, %.2f s in all", passes, done, seconds, wall);
+    cr_expect_geq(passes, 2, "one pass of 64 spp on 24x16 pixels takes well under a second");
+    cr_expect_eq(done, 64 * passes, "sppDone %g is not the passes' %g", done, 64 * passes);
+    cr_expect(seconds <= 2 * budget && seconds >= 0.5 * budget, "rendered %.2f s for a budget of %g", seconds, budget);
+    char interrupted[8];
+    header_string(out, "celadon/interrupted", interrupted, sizeof interrupted);
+    cr_expect_str_eq(interrupted, "no", "a spent budget is no interruption");
+    image_t img;
+    char why[256];
+    cr_assert_eq(image_read(preview, &img, why, sizeof why), 0, "no preview: %s", why);
+    cr_expect(img.width == 24 && img.height == 16);
+    image_free(&img);
 }

@@ -67,6 +67,9 @@ typedef struct {
     int interrupted;      /* 1: stopped before every sample was taken */
     int passes;           /* passes over the image completed */
     int threads, ranks;   /* OpenMP threads (per rank) and MPI ranks */
+    double time_budget;   /* render --time, seconds (0: none) */
+    int crop[4];          /* the crop window x, y, width, height in the full film (width 0: none) */
+    int full_width, full_height; /* the full film's size */
     /* Set by the command line (empty: not written): */
     char scene_path[1024];
     char command_line[2048];

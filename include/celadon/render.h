@@ -30,6 +30,11 @@ typedef struct {
     int progress;      /* 1: progress bar on a TTY and a summary line on stderr */
     int sample_begin, sample_end; /* render samples [begin, end) of every pixel (a part of the
                                      render, parts.h); 0, 0: all of the sampler's */
+    double time_budget;  /* > 0: seconds; no pass is started that the last one's time says would
+                            end past it (at least one pass; the sample count stays the limit) */
+    const char *preview; /* non-NULL: the film written here (film_write) after a pass once
+                            preview_seconds have passed since the last time, and at the end */
+    double preview_seconds;
 } render_options;
 
 typedef struct {

@@ -16,16 +16,17 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 
-enum { MAX_DEFINES = 64, MAX_FRAMES = 1000000 };
+enum { MAX_DEFINES = 64, MAX_FRAMES = 1000000, DEFAULT_PREVIEW_SECONDS = 10 };
 _Static_assert(MAX_DEFINES == 64, "the -D limit's usage error names it");
 
 static void usage(FILE *f)
 {
     fprintf(f, "usage: celadon render SCENE.xml -o OUT.{exr,hdr,tif,png,jpg} [--spp N] [--res WxH]\n"
                "                      [--geometry analytic|mesh:N] [--threads N] [--seed S]\n"
-               "                      [--sampler NAME] [-D name=value]... [-a DIR]... [--aov depth,normal,albedo]\n"
+               "                      [--sampler NAME] [-D name=value]... [-a DIR]... [--aov LIST]\n"
                "                      [--part K/N] [--frames A:B[:S]] [--exposure STOPS] [--view standard|filmic]\n"
-               "                      [--depth 8|16|32]\n\n"
+               "                      [--depth 8|16|32] [--crop X,Y,W,H] [--time SECONDS]\n"
+               "                      [--preview FILE [--preview-every SECONDS]]\n\n"
                "Renders a Mitsuba 3 scene (docs/scene-format.md) with its integrator (`path`\n"
                "by default).\n"
                "SORs are intersected exactly unless --geometry mesh:N revolves them into N\n"
@@ -37,6 +38,10 @@ static void usage(FILE *f)
                "  --view V        PNG/JPEG/8-16-bit TIFF: standard (sRGB, clipped; default) or\n"
                "                  filmic (highlights roll off over 6.5 stops above middle grey)\n"
                "  --depth B       bits per channel: PNG 8 or 16, TIFF 8, 16 or 32 (default: 8, TIFF 32)\n"
+               "  --crop X,Y,W,H  render only that window of the film (its pixels as the full render's)\n"
+               "  --time S        render passes until S seconds are spent (or the spp reached)\n"
+               "  --preview FILE  write the image so far to FILE after a pass, every 10 s\n"
+               "                  (--preview-every S) and at the end\n"
                "  --spp N         samples per pixel (default: the scene's sampler); also the\n"
                "                  value of $spp where the scene has no <default> for it\n"
                "  --res WxH       film size (default: the scene's film; at most 65536 on a side, 1e9 pixels)\n"
@@ -49,7 +54,8 @@ static void usage(FILE *f)
                "  -a DIR, --append DIR\n"
                "                  one more folder to look for the scene's files in, after those the\n"
                "                  scene gives (Mitsuba's -a; DIR1;DIR2 gives two)\n"
-               "  --aov LIST      extra EXR channels: depth, normal, albedo\n"
+               "  --aov LIST      extra EXR channels: depth (Z), normal (N.X/Y/Z), albedo (albedo.R/G/B),\n"
+               "                  index (IndexOB.X, IndexMA.X), variance, spp\n"
                "  --part K/N      render the K-th of N shares of the samples into OUT.exr, for\n"
                "                  `celadon merge` (docs/distributed.md)\n"
                "  --frames A:B:S  render frames A, A+S, ... below B (S defaults to 1), setting\n"
@@ -168,10 +174,30 @@ static int parse_args(int argc, char **argv, render_args *a)
                 return rc;
         } else if (!strcmp(arg, "--aov")) {
             if (render_aov_parse(val, &a->ro.aovs) != 0)
-                return cli_usage_error("render", "--aov wants a list of depth, normal, albedo, not '%s'", val);
+                return cli_usage_error("render", "--aov wants a list of depth, normal, albedo, index, variance, spp, "
+                                                 "not '%s'", val);
         } else if (!strcmp(arg, "--part")) {
             if (render_part_parse(val, &a->part) != 0)
                 return cli_usage_error("render", "--part wants K/N with 1 <= K <= N <= 1000000, not '%s'", val);
+        } else if (!strcmp(arg, "--crop")) {
+            int x, y, w, h, n = 0;
+            if (sscanf(val, "%d,%d,%d,%d%n", &x, &y, &w, &h, &n) != 4 || val[n] || x < 0 || y < 0 || w < 1 || h < 1)
+                return cli_usage_error("render", "--crop wants X,Y,W,H with X, Y >= 0 and W, H >= 1, not '%s'", val);
+            a->bo.crop_x = x, a->bo.crop_y = y, a->bo.crop_w = w, a->bo.crop_h = h;
+        } else if (!strcmp(arg, "--time")) {
+            char *end;
+            double t = strtod(val, &end);
+            if (end == val || *end || !(t > 0 && t <= 1e7))
+                return cli_usage_error("render", "--time wants seconds from 0 to 1e7, not '%s'", val);
+            a->ro.time_budget = t;
+        } else if (!strcmp(arg, "--preview")) {
+            a->ro.preview = val;
+        } else if (!strcmp(arg, "--preview-every")) {
+            char *end;
+            double t = strtod(val, &end);
+            if (end == val || *end || !(t >= 0 && t <= 1e7))
+                return cli_usage_error("render", "--preview-every wants seconds from 0 to 1e7, not '%s'", val);
+            a->ro.preview_seconds = t;
         } else if (!strcmp(arg, "--exposure")) {
             char *end;
             double e = strtod(val, &end);
@@ -207,6 +233,12 @@ static int parse_args(int argc, char **argv, render_args *a)
         return cli_usage_error("render", "%s", why);
     if (a->ro.aovs && !is_exr(a->out))
         return cli_usage_error("render", "--aov needs an .exr output, not '%s'", a->out);
+    if (a->ro.preview && film_output_check(a->ro.preview, 0, why, sizeof why) != 0)
+        return cli_usage_error("render", "--preview: %s", why);
+    if (a->ro.preview && !strcmp(a->ro.preview, a->out))
+        return cli_usage_error("render", "%s", "--preview names the output itself");
+    if (a->part.n && (a->ro.time_budget > 0 || a->ro.preview))
+        return cli_usage_error("render", "%s", "--part renders a fixed share of the samples: no --time or --preview");
     if (a->part.n && !is_exr(a->out))
         return cli_usage_error("render", "--part writes an .exr (its header names the part), not '%s'", a->out);
     if (a->frames && !strchr(a->out, '#'))
@@ -358,7 +390,10 @@ int cmd_render(int argc, char **argv)
     }
     cli_set_quiet(job.rank != 0); /* every rank would print the same usage error */
     a.ro.progress = job.rank == 0;
+    a.ro.preview_seconds = DEFAULT_PREVIEW_SECONDS;
     int rc = parse_args(argc, argv, &a);
+    if (rc < 0 && job.size > 1 && (a.ro.time_budget > 0 || a.ro.preview))
+        rc = cli_usage_error("render", "%s", "--time and --preview are for one process, not under mpirun");
     a.bo.search_dirs = (const char *const *)a.dirs;
     a.bo.n_search_dirs = a.ndirs;
     if (rc < 0 && cli_check_output(a.out, 0) != 0)

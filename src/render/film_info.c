@@ -53,6 +53,11 @@ void film_info_collect(const film_t *f, film_info *info)
     if (m->seconds > 0)
         add(info, "renderSeconds", "%.3f", m->seconds);
     add(info, "interrupted", "%s", m->interrupted ? "yes" : "no");
+    if (m->time_budget > 0)
+        add(info, "timeBudget", "%g", m->time_budget);
+    if (m->crop[2] > 0)
+        add(info, "crop", "%d,%d,%d,%d of %dx%d", m->crop[0], m->crop[1], m->crop[2], m->crop[3], m->full_width,
+            m->full_height);
     if (m->threads > 0)
         add(info, "threads", "%d", m->threads);
     if (m->ranks > 0)

@@ -7,7 +7,7 @@
 
 #include "celadon/film.h"
 
-enum { FILM_INFO_MAX = 20, FILM_INFO_LEN = 2200 };
+enum { FILM_INFO_MAX = 24, FILM_INFO_LEN = 2200 };
 
 typedef struct {
     int n;
@@ -21,7 +21,9 @@ typedef struct {
  * "celadon/seed", "celadon/sampler", "celadon/integrator",
  * "celadon/sppRequested", "celadon/sppDone" ("64", or "17-64" when the
  * pixels' counts differ), "celadon/passes", "celadon/renderSeconds",
- * "celadon/interrupted" ("yes"/"no"), "celadon/threads", "celadon/ranks";
+ * "celadon/interrupted" ("yes"/"no"), "celadon/threads", "celadon/ranks",
+ * "celadon/timeBudget" (with --time), "celadon/crop" ("X,Y,W,H of WxH",
+ * for a crop window);
  * empty values (and passes, time, threads and ranks that are 0: a merge of
  * parts) are left out. Nothing when f has no metadata. */
 void film_info_collect(const film_t *f, film_info *info);
