@@ -97,7 +97,7 @@ static float *develop_exr(const film_t *f, int *nch, const char **names)
     for (size_t p = 0; p < npix; p++) {
         const float *in = dev + p * f->nchannels;
         float *out = px + p * *nch;
-        for (int c = 0; c < 3; c++)
+        for (int c = 0; c < 3 && !lum && !xyz; c++)
             out[c] = in[c];
         if (lum || xyz) {
             double v[3];
