@@ -10,7 +10,7 @@ PKGS    := OpenImageIO $(LINK_PKGS)
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
             libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
             libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
-            zlib1g-dev python3-numpy python3-pytest python3-matplotlib libopencv-dnn-dev python3-onnx
+            zlib1g-dev openimageio-tools python3-numpy python3-pytest python3-matplotlib libopencv-dnn-dev python3-onnx
 
 # OpenCV's DNN module runs the learned object prior (src/prior/); Debian's
 # OpenCV 4.6 ships no pkg-config file for it.

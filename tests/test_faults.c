@@ -42,22 +42,7 @@ static double now(void)
 }
 
 /* Starts celadon ARGS with its output thrown away. */
-static pid_t start(const char *const *args)
-{
-    const char *argv[32] = {cli_bin()};
-    int n = 1;
-    for (; *args && n < 31; args++)
-        argv[n++] = *args;
-    argv[n] = NULL;
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-    pid_t pid;
-    cr_assert_eq(posix_spawn(&pid, argv[0], &fa, NULL, (char *const *)argv, environ), 0);
-    posix_spawn_file_actions_destroy(&fa);
-    return pid;
-}
+static pid_t start(const char *const *args) { return cli_start_quiet(args); }
 
 /* Runs celadon ARGS to the end; its wall time, seconds. */
 static double time_run(const char *const *args)
@@ -72,13 +57,7 @@ static double time_run(const char *const *args)
 /* Runs celadon ARGS, sends sig after delay seconds; the wait status. */
 static int run_interrupted(const char *const *args, double delay, int sig)
 {
-    pid_t pid = start(args);
-    struct timespec ts = {(time_t)delay, (long)((delay - (time_t)delay) * 1e9)};
-    nanosleep(&ts, NULL);
-    kill(pid, sig);
-    int status;
-    cr_assert_eq(waitpid(pid, &status, 0), pid);
-    return status;
+    return cli_signal_after(start(args), delay, sig);
 }
 
 static int temporaries;
@@ -114,11 +93,12 @@ static int remove_entry(const char *path, const struct stat *st, int flag, struc
 
 static void remove_tree(const char *path) { nftw(path, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
 
-/* Whatever exit: 130 from render's own Ctrl-C, death by the signal, or 0
- * when the signal came after the work; never a crash of another kind. */
+/* Whatever exit: 128 + the signal from render's own handler (its image
+ * written), death by the signal, or 0 when the signal came after the work;
+ * never a crash of another kind. */
 static void expect_signal_outcome(int status, int sig)
 {
-    cr_expect((WIFEXITED(status) && (WEXITSTATUS(status) == 0 || WEXITSTATUS(status) == 130)) ||
+    cr_expect((WIFEXITED(status) && (WEXITSTATUS(status) == 0 || WEXITSTATUS(status) == 128 + sig)) ||
                   (WIFSIGNALED(status) && WTERMSIG(status) == sig),
               "signal %d gave status %#x", sig, status);
 }
@@ -138,14 +118,7 @@ static const char scene_xml[] =
     "<emitter type=\"constant\"><rgb name=\"radiance\" value=\"1,1,1\"/></emitter>"
     "<shape type=\"sphere\"><bsdf type=\"diffuse\"/></shape></scene>\n";
 
-static void write_scene(char *path, size_t len)
-{
-    snprintf(path, len, "%s/scene.xml", dir);
-    FILE *f = fopen(path, "w");
-    cr_assert_not_null(f);
-    fputs(scene_xml, f);
-    fclose(f);
-}
+static void write_scene(char *path, size_t len) { scratch_write_file(dir, "scene.xml", scene_xml, path, len); }
 
 Test(faults, signals_during_a_render_leave_the_image_whole_or_none, .timeout = 300)
 {

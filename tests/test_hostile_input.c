@@ -77,18 +77,51 @@ Test(hostile_input, a_gif_that_makes_the_image_library_throw)
     cr_expect_neq(image_probe(gif, &w, &h, &c, why, sizeof why), 0);
 }
 
+/* fx.dir/scene.xml: a sphere whose diffuse reflectance is the bitmap
+ * texture named name. */
+static void write_texture_scene(const char *name, char *scene, size_t len)
+{
+    char xml[1024];
+    snprintf(xml, sizeof xml,
+             "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">"
+             "<integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/></film></sensor>"
+             "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\">"
+             "<string name=\"filename\" value=\"%s\"/></texture></bsdf></shape></scene>",
+             name);
+    render_write_file(&fx, "scene.xml", xml, scene, len);
+}
+
 Test(hostile_input, a_gif_texture_is_refused_by_render)
 {
     char gif[256], scene[256], out[256];
     write_bytes("bad.gif", huge_screen_gif, sizeof huge_screen_gif, gif, sizeof gif);
-    render_write_file(&fx, "scene.xml",
-                      "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">"
-                      "<integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/></film></sensor>"
-                      "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\">"
-                      "<string name=\"filename\" value=\"bad.gif\"/></texture></bsdf></shape></scene>",
-                      scene, sizeof scene);
+    write_texture_scene("bad.gif", scene, sizeof scene);
     snprintf(out, sizeof out, "%s/out.png", fx.dir);
     expect_refused((const char *[]){"render", scene, "-o", out, NULL}, "image library");
+    cr_expect(!exists(out));
+}
+
+/* A PNG texture cut short: libpng's own "libpng error: ..." line and then
+ * one naming the scene were printed (issue 28); now one line naming the
+ * texture. */
+Test(hostile_input, a_truncated_png_texture_is_named_in_one_line)
+{
+    enum { SIDE = 64 };
+    static uint8_t noise[SIDE * SIDE * 3];
+    uint32_t x = 12345;
+    for (size_t i = 0; i < sizeof noise; i++)
+        x = x * 1664525u + 1013904223u, noise[i] = (uint8_t)(x >> 24); /* incompressible: a long IDAT */
+    char png[256], why[256], scene[256], out[256];
+    snprintf(png, sizeof png, "%s/whole.png", fx.dir);
+    cr_assert_eq(image_write_u8(png, SIDE, SIDE, 3, noise, why, sizeof why), 0, "%s", why);
+    size_t len = 0;
+    char *bytes = render_read_file(png, &len);
+    cr_assert(bytes && len > 4096);
+    write_bytes("cut.png", bytes, len / 2, png, sizeof png);
+    free(bytes);
+    write_texture_scene("cut.png", scene, sizeof scene);
+    snprintf(out, sizeof out, "%s/out.png", fx.dir);
+    expect_refused((const char *[]){"render", scene, "-o", out, NULL}, "cut.png: ");
     cr_expect(!exists(out));
 }
 
@@ -223,6 +256,7 @@ Test(hostile_input, unrevolvable_profiles_are_refused_by_every_command)
     static const struct { const char *name; double fr, fh; const char *why; } cases[] = {
         {"negative.json", -1.0, 1.0, "r < 0"},
         {"huge.json", 1e300, 1e300, "beyond 1e9 px"},
+        {"on_axis.json", 0.0, 1.0, "lies on the axis"}, /* mesh wrote 28,800 faces of nothing (issue 28) */
     };
     for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
         char profile[256], scene[256], out[256], xml[512];

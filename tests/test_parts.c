@@ -229,6 +229,25 @@ Test(parts, merge_refuses_missing_duplicated_foreign_and_incomplete_parts, .time
     expect_refused(&f, (const char *[]){p1, img, p3, NULL}, "not a part of a celadon render");
     render_write_file(&f, "junk.exr", "not an exr", cut, sizeof cut);
     expect_refused(&f, (const char *[]){p1, p2, cut, NULL}, "junk.exr");
+    /* A part cut short: its header reads, its pixels do not (exited 1). */
+    char truncated[256];
+    size_t len = 0;
+    char *bytes = render_read_file(p2, &len);
+    cr_assert(bytes && len > 600);
+    render_write_bytes(&f, "truncated.exr", bytes, len / 2, truncated, sizeof truncated);
+    free(bytes);
+    expect_refused(&f, (const char *[]){p1, truncated, p3, NULL}, "truncated.exr");
+    /* -o naming one of the parts: refused before anything is written (it
+     * overwrote that part). */
+    size_t before_len = 0, after_len = 0;
+    char *before = render_read_file(p1, &before_len);
+    const char *onto[] = {"merge", p1, p2, p3, "-o", p1, NULL};
+    cr_expect_eq(run_celadon(&f, onto, err, sizeof err), 2, "stderr: %s", err);
+    cr_expect_eq(cli_count_lines(err), 1, "stderr: %s", err);
+    cr_expect_not_null(strstr(err, "is one of the parts"), "%s", err);
+    char *after = render_read_file(p1, &after_len);
+    cr_expect(before && after && before_len == after_len && !memcmp(before, after, before_len), "p1.exr changed");
+    free(before), free(after);
     /* A part whose render was interrupted says so in its header. */
     film_t film;
     cr_assert_eq(film_init(&film, 64, 48, NULL, 0, err, sizeof err), 0);

@@ -78,6 +78,37 @@ static inline void render_write_file(const render_fixture *f, const char *name, 
     fclose(fp);
 }
 
+/* Writes len bytes to dir/name; returns the path in out. */
+static inline void render_write_bytes(const render_fixture *f, const char *name, const void *bytes, size_t len,
+                                      char *out, size_t outlen)
+{
+    snprintf(out, outlen, "%s/%s", f->dir, name);
+    FILE *fp = fopen(out, "wb");
+    cr_assert_not_null(fp);
+    cr_assert_eq(fwrite(bytes, 1, len, fp), len);
+    fclose(fp);
+}
+
+/* The whole file (malloc'd) and its size, or NULL. */
+static inline char *render_read_file(const char *path, size_t *len)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp)
+        return NULL;
+    fseek(fp, 0, SEEK_END);
+    long n = ftell(fp);
+    rewind(fp);
+    char *b = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (b && fread(b, 1, (size_t)n, fp) != (size_t)n) {
+        free(b);
+        b = NULL;
+    }
+    fclose(fp);
+    if (b)
+        b[n] = '\0', *len = (size_t)n;
+    return b;
+}
+
 /* The usual fixture: a new folder with profile.json of test profile `which`
  * (render_write_profile) and scene.xml holding xml; its path in scene. */
 static inline void render_fixture_with_scene(render_fixture *f, const char *which, const char *xml, char *scene,

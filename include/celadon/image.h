@@ -27,6 +27,11 @@ int image_read(const char *path, image_t *img, char *err, size_t errlen);
 int image_read_checked(const char *path, int min_side, double max_megapixels, image_t *img, char *err,
                        size_t errlen);
 
+/* image_read with the decoding libraries' own stderr lines suppressed, as
+ * image_read_checked does them: for files whose error the caller reports
+ * in one line of its own (a scene's textures). */
+int image_read_quiet(const char *path, image_t *img, char *err, size_t errlen);
+
 /* Reads only the header: size and channels, cheap. */
 int image_probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen);
 
@@ -43,6 +48,22 @@ int image_write_u8(const char *path, int width, int height, int channels,
 /* Writes 16-bit pixels (PNG, TIFF), atomically like image_write_u8. */
 int image_write_u16(const char *path, int width, int height, int channels,
                     const uint16_t *pixels, char *err, size_t errlen);
+
+/* A text attribute of a written image, under OpenImageIO's name for it:
+ * "ImageDescription" (PNG's Description, JPEG's comment, TIFF's
+ * ImageDescription), "Software", "DateTime", or any other name (a PNG
+ * text chunk, a TIFF or EXR header attribute). */
+typedef struct {
+    const char *name, *value;
+} image_text;
+
+typedef enum { IMAGE_U8, IMAGE_U16, IMAGE_F32 } image_sample_type;
+
+/* Writes pixels of that sample type with the text attributes, atomically
+ * like image_write_u8; the format follows the extension (png, jpg, tif,
+ * hdr, ...). Returns 0, or -1 with a one-line reason. */
+int image_write_with_text(const char *path, int width, int height, int channels, image_sample_type type,
+                          const void *pixels, const image_text *text, int ntext, char *err, size_t errlen);
 
 image_t image_alloc(int width, int height, int channels);
 void image_free(image_t *img);

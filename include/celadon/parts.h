@@ -8,7 +8,10 @@
  *
  * A part's EXR: each channel of the film (R, G, B and the AOVs) as the
  * average of the part's samples, so a part is an image of its own; the
- * channel celadon.weight, each pixel's sum of sample weights; and the string
+ * channel celadon.weight, each pixel's sum of sample weights; the channels
+ * celadon.samples, celadon.luminance and celadon.luminance2, the pixel's own
+ * sample count and the sums of their luminance and its square (film_t's
+ * samples, for the spp and variance channels); and the string
  * attributes celadon.part ("K/N"), celadon.spp (the full render's),
  * celadon.samples ("first-last", the share), celadon.seed, celadon.scene
  * (scene_digest in hex), celadon.channels (the film's channels in order),
@@ -51,7 +54,8 @@ int render_part_write(const film_t *film, const scene_t *s, render_part p, int c
  * complete, each share once and none missing, and sums them (in share
  * order) into film, which is film_init'ed here (film_free it). Returns 0;
  * -2 when the set is refused (a file that is no part, a part of another
- * render, an incomplete, duplicated or missing part), with one line in err
+ * render, an incomplete, duplicated or missing part, a part whose pixels
+ * cannot be decoded: damaged or truncated), with one line in err
  * naming the file or the missing shares; -1 on other failures. */
 int render_parts_merge(const char *const *paths, int n, const scene_t *of, film_t *film, char *err, size_t errlen);
 

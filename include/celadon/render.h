@@ -13,7 +13,16 @@
 #include "celadon/film.h"
 #include "celadon/scene.h"
 
-enum { RENDER_AOV_DEPTH = 1u, RENDER_AOV_NORMAL = 2u, RENDER_AOV_ALBEDO = 4u };
+/* The --aov outputs (docs/rendering.md, "AOVs"): channels named as
+ * Blender's compositor and Nuke read them. */
+enum {
+    RENDER_AOV_DEPTH = 1u,    /* Z: distance along the camera ray to the first hit */
+    RENDER_AOV_NORMAL = 2u,   /* N.X, N.Y, N.Z: its world shading normal */
+    RENDER_AOV_ALBEDO = 4u,   /* albedo.R, .G, .B: its BSDF's albedo */
+    RENDER_AOV_INDEX = 8u,    /* IndexOB.X, IndexMA.X: its shape's and material's numbers */
+    RENDER_AOV_VARIANCE = 16u,/* variance: of the pixel's estimate (film.h, FILM_EXTRA_VARIANCE) */
+    RENDER_AOV_SPP = 32u      /* spp: the pixel's camera samples */
+};
 
 typedef struct {
     int threads;       /* 0: OpenMP's default */
@@ -21,6 +30,11 @@ typedef struct {
     int progress;      /* 1: progress bar on a TTY and a summary line on stderr */
     int sample_begin, sample_end; /* render samples [begin, end) of every pixel (a part of the
                                      render, parts.h); 0, 0: all of the sampler's */
+    double time_budget;  /* > 0: seconds; no pass is started that the last one's time says would
+                            end past it (at least one pass; the sample count stays the limit) */
+    const char *preview; /* non-NULL: the film written here (film_write) after a pass once
+                            preview_seconds have passed since the last time, and at the end */
+    double preview_seconds;
 } render_options;
 
 typedef struct {
@@ -37,12 +51,13 @@ typedef struct {
     double idle_cpu_seconds;
 } render_stats;
 
-/* Parses "depth,normal,albedo" (any subset, any order) into a mask; -1 for an
- * unknown name. */
+/* Parses "depth,normal,albedo,index,variance,spp" (any subset, any order;
+ * "Z" and "N" too) into a mask; -1 for an unknown name. */
 int render_aov_parse(const char *list, unsigned *mask);
 
 /* Renders into film (initialised here with the scene's size and the AOVs;
- * film_free it). Samples are taken in about eight passes over all pixels, so
+ * film_free it). Samples are taken in about eight passes over all pixels
+ * (more above 512 spp: a pass takes at most 64 samples of each pixel), so
  * a render stopped after the first pass leaves every pixel with a
  * consistent, noisier average; stopped during the first pass, the pixels not
  * reached yet have no samples (film_develop gives them 0).
@@ -51,9 +66,14 @@ int render_aov_parse(const char *list, unsigned *mask);
 int render_scene(const scene_t *s, const render_options *opt, film_t *film, render_stats *stats, char *err,
                  size_t errlen);
 
-/* Asks render_scene to stop after the samples in flight (or, if called
- * before it starts, as soon as it starts); the request is cleared when
- * render_scene returns. Async-signal-safe (meant for a SIGINT handler). */
+/* Asks render_scene to stop once the pass under way is finished (so
+ * every pixel keeps the same count of samples, unless the first pass is
+ * under way), or, called a second time, after the samples in flight (or,
+ * if called before it starts, as soon as it starts); the request is
+ * cleared when render_scene returns. Async-signal-safe (meant for a
+ * signal handler: the first Ctrl-C finishes the pass, the second stops). */
 void render_request_stop(void);
+/* Asks it to stop after the samples in flight. Async-signal-safe. */
+void render_request_stop_now(void);
 
 #endif

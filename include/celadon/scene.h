@@ -35,6 +35,7 @@ typedef struct {
     const char *const *search_dirs; /* folders where scene_create_from_file also looks for files, tried
                                        last (render -a; scene_desc_create_from_file_in) */
     int n_search_dirs;
+    int crop_x, crop_y, crop_w, crop_h; /* crop_w > 0: render only this window (render --crop) */
 } scene_options;
 
 /* Every field at "keep the scene's own". */

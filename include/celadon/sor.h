@@ -42,8 +42,9 @@ typedef struct {
 /* Why the profile cannot be revolved, or NULL when it can: it must be a
  * valid clamped cubic B-spline, its control points within
  * SOR_PROFILE_MAX_COORD, h(0) = 0 < SOR_PROFILE_MIN_HEIGHT <= h(1) and r >= 0
- * on every Bezier control point (so on the whole curve), both up to rounding
- * (1e-9 of the largest control coordinate). The reason is a static string
+ * on every Bezier control point (so on the whole curve) and r > 0 on one of
+ * them (a profile on the axis has no surface), all up to rounding (1e-9 of
+ * the largest control coordinate). The reason is a static string
  * without the file name. Every reader of a profile applies this, so a
  * profile is accepted or refused alike by the exact and the meshed SOR. */
 const char *sor_profile_check(const bspline_t *profile);

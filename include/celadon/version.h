@@ -1,5 +1,6 @@
-/* celadon's version: the command's --version, the library's pkg-config file
- * (celadon.pc) and the Python package's __version__. */
+/* celadon's version: the command's --version, every image's metadata, the
+ * library's pkg-config file (celadon.pc) and the Python package's
+ * __version__. */
 #ifndef CELADON_VERSION_H
 #define CELADON_VERSION_H
 

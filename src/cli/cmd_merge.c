@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
+#include <sys/stat.h>
 
 #include "celadon/parts.h"
 #include "cli/cli_args.h"
@@ -11,23 +11,26 @@
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: celadon merge PART.exr... -o OUT.{exr,png,jpg}\n\n"
+    fprintf(f, "usage: celadon merge PART.exr... -o OUT.{exr,hdr,tif,png,jpg}\n\n"
                "Sums the parts of a render (celadon render --part K/N, any order) into its\n"
                "image, the same as one process would have rendered up to float rounding.\n"
                "Refuses, naming the file or the missing shares, a set that is not all N\n"
                "parts of one render (same scene, files, options and seed), each once and\n"
                "complete (docs/distributed.md).\n\n"
-               "  -o OUT    .exr (float32, the render's pixel format + the AOV channels) or\n"
-               "            .png/.jpg (sRGB 8-bit)\n");
+               "  -o OUT    .exr (float32, the render's pixel format + the AOV channels), .hdr,\n"
+               "            .tif (float32) or .png/.jpg (sRGB 8-bit), with the render's metadata\n");
 }
 
-static int output_kind_ok(const char *path)
+/* The part that out names (the same file, under any name), or NULL. */
+static const char *part_named_by(const char *out, const char *const *parts, int n)
 {
-    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
-    if (!dot || (slash && dot < slash))
-        return 0;
-    return !strcasecmp(dot, ".exr") || !strcasecmp(dot, ".png") || !strcasecmp(dot, ".jpg") ||
-           !strcasecmp(dot, ".jpeg");
+    struct stat so, sp;
+    if (stat(out, &so) != 0)
+        return NULL;
+    for (int i = 0; i < n; i++)
+        if (stat(parts[i], &sp) == 0 && sp.st_dev == so.st_dev && sp.st_ino == so.st_ino)
+            return parts[i];
+    return NULL;
 }
 
 int cmd_merge(int argc, char **argv)
@@ -37,6 +40,7 @@ int cmd_merge(int argc, char **argv)
     if (!parts)
         return 1;
     int n = 0, rc = -1;
+    char why[1200];
     for (int i = 1; i < argc && rc < 0; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -55,11 +59,15 @@ int cmd_merge(int argc, char **argv)
     }
     if (rc < 0 && !out)
         rc = cli_usage_error("merge", "%s", "missing -o OUT");
-    else if (rc < 0 && !output_kind_ok(out))
-        rc = cli_usage_error("merge", "output '%s' must end in .exr, .png, .jpg or .jpeg", out);
+    else if (rc < 0 && film_output_check(out, 0, why, sizeof why) != 0)
+        rc = cli_usage_error("merge", "%s", why);
     else if (rc < 0 && n == 0)
         rc = cli_usage_error("merge", "%s", "no PART.exr given");
-    else if (rc < 0 && cli_check_output(out, 0) != 0)
+    else if (rc < 0 && part_named_by(out, parts, n)) {
+        fprintf(stderr, "celadon: %s: is one of the parts being merged (%s): choose another output\n", out,
+                part_named_by(out, parts, n));
+        rc = 2;
+    } else if (rc < 0 && cli_check_output(out, 0) != 0)
         rc = CLI_CANNOT_WRITE;
     if (rc < 0) {
         film_t film;

@@ -16,21 +16,32 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 
-enum { MAX_DEFINES = 64, MAX_FRAMES = 1000000 };
+enum { MAX_DEFINES = 64, MAX_FRAMES = 1000000, DEFAULT_PREVIEW_SECONDS = 10 };
 _Static_assert(MAX_DEFINES == 64, "the -D limit's usage error names it");
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: celadon render SCENE.xml -o OUT.{exr,png,jpg} [--spp N] [--res WxH]\n"
+    fprintf(f, "usage: celadon render SCENE.xml -o OUT.{exr,hdr,tif,png,jpg} [--spp N] [--res WxH]\n"
                "                      [--geometry analytic|mesh:N] [--threads N] [--seed S]\n"
-               "                      [--sampler NAME] [-D name=value]... [-a DIR]... [--aov depth,normal,albedo]\n"
-               "                      [--part K/N] [--frames A:B[:S]]\n\n"
+               "                      [--sampler NAME] [-D name=value]... [-a DIR]... [--aov LIST]\n"
+               "                      [--part K/N] [--frames A:B[:S]] [--exposure STOPS] [--view standard|filmic]\n"
+               "                      [--depth 8|16|32] [--crop X,Y,W,H] [--time SECONDS]\n"
+               "                      [--preview FILE [--preview-every SECONDS]]\n\n"
                "Renders a Mitsuba 3 scene (docs/scene-format.md) with its integrator (`path`\n"
                "by default).\n"
                "SORs are intersected exactly unless --geometry mesh:N revolves them into N\n"
                "angular segments traced by Embree (same sampler seeds otherwise).\n\n"
-               "  -o OUT          .exr (float32, the film's pixel_format + AOV channels) or\n"
-               "                  .png/.jpg (sRGB 8-bit)\n"
+               "  -o OUT          .exr (float32, the film's pixel_format + AOV channels), .hdr\n"
+               "                  (Radiance), .tif (float32, or 8/16-bit with --depth), .png (8 or\n"
+               "                  16-bit) or .jpg; every one with the render's metadata\n"
+               "  --exposure S    PNG/JPEG/8-16-bit TIFF: values times 2^S first (default 0)\n"
+               "  --view V        PNG/JPEG/8-16-bit TIFF: standard (sRGB, clipped; default) or\n"
+               "                  filmic (highlights roll off over 6.5 stops above middle grey)\n"
+               "  --depth B       bits per channel: PNG 8 or 16, TIFF 8, 16 or 32 (default: 8, TIFF 32)\n"
+               "  --crop X,Y,W,H  render only that window of the film (its pixels as the full render's)\n"
+               "  --time S        render passes until S seconds are spent (or the spp reached)\n"
+               "  --preview FILE  write the image so far to FILE after a pass, every 10 s\n"
+               "                  (--preview-every S) and at the end\n"
                "  --spp N         samples per pixel (default: the scene's sampler); also the\n"
                "                  value of $spp where the scene has no <default> for it\n"
                "  --res WxH       film size (default: the scene's film; at most 65536 on a side, 1e9 pixels)\n"
@@ -43,13 +54,16 @@ static void usage(FILE *f)
                "  -a DIR, --append DIR\n"
                "                  one more folder to look for the scene's files in, after those the\n"
                "                  scene gives (Mitsuba's -a; DIR1;DIR2 gives two)\n"
-               "  --aov LIST      extra EXR channels: depth, normal, albedo\n"
+               "  --aov LIST      extra EXR channels: depth (Z), normal (N.X/Y/Z), albedo (albedo.R/G/B),\n"
+               "                  index (IndexOB.X, IndexMA.X), variance, spp\n"
                "  --part K/N      render the K-th of N shares of the samples into OUT.exr, for\n"
                "                  `celadon merge` (docs/distributed.md)\n"
                "  --frames A:B:S  render frames A, A+S, ... below B (S defaults to 1), setting\n"
                "                  -D frame=F; each # run in OUT becomes the zero-padded frame\n"
                "Under mpirun (or srun) the ranks share the work and rank 0 writes OUT.\n"
-               "Ctrl-C stops the render and writes the image it has so far.\n");
+               "Ctrl-C (or SIGHUP) finishes the pass under way and writes the image so far,\n"
+               "labelled as interrupted (a second Ctrl-C stops at once); SIGTERM stops at once\n"
+               "and writes it too.\n");
 }
 
 typedef struct {
@@ -63,15 +77,14 @@ typedef struct {
     const char *spp; /* --spp's text, or NULL */
     render_part part; /* n == 0: the whole render */
     int frame_from, frame_to, frame_step, frames; /* frames == 0: no --frames */
+    film_output output; /* --exposure, --view, --depth */
+    char command_line[2048];
 } render_args;
 
-static int output_kind_ok(const char *path, int *is_exr)
+static int is_exr(const char *path)
 {
     const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
-    if (!dot || (slash && dot < slash))
-        return 0;
-    *is_exr = !strcasecmp(dot, ".exr");
-    return *is_exr || !strcasecmp(dot, ".png") || !strcasecmp(dot, ".jpg") || !strcasecmp(dot, ".jpeg");
+    return dot && !(slash && dot < slash) && !strcasecmp(dot, ".exr");
 }
 
 /* "A:B" or "A:B:S": frames A, A+S, ... below B. */
@@ -161,10 +174,43 @@ static int parse_args(int argc, char **argv, render_args *a)
                 return rc;
         } else if (!strcmp(arg, "--aov")) {
             if (render_aov_parse(val, &a->ro.aovs) != 0)
-                return cli_usage_error("render", "--aov wants a list of depth, normal, albedo, not '%s'", val);
+                return cli_usage_error("render", "--aov wants a list of depth, normal, albedo, index, variance, spp, "
+                                                 "not '%s'", val);
         } else if (!strcmp(arg, "--part")) {
             if (render_part_parse(val, &a->part) != 0)
                 return cli_usage_error("render", "--part wants K/N with 1 <= K <= N <= 1000000, not '%s'", val);
+        } else if (!strcmp(arg, "--crop")) {
+            int x, y, w, h, n = 0;
+            if (sscanf(val, "%d,%d,%d,%d%n", &x, &y, &w, &h, &n) != 4 || val[n] || x < 0 || y < 0 || w < 1 || h < 1)
+                return cli_usage_error("render", "--crop wants X,Y,W,H with X, Y >= 0 and W, H >= 1, not '%s'", val);
+            a->bo.crop_x = x, a->bo.crop_y = y, a->bo.crop_w = w, a->bo.crop_h = h;
+        } else if (!strcmp(arg, "--time")) {
+            char *end;
+            double t = strtod(val, &end);
+            if (end == val || *end || !(t > 0 && t <= 1e7))
+                return cli_usage_error("render", "--time wants seconds from 0 to 1e7, not '%s'", val);
+            a->ro.time_budget = t;
+        } else if (!strcmp(arg, "--preview")) {
+            a->ro.preview = val;
+        } else if (!strcmp(arg, "--preview-every")) {
+            char *end;
+            double t = strtod(val, &end);
+            if (end == val || *end || !(t >= 0 && t <= 1e7))
+                return cli_usage_error("render", "--preview-every wants seconds from 0 to 1e7, not '%s'", val);
+            a->ro.preview_seconds = t;
+        } else if (!strcmp(arg, "--exposure")) {
+            char *end;
+            double e = strtod(val, &end);
+            if (end == val || *end || !(e >= -32 && e <= 32))
+                return cli_usage_error("render", "--exposure wants stops from -32 to 32, not '%s'", val);
+            a->output.exposure = e;
+        } else if (!strcmp(arg, "--view")) {
+            if (film_view_parse(val, &a->output.view) != 0)
+                return cli_usage_error("render", "--view wants standard or filmic, not '%s'", val);
+        } else if (!strcmp(arg, "--depth")) {
+            if (cli_parse_int(val, 8, 32, &v) != 0 || (v != 8 && v != 16 && v != 32))
+                return cli_usage_error("render", "--depth wants 8, 16 or 32, not '%s'", val);
+            a->output.depth = (int)v;
         } else if (!strcmp(arg, "--frames")) {
             if (parse_frames(val, a) != 0)
                 return cli_usage_error("render", "--frames wants A:B or A:B:S with A < B and S >= 1, not '%s'", val);
@@ -178,16 +224,22 @@ static int parse_args(int argc, char **argv, render_args *a)
         has_spp |= !strcmp(a->defs[i].name, "spp");
     if (a->spp && !has_spp && !(a->defs[a->ndefs++] = (scene_define){strdup("spp"), a->spp, true}).name)
         return 1;
-    int is_exr = 0;
+    char why[1200];
     if (!a->scene_path)
         return cli_usage_error("render", "%s", "missing SCENE.xml");
     if (!a->out)
         return cli_usage_error("render", "%s", "missing -o OUT");
-    if (!output_kind_ok(a->out, &is_exr))
-        return cli_usage_error("render", "output '%s' must end in .exr, .png, .jpg or .jpeg", a->out);
-    if (a->ro.aovs && !is_exr)
+    if (film_output_check(a->out, a->output.depth, why, sizeof why) != 0)
+        return cli_usage_error("render", "%s", why);
+    if (a->ro.aovs && !is_exr(a->out))
         return cli_usage_error("render", "--aov needs an .exr output, not '%s'", a->out);
-    if (a->part.n && !is_exr)
+    if (a->ro.preview && film_output_check(a->ro.preview, 0, why, sizeof why) != 0)
+        return cli_usage_error("render", "--preview: %s", why);
+    if (a->ro.preview && !strcmp(a->ro.preview, a->out))
+        return cli_usage_error("render", "%s", "--preview names the output itself");
+    if (a->part.n && (a->ro.time_budget > 0 || a->ro.preview))
+        return cli_usage_error("render", "%s", "--part renders a fixed share of the samples: no --time or --preview");
+    if (a->part.n && !is_exr(a->out))
         return cli_usage_error("render", "--part writes an .exr (its header names the part), not '%s'", a->out);
     if (a->frames && !strchr(a->out, '#'))
         return cli_usage_error("render", "--frames needs a run of # in the output name for the frame, not '%s'",
@@ -217,29 +269,51 @@ static void frame_path(const char *pattern, int frame, char *out, size_t outlen)
     out[n] = '\0';
 }
 
+/* The last stopping signal received (0: none). */
+static volatile sig_atomic_t stop_signal;
+
+/* SIGINT and SIGHUP finish the pass under way (a second one stops at
+ * once); SIGTERM stops after the samples in flight. Either way the image
+ * so far is written, labelled as interrupted. */
 static void on_stop(int sig)
 {
-    (void)sig;
-    render_request_stop();
+    if (sig == SIGTERM)
+        render_request_stop_now();
+    else
+        render_request_stop();
+    stop_signal = sig;
 }
 
-/* Writes the image (or the part) of a finished render: 0, 1 on failure, 130
- * when the render was interrupted. */
-static int write_result(const render_args *a, const scene_t *scene, const film_t *film, const render_stats *st,
+/* "celadon render ARGS", each argument that needs it in single quotes:
+ * the command line the image's metadata records. */
+static void command_line(int argc, char **argv, char *out, size_t outlen)
+{
+    size_t n = (size_t)snprintf(out, outlen, "celadon");
+    for (int i = 0; i < argc && n < outlen; i++) {
+        const char *arg = argv[i];
+        int plain = arg[0] && strspn(arg, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+                                          "-_./=:,+%@#") == strlen(arg);
+        n += (size_t)snprintf(out + n, outlen - n, plain ? " %s" : " '%s'", arg);
+    }
+}
+
+/* Writes the image (or the part) of a finished render: 0, 1 on failure,
+ * 128 + the signal when one stopped it. */
+static int write_result(const render_args *a, const scene_t *scene, film_t *film, const render_stats *st,
                         const char *out)
 {
     char err[2048];
+    snprintf(film->meta.scene_path, sizeof film->meta.scene_path, "%s", a->scene_path);
+    snprintf(film->meta.command_line, sizeof film->meta.command_line, "%s", a->command_line);
     int rc = a->part.n ? render_part_write(film, scene, a->part, !st->interrupted, out, err, sizeof err)
-                       : film_write(film, out, err, sizeof err);
+                       : film_write_as(film, out, &a->output, err, sizeof err);
     if (rc != 0) {
         fprintf(stderr, "celadon: %s\n", err);
         return 1;
     }
-    if (st->interrupted) {
+    if (st->interrupted)
         fprintf(stderr, "celadon: interrupted; wrote the partial %s %s\n", a->part.n ? "part" : "image", out);
-        return 130;
-    }
-    return 0;
+    return stop_signal ? 128 + stop_signal : 0;
 }
 
 /* Builds the scene on every rank and renders it; rank 0 writes out. */
@@ -278,7 +352,7 @@ static int render_one(render_args *a, const distribute_job *job, const char *out
         }
         /* Every rank ends (or goes on to the next frame) with rank 0. */
         if (distribute_first_failure(job->rank != 0 || rc == 0) >= 0 && job->rank != 0)
-            rc = st.interrupted ? 130 : 1;
+            rc = st.interrupted ? 128 + (stop_signal ? stop_signal : SIGINT) : 1;
     }
     scene_destroy(scene);
     return rc;
@@ -316,7 +390,10 @@ int cmd_render(int argc, char **argv)
     }
     cli_set_quiet(job.rank != 0); /* every rank would print the same usage error */
     a.ro.progress = job.rank == 0;
+    a.ro.preview_seconds = DEFAULT_PREVIEW_SECONDS;
     int rc = parse_args(argc, argv, &a);
+    if (rc < 0 && job.size > 1 && (a.ro.time_budget > 0 || a.ro.preview))
+        rc = cli_usage_error("render", "%s", "--time and --preview are for one process, not under mpirun");
     a.bo.search_dirs = (const char *const *)a.dirs;
     a.bo.n_search_dirs = a.ndirs;
     if (rc < 0 && cli_check_output(a.out, 0) != 0)
@@ -325,17 +402,18 @@ int cmd_render(int argc, char **argv)
         /* From here Ctrl-C asks for the image so far (an empty one while
          * loading); under mpirun, which turns Ctrl-C into SIGTERM to every
          * rank, SIGTERM does too. */
-        struct sigaction sa, old_int, old_term;
+        struct sigaction sa, old_int, old_term, old_hup;
         memset(&sa, 0, sizeof sa);
         sa.sa_handler = on_stop;
         sigemptyset(&sa.sa_mask);
         sigaction(SIGINT, &sa, &old_int);
-        if (job.size > 1)
-            sigaction(SIGTERM, &sa, &old_term);
+        sigaction(SIGTERM, &sa, &old_term);
+        sigaction(SIGHUP, &sa, &old_hup);
+        command_line(argc, argv, a.command_line, sizeof a.command_line);
         rc = render_frames(&a, &job);
         sigaction(SIGINT, &old_int, NULL);
-        if (job.size > 1)
-            sigaction(SIGTERM, &old_term, NULL);
+        sigaction(SIGTERM, &old_term, NULL);
+        sigaction(SIGHUP, &old_hup, NULL);
     }
     for (int i = 0; i < a.ndefs; i++)
         free((char *)a.defs[i].name);

@@ -55,7 +55,7 @@ static int envmap_load(envmap_data *env, const char *path, char *err, size_t err
 {
     image_t img;
     char why[512];
-    if (image_read(path, &img, why, sizeof why) != 0) {
+    if (image_read_quiet(path, &img, why, sizeof why) != 0) {
         snprintf(err, errlen, "cannot read '%s': %s", path, why);
         return -1;
     }

@@ -49,15 +49,15 @@ int image_read(const char *path, image_t *img, char *err, size_t errlen)
 }
 
 /* Written to a temporary sibling, renamed when whole; removed on any failure. */
-static int write_atomically(const char *path, int w, int h, int ch, int bits, const void *pixels, char *err,
-                            size_t errlen)
+int image_write_with_text(const char *path, int w, int h, int ch, image_sample_type type, const void *pixels,
+                          const image_text *text, int ntext, char *err, size_t errlen)
 {
     const oiio_backend *b = oiio_backend_get(err, errlen);
     if (!b)
         return -1;
     char tmp[4200];
     atomic_temp_name(path, tmp, sizeof tmp);
-    int rc = b->write(path, tmp, w, h, ch, bits, pixels, err, errlen);
+    int rc = b->write(path, tmp, w, h, ch, type, pixels, text, ntext, err, errlen);
     if (rc == 0 && rename(tmp, path) != 0) {
         snprintf(err, errlen, "cannot rename into place: %s", strerror(errno));
         rc = -1;
@@ -71,11 +71,11 @@ static int write_atomically(const char *path, int w, int h, int ch, int bits, co
 int image_write_u8(const char *path, int width, int height, int channels, const uint8_t *pixels, char *err,
                    size_t errlen)
 {
-    return write_atomically(path, width, height, channels, 8, pixels, err, errlen);
+    return image_write_with_text(path, width, height, channels, IMAGE_U8, pixels, NULL, 0, err, errlen);
 }
 
 int image_write_u16(const char *path, int width, int height, int channels, const uint16_t *pixels, char *err,
                     size_t errlen)
 {
-    return write_atomically(path, width, height, channels, 16, pixels, err, errlen);
+    return image_write_with_text(path, width, height, channels, IMAGE_U16, pixels, NULL, 0, err, errlen);
 }

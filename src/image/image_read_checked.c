@@ -1,5 +1,7 @@
 /* image_read_checked: the checks a photo passes before and while it is
- * decoded, with libpng's own stderr lines kept out of the user's terminal. */
+ * decoded, with libpng's own stderr lines kept out of the user's terminal;
+ * image_read_quiet: the same decode without the checks (a scene's
+ * textures and environment maps). */
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
@@ -45,6 +47,11 @@ static int read_quietly(const char *path, image_t *img, int *w, int *h, char *er
             fclose(cap);
     }
     return rc;
+}
+
+int image_read_quiet(const char *path, image_t *img, char *err, size_t errlen)
+{
+    return read_quietly(path, img, NULL, NULL, err, errlen);
 }
 
 int image_read_checked(const char *path, int min_side, double max_megapixels, image_t *img, char *err,

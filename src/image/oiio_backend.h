@@ -21,10 +21,12 @@ typedef struct {
     double (*exif_focal_35mm)(const char *path);
     /* img->data is malloc'd; left NULL on failure. */
     int (*read)(const char *path, image_t *img, char *err, size_t errlen);
-    /* Writes pixels of bits 8 or 16 to file, in the format format_path's
-     * extension names (file is a temporary name with the same extension). */
-    int (*write)(const char *format_path, const char *file, int width, int height, int channels, int bits,
-                 const void *pixels, char *err, size_t errlen);
+    /* Writes pixels of that sample type to file, with the text attributes,
+     * in the format format_path's extension names (file is a temporary
+     * name with the same extension). */
+    int (*write)(const char *format_path, const char *file, int width, int height, int channels,
+                 image_sample_type type, const void *pixels, const image_text *text, int ntext, char *err,
+                 size_t errlen);
 } oiio_backend;
 
 /* The symbol the shared object exports. */

@@ -214,7 +214,7 @@ static int guarded_read(const char *path, image_t *img, char *err, size_t errlen
 }
 
 static int write_pixels(const char *format_path, const char *file, int w, int h, int ch, TypeDesc type,
-                        const void *pixels, char *err, size_t errlen)
+                        const void *pixels, const image_text *text, int ntext, char *err, size_t errlen)
 {
     auto out = ImageOutput::create(format_path);
     if (!out) {
@@ -231,6 +231,8 @@ static int write_pixels(const char *format_path, const char *file, int w, int h,
     // (docs/BENCHMARKS.md, "Batch throughput").
     spec.attribute("png:compressionLevel", PNG_COMPRESSION_LEVEL);
     spec.attribute("png:filter", PNG_ROW_FILTER);
+    for (int i = 0; i < ntext; i++)
+        spec.attribute(text[i].name, text[i].value);
     if (!out->open(file, spec) || !out->write_image(type, pixels) || !out->close()) {
         set_err(err, errlen, out->geterror());
         return -1;
@@ -238,11 +240,12 @@ static int write_pixels(const char *format_path, const char *file, int w, int h,
     return 0;
 }
 
-static int guarded_write(const char *format_path, const char *file, int w, int h, int ch, int bits,
-                         const void *pixels, char *err, size_t errlen)
+static int guarded_write(const char *format_path, const char *file, int w, int h, int ch, image_sample_type type,
+                         const void *pixels, const image_text *text, int ntext, char *err, size_t errlen)
 {
-    TypeDesc type = bits == 16 ? TypeDesc::UINT16 : TypeDesc::UINT8;
-    return guarded(err, errlen, [&] { return write_pixels(format_path, file, w, h, ch, type, pixels, err, errlen); });
+    TypeDesc t = type == IMAGE_U8 ? TypeDesc::UINT8 : type == IMAGE_U16 ? TypeDesc::UINT16 : TypeDesc::FLOAT;
+    return guarded(err, errlen,
+                   [&] { return write_pixels(format_path, file, w, h, ch, t, pixels, text, ntext, err, errlen); });
 }
 
 extern "C" const oiio_backend celadon_oiio_backend = {guarded_probe, exif_focal_35mm, guarded_read, guarded_write};

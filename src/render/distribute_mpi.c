@@ -240,7 +240,7 @@ static void coordinator_stop(coordinator *c)
     if (c->stopping)
         return;
     c->stopping = 1;
-    render_request_stop();
+    render_request_stop_now();
     for (int r = 1; r < c->size; r++)
         if (!c->told_none[r] && !c->told_stop[r]) {
             send_msg(r, TAG_DOWN, MSG_STOP, 0);
@@ -319,7 +319,7 @@ static void work(render_thread *w)
             if (m[0] == MSG_NONE)
                 return;
             if (m[0] == MSG_STOP)
-                render_request_stop();
+                render_request_stop_now();
             else
                 render_thread_give(w, (int)m[1]), asked = 0;
         }
@@ -403,12 +403,18 @@ int distribute_render(const scene_t *s, const render_options *opt, film_t *film,
     size_t npix = (size_t)width * (size_t)height;
     reduce_to_root(film->sum, npix * (size_t)film->nchannels, rank);
     reduce_to_root(film->weight, npix, rank);
+    reduce_to_root(film->samples, npix * 3, rank);
+    reduce_to_root(film->ids, npix * 2, rank); /* one rank took each pixel's sample 0 */
     double t_end = now_seconds();
     /* Interrupted: fewer samples than asked for. Every rank learns it from
      * rank 0, so that they all stop or go on (--frames) together. */
     render_stats st = {t_end - w.tally.t_start, rank == 0 ? all : taken, all < render_sample_count(s, s0, s1),
                        w.tally.busy_cpu_seconds, w.tally.idle_cpu_seconds};
     MPI_Bcast(&st.interrupted, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    film->meta.seconds = st.seconds, film->meta.interrupted = st.interrupted;
+    /* Passes' worth of samples: units of a pass may be taken out of order. */
+    film->meta.passes = (int)(all / render_sample_count(s, s0, s0 + plan.pass_spp));
+    film->meta.threads = w.threads, film->meta.ranks = size;
     if (rank == 0) {
         if (opt->progress) {
             if (!st.interrupted)

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 static const double flip[4] = {-1.0, 1.0, -1.0, 1.0};
 
@@ -32,6 +33,17 @@ exr_result_t exr_metadata_write(exr_context_t ctx, int part, const film_metadata
         rv = exr_attr_set_string(ctx, part, "camera", meta->camera);
     if (rv == EXR_ERR_SUCCESS && meta->camera[0])
         rv = exr_attr_set_m44f(ctx, part, "worldToCamera", &w2c);
+    /* OpenEXR's standard capDate ("YYYY:MM:DD hh:mm:ss", local time) and
+     * utcOffset (UTC minus local time, seconds): when the file was made. */
+    time_t now = time(NULL);
+    struct tm tm;
+    localtime_r(&now, &tm);
+    char date[32];
+    strftime(date, sizeof date, "%Y:%m:%d %H:%M:%S", &tm);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_attr_set_string(ctx, part, "capDate", date);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_attr_set_float(ctx, part, "utcOffset", (float)-tm.tm_gmtoff);
     return rv;
 }
 
@@ -57,6 +69,10 @@ void exr_metadata_read(exr_const_context_t ctx, int part, film_metadata *meta)
     meta->seed = strtoull(seed, NULL, 10);
     read_string(ctx, part, "integrator", meta->integrator, sizeof meta->integrator);
     read_string(ctx, part, "camera", meta->camera, sizeof meta->camera);
+    read_string(ctx, part, "celadon/sampler", meta->sampler, sizeof meta->sampler);
+    read_string(ctx, part, "celadon/sceneDigest", meta->scene_digest, sizeof meta->scene_digest);
+    read_string(ctx, part, "celadon/scene", meta->scene_path, sizeof meta->scene_path);
+    read_string(ctx, part, "celadon/commandLine", meta->command_line, sizeof meta->command_line);
     if (exr_attr_get_m44f(ctx, part, "worldToCamera", &w2c) == EXR_ERR_SUCCESS)
         for (int r = 0; r < 4; r++)
             for (int c = 0; c < 4; c++)

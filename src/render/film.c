@@ -1,14 +1,9 @@
 #include "celadon/film.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
-
-#include "celadon/color.h"
-#include "celadon/image.h"
 
 /* "prefix.suffix", or whichever of the two is not empty. */
 static char *dup_name(const char *prefix, const char *suffix)
@@ -63,7 +58,9 @@ int film_init_format(film_t *f, int width, int height, film_pixel_format format,
     f->names = calloc((size_t)n, sizeof(char *));
     f->sum = calloc((size_t)width * height * n, sizeof(double));
     f->weight = calloc((size_t)width * height, sizeof(double));
-    if (!f->names || !f->sum || !f->weight)
+    f->samples = calloc((size_t)width * height * 3, sizeof(double));
+    f->ids = calloc((size_t)width * height * 2, sizeof(double));
+    if (!f->names || !f->sum || !f->weight || !f->samples || !f->ids)
         abort();
     int k = 0;
     for (int c = 0; c < 3; c++)
@@ -90,6 +87,8 @@ void film_free(film_t *f)
     free(f->names);
     free(f->sum);
     free(f->weight);
+    free(f->samples);
+    free(f->ids);
     memset(f, 0, sizeof *f);
 }
 
@@ -109,6 +108,21 @@ void film_merge(film_t *dst, const film_t *src)
         dst->sum[i] += src->sum[i];
     for (size_t p = 0; p < npix; p++)
         dst->weight[p] += src->weight[p];
+    for (size_t i = 0; i < npix * 3; i++)
+        dst->samples[i] += src->samples[i];
+    for (size_t i = 0; i < npix * 2; i++)
+        dst->ids[i] += src->ids[i];
+}
+
+void film_sample_range(const film_t *f, double *least, double *most)
+{
+    size_t npix = (size_t)f->width * f->height;
+    *least = npix ? f->samples[0] : 0.0, *most = *least;
+    for (size_t p = 1; p < npix; p++) {
+        double n = f->samples[3 * p];
+        *least = n < *least ? n : *least;
+        *most = n > *most ? n : *most;
+    }
 }
 
 void film_develop(const film_t *f, float *out)
@@ -121,14 +135,7 @@ void film_develop(const film_t *f, float *out)
     }
 }
 
-uint8_t film_srgb8(double v)
-{
-    if (!(v > 0)) /* also NaN */
-        return 0;
-    if (v >= 1)
-        return 255;
-    return (uint8_t)lrint(linear_to_srgb(v) * 255.0);
-}
+uint8_t film_srgb8(double v) { return (uint8_t)lrint(film_view_encode(FILM_VIEW_STANDARD, v) * 255.0); }
 
 void film_develop_srgb8(const film_t *f, uint8_t *out)
 {
@@ -138,85 +145,4 @@ void film_develop_srgb8(const film_t *f, uint8_t *out)
         for (int c = 0; c < 3; c++)
             out[p * 3 + c] = film_srgb8(w > 0 ? (float)(f->sum[p * f->nchannels + c] / w) : 0.0);
     }
-}
-
-static int has_ext(const char *path, const char *ext)
-{
-    const char *dot = strrchr(path, '.');
-    return dot && !strchr(dot, '/') && strcasecmp(dot + 1, ext) == 0;
-}
-
-/* R, G, B turned into the pixel format's Y or X, Y, Z: Rec. 709 primaries,
- * D65 (Mitsuba's srgb_to_xyz). */
-float *film_develop_exr(const film_t *f, int *nch, const char **names)
-{
-    static const double to_xyz[3][3] = {
-        {0.412453, 0.357580, 0.180423}, {0.212671, 0.715160, 0.072169}, {0.019334, 0.119193, 0.950227}};
-    static const char *const xyz_names[3] = {"X", "Y", "Z"};
-    size_t npix = (size_t)f->width * f->height;
-    float *dev = malloc(sizeof(float) * npix * f->nchannels);
-    if (!dev)
-        abort();
-    film_develop(f, dev);
-    int lum = f->format == FILM_LUMINANCE || f->format == FILM_LUMINANCE_ALPHA;
-    int xyz = f->format == FILM_XYZ || f->format == FILM_XYZA;
-    if (!lum && !xyz) {
-        *nch = f->nchannels;
-        for (int c = 0; c < *nch; c++)
-            names[c] = f->names[c];
-        return dev;
-    }
-    int base = lum ? 1 : 3;
-    *nch = f->nchannels - 3 + base;
-    for (int c = 0; c < *nch; c++)
-        names[c] = c >= base ? f->names[c + 3 - base] : lum ? "Y" : xyz_names[c];
-    float *px = malloc(sizeof(float) * npix * *nch);
-    if (!px)
-        abort();
-    for (size_t p = 0; p < npix; p++) {
-        const float *in = dev + p * f->nchannels;
-        float *out = px + p * *nch;
-        double v[3];
-        for (int i = 0; i < 3; i++)
-            v[i] = to_xyz[i][0] * in[0] + to_xyz[i][1] * in[1] + to_xyz[i][2] * in[2];
-        for (int c = 0; c < base; c++)
-            out[c] = (float)v[lum ? 1 : c];
-        for (int c = base; c < *nch; c++)
-            out[c] = in[c + 3 - base];
-    }
-    free(dev);
-    return px;
-}
-
-int film_write(const film_t *f, const char *path, char *err, size_t errlen)
-{
-    int exr = has_ext(path, "exr");
-    int ldr = has_ext(path, "png") || has_ext(path, "jpg") || has_ext(path, "jpeg");
-    if (!exr && !ldr) {
-        snprintf(err, errlen, "%s: unsupported output format (use .exr, .png or .jpg)", path);
-        return -1;
-    }
-    size_t npix = (size_t)f->width * f->height;
-    int rc;
-    if (exr) {
-        const char **names = malloc(sizeof *names * (size_t)f->nchannels);
-        if (!names)
-            abort();
-        int nch;
-        float *px = film_develop_exr(f, &nch, names);
-        rc = exr_write_float(path, f->width, f->height, nch, names, px, &f->meta, err, errlen);
-        free(px);
-        free(names);
-    } else {
-        uint8_t *rgb8 = malloc(npix * 3);
-        if (!rgb8)
-            abort();
-        film_develop_srgb8(f, rgb8);
-        char why[512];
-        rc = image_write_u8(path, f->width, f->height, 3, rgb8, why, sizeof why);
-        if (rc != 0)
-            snprintf(err, errlen, "%s: cannot write: %s", path, why);
-        free(rgb8);
-    }
-    return rc;
 }

@@ -9,11 +9,18 @@
 #include "render/exr_read.h"
 
 #define WEIGHT_CHANNEL "celadon.weight"
+/* film_t.samples: each pixel's own sample count, luminance sum and sum of
+ * squares, after the weight. */
+static const char *const SAMPLE_CHANNELS[3] = {"celadon.samples", "celadon.luminance", "celadon.luminance2"};
+/* film_t.ids: the object and material numbers of sample 0 (0 in the other
+ * parts, so the sum keeps them). */
+static const char *const ID_CHANNELS[2] = {"celadon.object", "celadon.material"};
+enum { PART_EXTRA = 6 }; /* the weight, the sample counts and the ids */
 
 enum { MAX_CHANNELS = 64, ATTR_LEN = 1024 };
 
 /* A part's pixels as its EXR holds them: the film's channels, then the
- * weight, interleaved. */
+ * weight and the sample counts, interleaved. */
 typedef struct {
     int nch;
     float *px;
@@ -22,14 +29,18 @@ typedef struct {
 
 static part_pixels part_pixels_alloc(const film_t *film)
 {
-    part_pixels pp = {film->nchannels + 1, NULL, NULL};
+    part_pixels pp = {film->nchannels + PART_EXTRA, NULL, NULL};
     pp.px = malloc(sizeof *pp.px * (size_t)film->width * (size_t)film->height * (size_t)pp.nch);
     pp.names = malloc(sizeof *pp.names * (size_t)pp.nch);
     if (!pp.px || !pp.names)
         abort();
     for (int c = 0; c < film->nchannels; c++)
         pp.names[c] = film->names[c];
-    pp.names[pp.nch - 1] = WEIGHT_CHANNEL;
+    pp.names[film->nchannels] = WEIGHT_CHANNEL;
+    for (int i = 0; i < 3; i++)
+        pp.names[film->nchannels + 1 + i] = SAMPLE_CHANNELS[i];
+    for (int i = 0; i < 2; i++)
+        pp.names[film->nchannels + 4 + i] = ID_CHANNELS[i];
     return pp;
 }
 
@@ -64,6 +75,8 @@ int render_part_write(const film_t *film, const scene_t *s, render_part p, int c
     int spp = scene_spp(s), s0, s1;
     render_part_samples(p, spp, &s0, &s1);
     char part[32], spps[16], samples[32], seed[32], digest[32], channels[ATTR_LEN] = "";
+    char extras[16];
+    snprintf(extras, sizeof extras, "%u", film->extras);
     snprintf(part, sizeof part, "%d/%d", p.k, p.n);
     snprintf(spps, sizeof spps, "%d", spp);
     snprintf(samples, sizeof samples, "%d-%d", s0, s1 - 1);
@@ -76,7 +89,7 @@ int render_part_write(const film_t *film, const scene_t *s, render_part p, int c
         {"celadon.part", part},         {"celadon.spp", spps},           {"celadon.samples", samples},
         {"celadon.seed", seed},         {"celadon.scene", digest},       {"celadon.channels", channels},
         {"celadon.complete", complete ? "yes" : "no"},
-        {"celadon.format", film_format_name(film->format)},
+        {"celadon.format", film_format_name(film->format)}, {"celadon.extras", extras},
     };
     part_pixels pp = part_pixels_alloc(film);
     int nch = pp.nch;
@@ -85,7 +98,11 @@ int render_part_write(const film_t *film, const scene_t *s, render_part p, int c
         double w = film->weight[i];
         for (int c = 0; c < film->nchannels; c++)
             pp.px[i * nch + c] = w > 0 ? (float)(film->sum[i * film->nchannels + c] / w) : 0.0f;
-        pp.px[i * nch + nch - 1] = (float)w;
+        pp.px[i * nch + film->nchannels] = (float)w;
+        for (int k = 0; k < 3; k++)
+            pp.px[i * nch + film->nchannels + 1 + k] = (float)film->samples[3 * i + k];
+        for (int k = 0; k < 2; k++)
+            pp.px[i * nch + film->nchannels + 4 + k] = (float)film->ids[2 * i + k];
     }
     int rc = exr_write_float_attrs(path, film->width, film->height, nch, pp.names, pp.px, &film->meta, attrs,
                                    (int)(sizeof attrs / sizeof attrs[0]), err, errlen);
@@ -103,6 +120,7 @@ typedef struct {
     char seed[32], scene[32], channels[ATTR_LEN];
     film_pixel_format format;
     film_metadata meta; /* of the EXR header written by film_write */
+    unsigned extras;    /* the film's FILM_EXTRA_* */
 } part_info;
 
 static const char *attr_or_empty(const exr_in *e, const char *name)
@@ -130,6 +148,7 @@ static int read_info(const char *path, part_info *pi, char *err, size_t errlen)
     snprintf(pi->channels, sizeof pi->channels, "%s", attr_or_empty(e, "celadon.channels"));
     pi->spp = atoi(attr_or_empty(e, "celadon.spp"));
     pi->complete = !strcmp(attr_or_empty(e, "celadon.complete"), "yes");
+    pi->extras = (unsigned)strtoul(attr_or_empty(e, "celadon.extras"), NULL, 10);
     int format_ok = film_format_parse(attr_or_empty(e, "celadon.format"), &pi->format) == 0;
     exr_in_metadata(e, &pi->meta);
     if (!part)
@@ -137,7 +156,8 @@ static int read_info(const char *path, part_info *pi, char *err, size_t errlen)
     else if (render_part_parse(part, &pi->part) != 0 || pi->spp < 1 || !format_ok || !pi->seed[0] || !pi->scene[0] ||
              !pi->channels[0] || sscanf(samples, "%d-%d%n", &first, &last, &len) != 2 || samples[len] ||
              render_part_samples(pi->part, pi->spp, &pi->s0, &pi->s1) != 0 || first != pi->s0 ||
-             last != pi->s1 - 1 || !exr_in_has_channel(e, WEIGHT_CHANNEL))
+             last != pi->s1 - 1 || !exr_in_has_channel(e, WEIGHT_CHANNEL) ||
+             !exr_in_has_channel(e, SAMPLE_CHANNELS[0]) || !exr_in_has_channel(e, ID_CHANNELS[0]))
         snprintf(err, errlen, "%s: its celadon.* header is damaged or not this version's", path);
     else if (!pi->complete)
         snprintf(err, errlen, "%s: part %d/%d is incomplete (its render was interrupted): render it again", path,
@@ -173,7 +193,7 @@ static int same_render(const part_info *a, const part_info *b, char *err, size_t
     return -2;
 }
 
-/* The film's AOVs from the channel list "R,G,B,depth.T,normal.X,..." (with
+/* The film's AOVs from the channel list "R,G,B,Z,N.X,N.Y,..." (with
  * an A after B for the alpha formats), its pixel format and metadata. */
 static int film_for(const part_info *pi, film_t *film, char *err, size_t errlen)
 {
@@ -186,11 +206,10 @@ static int film_for(const part_info *pi, film_t *film, char *err, size_t errlen)
     const char *suffixes[MAX_CHANNELS]; /* each channel's, so an AOV's are consecutive */
     int naov = 0;
     for (int c = 3 + film_format_has_alpha(pi->format); c < n; c++) {
-        char *dot = strrchr(names[c], '.');
-        if (!dot)
-            break;
-        *dot = '\0';
-        suffixes[c] = dot + 1;
+        char *dot = strrchr(names[c], '.'); /* "Z": an AOV of one channel with no suffix */
+        suffixes[c] = dot ? dot + 1 : "";
+        if (dot)
+            *dot = '\0';
         if (naov > 0 && !strcmp(aovs[naov - 1].name, names[c]))
             aovs[naov - 1].channels++;
         else
@@ -199,6 +218,7 @@ static int film_for(const part_info *pi, film_t *film, char *err, size_t errlen)
     if (film_init_format(film, pi->width, pi->height, pi->format, aovs, naov, err, errlen) != 0)
         return -1;
     film->meta = pi->meta;
+    film->extras = pi->extras;
     int ok = film->nchannels == n;
     snprintf(buf, sizeof buf, "%s", pi->channels);
     char *t = strtok_r(buf, ",", &save);
@@ -211,21 +231,26 @@ static int film_for(const part_info *pi, film_t *film, char *err, size_t errlen)
     return -2;
 }
 
-/* Adds one part's averages times its weights into film. */
+/* Adds one part's averages times its weights into film: -2 when its
+ * pixels cannot be read (a damaged or truncated part is bad input). */
 static int add_part(const part_info *pi, film_t *film, char *err, size_t errlen)
 {
     exr_in *e = exr_in_open(pi->path, err, errlen);
     if (!e)
-        return -1;
+        return -2;
     part_pixels pp = part_pixels_alloc(film);
     int nch = pp.nch;
     size_t npix = (size_t)film->width * film->height;
-    int rc = exr_in_read(e, nch, pp.names, pp.px, err, errlen);
+    int rc = exr_in_read(e, nch, pp.names, pp.px, err, errlen) == 0 ? 0 : -2;
     for (size_t i = 0; rc == 0 && i < npix; i++) {
-        double w = pp.px[i * nch + nch - 1];
+        double w = pp.px[i * nch + film->nchannels];
         for (int c = 0; c < film->nchannels; c++)
             film->sum[i * film->nchannels + c] += w * pp.px[i * nch + c];
         film->weight[i] += w;
+        for (int k = 0; k < 3; k++)
+            film->samples[3 * i + k] += pp.px[i * nch + film->nchannels + 1 + k];
+        for (int k = 0; k < 2; k++)
+            film->ids[2 * i + k] += pp.px[i * nch + film->nchannels + 4 + k];
     }
     part_pixels_free(&pp);
     exr_in_close(e);

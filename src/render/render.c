@@ -12,10 +12,12 @@
  * the other, the tiles of a colour in parallel. Every pixel then receives
  * its contributions in an order fixed by the tiles and samples alone,
  * whatever the threads and their schedule. */
+#include <inttypes.h>
 #include <math.h>
 #include <omp.h>
 #include <signal.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -23,11 +25,15 @@
 #include "render/render_loop.h"
 #include "render/scene_impl.h"
 
-enum { TILE = 16 };
+enum { TILE = 16, PASS_MAX_SPP = 64 };
 
+/* 0: render on; STOP_AFTER_PASS: finish the pass under way; STOP_NOW: stop
+ * after the samples in flight. */
+enum { STOP_AFTER_PASS = 1, STOP_NOW = 2 };
 static volatile sig_atomic_t stop_requested;
 
-void render_request_stop(void) { stop_requested = 1; }
+void render_request_stop(void) { stop_requested = stop_requested ? STOP_NOW : STOP_AFTER_PASS; }
+void render_request_stop_now(void) { stop_requested = STOP_NOW; }
 
 int render_aov_parse(const char *list, unsigned *mask)
 {
@@ -38,12 +44,18 @@ int render_aov_parse(const char *list, unsigned *mask)
     if (!tok)
         return -1;
     for (; tok; tok = strtok_r(NULL, ",", &save)) {
-        if (!strcmp(tok, "depth"))
+        if (!strcmp(tok, "depth") || !strcmp(tok, "Z"))
             *mask |= RENDER_AOV_DEPTH;
-        else if (!strcmp(tok, "normal"))
+        else if (!strcmp(tok, "normal") || !strcmp(tok, "N"))
             *mask |= RENDER_AOV_NORMAL;
         else if (!strcmp(tok, "albedo"))
             *mask |= RENDER_AOV_ALBEDO;
+        else if (!strcmp(tok, "index"))
+            *mask |= RENDER_AOV_INDEX;
+        else if (!strcmp(tok, "variance"))
+            *mask |= RENDER_AOV_VARIANCE;
+        else if (!strcmp(tok, "spp"))
+            *mask |= RENDER_AOV_SPP;
         else
             return -1;
     }
@@ -66,7 +78,53 @@ typedef struct {
     int nown;            /* the integrator's own channels */
     int x0, y0, x1, y1;  /* the sampled pixels: the film, and the border with sample_border */
     int border;          /* its width: the sampler numbers pixels from the border's corner */
+    const int *material; /* with RENDER_AOV_INDEX: each shape's material number */
+    int ox, oy;          /* the crop window's corner: film pixel (x, y) is the output's (x - ox, y - oy) */
 } render_job;
+
+/* A shape's BSDF and number, ordered by BSDF, then number. */
+typedef struct {
+    uintptr_t bsdf;
+    int shape;
+} bsdf_use;
+
+static int by_bsdf(const void *pa, const void *pb)
+{
+    const bsdf_use *a = pa, *b = pb;
+    if (a->bsdf != b->bsdf)
+        return a->bsdf < b->bsdf ? -1 : 1;
+    return (a->shape > b->shape) - (a->shape < b->shape);
+}
+
+/* Each shape's material number: that of the first shape (from 1) with the
+ * same BSDF, so shapes share a number exactly when they share a BSDF. */
+static int *material_numbers(const shape_list *l)
+{
+    int n = l->count;
+    bsdf_use *use = malloc(sizeof *use * (size_t)(n > 0 ? n : 1));
+    int *num = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    if (!use || !num)
+        abort();
+    for (int i = 0; i < n; i++)
+        use[i] = (bsdf_use){(uintptr_t)l->items[i].bsdf, i};
+    qsort(use, (size_t)n, sizeof *use, by_bsdf);
+    for (int i = 0; i < n; i++)
+        num[use[i].shape] = i > 0 && use[i - 1].bsdf == use[i].bsdf ? num[use[i - 1].shape] : use[i].shape + 1;
+    free(use);
+    return num;
+}
+
+/* The shape and material numbers of the first surface the camera ray
+ * meets, into the film's ids of pixel (x, y). */
+static void record_ids(const render_job *j, const camera_ray_t *cr, int x, int y)
+{
+    surface_hit hit;
+    double *ids = j->film->ids + 2 * ((size_t)y * j->film->width + x);
+    if (shape_list_intersect(&j->s->shapes, &cr->ray, cr->tmin, cr->tmax, &hit)) {
+        int k = (int)(hit.shape - j->s->shapes.items);
+        ids[0] = k + 1, ids[1] = j->material[k];
+    }
+}
 
 /* Film values of one sample: RGB, A, then the requested AOVs and the
  * integrator's own channels, in that order. */
@@ -131,7 +189,7 @@ static uint64_t render_tile(const render_job *j, int tx, int ty, int s0, int s1)
     for (int y = ty; y < ty + TILE && y < j->y1; y++)
         for (int x = tx; x < tx + TILE && x < j->x1; x++)
             for (int k = s0; k < s1; k++) {
-                if (stop_requested)
+                if (stop_requested == STOP_NOW)
                     goto done;
                 sampler_stream smp;
                 sampler_start(&s->sampler, &smp, (uint32_t)(x + j->border), (uint32_t)(y + j->border), (uint32_t)k);
@@ -146,7 +204,14 @@ static uint64_t render_tile(const render_job *j, int tx, int ty, int s0, int s1)
                 camera_ray_t cr = camera_ray_at(cam, sx, sy, lens);
                 rgb L = integrator_li(s->integrator, &sc, &cr.ray, cr.tmin, cr.tmax, &smp, need_aov ? aov : NULL);
                 pack_values(j, L, aov, vals);
-                splat(j->film, &s->film.filter, x, y, sx, sy, vals);
+                int fx = x - j->ox, fy = y - j->oy; /* in the output */
+                splat(j->film, &s->film.filter, fx, fy, sx - j->ox, sy - j->oy, vals);
+                /* A tile owns its pixels: no other thread counts into them. */
+                if (fx >= 0 && fy >= 0 && fx < j->film->width && fy < j->film->height) {
+                    film_count_sample(j->film, fx, fy, rgb_luminance(L));
+                    if (k == 0 && j->material)
+                        record_ids(j, &cr, fx, fy);
+                }
                 n++;
             }
 done:
@@ -173,13 +238,22 @@ static void describe(const scene_t *s, film_metadata *m)
     }
     transform4 inv = transform_inverse(&cam->to_world);
     memcpy(m->world_to_camera, inv.m, sizeof m->world_to_camera);
+    snprintf(m->sampler, sizeof m->sampler, "%s", s->sampler.plugin);
+    const film_settings *fs = &s->film;
+    if (fs->crop_w != fs->width || fs->crop_h != fs->height) {
+        m->crop[0] = fs->crop_x, m->crop[1] = fs->crop_y, m->crop[2] = fs->crop_w, m->crop[3] = fs->crop_h;
+        m->full_width = fs->width, m->full_height = fs->height;
+    }
+    snprintf(m->scene_digest, sizeof m->scene_digest, "%016" PRIx64, scene_digest(s));
+    m->ranks = 1;
 }
 
 /* The film's channels beyond R, G, B and A: the requested AOVs (named as
- * Mitsuba's aov integrator names them), then the integrator's own ones. */
+ * Blender's compositor and Nuke read them: Z, N.X/Y/Z, albedo.R/G/B), then
+ * the integrator's own ones; the extras written from the pixels' samples. */
 int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, size_t errlen)
 {
-    static const char *const t[1] = {"T"}, *const xyz[3] = {"X", "Y", "Z"}, *const rgb_names[3] = {"R", "G", "B"};
+    static const char *const xyz[3] = {"X", "Y", "Z"}, *const rgb_names[3] = {"R", "G", "B"};
     static const char *const whole[1] = {""};
     int nown = integrator_channel_count(s->integrator);
     film_aov *list = malloc(sizeof *list * (size_t)(3 + nown));
@@ -187,30 +261,47 @@ int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, s
         abort();
     int naov = 0;
     if (aovs & RENDER_AOV_DEPTH)
-        list[naov++] = (film_aov){"depth", 1, t};
+        list[naov++] = (film_aov){"Z", 1, whole};
     if (aovs & RENDER_AOV_NORMAL)
-        list[naov++] = (film_aov){"normal", 3, xyz};
+        list[naov++] = (film_aov){"N", 3, xyz};
     if (aovs & RENDER_AOV_ALBEDO)
         list[naov++] = (film_aov){"albedo", 3, rgb_names};
     for (int i = 0; i < nown; i++)
         list[naov++] = (film_aov){integrator_channel_name(s->integrator, i), 1, whole};
-    int rc = film_init_format(film, s->camera.width, s->camera.height, s->film.format, list, naov, err, errlen);
+    int rc = film_init_format(film, s->film.crop_w, s->film.crop_h, s->film.format, list, naov, err, errlen);
     free(list);
-    if (rc == 0)
+    if (rc == 0) {
         describe(s, &film->meta);
+        film->extras = ((aovs & RENDER_AOV_SPP) ? FILM_EXTRA_SPP : 0u) |
+                       ((aovs & RENDER_AOV_VARIANCE) ? FILM_EXTRA_VARIANCE : 0u) |
+                       ((aovs & RENDER_AOV_INDEX) ? FILM_EXTRA_INDEX : 0u);
+    }
     return rc;
 }
 
+/* How far beyond a pixel a sample reaches through the filter, in pixels. */
+static int filter_reach(const scene_t *s) { return (int)ceil(s->film.filter.radius - 0.5); }
+
 /* The pixels beyond the film's edge that are sampled too (sample_border). */
-static int border_pixels(const scene_t *s)
+static int border_pixels(const scene_t *s) { return s->film.sample_border ? filter_reach(s) : 0; }
+
+/* The sampled pixels [*a, *b) along one axis of the film for the crop
+ * window's pixels [lo, hi): the window, the filter's reach around it
+ * within the film, and the border beyond the film with sample_border. */
+static void sampled_span(const scene_t *s, int lo, int hi, int full, int *a, int *b)
 {
-    return s->film.sample_border ? (int)ceil(s->film.filter.radius - 0.5) : 0;
+    int reach = filter_reach(s), border = border_pixels(s);
+    *a = lo - reach < -border ? -border : lo - reach;
+    *b = hi + reach > full + border ? full + border : hi + reach;
 }
 
 uint64_t render_sample_count(const scene_t *s, int s0, int s1)
 {
-    int b = border_pixels(s);
-    return (uint64_t)(s1 - s0) * (uint64_t)(s->camera.width + 2 * b) * (uint64_t)(s->camera.height + 2 * b);
+    const film_settings *fs = &s->film;
+    int x0, x1, y0, y1;
+    sampled_span(s, fs->crop_x, fs->crop_x + fs->crop_w, fs->width, &x0, &x1);
+    sampled_span(s, fs->crop_y, fs->crop_y + fs->crop_h, fs->height, &y0, &y1);
+    return (uint64_t)(s1 - s0) * (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0);
 }
 
 void render_sample_range(const scene_t *s, const render_options *opt, int *s0, int *s1)
@@ -231,25 +322,31 @@ void render_stop_clear(void) { stop_requested = 0; }
 void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, int s0, int s1, int y0, int y1,
                     render_tally *tally)
 {
-    const camera_t *cam = &s->camera;
-    const rfilter_t *filter = &s->film.filter;
-    int border = border_pixels(s);
-    /* The first and last bands take the border rows too. */
+    const film_settings *fs = &s->film;
+    const rfilter_t *filter = &fs->filter;
+    int border = border_pixels(s), xa, xb, ya, yb;
+    /* Rows [y0, y1) of the crop window, in the film's rows; the first and
+     * last bands take the rows around the window that reach into it too. */
+    sampled_span(s, fs->crop_x, fs->crop_x + fs->crop_w, fs->width, &xa, &xb);
+    sampled_span(s, fs->crop_y + y0, fs->crop_y + y1, fs->height, &ya, &yb);
     render_job job = {s,
                       film,
                       aovs,
                       film_format_has_alpha(s->film.format),
                       integrator_channel_count(s->integrator),
-                      -border,
-                      y0 == 0 ? -border : y0,
-                      cam->width + border,
-                      y1 == cam->height ? y1 + border : y1,
-                      border};
+                      xa,
+                      y0 == 0 ? ya : fs->crop_y + y0,
+                      xb,
+                      y1 == fs->crop_h ? yb : fs->crop_y + y1,
+                      border,
+                      (aovs & RENDER_AOV_INDEX) && s0 == 0 ? material_numbers(&s->shapes) : NULL,
+                      fs->crop_x,
+                      fs->crop_y};
     int tiles_x = (job.x1 - job.x0 + TILE - 1) / TILE, tiles_y = (job.y1 - job.y0 + TILE - 1) / TILE;
     /* Tiles of one colour are k tiles apart: (k - 1) TILE > 2 radius. */
     int k = rfilter_is_box(filter) ? 1 : 2 + (int)floor(2.0 * filter->radius / TILE);
     double busy = 0.0, idle = 0.0;
-    for (int colour = 0; colour < k * k && !stop_requested; colour++) {
+    for (int colour = 0; colour < k * k && stop_requested != STOP_NOW; colour++) {
         int cx = colour % k, cy = colour / k;
         int ncx = (tiles_x - cx + k - 1) / k, ncy = (tiles_y - cy + k - 1) / k, ntiles = ncx * ncy, team = 1;
         double spent = 0.0, most = 0.0;
@@ -258,7 +355,7 @@ void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, 
             double mine = 0.0; /* this thread's CPU seconds in tiles */
 #pragma omp for schedule(dynamic, 1)
             for (int t = 0; t < ntiles; t++) {
-                if (stop_requested)
+                if (stop_requested == STOP_NOW)
                     continue;
                 int tx = job.x0 + (cx + k * (t % ncx)) * TILE, ty = job.y0 + (cy + k * (t / ncx)) * TILE;
                 double c0 = thread_cpu_seconds();
@@ -283,26 +380,35 @@ void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, 
     }
     tally->busy_cpu_seconds += busy;
     tally->idle_cpu_seconds += idle;
+    free((int *)job.material);
 }
 
 void render_print_summary(const scene_t *s, const render_options *opt, const render_stats *st, const char *who)
 {
-    const camera_t *cam = &s->camera;
-    int s0, s1;
+    int s0, s1, width, height;
     render_sample_range(s, opt, &s0, &s1);
+    scene_film_size(s, &width, &height);
     char share[64] = "";
     if (s1 - s0 != scene_spp(s))
         snprintf(share, sizeof share, " (samples %d-%d of %d)", s0, s1 - 1, scene_spp(s));
     double secs = st->seconds;
-    fprintf(stderr, "render: %dx%d, %d spp%s, %s: %.2f s, %.2f Msamples/s%s\n", cam->width, cam->height, s1 - s0,
+    fprintf(stderr, "render: %dx%d, %d spp%s, %s: %.2f s, %.2f Msamples/s%s\n", width, height, s1 - s0,
             share, who, secs, secs > 0 ? 1e-6 * (double)st->samples / secs : 0.0,
             st->interrupted ? " (interrupted: partial image)" : "");
+}
+
+/* The film so far into the preview file; a failure is said, not fatal. */
+static void write_preview(film_t *film, const char *path, double seconds)
+{
+    char err[1024];
+    film->meta.seconds = seconds;
+    if (film_write(film, path, err, sizeof err) != 0)
+        fprintf(stderr, "celadon: preview: %s\n", err);
 }
 
 int render_scene(const scene_t *s, const render_options *opt, film_t *film, render_stats *stats, char *err,
                  size_t errlen)
 {
-    const camera_t *cam = &s->camera;
     int s0, s1;
     render_sample_range(s, opt, &s0, &s1);
     if (s0 < 0 || s1 > scene_spp(s) || s0 >= s1) {
@@ -311,18 +417,40 @@ int render_scene(const scene_t *s, const render_options *opt, film_t *film, rend
     }
     if (render_film_init(s, opt->aovs, film, err, errlen) != 0)
         return -1;
-    /* About eight passes, so an interrupted render has every pixel sampled. */
+    /* About eight passes, so an interrupted render has every pixel sampled,
+     * of at most PASS_MAX_SPP samples, so that Ctrl-C (which finishes the
+     * pass) is heard soon however many samples were asked for. */
     int spp = s1 - s0, pass_spp = spp < 8 ? 1 : (spp + 7) / 8;
+    pass_spp = pass_spp > PASS_MAX_SPP ? PASS_MAX_SPP : pass_spp;
     int threads = render_thread_count(opt);
     progress_t bar;
     render_tally tally = {.bar = opt->progress ? &bar : NULL, .t_start = now_seconds()};
     if (opt->progress)
         progress_begin(&bar, "render", render_sample_count(s, s0, s1));
-    for (int p0 = s0; p0 < s1 && !stop_requested; p0 += pass_spp)
-        render_samples(s, threads, opt->aovs, film, p0, p0 + pass_spp < s1 ? p0 + pass_spp : s1, 0, cam->height,
+    int passes = 0;
+    double last_preview = tally.t_start, pass_seconds = 0.0;
+    film->meta.threads = threads;
+    for (int p0 = s0; p0 < s1 && !stop_requested; p0 += pass_spp) {
+        double t0 = now_seconds();
+        if (passes > 0 && opt->time_budget > 0 && t0 + pass_seconds - tally.t_start > opt->time_budget)
+            break;
+        render_samples(s, threads, opt->aovs, film, p0, p0 + pass_spp < s1 ? p0 + pass_spp : s1, 0, film->height,
                        &tally);
-    render_stats st = {now_seconds() - tally.t_start, atomic_load(&tally.taken), stop_requested != 0,
+        passes += stop_requested != STOP_NOW;
+        pass_seconds = now_seconds() - t0;
+        film->meta.passes = passes;
+        if (opt->preview && now_seconds() - last_preview >= opt->preview_seconds) {
+            write_preview(film, opt->preview, now_seconds() - tally.t_start);
+            last_preview = now_seconds();
+        }
+    }
+    render_stats st = {now_seconds() - tally.t_start, atomic_load(&tally.taken),
+                       stop_requested != 0 && atomic_load(&tally.taken) < render_sample_count(s, s0, s1),
                        tally.busy_cpu_seconds, tally.idle_cpu_seconds};
+    film->meta.seconds = st.seconds, film->meta.interrupted = st.interrupted;
+    film->meta.time_budget = opt->time_budget;
+    if (opt->preview)
+        write_preview(film, opt->preview, st.seconds);
     if (opt->progress) {
         if (!st.interrupted)
             progress_end(&bar);

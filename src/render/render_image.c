@@ -53,7 +53,7 @@ static scene_t *load(const char *path, const scene_define *defs, int ndefs, cons
 static render_image_t *developed(const film_t *film, const render_stats *st)
 {
     render_image_t *im = calloc(1, sizeof *im);
-    const char **names = malloc(sizeof *names * (size_t)film->nchannels);
+    const char **names = malloc(sizeof *names * (size_t)(film->nchannels + FILM_EXR_EXTRA_MAX));
     if (!im || !names) {
         free(im);
         free(names);

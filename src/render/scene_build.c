@@ -12,7 +12,7 @@
 
 scene_options scene_options_default(void)
 {
-    return (scene_options){0, 0, 0, -1, 0, NULL, NULL, 0};
+    return (scene_options){0, 0, 0, -1, 0, NULL, NULL, 0, 0, 0, 0, 0};
 }
 
 /* An object of class cls and plugin type with no parameters, located at at:
@@ -49,6 +49,16 @@ static int build_film(scene_obj *sensor, const scene_options *opt, film_settings
         (double)fs->width * fs->height > FILM_MAX_PIXELS)
         return scene_obj_error(film, err, errlen, "film size %dx%d is out of range (at most %d on a side, %.0e pixels)",
                                fs->width, fs->height, FILM_MAX_SIDE, FILM_MAX_PIXELS);
+    if (opt->crop_w > 0)
+        fs->crop_x = opt->crop_x, fs->crop_y = opt->crop_y, fs->crop_w = opt->crop_w, fs->crop_h = opt->crop_h;
+    if (fs->crop_w == 0)
+        fs->crop_w = fs->width - fs->crop_x;
+    if (fs->crop_h == 0)
+        fs->crop_h = fs->height - fs->crop_y;
+    if (fs->crop_x < 0 || fs->crop_y < 0 || fs->crop_w < 1 || fs->crop_h < 1 ||
+        (long long)fs->crop_x + fs->crop_w > fs->width || (long long)fs->crop_y + fs->crop_h > fs->height)
+        return scene_obj_error(film, err, errlen, "crop window %d,%d %dx%d is not inside the %dx%d film", fs->crop_x,
+                               fs->crop_y, fs->crop_w, fs->crop_h, fs->width, fs->height);
     return 0;
 }
 
@@ -64,7 +74,7 @@ static int build_sampler(struct scene *s, scene_obj *sensor, const scene_options
         o = &implicit;
     if (sampler_plugin_find(o->type)->create(o, &s->sampler, err, errlen) != 0)
         return -1;
-    const char *type = o->type;
+    const char *type = sampler_plugin_find(o->type)->decl.type; /* static: o is freed after the build */
     if (opt->sampler && strcmp(opt->sampler, o->type) != 0) {
         const sampler_plugin *named = sampler_plugin_find(opt->sampler);
         if (!named)

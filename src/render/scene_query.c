@@ -6,8 +6,8 @@
 
 void scene_film_size(const scene_t *s, int *width, int *height)
 {
-    *width = s->camera.width;
-    *height = s->camera.height;
+    *width = s->film.crop_w;
+    *height = s->film.crop_h;
 }
 
 int scene_spp(const scene_t *s) { return (int)s->sampler.sample_count; }

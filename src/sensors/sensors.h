@@ -97,6 +97,10 @@ typedef struct {
     film_pixel_format format; /* pixel_format */
     bool sample_border; /* samples are also taken within the filter's reach outside the film */
     rfilter_t filter;
+    /* The window rendered (Mitsuba's crop_offset_x/y, crop_width/height):
+     * the output image is crop_w x crop_h, its pixel (0, 0) the film's
+     * (crop_x, crop_y); the whole film by default. */
+    int crop_x, crop_y, crop_w, crop_h;
 } film_settings;
 
 /* ---------------------------------------------------------- the plugins */

@@ -225,10 +225,15 @@ const char *sor_profile_check(const bspline_t *profile)
     why = !(fabs(bz[0].p[0].y) <= snap) || !(h1 > snap) ? "need h(0) = 0 < h(1)"
           : h1 < SOR_PROFILE_MIN_HEIGHT                 ? "the profile is less than 1e-6 px high"
                                                         : NULL;
+    double r_max = 0.0; /* bounds the curve's radius: it lies in its control points' hull */
     for (int j = 0; j < n && !why; j++)
-        for (int k = 0; k < 4 && !why; k++)
+        for (int k = 0; k < 4 && !why; k++) {
             if (!(bz[j].p[k].x >= -snap))
                 why = "r < 0: the profile crosses the axis";
+            r_max = fmax(r_max, bz[j].p[k].x);
+        }
+    if (!why && !(r_max > snap))
+        why = "every radius is 0: the profile lies on the axis (no surface to revolve)";
     free(bz);
     return why;
 }

@@ -136,8 +136,10 @@ static texture_t *bitmap_create(scene_obj *o, char *err, size_t errlen)
     uv_transform to_uv = texture_to_uv_param(o);
     image_t img;
     char why[256];
-    if (image_read(filename, &img, why, sizeof why) != 0) {
-        scene_obj_error(o, err, errlen, "%s", why);
+    if (image_read_quiet(filename, &img, why, sizeof why) != 0) {
+        /* The texture is the bad input: its name first (issue 28). */
+        snprintf(err, errlen, "%s: not a readable image (%s; the bitmap texture at %s:%d)", filename, why, o->file,
+                 o->line);
         return NULL;
     }
     texture_t *t = NULL;

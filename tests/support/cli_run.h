@@ -23,6 +23,13 @@ cli_result cli_run_within(const char *scratch_dir, const char *const *args, doub
 cli_result cli_run_argv(const char *scratch_dir, const char *const *argv);
 void cli_result_free(cli_result *r);
 
+/* Starts `$CELADON_BIN args...` with stdout and stderr thrown away; its
+ * process id (the caller waits for it). */
+int cli_start_quiet(const char *const *args);
+
+/* Sends sig to pid after delay seconds and waits for it; its wait status. */
+int cli_signal_after(int pid, double delay, int sig);
+
 /* Waits (at most limit seconds) until process pid has a handler for
  * signal sig (Linux: SigCgt in /proc/PID/status), so that a test's signal
  * is not the default action on a process still starting up. Returns 1 when

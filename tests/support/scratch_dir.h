@@ -7,6 +7,8 @@
 
 /* Makes /tmp/celadon-<tag>-XXXXXX into dir (len >= 64); fails the test if it cannot. */
 void scratch_dir_make(char *dir, size_t len, const char *tag);
+/* Writes text to dir/name; its path into path. */
+void scratch_write_file(const char *dir, const char *name, const char *text, char *path, size_t len);
 /* Removes dir and everything under it. */
 void scratch_dir_remove(const char *dir);
 
