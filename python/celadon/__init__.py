@@ -140,7 +140,7 @@ def reconstruct(photo, threshold=None, side=None, smoothing=None, fov=None, forc
 
 class RenderedImage(np.ndarray):
     """A float32 (H, W, C) array with .channels (the EXR's channel names, e.g.
-    ['R', 'G', 'B', 'depth.T']) and .seconds (the render's time)."""
+    ['R', 'G', 'B', 'Z']) and .seconds (the render's time)."""
 
     def __array_finalize__(self, obj):
         # A view that keeps the channel axis keeps the names; a slice of the

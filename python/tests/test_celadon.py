@@ -80,8 +80,8 @@ def test_render_is_the_cli_exr_bit_for_bit(vessel, tmp_path, geometry):
         "--aov", "depth")
     image = celadon.load_scene(vessel).render(geometry=geometry, aovs=["depth"], **SMALL)
     assert image.dtype == np.float32 and image.shape == (24, 40, 4)
-    assert image.channels == ["R", "G", "B", "depth.T"]
-    assert image[..., :3].max() > 0 and image.channel("depth.T").max() > 0
+    assert image.channels == ["R", "G", "B", "Z"]
+    assert image[..., :3].max() > 0 and image.channel("Z").max() > 0
     np.testing.assert_array_equal(celadon.read_image(out), image)
 
 
