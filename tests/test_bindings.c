@@ -54,7 +54,7 @@ Test(render_image, is_the_developed_film, .timeout = 60)
     cr_assert(w == 24 && h == 20 && c == 4 && film.nchannels == 4);
     for (int k = 0; k < c; k++)
         cr_expect_str_eq(render_image_channel(im, k), film.names[k]);
-    cr_expect_str_eq(render_image_channel(im, 3), "depth.T");
+    cr_expect_str_eq(render_image_channel(im, 3), "Z");
     cr_expect_eq(memcmp(render_image_pixels(im), want, sizeof *want * (size_t)w * h * c), 0);
     cr_expect_eq(render_image_stats(im)->interrupted, 0);
     render_image_destroy(im);
