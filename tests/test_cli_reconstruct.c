@@ -527,20 +527,29 @@ Test(cli_reconstruct, usage_errors_exit_2)
 {
     char out[300];
     path_in(out, sizeof out, "out");
-    static const char *const cases[][6] = {
-        {"photo.png", NULL},                                 /* no -o */
-        {"-o", "x", NULL},                                   /* no photo */
-        {"photo.png", "-o", "x", "--side", "up", NULL},      /* bad side */
-        {"photo.png", "-o", "x", "--segments", "2", NULL},   /* too few segments */
-        {"photo.png", "-o", "x", "--threshold", "300", NULL},
-        {"photo.png", "-o", "x", "--frobnicate", NULL},
-        {"photo.png", "-o", "x", "--fov", "0", NULL},       /* no field of view */
-        {"photo.png", "-o", "x", "--fov", "20deg", NULL},
+    /* Each case: the arguments, then after their NULL the words of the one line. */
+    static const char *const cases[][8] = {
+        {"photo.png", NULL, "no output folder (-o DIR)"},
+        {"-o", "x", NULL, "no photo given"},
+        {"photo.png", "-o", "x", "--side", "up", NULL, "--side wants left, right or auto, not 'up'"},
+        {"photo.png", "-o", "x", "--segments", "2", NULL, "--segments wants an integer 3..100000, not '2'"},
+        {"photo.png", "-o", "x", "--threshold", "300", NULL, "--threshold wants an integer 0..255, not '300'"},
+        {"photo.png", "-o", "x", "--frobnicate", NULL, "unknown option '--frobnicate'"},
+        {"photo.png", "-o", "x", "--fov", "0", NULL, "--fov wants degrees between 1 and 150, not '0'"},
+        {"photo.png", "-o", "x", "--fov", "20deg", NULL, "--fov wants degrees between 1 and 150, not '20deg'"},
+        {"photo.png", "-o", "x", "--segmenter", "neural", NULL, "--segmenter wants classic, learned or auto, not 'neural'"},
+        {"photo.png", "-o", "x", "--lod", "40,2", NULL, "--lod wants up to 8 comma-separated integers 3..100000"},
+        {"photo.png", "-o", "x", "--smoothing", NULL, "--smoothing needs a value"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         cli_result r = run_reconstruct(cases[i]);
+        const char *words = NULL;
+        for (int k = 0; !words; k++)
+            if (!cases[i][k])
+                words = cases[i][k + 1];
         cr_expect_eq(r.status, 2, "case %zu: exit %d", i, r.status);
         cr_expect_eq(count_lines(r.err), 1, "case %zu: %s", i, r.err);
+        cr_expect_not_null(strstr(r.err, words), "case %zu: '%s' does not say '%s'", i, r.err, words);
         cli_result_free(&r);
     }
     cli_result r = run_reconstruct((const char *const[]){"--help", NULL});

@@ -114,9 +114,10 @@ int reconstruct_image(const image_t *photo, const reconstruct_options *opt, reco
                       size_t errlen);
 
 /* One option of `celadon reconstruct` by its name without the dashes:
- * "threshold", "side", "smoothing", "fov" (values as on the command line)
- * or "force" ("1" or "0"), checked as the command line checks it. Returns
- * 0, or -1 with one line in err. */
+ * "threshold", "side", "segmenter", "segments", "lod", "smoothing", "fov"
+ * (values as on the command line), "force" or "mouth-cap" ("1" or "0").
+ * The command line sets its options through it, so both check alike.
+ * Returns 0, or -1 with one line in err ("NAME wants ..., not 'VALUE'"). */
 int reconstruct_option_set(reconstruct_options *opt, const char *name, const char *value, char *err,
                            size_t errlen);
 

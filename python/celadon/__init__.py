@@ -113,12 +113,12 @@ class Profile:
         return v, f
 
 
-def reconstruct(photo, threshold=None, side=None, smoothing=None, fov=None, force=False):
+def reconstruct(photo, threshold=None, side=None, segmenter=None, smoothing=None, fov=None, force=False):
     """The photo (a file path, or an (H, W[, C]) array: floats in [0, 1] or
     integers) reconstructed as `celadon reconstruct` does, with its options
-    (--threshold, --side, --smoothing, --fov, --force): a Profile. A refused
+    (--threshold, --side, --segmenter, --smoothing, --fov, --force): a Profile. A refused
     photo raises InputError with the CLI's message ("PHOTO: problem")."""
-    opts = {"threshold": threshold, "side": side, "smoothing": smoothing, "fov": fov,
+    opts = {"threshold": threshold, "side": side, "segmenter": segmenter, "smoothing": smoothing, "fov": fov,
             "force": "1" if force else None}
     names = [k.encode() for k, v in opts.items() if v is not None]
     values = [str(v).encode() for v in opts.values() if v is not None]

@@ -224,6 +224,8 @@ def test_bad_photos_raise_the_cli_message(vessel, tmp_path):
     assert str(e.value) == lines[-1].replace(str(tiny), "<array>")
     with pytest.raises(celadon.InputError, match="threshold wants an integer 0..255, not '300'"):
         celadon.reconstruct(PHOTO, threshold=300)
+    with pytest.raises(celadon.InputError, match="segmenter wants classic, learned or auto, not 'neural'"):
+        celadon.reconstruct(PHOTO, segmenter="neural")
     assert not os.path.exists(tmp_path / "out")
 
 

@@ -80,109 +80,46 @@ static void usage(FILE *f)
 
 /* ------------------------------------------------------------------ options */
 
-static int parse_int(const char *s, long lo, long hi, int *out)
-{
-    long long v;
-    if (cli_parse_int(s, lo, hi, &v) != 0)
-        return -1;
-    *out = (int)v;
-    return 0;
-}
-
-static int parse_lods(const char *s, reconstruct_options *o)
-{
-    char buf[256];
-    if (strlen(s) >= sizeof buf)
-        return -1;
-    snprintf(buf, sizeof buf, "%s", s);
-    o->n_lods = 0;
-    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-        if (o->n_lods == RECONSTRUCT_MAX_LODS || parse_int(tok, 3, 100000, &o->lods[o->n_lods]) != 0)
-            return -1;
-        o->n_lods++;
-    }
-    return o->n_lods > 0 ? 0 : -1;
-}
-
 /* Returns -1 to continue, otherwise the exit code. */
 static int parse_options(int argc, char **argv, options *o)
 {
-    enum { OPT_THRESHOLD = 256, OPT_SIDE, OPT_SEGMENTS, OPT_LOD, OPT_MOUTH_CAP, OPT_JSON, OPT_SMOOTHING, OPT_FORCE, OPT_FOV,
-           OPT_SEGMENTER };
+    /* Options of the pipeline itself carry OPT_PIPELINE and are set by name
+     * (reconstruct_option_set, which the Python package shares). */
+    enum { OPT_PIPELINE = 256, OPT_JSON };
     static const struct option longopts[] = {
-        {"output", required_argument, NULL, 'o'},      {"threshold", required_argument, NULL, OPT_THRESHOLD},
-        {"side", required_argument, NULL, OPT_SIDE},   {"segments", required_argument, NULL, OPT_SEGMENTS},
-        {"lod", required_argument, NULL, OPT_LOD},     {"mouth-cap", no_argument, NULL, OPT_MOUTH_CAP},
-        {"json", no_argument, NULL, OPT_JSON},         {"smoothing", required_argument, NULL, OPT_SMOOTHING},
-        {"force", no_argument, NULL, OPT_FORCE},      {"fov", required_argument, NULL, OPT_FOV},
-        {"segmenter", required_argument, NULL, OPT_SEGMENTER},
-        {"help", no_argument, NULL, 'h'},              {NULL, 0, NULL, 0},
+        {"output", required_argument, NULL, 'o'},
+        {"threshold", required_argument, NULL, OPT_PIPELINE},
+        {"side", required_argument, NULL, OPT_PIPELINE},
+        {"segmenter", required_argument, NULL, OPT_PIPELINE},
+        {"segments", required_argument, NULL, OPT_PIPELINE},
+        {"lod", required_argument, NULL, OPT_PIPELINE},
+        {"smoothing", required_argument, NULL, OPT_PIPELINE},
+        {"fov", required_argument, NULL, OPT_PIPELINE},
+        {"force", no_argument, NULL, OPT_PIPELINE},
+        {"mouth-cap", no_argument, NULL, OPT_PIPELINE},
+        {"json", no_argument, NULL, OPT_JSON},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
     };
     *o = (options){.pipeline = reconstruct_options_default()};
     opterr = 0;
     optind = 1;
-    int c;
-    while ((c = getopt_long(argc, argv, ":o:h", longopts, NULL)) != -1) {
+    int c, which;
+    while ((c = getopt_long(argc, argv, ":o:h", longopts, &which)) != -1) {
         switch (c) {
         case 'o':
             o->out_dir = optarg;
             break;
-        case OPT_THRESHOLD:
-            if (parse_int(optarg, 0, 255, &o->pipeline.recon.threshold) != 0)
-                return cli_usage_error("reconstruct", "--threshold wants an integer 0..255, not '%s'", optarg);
+        case OPT_PIPELINE: {
+            char err[256];
+            const struct option *opt = &longopts[which];
+            if (reconstruct_option_set(&o->pipeline, opt->name, opt->has_arg ? optarg : "1", err, sizeof err) != 0)
+                return cli_usage_error("reconstruct", "--%s", err);
             break;
-        case OPT_SIDE:
-            if (!strcmp(optarg, "left"))
-                o->pipeline.recon.side = RECON_SIDE_LEFT;
-            else if (!strcmp(optarg, "right"))
-                o->pipeline.recon.side = RECON_SIDE_RIGHT;
-            else if (!strcmp(optarg, "auto"))
-                o->pipeline.recon.side = RECON_SIDE_AUTO;
-            else
-                return cli_usage_error("reconstruct", "--side wants left, right or auto, not '%s'", optarg);
-            break;
-        case OPT_SEGMENTER:
-            if (!strcmp(optarg, "classic"))
-                o->pipeline.segmenter = RECONSTRUCT_SEGMENTER_CLASSIC;
-            else if (!strcmp(optarg, "learned"))
-                o->pipeline.segmenter = RECONSTRUCT_SEGMENTER_LEARNED;
-            else if (!strcmp(optarg, "auto"))
-                o->pipeline.segmenter = RECONSTRUCT_SEGMENTER_AUTO;
-            else
-                return cli_usage_error("reconstruct", "--segmenter wants classic, learned or auto, not '%s'", optarg);
-            break;
-        case OPT_SEGMENTS:
-            if (parse_int(optarg, 3, 100000, &o->pipeline.segments) != 0)
-                return cli_usage_error("reconstruct", "--segments wants an integer 3..100000, not '%s'", optarg);
-            break;
-        case OPT_LOD:
-            if (parse_lods(optarg, &o->pipeline) != 0)
-                return cli_usage_error("reconstruct", "--lod wants up to 8 comma-separated integers 3..100000, not '%s'", optarg);
-            break;
-        case OPT_MOUTH_CAP:
-            o->pipeline.mouth_cap = 1;
-            break;
-        case OPT_FORCE:
-            o->pipeline.force = 1;
-            break;
+        }
         case OPT_JSON:
             o->json = 1;
             break;
-        case OPT_SMOOTHING: {
-            char *end;
-            o->pipeline.smoothing_px = strtod(optarg, &end);
-            if (end == optarg || *end || !(o->pipeline.smoothing_px >= 0.01 && o->pipeline.smoothing_px <= 100.0))
-                return cli_usage_error("reconstruct", "--smoothing wants pixels between 0.01 and 100, not '%s'", optarg);
-            break;
-        }
-        case OPT_FOV: {
-            char *end;
-            double fov = strtod(optarg, &end);
-            if (end == optarg || *end || !(fov >= 1.0 && fov <= 150.0))
-                return cli_usage_error("reconstruct", "--fov wants degrees between 1 and 150, not '%s'", optarg);
-            o->pipeline.camera.fov_deg = fov;
-            break;
-        }
         case 'h':
             usage(stdout);
             return 0;

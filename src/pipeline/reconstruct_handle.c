@@ -14,45 +14,97 @@ static int parse_number(const char *s, double lo, double hi, double *out)
     return end != s && !*end && *out >= lo && *out <= hi ? 0 : -1;
 }
 
+static int parse_integer(const char *s, int lo, int hi, int *out)
+{
+    double v;
+    if (parse_number(s, lo, hi, &v) != 0 || v != (int)v)
+        return -1;
+    *out = (int)v;
+    return 0;
+}
+
+/* Up to RECONSTRUCT_MAX_LODS comma-separated segment counts. */
+static int parse_lods(const char *s, reconstruct_options *opt)
+{
+    char buf[256];
+    if (strlen(s) >= sizeof buf)
+        return -1;
+    snprintf(buf, sizeof buf, "%s", s);
+    opt->n_lods = 0;
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        if (opt->n_lods == RECONSTRUCT_MAX_LODS || parse_integer(tok, 3, 100000, &opt->lods[opt->n_lods]) != 0)
+            return -1;
+        opt->n_lods++;
+    }
+    return opt->n_lods > 0 ? 0 : -1;
+}
+
+/* The index of value in the NULL-terminated words, or -1. */
+static int word_index(const char *value, const char *const *words)
+{
+    for (int i = 0; words[i]; i++)
+        if (!strcmp(value, words[i]))
+            return i;
+    return -1;
+}
+
+static int flag_value(const char *value, int *out)
+{
+    if (strcmp(value, "0") && strcmp(value, "1"))
+        return -1;
+    *out = value[0] == '1';
+    return 0;
+}
+
 int reconstruct_option_set(reconstruct_options *opt, const char *name, const char *value, char *err,
                            size_t errlen)
 {
-    double v;
+    static const char *const sides[] = {"left", "right", "auto", NULL};
+    static const recon_side side_of[] = {RECON_SIDE_LEFT, RECON_SIDE_RIGHT, RECON_SIDE_AUTO};
+    static const char *const segmenters[] = {"classic", "learned", "auto", NULL};
+    static const reconstruct_segmenter segmenter_of[] = {RECONSTRUCT_SEGMENTER_CLASSIC, RECONSTRUCT_SEGMENTER_LEARNED,
+                                                         RECONSTRUCT_SEGMENTER_AUTO};
+    const char *wants = NULL;
+    int k;
     if (!strcmp(name, "threshold")) {
-        if (parse_number(value, 0, 255, &v) != 0 || v != (int)v) {
-            snprintf(err, errlen, "threshold wants an integer 0..255, not '%s'", value);
-            return -1;
-        }
-        opt->recon.threshold = (int)v;
+        if (parse_integer(value, 0, 255, &opt->recon.threshold) != 0)
+            wants = "an integer 0..255";
     } else if (!strcmp(name, "side")) {
-        if (!strcmp(value, "left"))
-            opt->recon.side = RECON_SIDE_LEFT;
-        else if (!strcmp(value, "right"))
-            opt->recon.side = RECON_SIDE_RIGHT;
-        else if (!strcmp(value, "auto"))
-            opt->recon.side = RECON_SIDE_AUTO;
-        else {
-            snprintf(err, errlen, "side wants left, right or auto, not '%s'", value);
-            return -1;
-        }
+        if ((k = word_index(value, sides)) < 0)
+            wants = "left, right or auto";
+        else
+            opt->recon.side = side_of[k];
+    } else if (!strcmp(name, "segmenter")) {
+        if ((k = word_index(value, segmenters)) < 0)
+            wants = "classic, learned or auto";
+        else
+            opt->segmenter = segmenter_of[k];
+    } else if (!strcmp(name, "segments")) {
+        if (parse_integer(value, 3, 100000, &opt->segments) != 0)
+            wants = "an integer 3..100000";
+    } else if (!strcmp(name, "lod")) {
+        if (parse_lods(value, opt) != 0)
+            wants = "up to 8 comma-separated integers 3..100000";
     } else if (!strcmp(name, "smoothing")) {
-        if (parse_number(value, 0.01, 100.0, &opt->smoothing_px) != 0) {
-            snprintf(err, errlen, "smoothing wants pixels between 0.01 and 100, not '%s'", value);
-            return -1;
-        }
+        if (parse_number(value, 0.01, 100.0, &opt->smoothing_px) != 0)
+            wants = "pixels between 0.01 and 100";
     } else if (!strcmp(name, "fov")) {
-        if (parse_number(value, 1.0, 150.0, &opt->camera.fov_deg) != 0) {
-            snprintf(err, errlen, "fov wants degrees between 1 and 150, not '%s'", value);
-            return -1;
-        }
+        if (parse_number(value, 1.0, 150.0, &opt->camera.fov_deg) != 0)
+            wants = "degrees between 1 and 150";
     } else if (!strcmp(name, "force")) {
-        if (strcmp(value, "0") && strcmp(value, "1")) {
-            snprintf(err, errlen, "force wants 1 or 0, not '%s'", value);
-            return -1;
-        }
-        opt->force = value[0] == '1';
+        if (flag_value(value, &opt->force) != 0)
+            wants = "1 or 0";
+    } else if (!strcmp(name, "mouth-cap")) {
+        if (flag_value(value, &opt->mouth_cap) != 0)
+            wants = "1 or 0";
     } else {
-        snprintf(err, errlen, "unknown option '%s' (threshold, side, smoothing, fov, force)", name);
+        snprintf(err, errlen,
+                 "unknown option '%s' (threshold, side, segmenter, segments, lod, smoothing, fov, force, mouth-cap)",
+                 name);
+        return -1;
+    }
+    if (wants) {
+        snprintf(err, errlen, "%s wants %s, not '%s'", name, wants, value);
         return -1;
     }
     return 0;
