@@ -5,10 +5,10 @@
 CC      ?= cc
 CXX     ?= c++
 # OpenImageIO is linked into its own shared object only (OIIO_SO below).
-LINK_PKGS := OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd libxxhash zlib
+LINK_PKGS := OpenEXR gsl jansson libxml-2.0 cairo libpng libmicrohttpd libxxhash zlib
 PKGS    := OpenImageIO $(LINK_PKGS)
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
-            libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
+            libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev libpng-dev \
             libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
             zlib1g-dev openimageio-tools python3-numpy python3-pytest python3-matplotlib libopencv-dnn-dev python3-onnx
 
@@ -483,7 +483,7 @@ build/fuzz/libceladon.a: $(call objs,fuzz,$(LIB_C) $(LIB_CXX) $(BACKEND_CXX) tes
 # Linked by clang++: UBSan's C++ checks (vptr) live in its C++ runtime.
 build/fuzz/fuzz_%: fuzz/harness.c build/fuzz/libceladon.a
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -DFUZZ_TARGET=fuzz_$* -c fuzz/harness.c -o build/fuzz/harness_$*.o
-	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ build/fuzz/harness_$*.o -Wl,-u,celadon_oiio_backend \
+	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ build/fuzz/harness_$*.o -Wl,-u,celadon_oiio_image_backend \
 	  -Wl,-u,celadon_object_prior_dnn build/fuzz/libceladon.a $(LDLIBS) $(OIIO_LIBS) $(OPENCV_LIBS)
 
 fuzz-build: check-deps-stamp deps-fuzz

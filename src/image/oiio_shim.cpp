@@ -1,5 +1,5 @@
-// OpenImageIO behind the extern "C" backend of
-// image/oiio_backend.h, built as its own shared object (libceladon-oiio.so).
+// OpenImageIO behind the extern "C" interface of image/image_backend.h
+// (image/oiio_backend.h), built as its own shared object (libceladon-oiio.so).
 // It calls nothing of libceladon's: it is loaded into programs that link
 // libceladon statically.
 extern "C" {
@@ -72,9 +72,9 @@ static int guarded_probe(const char *path, int *width, int *height, int *channel
     return guarded(err, errlen, [&] { return probe(path, width, height, channels, err, errlen); });
 }
 
-static double exif_focal_35mm(const char *path)
+static int exif_focal_35mm(const char *path, double *mm)
 {
-    double mm = 0;
+    *mm = 0;
     char err[8];
     guarded(err, sizeof err, [&] {
         auto in = ImageInput::open(path);
@@ -82,11 +82,13 @@ static double exif_focal_35mm(const char *path)
             (void)geterror(); // retrieved, so that none is left pending
             return 0;
         }
-        mm = in->spec().get_float_attribute("Exif:FocalLengthIn35mmFilm", 0.0f);
+        *mm = in->spec().get_float_attribute("Exif:FocalLengthIn35mmFilm", 0.0f);
         in->close();
         return 0;
     });
-    return mm > 0 && mm < 1e5 ? mm : 0;
+    if (!(*mm > 0 && *mm < 1e5))
+        *mm = 0;
+    return 0;
 }
 
 // Decodes all pixels of the open file as floats into dst and closes it.
@@ -248,4 +250,4 @@ static int guarded_write(const char *format_path, const char *file, int w, int h
                    [&] { return write_pixels(format_path, file, w, h, ch, t, pixels, text, ntext, err, errlen); });
 }
 
-extern "C" const oiio_backend celadon_oiio_backend = {guarded_probe, exif_focal_35mm, guarded_read, guarded_write};
+extern "C" const image_backend celadon_oiio_image_backend = {guarded_probe, exif_focal_35mm, guarded_read, guarded_write};
