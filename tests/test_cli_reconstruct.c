@@ -100,14 +100,6 @@ static int count_entries(const char *dir)
     return n;
 }
 
-static int count_lines(const char *s)
-{
-    int n = 0;
-    for (; *s; s++)
-        n += *s == '\n';
-    return n;
-}
-
 /* Lines of an OBJ file starting with the given tag ("v ", "vt ", "f "...). */
 static int count_obj(const char *text, const char *tag)
 {
@@ -396,7 +388,7 @@ static void expect_refused(const char *photo, const char *why)
     mkdir(out, 0755);
     cli_result r = run_reconstruct((const char *const[]){photo, "-o", out, NULL});
     cr_expect_eq(r.status, 2, "%s: exit %d, stderr: %s", why, r.status, r.err);
-    cr_expect_eq(count_lines(r.err), 1, "%s: stderr: %s", why, r.err);
+    cr_expect_eq(cli_count_lines(r.err), 1, "%s: stderr: %s", why, r.err);
     char prefix[400];
     snprintf(prefix, sizeof prefix, "celadon: %s: ", photo);
     cr_expect(!strncmp(r.err, prefix, strlen(prefix)), "%s: stderr: %s", why, r.err);
@@ -548,7 +540,7 @@ Test(cli_reconstruct, usage_errors_exit_2)
             if (!cases[i][k])
                 words = cases[i][k + 1];
         cr_expect_eq(r.status, 2, "case %zu: exit %d", i, r.status);
-        cr_expect_eq(count_lines(r.err), 1, "case %zu: %s", i, r.err);
+        cr_expect_eq(cli_count_lines(r.err), 1, "case %zu: %s", i, r.err);
         cr_expect_not_null(strstr(r.err, words), "case %zu: '%s' does not say '%s'", i, r.err, words);
         cli_result_free(&r);
     }

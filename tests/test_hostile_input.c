@@ -41,20 +41,12 @@ static void write_bytes(const char *name, const void *data, size_t len, char *pa
     fclose(f);
 }
 
-static int count_lines(const char *s)
-{
-    int n = 0;
-    for (; *s; s++)
-        n += *s == '\n';
-    return n;
-}
-
 /* Runs celadon with args; expects exit 2, one line containing needle. */
 static void expect_refused(const char *const *args, const char *needle)
 {
     cli_result r = cli_run_within(fx.dir, args, HANG_SECONDS);
     cr_expect_eq(r.status, 2, "%s exited %d; stderr: %s", args[0], r.status, r.err);
-    cr_expect_eq(count_lines(r.err), 1, "stderr: %s", r.err);
+    cr_expect_eq(cli_count_lines(r.err), 1, "stderr: %s", r.err);
     cr_expect_not_null(strstr(r.err, needle), "'%s' not in: %s", needle, r.err);
     cli_result_free(&r);
 }

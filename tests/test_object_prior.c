@@ -6,9 +6,11 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "celadon/reconstruct.h"
 #include "prior/prior.h"
+#include "support/cli_run.h"
 #include "support/scratch_dir.h"
 #include "support/synth_scene.h"
 
@@ -191,5 +193,33 @@ Test(object_prior, auto_runs_the_network_only_where_the_classical_result_is_refu
     cr_expect_eq(reconstruct_by(path, RECONSTRUCT_SEGMENTER_AUTO, &used, &ms), 0);
     cr_expect_eq(used, 1);
     cr_expect_gt(ms, 0.0);
+    scratch_dir_remove(dir);
+}
+
+/* Without the network (a machine without `make deps-model`): a batch says
+ * once, not once a photo, that the prior is off, and still reconstructs
+ * classically; with --segmenter classic it says nothing. The band photo,
+ * which only the prior rescues, stays refused. */
+Test(object_prior, without_the_network_a_run_says_so_once_and_goes_on_classically, .timeout = 120)
+{
+    char dir[128], a[256], b[256], out[256];
+    scratch_dir_make(dir, sizeof dir, "prior-off");
+    snprintf(a, sizeof a, "%s/a.png", dir);
+    snprintf(b, sizeof b, "%s/b.png", dir);
+    snprintf(out, sizeof out, "%s/out", dir);
+    write_drawn_photo(a, 0);
+    write_drawn_photo(b, 1);
+    setenv("CELADON_PRIOR_MODEL", "/nonexistent/isnet.onnx", 1);
+    cli_result r = cli_run(dir, (const char *[]){"reconstruct", a, b, "-o", out, NULL});
+    cr_expect_eq(r.status, 2, "the band photo is refused without the prior: %s", r.err);
+    cr_expect_eq(r.prior_off_notices, 1, "the notice, once for two photos");
+    cr_expect_not_null(strstr(r.err, "b.png: quality gate"), "%s", r.err);
+    cr_expect_not_null(strstr(r.err, "1 of 2 photos reconstructed"), "%s", r.err);
+    cli_result_free(&r);
+    cli_result c = cli_run(dir, (const char *[]){"reconstruct", a, "-o", out, "--segmenter", "classic", NULL});
+    cr_expect_eq(c.status, 0, "%s", c.err);
+    cr_expect_eq(c.prior_off_notices, 0, "classic asked for: no notice");
+    cli_result_free(&c);
+    unsetenv("CELADON_PRIOR_MODEL");
     scratch_dir_remove(dir);
 }

@@ -36,14 +36,6 @@ static int run(const render_fixture *f, const char *const *args, char *err, size
     return r.status;
 }
 
-static int count_lines(const char *s)
-{
-    int n = 0;
-    for (; *s; s++)
-        n += *s == '\n';
-    return n;
-}
-
 Test(render_cli, exr_with_aovs_and_png)
 {
     render_fixture f;
@@ -88,7 +80,7 @@ static void expect_refused(const render_fixture *f, const char *xml, const char 
         args[n++] = *extra;
     args[n] = NULL;
     cr_expect_eq(run(f, args, err, sizeof err), 2, "stderr: %s", err);
-    cr_expect_eq(count_lines(err), 1, "stderr: %s", err);
+    cr_expect_eq(cli_count_lines(err), 1, "stderr: %s", err);
     cr_expect_not_null(strstr(err, needle), "'%s' not in: %s", needle, err);
     cr_expect_neq(access(out, F_OK), 0, "an output file was written");
 }

@@ -42,6 +42,25 @@ static char *slurp_and_remove(const char *path)
     return buf;
 }
 
+/* Takes the prior-off notice's lines out of r->err, counting them. */
+static void set_aside_prior_notice(cli_result *r)
+{
+    static const char notice[] = "celadon: the learned object prior is off:";
+    char *keep = r->err;
+    for (const char *line = r->err; *line;) {
+        const char *end = strchr(line, '\n');
+        size_t len = end ? (size_t)(end - line) + 1 : strlen(line);
+        if (!strncmp(line, notice, sizeof notice - 1)) {
+            r->prior_off_notices++;
+        } else {
+            memmove(keep, line, len);
+            keep += len;
+        }
+        line += len;
+    }
+    *keep = '\0';
+}
+
 /* Waits for pid, killing it after seconds (0: no limit); 0, or -1 when killed. */
 static int wait_within(pid_t pid, double seconds, int *status)
 {
@@ -76,7 +95,8 @@ static cli_result run_argv_within(const char *scratch_dir, const char *const *ar
     posix_spawn_file_actions_destroy(&fa);
     int status;
     int killed = wait_within(pid, seconds, &status);
-    cli_result r = {0, slurp_and_remove(out_path), slurp_and_remove(err_path)};
+    cli_result r = {0, slurp_and_remove(out_path), slurp_and_remove(err_path), 0};
+    set_aside_prior_notice(&r);
     cr_assert(!killed, "%s did not finish within %.0f s", argv[0], seconds);
     cr_assert(WIFEXITED(status), "%s died from signal %d; stderr: %s", argv[0],
               WIFSIGNALED(status) ? WTERMSIG(status) : 0, r.err);
