@@ -91,11 +91,25 @@ int recon_mouth_open(const image_t *img, const vec2 *contour, int n, vec2 origin
      * the far arc's ellipse's near half, d = c + b' sqrt(1 - r^2/a^2) with
      * c and b' within 30% of b (a painted band is no such curve). */
     double step[NEAR_ARC_SAMPLES], wall[NEAR_ARC_SAMPLES], sq[NEAR_ARC_SAMPLES], dk[NEAR_ARC_SAMPLES];
-    double band = fmax(4, 0.25 * b);
+    double band = fmax(4, 0.25 * b), low[NEAR_ARC_SAMPLES];
+    /* the outline's lowest point under each column: the near arc must lie
+     * inside the outline, with wall below it (a sphere's or an egg's lower
+     * outline is its top's ellipse's near arc, and a step) */
+    vec2 nrm = v2(-dir.y, dir.x);
+    for (int k = 0; k < NEAR_ARC_SAMPLES; k++)
+        low[k] = -INFINITY;
+    for (int i = 0; i < n; i++) {
+        vec2 v = v2_sub(contour[i], origin);
+        int k = (int)lround((v2_dot(v, nrm) / a + 0.6) / 1.2 * (NEAR_ARC_SAMPLES - 1));
+        if (k >= 0 && k < NEAR_ARC_SAMPLES)
+            low[k] = fmax(low[k], h_top - v2_dot(v, dir));
+    }
     for (int k = 0; k < NEAR_ARC_SAMPLES; k++) {
         double r = a * (-0.6 + 1.2 * k / (NEAR_ARC_SAMPLES - 1));
         sq[k] = sqrt(1 - r * r / (a * a));
         double dn = b + b * sq[k], best = -1, at = dn;
+        if (low[k] < dn + band + 10)
+            return 0;
         for (double o = -band; o <= band; o += 0.5) {
             double g = fabs(luminance_at(img, origin, dir, h_top, r, dn + o - 2) -
                             luminance_at(img, origin, dir, h_top, r, dn + o + 2));
