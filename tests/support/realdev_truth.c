@@ -33,18 +33,6 @@ int realdev_truth_load(const char *photo_path, realdev_truth *t)
             t->base_row = (int)(i / img.width);
         }
     image_free(&img);
-    /* the body's rows: the mask's extent, or rows.tsv's */
-    snprintf(path, sizeof path, "%s/rows.tsv", REALDEV_TRUTH_DIR);
-    FILE *f = fopen(path, "r");
-    char line[512], who[256];
-    int rim, base;
-    while (f && fgets(line, sizeof line, f))
-        if (line[0] != '#' && sscanf(line, "%255s %d %d", who, &rim, &base) == 3 && !strcmp(who, name) && rim < base) {
-            t->rim_row = rim;
-            t->base_row = base;
-        }
-    if (f)
-        fclose(f);
     if (t->mask && t->rim_row >= t->base_row) {
         free(t->mask);
         t->mask = NULL;
@@ -107,18 +95,28 @@ static int profile_x(const recon_result *x, int side, double y, double *out)
     return found;
 }
 
-double realdev_truth_outline(const realdev_truth *t, const recon_result *x)
+/* The image rows the profile spans, both sides: [*top, *bottom]. */
+static void profile_rows(const recon_result *x, double *top, double *bottom)
 {
-    if (!x->polyline || x->n_polyline < 2)
-        return INFINITY;
-    int body = t->base_row - t->rim_row + 1, ymin = t->height, ymax = -1;
+    *top = INFINITY;
+    *bottom = -INFINITY;
     for (int side = -1; side <= 1; side += 2)
         for (int i = 0; i < x->n_polyline; i++) {
             vec2 p = recon_profile_to_image(x->axis_origin, x->axis_direction, x->polyline[i].x, x->polyline[i].y,
                                             side);
-            ymin = (int)fmin(ymin, floor(p.y));
-            ymax = (int)fmax(ymax, ceil(p.y));
+            *top = fmin(*top, p.y);
+            *bottom = fmax(*bottom, p.y);
         }
+}
+
+double realdev_truth_outline(const realdev_truth *t, const recon_result *x)
+{
+    if (!x->polyline || x->n_polyline < 2)
+        return INFINITY;
+    int body = t->base_row - t->rim_row + 1;
+    double top, bottom;
+    profile_rows(x, &top, &bottom);
+    int ymin = (int)floor(top), ymax = (int)ceil(bottom);
     /* rows of the body and of the profile, the latter beyond the body by
      * more than the tolerance counted as wrong */
     int slack = (int)ceil(REALDEV_ON_OUTLINE * body);
@@ -158,14 +156,8 @@ double realdev_truth_overreach(const realdev_truth *t, const recon_result *x)
 {
     if (!x->polyline || x->n_polyline < 2)
         return INFINITY;
-    double top = INFINITY, bottom = -INFINITY;
-    for (int side = -1; side <= 1; side += 2)
-        for (int i = 0; i < x->n_polyline; i++) {
-            vec2 p = recon_profile_to_image(x->axis_origin, x->axis_direction, x->polyline[i].x, x->polyline[i].y,
-                                            side);
-            top = fmin(top, p.y);
-            bottom = fmax(bottom, p.y);
-        }
+    double top, bottom;
+    profile_rows(x, &top, &bottom);
     double body = t->base_row - t->rim_row + 1;
     return (fmax(0, t->rim_row - top) + fmax(0, bottom - (t->base_row + 1))) / body;
 }

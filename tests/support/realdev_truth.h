@@ -1,8 +1,6 @@
 /* The hand-checked truth of the real-dev photographs (tests/data/real-dev-truth/:
  * one mask per photo, NAME.png, 255 = the vessel with its handles and lid,
- * no stand, plinth or shadow; the body's rows are the mask's extent, or
- * rows.tsv's: the rows of the rim's and the base's ellipses' ends where the
- * photo is taken from above),
+ * no stand, plinth or shadow; the body's rows are the mask's extent),
  * and the yardstick of issue 25: is a reconstruction's profile on the true
  * outline? docs/gallery-real.md ("Truth") says how the masks were made.
  *
@@ -32,7 +30,7 @@
 typedef struct {
     int width, height;
     uint8_t *mask;     /* 0/1 */
-    int rim_row, base_row;
+    int rim_row, base_row; /* the body's top and bottom rows */
 } realdev_truth;
 
 /* The truth of the photo at path (its file name without .jpg names it).
