@@ -239,14 +239,15 @@ int main(int argc, char **argv)
                "failures: [algorithms-recon.md](algorithms-recon.md) (sections 9 and 12).\n\n"
                "**Truth.** %d photos have a hand-checked truth (tests/data/real-dev-truth/,\n"
                "its outline green on the overlays): the vessel's mask, handles and lid in,\n"
-               "stand, plinth and shadows out, and the rows of its rim and base corners.\n"
+               "stand, plinth and shadows out; its rows are the body's.\n"
                "Each segmenter is measured against it: the mask's IoU; the profile's mean\n"
                "distance from the true outline in %% of the body's height over the body's\n"
                "rows but the worst fifth; and how far the profile reaches beyond the\n"
                "body's rows, in %% of its height (tests/support/realdev_truth.h). At most\n"
                "0.5%% and 1%% is *on the true outline*; off it is in bold, \"off\" when the\n"
-               "profile misses more than a fifth of the body. With auto, **%d pass the gate\n"
-               "on the true outline, %d pass off it (accepted wrong), %d are refused**.\n\n"
+               "profile misses more than a fifth of the body. With auto, **passing the gate\n"
+               "on the true outline: %d; passing off it (accepted wrong): %d; refused: %d**.\n"
+               "How the masks were made: [algorithms-recon.md](algorithms-recon.md), section 11.\n\n"
                "| overlay | photo | gate (auto) | figures | truth: classic (IoU, outline / beyond, gate) | learned | auto | left out of the profile |\n"
                "|---|---|---|---|---|---|---|---|\n",
             n, passed, n, 100 * median, truths, on_outline, wrong, truths - on_outline - wrong);
