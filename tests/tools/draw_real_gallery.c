@@ -111,12 +111,9 @@ static void measure(const reconstruction *r, int status, const realdev_truth *t,
 
 static void run_segmenter(const char *path, reconstruct_segmenter s, const realdev_truth *t, truth_run *out)
 {
-    reconstruct_options opt = reconstruct_options_default();
-    opt.segmenter = s;
-    opt.force = 1;
     reconstruction r;
     char err[400];
-    int st = reconstruct_photo(path, &opt, &r, err, sizeof err);
+    int st = sheet_reconstruct_forced(path, s, &r, err, sizeof err);
     measure(&r, st, t, out);
     reconstruction_free(&r);
 }

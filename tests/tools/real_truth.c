@@ -28,6 +28,7 @@
 #include "celadon/image.h"
 #include "celadon/reconstruct.h"
 #include "prior/prior.h"
+#include "sheet/recon_sheet.h"
 
 static int write_mask(const char *path, const uint8_t *m, int w, int h)
 {
@@ -64,12 +65,9 @@ static uint8_t *read_mask(const char *path, int *w, int *h)
 
 static int seed(const char *photo, const char *out, const char *net_out)
 {
-    reconstruct_options opt = reconstruct_options_default();
-    opt.segmenter = RECONSTRUCT_SEGMENTER_LEARNED;
-    opt.force = 1;
     reconstruction r;
     char err[512];
-    int st = reconstruct_photo(photo, &opt, &r, err, sizeof err);
+    int st = sheet_reconstruct_forced(photo, RECONSTRUCT_SEGMENTER_LEARNED, &r, err, sizeof err);
     if (st != 0 || !r.extract.mask) {
         fprintf(stderr, "real_truth: %s: %s\n", photo, st ? err : "no mask");
         reconstruction_free(&r);
