@@ -344,7 +344,7 @@ bench-render: check-deps-stamp
 SYNTH_C := $(addprefix tests/support/,synth_vessel.c synth_body.c synth_profile.c synth_raster.c)
 SCENE_C := $(SYNTH_C) $(addprefix tests/support/,synth_scene.c synth_scene_layers.c synth_noise.c synth_jpeg.c)
 SHEET_C := tests/tools/sheet/recon_sheet.c
-TOOL_C  := $(SCENE_C) $(SHEET_C) tests/support/serialized_file.c
+TOOL_C  := $(SCENE_C) $(SHEET_C) tests/support/serialized_file.c tests/support/realdev_truth.c
 build/tools/%: tests/tools/%.c $(TOOL_C) build/opt/libceladon.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -Itests/tools -o $@ $< $(TOOL_C) build/opt/libceladon.a $(LDLIBS)

@@ -217,6 +217,47 @@ static int ellipse_corners(const end_point *p, int n, double zone, int pick[2], 
     return 0;
 }
 
+/* The mean depth below h_end of the two picked contour points (0 when one is missing). */
+static double pick_depth(const vec2 *c, vec2 origin, vec2 dir, double h_end, const int pick[2])
+{
+    if (pick[0] < 0 || pick[1] < 0)
+        return 0;
+    return h_end - 0.5 * (v2_dot(v2_sub(c[pick[0]], origin), dir) + v2_dot(v2_sub(c[pick[1]], origin), dir));
+}
+
+static int by_depth(const void *a, const void *b)
+{
+    double da = ((const end_point *)a)->d, db = ((const end_point *)b)->d;
+    return (da > db) - (da < db);
+}
+
+/* Where the outline leaves the rim's ellipse r^2/a^2 + (d - b)^2/b^2 = 1
+ * (e[0] = a, e[1] = b; d the depth below the top) on each side: from the top
+ * down, the deepest zone point within 1 px of it before three in a row
+ * lie more than 3 px off, at least half its half-height down. Sorts p.
+ * Returns 0, or -1 (pick untouched) when a side has none. */
+static int leave_ellipse(end_point *p, int n, const double e[2], int pick[2])
+{
+    qsort(p, (size_t)n, sizeof *p, by_depth);
+    int found[2] = {-1, -1}, off[2] = {0, 0};
+    for (int i = 0; i < n; i++) {
+        int s = p[i].r > 0;
+        if (off[s] >= 3 || p[i].d > 2 * e[1])
+            continue;
+        /* Sampson's distance from the ellipse */
+        double u = p[i].r / e[0], v = (p[i].d - e[1]) / e[1];
+        double dist = fabs(u * u + v * v - 1) / (2 * sqrt(u * u / (e[0] * e[0]) + v * v / (e[1] * e[1])) + 1e-300);
+        off[s] = dist > 3 ? off[s] + 1 : 0;
+        if (dist <= 1 && p[i].d >= 0.5 * e[1])
+            found[s] = p[i].i;
+    }
+    if (found[0] < 0 || found[1] < 0)
+        return -1;
+    pick[0] = found[0];
+    pick[1] = found[1];
+    return 0;
+}
+
 /* The mean distance of the picked points (one per side) from the axis. */
 static double pick_half_width(const end_point *p, int n, const int pick[2])
 {
@@ -227,8 +268,8 @@ static double pick_half_width(const end_point *p, int n, const int pick[2])
     return w;
 }
 
-int recon_find_caps(const vec2 *contour_px, int n, const vec2 *const outline[2], const int n_outline[2], vec2 origin,
-                    vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT])
+int recon_find_caps(const image_t *img, const vec2 *contour_px, int n, const vec2 *const outline[2],
+                    const int n_outline[2], vec2 origin, vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT])
 {
     double *turns = malloc((size_t)(n > 0 ? n : 1) * sizeof *turns);
     vec2 *contour = malloc((size_t)(n > 0 ? n : 1) * sizeof *contour);
@@ -262,6 +303,8 @@ int recon_find_caps(const vec2 *contour_px, int n, const vec2 *const outline[2],
     /* per end: the picked points, and the extreme point (pole) per side */
     int picked[2][2], poles[2][2], turned[2] = {0, 0};
     double base_aspect = 0; /* b/a of the base's ellipse where it was left tangentially, else 0 */
+    int mouth_open = 0;     /* the top is an open mouth seen from above (recon_mouth_open) ... */
+    double mouth[2] = {0, 0}; /* ... and its rim's ellipse */
     for (int pass = 0; pass < 2; pass++) {
         int end = 1 - pass; /* 1: bottom (base) first, 0: top (rim) */
         double h_end = end ? h_bot : h_top, sign = end ? -1 : 1;
@@ -281,6 +324,13 @@ int recon_find_caps(const vec2 *contour_px, int n, const vec2 *const outline[2],
          * reaches that deep. */
         if (end == 0)
             zone = fmax(zone, 2 * fmin(base_aspect, 0.5) * r5 + 3);
+        /* An open mouth seen from above shows its rim's near arc: the rim's
+         * ellipse is measured on the outline's top, and the wall leaves it
+         * down to twice its half-height below the top (the last 5% of the
+         * height can be a small part of a wide far arc: a bowl seen from
+         * 25 degrees, whose rim's ends lay 59 px deep, the zone 41). */
+        if (end == 0 && (mouth_open = recon_mouth_open(img, contour, n, origin, dir, h_end, zone, mouth)))
+            zone = fmax(zone, 2 * mouth[1] + 3);
         /* The rim (base) is a circle: both sides turn at the same height. Per
          * 1 px bin of height in the zone and per side, the sharpest turn; the
          * corners are the pair at the height where the weaker of the two
@@ -409,6 +459,12 @@ int recon_find_caps(const vec2 *contour_px, int n, const vec2 *const outline[2],
             pick[0] = pole[0];
             pick[1] = pole[1];
         }
+        /* An open mouth's rim is its ellipse: corners picked above its ends
+         * on its back arc, would make that arc profile; they are where the
+         * outline leaves the ellipse instead, on each side. */
+        if (end == 0 && mouth_open && pick_depth(contour, origin, dir, h_end, pick) < 0.75 * mouth[1] &&
+            leave_ellipse(zp, m, mouth, pick) == 0)
+            turned[end] = 0;
         for (int s = 0; s < 2; s++) {
             picked[end][s] = pick[s];
             poles[end][s] = pole[s];
@@ -422,7 +478,12 @@ int recon_find_caps(const vec2 *contour_px, int n, const vec2 *const outline[2],
      * A top picked deeper than that ratio allows (within 2 px of measurement
      * at the base scaled by the radii, and 3 px of its own) is no rim but a
      * dome, a knob's rounded top: its pole. Not where a stand or a shadow
-     * has cut the base, whose depth then says nothing of the camera. */
+     * has cut the base, whose depth then says nothing of the camera; nor
+     * at an open mouth (recon_mouth_open): its rim is the ellipse it shows.
+     * The base's points lie on its ellipse's near half when the wall widens
+     * upward from the base, the rim's below its ends when the wall flares
+     * out of it, and a bowl seen from 20 degrees above was closed into a
+     * dome by this bound. */
     double depth[2], rad[2];
     for (int end = 0; end < 2; end++) {
         double h_end = end ? h_bot : h_top;
@@ -434,7 +495,7 @@ int recon_find_caps(const vec2 *contour_px, int n, const vec2 *const outline[2],
                 rad[end] += 0.5 * fabs(v2_dot(q, nrm));
             }
     }
-    if (!base_is_cut && rad[0] > 1 && rad[1] > 1 && poles[0][0] >= 0 && poles[0][1] >= 0 &&
+    if (!base_is_cut && !mouth_open && rad[0] > 1 && rad[1] > 1 && poles[0][0] >= 0 && poles[0][1] >= 0 &&
         depth[0] > rad[0] * depth[1] / rad[1] + 2 * rad[0] / rad[1] + 3) {
         for (int s = 0; s < 2; s++)
             picked[0][s] = poles[0][s];

@@ -716,7 +716,8 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
     for (int i = 0; i < res->n_excluded; i++)
         base_is_cut |= res->excluded[i].what == RECON_PART_STAND || res->excluded[i].what == RECON_PART_SHADOW;
     const vec2 *const outline[2] = {res->silhouette[0], res->silhouette[1]};
-    if (recon_find_caps(res->contour, nc, outline, res->n_silhouette, origin, dir, base_is_cut, res->corners) != 0) {
+    if (recon_find_caps(img, res->contour, nc, outline, res->n_silhouette, origin, dir, base_is_cut, res->corners) !=
+        0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
         goto out;
     }

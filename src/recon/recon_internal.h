@@ -20,12 +20,23 @@
  * b/a times that radius when deeper: a rim's near half seen from above); where none turns much more than the rest
  * of the zone (a dome), the extreme point, its pole; also at the top when it
  * lies deeper below the top than the base's ellipse allows (a knob), unless
- * base_is_cut (a stand or a shadow cut it). A corner that turns most is
+ * base_is_cut (a stand or a shadow cut it) or the photo img (may be NULL)
+ * shows an open mouth there (recon_mouth_open). A corner that turns most is
  * then found again on outline[s] (s 0 left, 1 right: the sides' sub-pixel
  * outlines, n_outline[s] points, one per row) by recon_corner_knot, except
  * at a base that is cut. Returns 0, or -1 when out of memory. */
-int recon_find_caps(const vec2 *contour, int n, const vec2 *const outline[2], const int n_outline[2], vec2 origin,
-                    vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT]);
+int recon_find_caps(const image_t *img, const vec2 *contour, int n, const vec2 *const outline[2],
+                    const int n_outline[2], vec2 origin, vec2 dir, int base_is_cut, vec2 corners[CORNER_COUNT]);
+
+/* 1 when the closed contour's top (its highest point h_top along dir from
+ * origin, on the axis; its points down to depth px below it searched) is the
+ * far arc of an ellipse about the axis whose near arc shows in img as a step
+ * (the lip or the interior above it, the outer wall below): an open mouth
+ * seen from above, whose rim is that ellipse (its half-axes across and
+ * along the axis in ellipse[0], ellipse[1]; its top on the contour's; mouth.c).
+ * 0 for a dome, a knob, or an arc that is no ellipse. */
+int recon_mouth_open(const image_t *img, const vec2 *contour, int n, vec2 origin, vec2 dir, double h_top,
+                     double depth, double ellipse[2]);
 
 /* The corner *corner (a point of the closed contour, on the side of the axis
  * of outline[0..n), that side's sub-pixel outline, one point per row) moved

@@ -32,13 +32,19 @@ void sheet_paint_thumbnail(cairo_surface_t *sheet, const image_t *img, int x, in
     cairo_surface_mark_dirty(sheet);
 }
 
+int sheet_reconstruct_forced(const char *path, reconstruct_segmenter s, reconstruction *r, char *err, size_t len)
+{
+    reconstruct_options opt = reconstruct_options_default();
+    opt.segmenter = s;
+    opt.force = 1;
+    return reconstruct_photo(path, &opt, r, err, len);
+}
+
 int sheet_reconstruct_overlay(const char *path, int without_photo, reconstruction *r, image_t *out, char *verdict,
                               size_t len)
 {
-    reconstruct_options opt = reconstruct_options_default();
-    opt.force = 1;
     char err[400];
-    if (reconstruct_photo(path, &opt, r, err, sizeof err) != 0) {
+    if (sheet_reconstruct_forced(path, RECONSTRUCT_SEGMENTER_AUTO, r, err, sizeof err) != 0) {
         snprintf(verdict, len, "refused: %s", err);
         if (!without_photo)
             return image_read(path, out, err, sizeof err);

@@ -13,6 +13,11 @@
 /* A box-filtered thumbnail of img painted at (x, y), scale s (< 1). */
 void sheet_paint_thumbnail(cairo_surface_t *sheet, const image_t *img, int x, int y, double s);
 
+/* The photo at path reconstructed as `celadon reconstruct --force
+ * --segmenter s` does, into *r (freed with reconstruction_free either way).
+ * Returns reconstruct_photo's status, err its reason. */
+int sheet_reconstruct_forced(const char *path, reconstruct_segmenter s, reconstruction *r, char *err, size_t len);
+
 /* The photo at path reconstructed with --force into *r (the caller frees it
  * with reconstruction_free), its overlay into *out, and the verdict
  * ("passed", the gate's failures, or "refused: " and the reason) into
