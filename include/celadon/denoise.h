@@ -4,7 +4,9 @@
  * regression of its neighbours' colours on their features (screen offset,
  * albedo, normal, depth) relative to its own; the weights are non-local
  * means distances of 3x3 colour patches normalised by the pixels'
- * variance (Rousselle et al. 2012), times a closeness in the features.
+ * variance (Rousselle et al. 2012), times a closeness in the features,
+ * times the inverse of the neighbour's variance relative to the pixel's
+ * where it is the noisier.
  *
  * What the regression keeps: an image that is exactly linear in the
  * features over a window is reproduced (up to the ridge's 1e-4 relative

@@ -108,6 +108,15 @@ static double feature_weight(const float *p, const float *q)
     return exp(-0.5 * (da / (SIGMA_ALBEDO * SIGMA_ALBEDO) + dn / (SIGMA_NORMAL * SIGMA_NORMAL) + dz * dz));
 }
 
+/* Weighted least squares with noise of unequal variance weighs each
+ * sample by the inverse of its variance: a neighbour noisier than p (a
+ * firefly, a caustic) counts for p's variance over its own. */
+static double variance_weight(const image *im, int px, int py, int qx, int qy)
+{
+    double vp = im->var[(size_t)py * im->w + px], vq = im->var[(size_t)qy * im->w + qx];
+    return vq > vp ? (vp + 1e-12) / (vq + 1e-12) : 1.0;
+}
+
 /* Solves the symmetric positive definite a (n x n) x = b for 3 right-hand
  * sides in place (Cholesky); -1 when a is not positive definite. */
 static int cholesky_solve(double a[NREG][NREG], double b[NREG][3], int n)
@@ -171,7 +180,7 @@ static void denoise_pixel(const image *im, int px, int py, float *out)
             const float *q = pixel(im, qx, qy);
             if (!finite_pixel(q))
                 continue;
-            double wq = colour_weight(im, px, py, qx, qy) * feature_weight(p, q);
+            double wq = colour_weight(im, px, py, qx, qy) * feature_weight(p, q) * variance_weight(im, px, py, qx, qy);
             if (!(wq > 1e-6))
                 continue;
             w[n] = wq;
