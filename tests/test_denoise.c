@@ -251,3 +251,48 @@ Test(denoise, bad_inputs_exit_2_with_one_line_and_no_file, .timeout = 60)
     cr_assert_eq(system(cmd), 0);
     expect_refused(cut, "");
 }
+
+/* A lit sphere on a floor, 4 samples per pixel. */
+static const char floor_xml[] =
+    "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
+    "<lookat origin=\"0,2,3\" target=\"0,0.4,0\" up=\"0,1,0\"/></transform>"
+    "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"
+    "<film type=\"hdrfilm\"><integer name=\"width\" value=\"32\"/><integer name=\"height\" value=\"24\"/></film>"
+    "</sensor><emitter type=\"constant\"><rgb name=\"radiance\" value=\"1,1,1\"/></emitter>"
+    "<shape type=\"rectangle\"><transform name=\"to_world\"><rotate x=\"1\" angle=\"-90\"/><scale value=\"3\"/>"
+    "</transform><bsdf type=\"diffuse\"/></shape>"
+    "<shape type=\"sphere\"><point name=\"center\" x=\"0\" y=\"0.5\" z=\"0\"/><float name=\"radius\" value=\"0.5\"/>"
+    "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.2,0.6,0.3\"/></bsdf></shape></scene>\n";
+
+/* render --denoise: the same render as without it but for R, G, B, with
+ * the features it needed written too, labelled denoised; not for a part. */
+Test(denoise, render_denoise_writes_the_denoised_render, .timeout = 60)
+{
+    char scene[128], raw[160], den[160];
+    scratch_write_file(dir, "floor.xml", floor_xml, scene, sizeof scene);
+    snprintf(raw, sizeof raw, "%s/raw.exr", dir);
+    snprintf(den, sizeof den, "%s/den.exr", dir);
+    cli_result r = cli_run(dir, (const char *[]){"render", scene, "-o", raw, "--aov", "albedo,normal,depth,variance",
+                                                 NULL});
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cli_result_free(&r);
+    r = cli_run(dir, (const char *[]){"render", scene, "-o", den, "--denoise", NULL});
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cli_result_free(&r);
+    exr_planes a, b;
+    read_exr(raw, &a);
+    read_exr(den, &b);
+    cr_assert_eq(a.nch, b.nch);
+    for (int k = 0; k < a.nch; k++) {
+        int same = !memcmp(a.planes[k], b.planes[plane_index(&b, a.names[k])], sizeof(float) * a.width * a.height);
+        int colour = !strcmp(a.names[k], "R") || !strcmp(a.names[k], "G") || !strcmp(a.names[k], "B");
+        cr_expect(same != colour, "channel %s %s", a.names[k], same ? "unchanged" : "changed");
+    }
+    exr_planes_free(&a), exr_planes_free(&b);
+    char *info = oiio_info(den);
+    cr_expect(strstr(info, "celadon/denoised") != NULL, "%s", info);
+    free(info);
+    r = cli_run(dir, (const char *[]){"render", scene, "-o", den, "--denoise", "--part", "1/2", NULL});
+    cr_expect_eq(r.status, 2, "--part with --denoise: %s", r.err);
+    cli_result_free(&r);
+}
