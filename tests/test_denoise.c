@@ -250,6 +250,17 @@ Test(denoise, bad_inputs_exit_2_with_one_line_and_no_file, .timeout = 60)
     snprintf(cmd, sizeof cmd, "head -c 2000 '%s' > '%s'", whole, cut);
     cr_assert_eq(system(cmd), 0);
     expect_refused(cut, "");
+    /* -o naming the input (under another name) is refused; it stays whole. */
+    char alias[160];
+    snprintf(alias, sizeof alias, "%s/./whole.exr", dir);
+    cli_result r = cli_run(dir, (const char *[]){"denoise", whole, "-o", alias, NULL});
+    cr_expect_eq(r.status, 2, "stderr: %s", r.err);
+    cr_expect(strstr(r.err, "is the input") != NULL, "stderr: %s", r.err);
+    cli_result_free(&r);
+    exr_planes e;
+    read_exr(whole, &e);
+    cr_expect_eq(e.nch, C);
+    exr_planes_free(&e);
 }
 
 /* A lit sphere on a floor, 4 samples per pixel. */
