@@ -67,7 +67,7 @@ BENCH_C  := $(wildcard bench/*.c)
 # $(call objs,VARIANT,SOURCES)
 objs = $(patsubst %.c,build/$(1)/%.o,$(filter %.c,$(2))) $(patsubst %.cpp,build/$(1)/%.o,$(filter %.cpp,$(2)))
 
-.PHONY: all deps test test-fast test-asan check-layout demo bench bench-sor clean web
+.PHONY: all deps test test-fast test-asan check-layout demo bench bench-sor bench-denoise clean web
 all: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon web
 
@@ -337,6 +337,17 @@ bench-render: check-deps-stamp
 	@$(MAKE) --no-print-directory build/bench/bench_render
 	@mkdir -p out/bench
 	build/bench/bench_render | tee out/bench/bench_render.txt
+
+# ---------------------------------------------------------------- denoising benchmark
+# relMSE of the denoised 16-spp image against a 4096-spp reference, beside the
+# raw 128-spp image's, on studio, cornell-sor and showcase (docs/BENCHMARKS.md,
+# "Denoising"); its renders are cached in build/bench-denoise/ (the references
+# take about half an hour at nice 10 the first time). `make bench` runs it too.
+.PHONY: bench-denoise
+bench-denoise: check-deps-stamp
+	@$(MAKE) --no-print-directory -j2 build/celadon build/bench/bench_denoise
+	@mkdir -p out/bench
+	CELADON_BIN=$(CURDIR)/build/celadon build/bench/bench_denoise | tee out/bench/bench_denoise.txt
 
 # ---------------------------------------------------------------- demo and benchmarks
 # The test drawers of synthetic photographs: bench_recon and the tools in

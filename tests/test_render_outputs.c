@@ -443,3 +443,80 @@ Test(render_outputs, a_time_budget_renders_passes_until_it_is_spent, .timeout = 
     cr_expect(img.width == 24 && img.height == 16);
     image_free(&img);
 }
+
+/* How Blender's compositor splits an EXR channel name into layer, pass
+ * and channel (docs/rendering.md, "How Blender reads these names"): from
+ * the right, the last '.'-token is the channel, the one before it the
+ * pass, the rest the layer; a name without a dot is the pass of that name,
+ * except R, G, B, A (Combined) and Z (Depth, unless X, Y and Z are all
+ * channels). */
+static void blender_split(const char *name, int has_xyz, char *layer, char *pass, char *chan)
+{
+    const char *last = strrchr(name, '.');
+    layer[0] = '\0';
+    if (!last) {
+        snprintf(chan, 32, "%s", name);
+        if (!name[1] && strchr("RGBA", name[0]))
+            snprintf(pass, 32, "Combined");
+        else if (!strcmp(name, "Z") && !has_xyz)
+            snprintf(pass, 32, "Depth");
+        else
+            snprintf(pass, 32, "%s", name);
+        return;
+    }
+    snprintf(chan, 32, "%s", last + 1);
+    const char *p = last;
+    while (p > name && p[-1] != '.')
+        p--;
+    snprintf(pass, 32, "%.*s", (int)(last - p), p);
+    if (p > name)
+        snprintf(layer, 32, "%.*s", (int)(p - 1 - name), name);
+}
+
+/* The rule on the names of Blender's own multilayer EXRs, then on a
+ * render with every AOV: each channel lands in the pass a compositor user
+ * expects (Combined, Depth, N, albedo, IndexOB, IndexMA, variance, spp),
+ * in the default layer, with its channel letter. */
+Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
+{
+    char layer[32], pass[32], chan[32];
+    blender_split("ViewLayer.Combined.R", 0, layer, pass, chan);
+    cr_expect(!strcmp(layer, "ViewLayer") && !strcmp(pass, "Combined") && !strcmp(chan, "R"));
+    blender_split("ViewLayer.Depth.Z", 0, layer, pass, chan);
+    cr_expect(!strcmp(layer, "ViewLayer") && !strcmp(pass, "Depth") && !strcmp(chan, "Z"));
+    blender_split("Z", 1, layer, pass, chan);
+    cr_expect(!strcmp(pass, "Z"), "Z of an X, Y, Z colour is not Depth");
+
+    char scene[128], out[160];
+    scratch_write_file(dir, "floor.xml", lit_floor_xml, scene, sizeof scene);
+    snprintf(out, sizeof out, "%s/passes.exr", dir);
+    render_ok((const char *[]){"render", scene, "-o", out, "--aov", "depth,normal,albedo,index,variance,spp",
+                               "--spp", "2", NULL});
+    exr_planes e;
+    read_exr(out, &e);
+    /* Each pass, its channels (letters, or one whole name), how many. */
+    static const struct {
+        const char *pass, *chans;
+        int n;
+    } want[] = {{"Combined", "RGB", 3}, {"Depth", "Z", 1},   {"N", "XYZ", 3},                {"albedo", "RGB", 3},
+                {"IndexOB", "X", 1},    {"IndexMA", "X", 1}, {"variance", "variance", 1}, {"spp", "spp", 1}};
+    int has_xyz = exr_planes_has(&e, "X") && exr_planes_has(&e, "Y") && exr_planes_has(&e, "Z");
+    int found[8] = {0};
+    for (int c = 0; c < e.nch; c++) {
+        blender_split(e.names[c], has_xyz, layer, pass, chan);
+        cr_expect_str_empty(layer, "%s: in layer '%s', not the default one", e.names[c], layer);
+        size_t k = 0;
+        while (k < 8 && strcmp(want[k].pass, pass))
+            k++;
+        cr_expect_lt(k, 8, "%s: pass '%s' is none of Blender's", e.names[c], pass);
+        if (k == 8)
+            continue;
+        int ok = want[k].n > 1 || strlen(want[k].chans) == 1 ? strlen(chan) == 1 && strchr(want[k].chans, chan[0])
+                                                             : !strcmp(want[k].chans, chan);
+        cr_expect(ok, "%s: channel '%s' in pass %s", e.names[c], chan, pass);
+        found[k]++;
+    }
+    for (int k = 0; k < 8; k++)
+        cr_expect_eq(found[k], want[k].n, "pass %s has %d channels", want[k].pass, found[k]);
+    exr_planes_free(&e);
+}

@@ -73,6 +73,8 @@ typedef struct {
     /* Set by the command line (empty: not written): */
     char scene_path[1024];
     char command_line[2048];
+    /* Set by denoise_film (denoise.h): what denoised the colour (empty: nothing). */
+    char denoised[128];
 } film_metadata;
 
 /* What film_write adds from each pixel's own samples (film_t.samples),

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "core/core.h"
 
@@ -19,6 +20,12 @@ int cli_check_output(const char *path, int is_folder)
     if (!quiet)
         fprintf(stderr, "celadon: %s: cannot write there: %s\n", path, why);
     return CLI_CANNOT_WRITE;
+}
+
+int cli_same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
 int cli_usage_error(const char *cmd, const char *fmt, const char *arg)

@@ -20,6 +20,9 @@ enum { CLI_OK = 0, CLI_CANNOT_WRITE = 1, CLI_BAD_INPUT = 2, CLI_INTERRUPTED = 13
  * line "celadon: PATH: cannot write there: REASON" (unless quiet). */
 int cli_check_output(const char *path, int is_folder);
 
+/* Whether the paths name the same existing file (under any names). */
+int cli_same_file(const char *a, const char *b);
+
 /* A whole decimal integer in [lo, hi]: 0, or -1 when s is anything else. */
 int cli_parse_int(const char *s, long long lo, long long hi, long long *out);
 

@@ -3,7 +3,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "celadon/parts.h"
 #include "cli/cli_args.h"
@@ -24,11 +23,8 @@ static void usage(FILE *f)
 /* The part that out names (the same file, under any name), or NULL. */
 static const char *part_named_by(const char *out, const char *const *parts, int n)
 {
-    struct stat so, sp;
-    if (stat(out, &so) != 0)
-        return NULL;
     for (int i = 0; i < n; i++)
-        if (stat(parts[i], &sp) == 0 && sp.st_dev == so.st_dev && sp.st_ino == so.st_ino)
+        if (cli_same_file(out, parts[i]))
             return parts[i];
     return NULL;
 }

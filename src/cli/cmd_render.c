@@ -9,6 +9,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "celadon/denoise.h"
 #include "celadon/distribute.h"
 #include "celadon/parts.h"
 #include "celadon/render.h"
@@ -42,6 +43,8 @@ static void usage(FILE *f)
                "  --time S        render passes until S seconds are spent (or the spp reached)\n"
                "  --preview FILE  write the image so far to FILE after a pass, every 10 s\n"
                "                  (--preview-every S) and at the end\n"
+               "  --denoise       denoise the colour by a regression on the albedo, normal and\n"
+               "                  depth (which --denoise adds to an EXR, with the variance)\n"
                "  --spp N         samples per pixel (default: the scene's sampler); also the\n"
                "                  value of $spp where the scene has no <default> for it\n"
                "  --res WxH       film size (default: the scene's film; at most 65536 on a side, 1e9 pixels)\n"
@@ -78,6 +81,7 @@ typedef struct {
     render_part part; /* n == 0: the whole render */
     int frame_from, frame_to, frame_step, frames; /* frames == 0: no --frames */
     film_output output; /* --exposure, --view, --depth */
+    int denoise;        /* --denoise */
     char command_line[2048];
 } render_args;
 
@@ -121,6 +125,10 @@ static int parse_args(int argc, char **argv, render_args *a)
             if (a->scene_path)
                 return cli_usage_error("render", "unexpected argument '%s'", arg);
             a->scene_path = arg;
+            continue;
+        }
+        if (!strcmp(arg, "--denoise")) {
+            a->denoise = 1;
             continue;
         }
         if (!val)
@@ -241,6 +249,11 @@ static int parse_args(int argc, char **argv, render_args *a)
         return cli_usage_error("render", "%s", "--part renders a fixed share of the samples: no --time or --preview");
     if (a->part.n && !is_exr(a->out))
         return cli_usage_error("render", "--part writes an .exr (its header names the part), not '%s'", a->out);
+    if (a->part.n && a->denoise)
+        return cli_usage_error("render", "%s", "--part writes a share of the samples: denoise the merged image "
+                                               "(celadon denoise)");
+    if (a->denoise)
+        a->ro.aovs |= RENDER_AOV_ALBEDO | RENDER_AOV_NORMAL | RENDER_AOV_DEPTH | RENDER_AOV_VARIANCE;
     if (a->frames && !strchr(a->out, '#'))
         return cli_usage_error("render", "--frames needs a run of # in the output name for the frame, not '%s'",
                                a->out);
@@ -305,6 +318,10 @@ static int write_result(const render_args *a, const scene_t *scene, film_t *film
     char err[2048];
     snprintf(film->meta.scene_path, sizeof film->meta.scene_path, "%s", a->scene_path);
     snprintf(film->meta.command_line, sizeof film->meta.command_line, "%s", a->command_line);
+    if (a->denoise && denoise_film(film, err, sizeof err) != 0) {
+        fprintf(stderr, "celadon: %s\n", err);
+        return 1;
+    }
     int rc = a->part.n ? render_part_write(film, scene, a->part, !st->interrupted, out, err, sizeof err)
                        : film_write_as(film, out, &a->output, err, sizeof err);
     if (rc != 0) {

@@ -15,5 +15,6 @@ int cmd_crosscheck(int argc, char **argv);
 int cmd_reconstruct(int argc, char **argv);
 int cmd_museum(int argc, char **argv);
 int cmd_merge(int argc, char **argv);
+int cmd_denoise(int argc, char **argv);
 
 #endif

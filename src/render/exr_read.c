@@ -90,6 +90,21 @@ int exr_in_has_channel(const exr_in *e, const char *name)
     return 0;
 }
 
+int exr_in_channel_count(const exr_in *e)
+{
+    const exr_attr_chlist_t *cl = NULL;
+    return exr_get_channels(e->ctx, 0, &cl) == EXR_ERR_SUCCESS ? cl->num_channels : 0;
+}
+
+const char *exr_in_channel_name(const exr_in *e, int i)
+{
+    const exr_attr_chlist_t *cl = NULL;
+    exr_get_channels(e->ctx, 0, &cl);
+    return cl->entries[i].name.str;
+}
+
+exr_const_context_t exr_in_context(const exr_in *e) { return e->ctx; }
+
 /* Points each decoded channel that is one of names at its place in pixels. */
 static void aim_channels(exr_decode_pipeline_t *dec, const exr_chunk_info_t *ci, int width, int nch,
                          const char *const *names, float *pixels)

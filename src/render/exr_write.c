@@ -8,6 +8,7 @@
 #include "core/core.h"
 #include "render/exr_error.h"
 #include "render/exr_metadata.h"
+#include "render/exr_read.h"
 
 /* Encodes every chunk of the part; channel pointers into the interleaved
  * buffer are matched by name since the file stores channels sorted. */
@@ -60,9 +61,11 @@ int exr_write_float(const char *path, int width, int height, int nch, const char
     return exr_write_float_attrs(path, width, height, nch, names, pixels, meta, NULL, 0, err, errlen);
 }
 
-int exr_write_float_attrs(const char *path, int width, int height, int nch, const char *const *names,
-                          const float *pixels, const film_metadata *meta, const film_attr *attrs, int nattrs,
-                          char *err, size_t errlen)
+/* The file with meta's attributes (NULL: none), attrs, and then like's
+ * (NULL: none) where the file sets none of the name. */
+static int write_file(const char *path, int width, int height, int nch, const char *const *names,
+                      const float *pixels, const film_metadata *meta, const film_attr *attrs, int nattrs,
+                      exr_const_context_t like, char *err, size_t errlen)
 {
     char tmp[4200];
     atomic_temp_name(path, tmp, sizeof tmp);
@@ -82,6 +85,8 @@ int exr_write_float_attrs(const char *path, int width, int height, int nch, cons
         rv = exr_metadata_write(ctx, part, meta);
     for (int a = 0; a < nattrs && rv == EXR_ERR_SUCCESS; a++)
         rv = exr_attr_set_string(ctx, part, attrs[a].name, attrs[a].value);
+    if (rv == EXR_ERR_SUCCESS && like)
+        rv = exr_copy_unset_attributes(ctx, part, like, 0);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_write_header(ctx);
     if (rv == EXR_ERR_SUCCESS)
@@ -103,4 +108,19 @@ int exr_write_float_attrs(const char *path, int width, int height, int nch, cons
     else
         snprintf(err, errlen, "%s: cannot write EXR: %s", path, exr_error_text(rv));
     return -1;
+}
+
+int exr_write_float_attrs(const char *path, int width, int height, int nch, const char *const *names,
+                          const float *pixels, const film_metadata *meta, const film_attr *attrs, int nattrs,
+                          char *err, size_t errlen)
+{
+    return write_file(path, width, height, nch, names, pixels, meta, attrs, nattrs, NULL, err, errlen);
+}
+
+int exr_write_float_like(const char *path, int width, int height, int nch, const char *const *names,
+                         const float *pixels, const exr_in *like, const film_attr *attrs, int nattrs, char *err,
+                         size_t errlen)
+{
+    return write_file(path, width, height, nch, names, pixels, NULL, attrs, nattrs, exr_in_context(like), err,
+                      errlen);
 }

@@ -62,7 +62,8 @@ void film_info_collect(const film_t *f, film_info *info)
         add(info, "threads", "%d", m->threads);
     if (m->ranks > 0)
         add(info, "ranks", "%d", m->ranks);
-    snprintf(info->summary, sizeof info->summary, "celadon %s: %s%s%s spp of %d (%s, %s, seed %" PRIu64 "), %.1f s%s",
+    add(info, "denoised", "%s", m->denoised);
+    snprintf(info->summary, sizeof info->summary, "celadon %s: %s%s%s spp of %d (%s, %s, seed %" PRIu64 "), %.1f s%s%s",
              CELADON_VERSION, m->scene_path, m->scene_path[0] ? ", " : "", done, m->spp, m->integrator, m->sampler,
-             m->seed, m->seconds, m->interrupted ? ", interrupted: partial image" : "");
+             m->seed, m->seconds, m->interrupted ? ", interrupted: partial image" : "", m->denoised[0] ? ", denoised" : "");
 }

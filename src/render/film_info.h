@@ -23,7 +23,7 @@ typedef struct {
  * pixels' counts differ), "celadon/passes", "celadon/renderSeconds",
  * "celadon/interrupted" ("yes"/"no"), "celadon/threads", "celadon/ranks",
  * "celadon/timeBudget" (with --time), "celadon/crop" ("X,Y,W,H of WxH",
- * for a crop window);
+ * for a crop window), "celadon/denoised" (what denoised it, denoise.h);
  * empty values (and passes, time, threads and ranks that are 0: a merge of
  * parts) are left out. Nothing when f has no metadata. */
 void film_info_collect(const film_t *f, film_info *info);

@@ -1,0 +1,54 @@
+/* Feature-guided denoising of a path-traced image (docs/rendering.md,
+ * "Denoising"): first-order regression in the manner of NFOR (Bitterli et
+ * al. 2016). Each pixel's colour is the intercept of a weighted linear
+ * regression of its neighbours' colours on their features (screen offset,
+ * albedo, normal, depth) relative to its own; the weights are non-local
+ * means distances of 3x3 colour patches normalised by the pixels'
+ * variance (Rousselle et al. 2012), times a closeness in the features,
+ * times the inverse of the neighbour's variance relative to the pixel's
+ * where it is the noisier.
+ *
+ * What the regression keeps: an image that is exactly linear in the
+ * features over a window is reproduced (up to the ridge's 1e-4 relative
+ * shrinkage), and so is an antialiased edge whose pixels mix two sides in
+ * the same proportion in colour as in features; what it removes is noise
+ * the features do not explain. Images are float, interleaved, row-major
+ * from the top left. */
+#ifndef CELADON_DENOISE_H
+#define CELADON_DENOISE_H
+
+#include <stddef.h>
+
+#include "celadon/film.h"
+
+/* The channels the denoiser reads, in this order, per pixel, with the
+ * names the renderer's EXR gives them (docs/rendering.md, "AOVs"):
+ * R, G, B, albedo.R, albedo.G, albedo.B, N.X, N.Y, N.Z, Z, variance. */
+enum { DENOISE_CHANNELS = 11 };
+extern const char *const denoise_channel_names[DENOISE_CHANNELS];
+
+/* Denoises the RGB of in (width * height * DENOISE_CHANNELS floats, as
+ * above) into out (width * height * 3 floats; not in). Pixels whose values
+ * are not finite are taken as they are. width, height >= 1. Uses OpenMP's
+ * threads; the result does not depend on their count. */
+void denoise_image(int width, int height, const float *in, float *out);
+
+/* What a denoised image's "celadon/denoised" attribute says. */
+#define DENOISE_DESCRIPTION "first-order feature regression on albedo, N, Z and variance (NFOR-like)"
+
+/* Denoises the film's colour in place (render --denoise): the film needs
+ * the albedo, normal and depth AOVs (RENDER_AOV_*, render.h) and the
+ * variance (FILM_EXTRA_VARIANCE); its other channels, the variance among
+ * them, stay those of the render. Sets f->meta.denoised. Returns 0, or -1
+ * with the missing channel named in err. */
+int denoise_film(film_t *f, char *err, size_t errlen);
+
+/* Reads the OpenEXR in_path (a render with the channels of
+ * denoise_channel_names), denoises its R, G, B and writes every channel to
+ * the OpenEXR out_path (whole or not at all), its header the input's plus
+ * "celadon/denoised". Returns 0; -2 when in_path is not such a file, with
+ * "IN: problem" in err (every missing channel named); -1 when out_path
+ * cannot be written, with "OUT: problem". */
+int denoise_exr(const char *in_path, const char *out_path, char *err, size_t errlen);
+
+#endif
