@@ -399,6 +399,20 @@ perspective-figure: check-deps-stamp
 	@$(MAKE) --no-print-directory build/tools/draw_perspective_figure
 	build/tools/draw_perspective_figure docs/img/perspective-geometry.png
 
+# `make check-not-vessel` prints the figures of the "not a vessel" rule on
+# the dev photos, the drawn vessels and the drawn shapes that are none
+# (docs/algorithms-recon.md, "Not a vessel").
+.PHONY: check-not-vessel
+NOT_VESSEL_SRC := tests/tools/not_vessel_figures.c $(SCENE_C) tests/support/pinhole_vessel.c \
+                  tests/support/drawn_silhouettes.c
+build/tools/not_vessel_figures: $(NOT_VESSEL_SRC) build/opt/libceladon.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Itests -o $@ $(NOT_VESSEL_SRC) build/opt/libceladon.a $(LDLIBS)
+
+check-not-vessel: check-deps-stamp
+	@$(MAKE) --no-print-directory build/tools/not_vessel_figures
+	build/tools/not_vessel_figures
+
 demo: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon
 	build/celadon reconstruct scenes/demo/photo.png -o out/demo

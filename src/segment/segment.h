@@ -85,6 +85,12 @@ void recon_colour_costs(const recon_colour_model *m, recon_cost_memo *memo, cons
                         const float *mirror_c, const float *mirror_backdrop_c, double *cost_object,
                         double *cost_backdrop);
 
+/* How far the colour c lies off the line of its backdrop colour bc
+ * darkened (k bc, any k): the squared Mahalanobis distance under the
+ * shadow's noise, about chi-square with 2 degrees of freedom for a shadow
+ * (it keeps the backdrop's chromaticity), large for a colour of its own. */
+double recon_shadow_misfit(const recon_colour_model *m, const float *c, const float *bc);
+
 /* Sets the backdrop and shadow terms of m from its backdrop's residual
  * covariance and the priors (which depend on have_support). Returns 0, or -1
  * for a singular covariance. */
