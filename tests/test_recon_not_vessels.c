@@ -209,10 +209,7 @@ Test(recon_not_vessels, round_vessels_pass_the_symmetry_rule)
             p.height = 400;
             p.focal_px = 1000;
             p.subrows = 8;
-            double rmax = 0;
-            for (int k = 0; k <= 200; k++)
-                rmax = fmax(rmax, pinhole_radius(&p, k / 200.0));
-            p.distance = fmax(p.focal_px / (0.7 * p.height), 2 * rmax * p.focal_px / (0.7 * p.width));
+            pinhole_frame(&p);
             image_t img;
             cr_assert_eq(pinhole_draw(&p, &img, NULL), 0);
             recon_result r;

@@ -309,19 +309,10 @@ static void fill_bays_from_below(uint8_t *mask, int w, int x0, int y0, int bw, i
  * border), so the holes, and every pixel of them, are the same. */
 static int fill_holes_but_windows(uint8_t *mask, int w, int h, vec2 origin, vec2 dir)
 {
-    int x0 = w, x1 = -1, y0 = h, y1 = -1;
-    for (int y = 0; y < h; y++) {
-        const uint8_t *m = mask + (size_t)y * w, *a = memchr(m, 1, (size_t)w);
-        if (!a)
-            continue;
-        y0 = y0 < y ? y0 : y;
-        y1 = y;
-        x0 = x0 < a - m ? x0 : (int)(a - m);
-        int r = (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m);
-        x1 = x1 > r ? x1 : r;
-    }
-    if (y1 < 0)
+    int box[4];
+    if (!recon_mask_box(mask, w, h, box))
         return 0; /* no object: no hole */
+    int x0 = box[0], y0 = box[1], x1 = box[2], y1 = box[3];
     x0 = x0 > 0 ? x0 - 1 : 0;
     y0 = y0 > 0 ? y0 - 1 : 0;
     x1 = x1 + 1 < w ? x1 + 1 : w - 1;

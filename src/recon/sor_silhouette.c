@@ -32,29 +32,17 @@
 static int object_extent(const uint8_t *mask, int w, int h, vec2 origin, vec2 dir, int box[4], double *h_lo,
                          double *h_hi)
 {
-    int y0 = h, y1 = -1, x0 = w, x1 = -1;
-    for (int y = 0; y < h; y++) {
-        const uint8_t *m = mask + (size_t)y * w, *a = memchr(m, 1, (size_t)w);
-        if (!a)
-            continue;
-        y0 = y0 < y ? y0 : y;
-        y1 = y;
-        x0 = x0 < a - m ? x0 : (int)(a - m);
-        int r = (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m);
-        x1 = x1 > r ? x1 : r;
-    }
-    if (y1 < 0)
+    if (!recon_mask_box(mask, w, h, box))
         return 0;
     *h_lo = INFINITY;
     *h_hi = -INFINITY;
-    for (int y = y0; y <= y1; y++)
-        for (int x = x0; x <= x1; x++)
+    for (int y = box[1]; y <= box[3]; y++)
+        for (int x = box[0]; x <= box[2]; x++)
             if (mask[(size_t)y * w + x]) {
                 double hh = v2_dot(v2_sub(v2(x + 0.5, y + 0.5), origin), dir);
                 *h_lo = fmin(*h_lo, hh);
                 *h_hi = fmax(*h_hi, hh);
             }
-    box[0] = x0, box[1] = y0, box[2] = x1, box[3] = y1;
     return 1;
 }
 

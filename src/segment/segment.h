@@ -158,6 +158,10 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
  * Returns the object's pixel count, or -1 when out of memory. */
 long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *holes_filled);
 
+/* The object's bounding box in mask: box = {x0, y0, x1, y1}, inclusive.
+ * Returns 0 when the mask is empty (box unset), else 1. */
+int recon_mask_box(const uint8_t *mask, int w, int h, int box[4]);
+
 /* The number of 8-connected components of mask, or -1 when out of memory
  * (over runs: no per-pixel labels). */
 int recon_mask_components(const uint8_t *mask, int w, int h);

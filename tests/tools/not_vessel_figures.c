@@ -111,12 +111,8 @@ int main(int argc, char **argv)
         for (int e = 0; e <= 20; e += 10) {
             pinhole_params p = pinhole_defaults(s < 4 ? (synth_shape)s : SYNTH_VASE, e);
             if (s >= 4) {
-                /* pinhole_defaults' framing, for this profile's width */
                 p.radius = s == 4 ? maebyeong : drawn_moon_jar_radius;
-                double rmax = 0;
-                for (int k = 0; k <= 200; k++)
-                    rmax = fmax(rmax, pinhole_radius(&p, k / 200.0));
-                p.distance = fmax(p.focal_px / (0.7 * p.height), 2 * rmax * p.focal_px / (0.7 * p.width));
+                pinhole_frame(&p);
             }
             image_t img;
             if (pinhole_draw(&p, &img, NULL) != 0)
