@@ -14,6 +14,7 @@
 
 #include "celadon/profile.h"
 #include "support/cli_run.h"
+#include "support/drawn_silhouettes.h"
 #include "support/synth_vessel.h"
 
 #define SEGMENTS 48
@@ -492,6 +493,27 @@ Test(cli_reconstruct, photos_without_a_usable_vessel_are_refused)
     cr_assert_eq(synth_write(path, &img, 8, err, sizeof err), 0, "%s", err);
     image_free(&img);
     expect_refused(path, "touches the bottom image border");
+}
+
+/* A five-pointed star is no vessel: exit 2, one line that says so with the
+ * measured figure, and nothing written (the classical segmenter: auto would
+ * run the learned prior on the refused photo too, and refuse it again). */
+Test(cli_reconstruct, a_star_is_not_a_vessel)
+{
+    char path[300], out[300], err[256];
+    image_t img;
+    cr_assert_eq(drawn_silhouette_draw(DRAWN_STAR, 200, 200, &img), 0);
+    path_in(path, sizeof path, "star.png");
+    cr_assert_eq(synth_write(path, &img, 8, err, sizeof err), 0, "%s", err);
+    image_free(&img);
+    path_in(out, sizeof out, "star_out");
+    cli_result r = run_reconstruct((const char *const[]){path, "-o", out, "--segmenter", "classic", NULL});
+    cr_expect_eq(r.status, 2, "exit %d, stderr: %s", r.status, r.err);
+    cr_expect_eq(count_lines(r.err), 1, "stderr: %s", r.err);
+    cr_expect(strstr(r.err, "not a vessel") && strstr(r.err, "% of its height"), "stderr: %s", r.err);
+    struct stat st;
+    cr_expect_neq(stat(out, &st), 0, "a refused photo leaves no output folder");
+    cli_result_free(&r);
 }
 
 Test(cli_reconstruct, a_bad_photo_in_a_batch_spares_the_others)

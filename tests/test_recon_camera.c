@@ -37,20 +37,6 @@ typedef struct {
     double today_mean, today_max; /* the same for the image outline taken as the profile */
 } outcome;
 
-/* The profile error of a curve (h from 0 to its rim) against pinhole_radius. */
-static void profile_error(const pinhole_params *p, const bspline_t *curve, double *mean, double *max)
-{
-    synthdev_truth t = {.n = 2001, .height = 1};
-    t.z = malloc(t.n * sizeof *t.z);
-    t.r = malloc(t.n * sizeof *t.r);
-    for (int i = 0; i < t.n; i++) {
-        t.z[i] = i / 2000.0;
-        t.r[i] = pinhole_radius(p, t.z[i]);
-    }
-    synthdev_profile_error(&t, curve, 0.03, 0.97, mean, max);
-    synthdev_truth_free(&t);
-}
-
 /* Draws, extracts (recon_extract, or the truth's corners and axis), and
  * runs recon_camera_meridian. */
 static void run(const pinhole_params *p, int use_recon_extract, const recon_camera_options *opt, outcome *o)
@@ -64,10 +50,10 @@ static void run(const pinhole_params *p, int use_recon_extract, const recon_came
         cr_assert_eq(recon_extract(&img, NULL, &res, err, sizeof err), RECON_OK, "%s", err);
     }
     cr_assert_eq(recon_camera_meridian(&img, &res, opt, &o->cam, &o->mer, err, sizeof err), 0, "%s", err);
-    profile_error(p, &o->mer.curve, &o->mean, &o->max);
+    pinhole_profile_error(p, &o->mer.curve, &o->mean, &o->max);
     bspline_t today;
     cr_assert_eq(bspline_fit_profile(res.polyline, res.n_polyline, 1.0, &today, NULL), 0);
-    profile_error(p, &today, &o->today_mean, &o->today_max);
+    pinhole_profile_error(p, &today, &o->today_mean, &o->today_max);
     bspline_free(&today);
     recon_result_free(&res);
     image_free(&img);
@@ -261,7 +247,7 @@ static void over_a_floor_shadow(const pinhole_params *p, const char *what)
     outcome o = {.today_mean = NAN, .today_max = NAN}; /* the outline is not measured here */
     char err[256];
     cr_assert_eq(recon_camera_meridian(&img, &res, NULL, &o.cam, &o.mer, err, sizeof err), 0, "%s", err);
-    profile_error(p, &o.mer.curve, &o.mean, &o.max);
+    pinhole_profile_error(p, &o.mer.curve, &o.mean, &o.max);
     expect_accurate(p, &o, what, MERIDIAN_TOL);
     recon_meridian_free(&o.mer);
     recon_result_free(&res);
@@ -499,7 +485,7 @@ Test(recon_camera, exif_focal_length_through_reconstruct, .timeout = 120)
     cr_expect_leq(fabs(r.camera.focal_px / p.focal_px - 1), 1e-9, "focal length %.2f, drawn %.2f", r.camera.focal_px,
                   p.focal_px);
     outcome o = {.cam = r.camera, .today_mean = NAN, .today_max = NAN};
-    profile_error(&p, &r.meridian.curve, &o.mean, &o.max);
+    pinhole_profile_error(&p, &r.meridian.curve, &o.mean, &o.max);
     cr_log_info("EXIF 86 mm: elevation %.3f, f %.1f px, meridian mean %.3f%% max %.3f%%", r.camera.elevation_deg,
                 r.camera.focal_px, 100 * o.mean, 100 * o.max);
     cr_expect_leq(fabs(r.camera.elevation_deg - pinhole_elevation(&p)), ELEVATION_TOL_DEG, "elevation %.3f, true %.3f",

@@ -64,6 +64,11 @@ typedef struct {
 
 enum { RECON_MAX_EXCLUDED = 16 };
 
+/* The limits of a surface of revolution's silhouette (recon_result's
+ * axis_gap and base_asymmetry; docs/algorithms-recon.md, "Not a vessel"). */
+#define RECON_MAX_AXIS_GAP 0.05
+#define RECON_MAX_BASE_ASYMMETRY 0.10
+
 /* Names used in profile.json and messages. */
 const char *recon_part_name(recon_part_kind k);
 const char *recon_profile_source_name(recon_profile_source s);
@@ -105,6 +110,12 @@ typedef struct {
                                 as a fraction of the largest radius */
     double excluded_fraction; /* fraction of the profile's rows taken from one side only or bridged */
     double r_max;            /* largest radius of the polyline, px */
+    /* What a surface of revolution's silhouette has at zero (refused over
+     * RECON_MAX_AXIS_GAP, RECON_MAX_BASE_ASYMMETRY: not a vessel), fractions of
+     * the object's height: rows whose axis lies on the backdrop between object
+     * on both sides; how much farther the base reaches on one side (0 when
+     * the outline's symmetry gave no axis) */
+    double axis_gap, base_asymmetry;
     double ms_image_processing;
 } recon_result;
 

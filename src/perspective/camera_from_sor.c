@@ -252,7 +252,11 @@ int recon_horizon_candidates(const recon_ellipse *B, const recon_ellipse *T, dou
         if (A1 != 0)
             roots[nr++] = -A0 / A1;
     } else {
+        /* a line's double root comes out with a discriminant of rounding
+         * size, either sign */
         double disc = A1 * A1 - 4 * A2 * A0;
+        if (disc < 0 && disc > -1e-9 * A1 * A1)
+            disc = 0;
         if (disc >= 0) {
             double q = -0.5 * (A1 + copysign(sqrt(disc), A1)); /* no cancellation */
             roots[nr++] = q / A2;
@@ -266,7 +270,10 @@ int recon_horizon_candidates(const recon_ellipse *B, const recon_ellipse *T, dou
         double x = roots[i];
         double k2 = E->a * E->a * ((x - E->w0) * (x - E->w0) - E->b * E->b) / (E->b * E->b);
         double f = k2 - x * x;
-        int outside = (x - B->w0) * (x - B->w0) > B->b * B->b && (x - T->w0) * (x - T->w0) > T->b * T->b;
+        /* outside both ellipses; on a line (b = 0), a circle at the
+         * camera's height, is outside too: the horizon is that line */
+        int outside = ((x - B->w0) * (x - B->w0) > B->b * B->b || B->b == 0) &&
+                      ((x - T->w0) * (x - T->w0) > T->b * T->b || T->b == 0);
         if (f > 0 && outside && isfinite(f)) {
             w_h[n] = x;
             f2[n++] = f;
@@ -283,7 +290,9 @@ static int pick_horizon(const recon_ellipse *B, const recon_ellipse *T, int abov
     double wh[2], f2[2];
     int n = recon_horizon_candidates(B, T, wh, f2);
     for (int i = 0; i < n; i++) {
-        int between = (wh[i] - B->w0) * (wh[i] - T->w0) < 0, above = wh[i] > B->w0 && wh[i] > T->w0;
+        /* a horizon on a line arc (a circle at the camera's height) is
+         * between, at its end */
+        int between = (wh[i] - B->w0) * (wh[i] - T->w0) <= 0, above = wh[i] > B->w0 && wh[i] > T->w0;
         if (above_rim ? above : between) {
             *w_h = wh[i];
             *f = sqrt(f2[i]);
@@ -307,6 +316,8 @@ static void horizon_sigma(const recon_ellipse *B, const recon_ellipse *T, int ab
         recon_ellipse *e = k < 3 ? &b : &t;
         double *p = k % 3 == 0 ? &e->w0 : k % 3 == 1 ? &e->a : &e->b;
         double s = k % 3 == 0 ? e->sigma_w0 : k % 3 == 1 ? e->sigma_a : e->sigma_b;
+        if (k % 3 != 0 && e->b == 0)
+            continue; /* a line (the F-test's choice) has w0 alone: its a and b are not fitted */
         if (!isfinite(s))
             return;
         *p += s;
@@ -442,16 +453,38 @@ static int arcs_are_ellipses(const recon_camera *cam, const vec2 *top, int n_top
     return ok;
 }
 
-/* Fits both arcs in the camera's current frame. */
-static int fit_arcs(recon_camera *cam, const vec2 *top, int n_top, const vec2 *bottom, int n_bottom, vec2 *work)
+/* The widest a circle's image can be: the silhouette's largest half width
+ * from the imaged axis, plus 2% and 2 px (the camera frame's
+ * rectification). (Over the rows of an end's corners alone it would be
+ * tighter, but corners found inside their arcs sit above the rim
+ * ellipse's widest row.) */
+static double silhouette_half_width(const recon_result *res)
+{
+    vec2 o = res->axis_origin, d = res->axis_direction;
+    double hw = 0;
+    for (int y = 0; y < res->height; y++) {
+        const uint8_t *m = res->mask + (size_t)y * res->width, *a = memchr(m, 1, (size_t)res->width);
+        if (!a)
+            continue;
+        double c = o.x + (y + 0.5 - o.y) * d.x / d.y; /* the axis on this row */
+        const uint8_t *b = memrchr(m, 1, (size_t)res->width);
+        hw = fmax(hw, fmax(fabs(a - m - c), fabs(b - m + 1 - c)));
+    }
+    return hw > 0 ? 1.02 * hw + 2 : INFINITY;
+}
+
+/* Fits both arcs in the camera's current frame, no wider than a_max
+ * (silhouette_half_width). */
+static int fit_arcs(recon_camera *cam, const vec2 *top, int n_top, const vec2 *bottom, int n_bottom, double a_max,
+                    vec2 *work)
 {
     for (int i = 0; i < n_top; i++)
         work[i] = recon_camera_to_frame(cam, top[i]);
-    if (recon_fit_axis_ellipse(work, n_top, 1, &cam->rim)) /* the rim's upper half */
+    if (recon_fit_axis_ellipse_within(work, n_top, 1, a_max, &cam->rim)) /* the rim's upper half */
         return -1;
     for (int i = 0; i < n_bottom; i++)
         work[i] = recon_camera_to_frame(cam, bottom[i]);
-    return recon_fit_axis_ellipse(work, n_bottom, -1, &cam->base); /* the base's lower half */
+    return recon_fit_axis_ellipse_within(work, n_bottom, -1, a_max, &cam->base); /* the base's lower half */
 }
 
 /* Focal length and pitch from the ellipses alone. The two candidates are
@@ -528,7 +561,7 @@ int recon_camera_solve(const image_t *img, const recon_result *res, const recon_
         snprintf(err, errlen, "out of memory");
         return -1;
     }
-    double sigma_e = INFINITY;
+    double sigma_e = INFINITY, a_max = silhouette_half_width(res);
     int ok = 0;
     /* The rectification depends on f: repeat until f settles. A yaw moves
      * the principal point off the imaged axis by d px; a relative change
@@ -540,7 +573,7 @@ int recon_camera_solve(const image_t *img, const recon_result *res, const recon_
     for (int it = 0; it < 6; it++) {
         set_frame_perspective(cam, res, f_rect);
         cam->focal_px = 0;
-        if (fit_arcs(cam, top, n_top, bottom, n_bottom, work)) {
+        if (fit_arcs(cam, top, n_top, bottom, n_bottom, a_max, work)) {
             free(work);
             snprintf(err, errlen, "cannot fit the outline's top and bottom arcs (%d and %d points)", n_top, n_bottom);
             return -1;
@@ -571,7 +604,7 @@ int recon_camera_solve(const image_t *img, const recon_result *res, const recon_
         cam->method = RECON_CAMERA_ORTHOGRAPHIC;
         cam->focal_px = cam->sigma_focal_px = 0;
         set_frame_identity(cam, res->axis_origin, res->axis_direction);
-        if (fit_arcs(cam, top, n_top, bottom, n_bottom, work)) {
+        if (fit_arcs(cam, top, n_top, bottom, n_bottom, a_max, work)) {
             free(work);
             snprintf(err, errlen, "cannot fit the outline's top and bottom arcs (%d and %d points)", n_top, n_bottom);
             return -1;

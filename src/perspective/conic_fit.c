@@ -515,6 +515,11 @@ static void fit_line(const vec2 *p, int n, double *r, recon_ellipse *e)
 
 int recon_fit_axis_ellipse(const vec2 *pts, int n, int half, recon_ellipse *out)
 {
+    return recon_fit_axis_ellipse_within(pts, n, half, INFINITY, out);
+}
+
+int recon_fit_axis_ellipse_within(const vec2 *pts, int n, int half, double a_max, recon_ellipse *out)
+{
     memset(out, 0, sizeof *out);
     if (n < 6)
         return -1;
@@ -540,7 +545,7 @@ int recon_fit_axis_ellipse(const vec2 *pts, int n, int half, recon_ellipse *out)
             memcpy(th, starts[k], sizeof th);
         }
     }
-    ok = ok && summarise(&A, th, sigma, J, out) && curved(&A, th, sigma);
+    ok = ok && summarise(&A, th, sigma, J, out) && curved(&A, th, sigma) && out->a <= a_max;
     /* No ellipse, or no significant curvature: the arc is a line (a level
      * orthographic view, or a circle at the camera's height). */
     if (!ok)

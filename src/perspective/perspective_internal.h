@@ -24,6 +24,12 @@ double recon_ellipse_distance(double w0, double a, double b, vec2 p, vec2 *foot)
  * than 6 points or memory runs out. */
 int recon_fit_axis_ellipse(const vec2 *pts, int n, int half, recon_ellipse *out);
 
+/* recon_fit_axis_ellipse, the line when the ellipse is wider than a_max:
+ * a circle's whole image lies inside the silhouette, so an ellipse wider
+ * than the silhouette is not the arc's circle (a nearly straight arc, a
+ * circle near the camera's height, fits a flat ellipse of any width). */
+int recon_fit_axis_ellipse_within(const vec2 *pts, int n, int half, double a_max, recon_ellipse *out);
+
 /* ---- cross_section_arcs.c */
 
 /* Sub-pixel points of the outline's top arc (the image of the rim circle,

@@ -309,19 +309,10 @@ static void fill_bays_from_below(uint8_t *mask, int w, int x0, int y0, int bw, i
  * border), so the holes, and every pixel of them, are the same. */
 static int fill_holes_but_windows(uint8_t *mask, int w, int h, vec2 origin, vec2 dir)
 {
-    int x0 = w, x1 = -1, y0 = h, y1 = -1;
-    for (int y = 0; y < h; y++) {
-        const uint8_t *m = mask + (size_t)y * w, *a = memchr(m, 1, (size_t)w);
-        if (!a)
-            continue;
-        y0 = y0 < y ? y0 : y;
-        y1 = y;
-        x0 = x0 < a - m ? x0 : (int)(a - m);
-        int r = (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m);
-        x1 = x1 > r ? x1 : r;
-    }
-    if (y1 < 0)
+    int box[4];
+    if (!recon_mask_box(mask, w, h, box))
         return 0; /* no object: no hole */
+    int x0 = box[0], y0 = box[1], x1 = box[2], y1 = box[3];
     x0 = x0 > 0 ? x0 - 1 : 0;
     y0 = y0 > 0 ? y0 - 1 : 0;
     x1 = x1 + 1 < w ? x1 + 1 : w - 1;
@@ -594,6 +585,20 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
         }
     }
     res->border_contact = border_contact(res->mask, w, h);
+    /* Not a vessel: the backdrop on the axis between object on both sides
+     * (measured on the object as segmented, before the fills below, which
+     * assume a surface of revolution). */
+    if (recon_axis_gap(res->mask, w, h, origin, dir, &res->axis_gap) != 0) {
+        st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
+        goto out;
+    }
+    if (res->axis_gap > RECON_MAX_AXIS_GAP) {
+        st = fail(RECON_ERR_SHAPE, err, errlen,
+                  "not a vessel: the backdrop lies on the object's axis, between object on both sides, over %.0f%% "
+                  "of its height (a surface of revolution covers its axis; at most %.0f%%)",
+                  100 * res->axis_gap, 100 * RECON_MAX_AXIS_GAP);
+        goto out;
+    }
     fill_across_axis(res->mask, w, h, origin, dir);
     if (fill_holes_but_windows(res->mask, w, h, origin, dir) != 0) {
         st = fail(RECON_ERR_INTERNAL, err, errlen, "out of memory");
@@ -709,6 +714,19 @@ recon_status recon_extract(const image_t *img, const recon_options *opt, recon_r
             res->axis_from_symmetry = 1;
         }
         free(limb);
+    }
+
+    /* Not a vessel: a base that reaches much farther on one side of the
+     * body's axis (an L's foot, a second vessel against the first). Only
+     * about an axis the outline's mirror symmetry gave: the rows' midpoints
+     * follow a part that stands out on one side over most of the height. */
+    res->base_asymmetry = res->axis_from_symmetry ? recon_base_asymmetry(res->mask, w, h, origin, dir) : 0;
+    if (res->base_asymmetry > RECON_MAX_BASE_ASYMMETRY) {
+        st = fail(RECON_ERR_SHAPE, err, errlen,
+                  "not a vessel: its base reaches %.1f%% of its height farther on one side of the axis than on the "
+                  "other (a surface of revolution stands on a base symmetric about its axis; at most %.1f%%)",
+                  100 * res->base_asymmetry, 100 * RECON_MAX_BASE_ASYMMETRY);
+        goto out;
     }
 
     /* 5. The caps: where the outline meets its top and bottom, on each side. */

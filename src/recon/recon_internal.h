@@ -48,6 +48,23 @@ int recon_mouth_open(const image_t *img, const vec2 *contour, int n, vec2 origin
 int recon_corner_knot(const vec2 *outline, int n, vec2 origin, vec2 dir, int toward_top, double window,
                       vec2 *corner);
 
+/* ---- whether the mask can be a surface of revolution's silhouette
+ * (sor_silhouette.c) */
+
+/* The two figures a surface of revolution's silhouette has at zero, for
+ * mask and its axis (origin on it, unit direction toward the top), as
+ * fractions of the object's height along the axis.
+ * recon_axis_gap: the rows (from the first that holds the axis in the
+ * object, downward) whose axis pixel is backdrop open to the outside with
+ * the object on both sides of it; on the object as segmented, before any
+ * gap is filled. Returns 0, or -1 when out of memory.
+ * recon_base_asymmetry: how much farther the lowest 3% of the object reach
+ * on one side of the axis than on the other; about the body's axis (from
+ * its outline's mirror symmetry: a part standing out on one side over most
+ * of the height moves the rows' midpoints). */
+int recon_axis_gap(const uint8_t *mask, int w, int h, vec2 origin, vec2 dir, double *axis_gap);
+double recon_base_asymmetry(const uint8_t *mask, int w, int h, vec2 origin, vec2 dir);
+
 /* ---- parts that are not revolved (parts.c) */
 
 typedef struct {

@@ -257,6 +257,25 @@ int recon_mask_components(const uint8_t *mask, int w, int h)
     return n;
 }
 
+int recon_mask_box(const uint8_t *mask, int w, int h, int box[4])
+{
+    int x0 = w, x1 = -1, y0 = h, y1 = -1;
+    for (int y = 0; y < h; y++) {
+        const uint8_t *m = mask + (size_t)y * w, *a = memchr(m, 1, (size_t)w);
+        if (!a)
+            continue;
+        y0 = y0 < y ? y0 : y;
+        y1 = y;
+        x0 = x0 < a - m ? x0 : (int)(a - m);
+        int r = (int)((const uint8_t *)memrchr(m, 1, (size_t)w) - m);
+        x1 = x1 > r ? x1 : r;
+    }
+    if (y1 < 0)
+        return 0;
+    box[0] = x0, box[1] = y0, box[2] = x1, box[3] = y1;
+    return 1;
+}
+
 int recon_mask_label(const uint8_t *mask, int w, int h, int *lab, long **area_out)
 {
     size_t cap = run_capacity(mask, w, h);

@@ -217,18 +217,28 @@ static double log_far_tail(double z) { return -0.5 * z * z - log(z * sqrt(2 * M_
  * a line, not a point. Its density at the best k alone counted the line as a
  * point, sqrt(a / 2 pi) (1 - SHADOW_K_MIN) times too likely: 38 times
  * (3.6 nats) on a white backdrop, which took a light grey glaze for shadow. */
-static double shadow_log_density(const recon_colour_model *m, const float *c, const float *bc)
+/* The shadow's line through the backdrop colour bc under the inverse
+ * covariance S: a = bc' S bc and b = bc' S c, so that the squared distance of
+ * c from k bc is c' S c - 2 k b + k^2 a. */
+static void shadow_line(const double *S, const float *c, const float *bc, double *a, double *b)
 {
-    const double *S = m->shadow_icov;
     double Sv[3];
     for (int i = 0; i < 3; i++)
         Sv[i] = S[3 * i] * bc[0] + S[3 * i + 1] * bc[1] + S[3 * i + 2] * bc[2];
-    double a = Sv[0] * bc[0] + Sv[1] * bc[1] + Sv[2] * bc[2];
+    *a = Sv[0] * bc[0] + Sv[1] * bc[1] + Sv[2] * bc[2];
+    *b = Sv[0] * c[0] + Sv[1] * c[1] + Sv[2] * c[2];
+}
+
+static double shadow_log_density(const recon_colour_model *m, const float *c, const float *bc)
+{
+    const double *S = m->shadow_icov;
+    double a, b;
+    shadow_line(S, c, bc, &a, &b);
     if (!(a > 1e-12)) { /* a black backdrop: its shadow is itself */
         double d[3] = {c[0] - bc[0], c[1] - bc[1], c[2] - bc[2]};
         return m->shadow_lognorm - 0.5 * recon_quad3(S, d);
     }
-    double b = Sv[0] * c[0] + Sv[1] * c[1] + Sv[2] * c[2], ks = b / a, sa = sqrt(a);
+    double ks = b / a, sa = sqrt(a);
     double cd[3] = {c[0], c[1], c[2]}, q = recon_quad3(S, cd) - b * ks;
     /* the mass Phi(z1) - Phi(z0) of [SHADOW_K_MIN, 1], from the tail it lies
      * in (no difference of two numbers near 1); beyond 9 sigmas of one end
@@ -243,6 +253,13 @@ static double shadow_log_density(const recon_colour_model *m, const float *c, co
     else
         mass = log(upper_tail(-z1) - upper_tail(-z0));
     return m->shadow_lognorm - 0.5 * (q > 0 ? q : 0) + 0.5 * log(2 * M_PI / a) + mass - log(1 - SHADOW_K_MIN);
+}
+
+double recon_shadow_misfit(const recon_colour_model *m, const float *c, const float *bc)
+{
+    double a, b, d[3] = {c[0], c[1], c[2]};
+    shadow_line(m->shadow_icov, c, bc, &a, &b);
+    return a > 1e-12 ? fmax(recon_quad3(m->shadow_icov, d) - b * b / a, 0) : recon_quad3(m->shadow_icov, d);
 }
 
 /* log p(c | backdrop or shadow), before the support's colours. */

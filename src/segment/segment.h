@@ -85,6 +85,12 @@ void recon_colour_costs(const recon_colour_model *m, recon_cost_memo *memo, cons
                         const float *mirror_c, const float *mirror_backdrop_c, double *cost_object,
                         double *cost_backdrop);
 
+/* How far the colour c lies off the line of its backdrop colour bc
+ * darkened (k bc, any k): the squared Mahalanobis distance under the
+ * shadow's noise, about chi-square with 2 degrees of freedom for a shadow
+ * (it keeps the backdrop's chromaticity), large for a colour of its own. */
+double recon_shadow_misfit(const recon_colour_model *m, const float *c, const float *bc);
+
 /* Sets the backdrop and shadow terms of m from its backdrop's residual
  * covariance and the priors (which depend on have_support). Returns 0, or -1
  * for a singular covariance. */
@@ -151,6 +157,10 @@ recon_mask_mode recon_mask_threshold(const image_t *img, int threshold, float *g
  * outermost object pixels (a vessel's outline meets a row once on each side).
  * Returns the object's pixel count, or -1 when out of memory. */
 long recon_mask_clean(uint8_t *mask, int w, int h, int *dropped_objects, int *holes_filled);
+
+/* The object's bounding box in mask: box = {x0, y0, x1, y1}, inclusive.
+ * Returns 0 when the mask is empty (box unset), else 1. */
+int recon_mask_box(const uint8_t *mask, int w, int h, int box[4]);
 
 /* The number of 8-connected components of mask, or -1 when out of memory
  * (over runs: no per-pixel labels). */

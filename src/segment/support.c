@@ -24,6 +24,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_statistics_double.h>
+
 #include "segment/maxflow.h"
 #include "segment/segment.h"
 
@@ -34,6 +36,10 @@ enum { SEED_COMPONENTS = 3 };
  * across it differ by as much as exp(-beta d^2) <= 0.3, i.e. by about 1.5
  * times the image's typical neighbour difference (beta is 1 / (2 <d^2>)). */
 #define EDGE_LINK_MAX 0.3
+/* A shadow's colours lie on the line of its backdrop darkened, their
+ * misfit about chi-square with 2 degrees of freedom under the shadow's
+ * noise (median 1.4): a median over 16 (4 sigmas) is a colour of its own. */
+#define SHADOW_MAX_MISFIT 16.0
 
 typedef enum { HYPO_SHADOW, HYPO_STAND } hypothesis;
 
@@ -243,12 +249,38 @@ out:
     return count;
 }
 
+/* The median over the part's pixels of their colour's misfit as the
+ * backdrop darkened (recon_shadow_misfit). */
+static double part_shadow_misfit(const recon_segmentation *seg, const uint8_t *sup)
+{
+    const int w = seg->w;
+    long n = 0;
+    for (size_t p = 0; p < (size_t)w * seg->h; p++)
+        n += sup[p];
+    double *q = malloc((size_t)(n > 0 ? n : 1) * sizeof *q);
+    if (!q)
+        return 0; /* out of memory: the mirror test alone, as before */
+    long k = 0;
+    for (size_t p = 0; p < (size_t)w * seg->h; p++)
+        if (sup[p]) {
+            double bd[3];
+            recon_backdrop_at(&seg->model.backdrop, p % w + 0.5, p / w + 0.5, bd);
+            float bc[3] = {(float)bd[0], (float)bd[1], (float)bd[2]};
+            q[k++] = recon_shadow_misfit(&seg->model, seg->rgb + 3 * p, bc);
+        }
+    double med = n > 0 ? gsl_stats_median(q, 1, (size_t)n) : 0;
+    free(q);
+    return med;
+}
+
 /* Does the cut-off part pass its hypothesis's test? A shadow has no mirror
  * image: most of its pixels lie beyond the object's reach on the other side
  * of the axis, mirrored (the row's extent, not the mirror pixel: a highlight
  * as light as the backdrop leaves holes in the other side, not a shorter
- * row). A symmetric part mirrors onto itself: a stand, not a shadow. A stand
- * is another body: the cut follows an edge. */
+ * row). A symmetric part mirrors onto itself: a stand, not a shadow. And a
+ * shadow is the backdrop darkened: a part of a colour of its own (the foot
+ * of an L in the object's glaze) is none, whatever its outline
+ * (SHADOW_MAX_MISFIT). A stand is another body: the cut follows an edge. */
 static int accepted(const recon_segmentation *seg, hypothesis hyp, const uint8_t *m, const uint8_t *sup,
                     double edge)
 {
@@ -272,7 +304,7 @@ static int accepted(const recon_segmentation *seg, hypothesis hyp, const uint8_t
                 unmirrored += fabs(x + 0.5 - c) > reach[1 - s] + 1;
             }
     }
-    return 2 * unmirrored > part;
+    return 2 * unmirrored > part && part_shadow_misfit(seg, sup) <= SHADOW_MAX_MISFIT;
 }
 
 int recon_cut_support(recon_segmentation *seg, uint8_t *m, recon_excluded *parts, int max_parts, int *n_parts)

@@ -1,5 +1,6 @@
 /* Pinhole photographs of a solid of revolution (pinhole_vessel.h). */
 #include "pinhole_vessel.h"
+#include "synthdev_truth.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -58,6 +59,32 @@ double pinhole_elevation(const pinhole_params *p)
     return -asin(c.fwd.y) * 180 / PI;
 }
 
+void pinhole_frame(pinhole_params *p)
+{
+    double rmax = 0;
+    for (int k = 0; k <= 200; k++)
+        rmax = fmax(rmax, pinhole_radius(p, k / 200.0));
+    p->distance = fmax(p->focal_px / (0.7 * p->height), 2 * rmax * p->focal_px / (0.7 * p->width));
+}
+
+void pinhole_profile_error(const pinhole_params *p, const bspline_t *curve, double *mean, double *max)
+{
+    synthdev_truth t = {.n = 2001, .height = 1};
+    t.z = malloc(t.n * sizeof *t.z);
+    t.r = malloc(t.n * sizeof *t.r);
+    if (!t.z || !t.r) {
+        *mean = *max = NAN;
+        synthdev_truth_free(&t);
+        return;
+    }
+    for (int i = 0; i < t.n; i++) {
+        t.z[i] = i / 2000.0;
+        t.r[i] = pinhole_radius(p, t.z[i]);
+    }
+    synthdev_profile_error(&t, curve, 0.03, 0.97, mean, max);
+    synthdev_truth_free(&t);
+}
+
 pinhole_params pinhole_defaults(synth_shape shape, double elevation_deg)
 {
     pinhole_params p;
@@ -68,12 +95,7 @@ pinhole_params pinhole_defaults(synth_shape shape, double elevation_deg)
     p.focal_px = 2000;
     p.elevation_deg = elevation_deg;
     p.look_at_height = 0.5;
-    double rmax = 0;
-    for (int k = 0; k <= 200; k++)
-        rmax = fmax(rmax, pinhole_radius(&p, k / 200.0));
-    /* The larger of the height and the width in px, at the axis, is 70% of
-     * the image's. */
-    p.distance = fmax(p.focal_px / (0.7 * p.height), 2 * rmax * p.focal_px / (0.7 * p.width));
+    pinhole_frame(&p);
     const float fg[3] = {0.25f, 0.42f, 0.33f}, fg2[3] = {0.80f, 0.78f, 0.62f}, bg[3] = {0.94f, 0.94f, 0.93f};
     const float mouth[3] = {0.45f, 0.60f, 0.50f};
     memcpy(p.mouth, mouth, sizeof mouth);

@@ -28,6 +28,7 @@
 
 #include <stdint.h>
 
+#include "celadon/bspline.h"
 #include "celadon/image.h"
 #include "celadon/recon.h"
 #include "celadon/recon_camera.h"
@@ -54,6 +55,15 @@ typedef struct {
  * mid-height from the given elevation, at the distance where the vessel
  * spans about 70% of the image's height or width. */
 pinhole_params pinhole_defaults(synth_shape shape, double elevation_deg);
+
+/* Sets p->distance so that the larger of the vessel's height and width, at
+ * the axis, is 70% of the image's (pinhole_defaults' framing), for p's
+ * size, focal length and profile. */
+void pinhole_frame(pinhole_params *p);
+
+/* The distance of curve ((r, h), h from 0 to its rim) from p's true profile
+ * over 3-97% of the height, mean and max, in units of the height. */
+void pinhole_profile_error(const pinhole_params *p, const bspline_t *curve, double *mean, double *max);
 
 /* Profile radius at t in [0, 1], in heights. */
 double pinhole_radius(const pinhole_params *p, double t);

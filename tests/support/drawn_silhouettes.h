@@ -1,0 +1,40 @@
+/* Silhouettes drawn for the "not a vessel" rule (docs/algorithms-recon.md,
+ * "Not a vessel"): flat shapes that are no surface of revolution (a star,
+ * an L, two vessels touching, a person, a chair), and the profiles of a
+ * moon jar and a wide-mouthed vase for pinhole_params.radius. Each shape is defined in a frame of unit
+ * height (y up from its lowest point, x centred), drawn in a celadon green
+ * on a near-white backdrop at 70% of the image's height, anti-aliased by 4 x 4 samples per
+ * pixel. */
+#ifndef CELADON_TESTS_DRAWN_SILHOUETTES_H
+#define CELADON_TESTS_DRAWN_SILHOUETTES_H
+
+#include "celadon/image.h"
+
+typedef enum {
+    DRAWN_STAR,            /* five-pointed, one point up: mirror-symmetric, backdrop between its legs */
+    DRAWN_L,               /* an upright bar with a foot to the right */
+    DRAWN_TWIN_VESSELS,    /* two maebyeong touching at their bellies */
+    DRAWN_VESSEL_AND_JAR,  /* a maebyeong and a jar half its height touching it, on one floor */
+    DRAWN_PERSON,          /* standing, from the front: head, arms apart from the body, legs apart */
+    DRAWN_CHAIR_FRONT,     /* back, seat and two legs */
+    DRAWN_CHAIR_SIDE,      /* a back post over one end of the seat, a leg at each end */
+    DRAWN_SILHOUETTE_COUNT
+} drawn_silhouette;
+
+/* A short lowercase name ("star"); NULL out of range. */
+const char *drawn_silhouette_name(drawn_silhouette s);
+
+/* Draws s into a fresh 3-channel w x h image. Returns 0, or -1 when out of
+ * memory. */
+int drawn_silhouette_draw(drawn_silhouette s, int w, int h, image_t *img);
+
+/* A moon jar's radius at t in [0, 1] (units of its height): a near sphere
+ * on a narrow foot under a short mouth (pinhole_params.radius). */
+double drawn_moon_jar_radius(double t);
+
+/* A vase whose mouth flares wider than its belly (a trumpet mouth):
+ * synth_vessel's vase plus 0.25 t^6, radius 0.38 at the rim against 0.26 at
+ * the belly (the perspective grid's wide-mouthed vase). */
+double drawn_wide_mouth_vase_radius(double t);
+
+#endif
