@@ -509,7 +509,7 @@ Test(cli_reconstruct, a_star_is_not_a_vessel)
     path_in(out, sizeof out, "star_out");
     cli_result r = run_reconstruct((const char *const[]){path, "-o", out, "--segmenter", "classic", NULL});
     cr_expect_eq(r.status, 2, "exit %d, stderr: %s", r.status, r.err);
-    cr_expect_eq(count_lines(r.err), 1, "stderr: %s", r.err);
+    cr_expect_eq(cli_count_lines(r.err), 1, "stderr: %s", r.err);
     cr_expect(strstr(r.err, "not a vessel") && strstr(r.err, "% of its height"), "stderr: %s", r.err);
     struct stat st;
     cr_expect_neq(stat(out, &st), 0, "a refused photo leaves no output folder");
