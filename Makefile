@@ -5,10 +5,10 @@
 CC      ?= cc
 CXX     ?= c++
 # OpenImageIO is linked into its own shared object only (OIIO_SO below).
-LINK_PKGS := OpenEXR gsl jansson libxml-2.0 cairo libmicrohttpd libxxhash zlib
+LINK_PKGS := OpenEXR gsl jansson libxml-2.0 cairo glib-2.0 libmicrohttpd libxxhash zlib
 PKGS    := OpenImageIO $(LINK_PKGS)
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
-            libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev \
+            libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev libglib2.0-dev \
             libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
             zlib1g-dev openimageio-tools python3-numpy python3-pytest python3-matplotlib libopencv-dnn-dev python3-onnx
 

@@ -17,6 +17,7 @@
 #include "celadon/profile.h"
 #include "support/museum_fixture.h"
 #include "support/shared_data.h"
+#include "support/synth_vessel.h"
 
 enum { N_PHOTOS = 3, PREVIEW_W = 160, PREVIEW_H = 90 };
 
@@ -402,4 +403,58 @@ Test(museum_cli, synth_dev_photos)
     cr_expect_eq(r.status, 0, "%s", r.err);
     cli_result_free(&r);
     cr_expect_eq(exhibits_in(out), 2);
+}
+
+/* A photo whose vessel runs off the top of the image fails the quality
+ * gate: refused without --force, with it in the museum and marked so; with
+ * no catalogue its label states no height, its folder keeps the title's
+ * accents. */
+Test(museum_cli, force_includes_a_vessel_below_the_gate_and_says_so)
+{
+    synth_params p = synth_defaults(SYNTH_JAR, 240, 320);
+    p.base_center.y = p.height_px - 4; /* the rim 4 px above the image */
+    image_t img;
+    char cut[512], err[256], out[512];
+    cr_assert_eq(synth_draw(&p, &img), 0);
+    in_work(cut, sizeof cut, "Vase des âges.png");
+    cr_assert_eq(synth_write(cut, &img, 8, err, sizeof err), 0, "%s", err);
+    image_free(&img);
+    in_work(out, sizeof out, "forced");
+    /* The learned prior would retry the cut photo (seconds of a network);
+     * what is tested here is the gate's verdict, which is the classical one. */
+    setenv("CELADON_PRIOR_MODEL", "/nonexistent/celadon-test-no-prior.onnx", 1);
+    const char *refused[] = {photos[1], cut, "-o", out, "--preview-spp", "0", NULL};
+    cli_result r = museum_fixture_run(workdir, refused);
+    cr_expect_eq(r.status, 2, "without --force the photo is refused: %s", r.err);
+    cr_expect_not_null(strstr(r.err, "touches the top image border"), "%s", r.err);
+    cli_result_free(&r);
+
+    const char *forced[] = {photos[1], cut, "-o", out, "--preview-spp", "0", "--force", NULL};
+    r = museum_fixture_run(workdir, forced);
+    cr_expect_eq(r.status, 0, "%s", r.err);
+    cr_expect_not_null(strstr(r.err, "warning: "), "a warning names the forced photo: %s", r.err);
+    cli_result_free(&r);
+    char path[700];
+    snprintf(path, sizeof path, "%s/museum.glb", out);
+    glb_file g;
+    glb_read(path, &g);
+    int exhibit[8], vessel[8];
+    cr_assert_eq(glb_exhibits(&g, exhibit, vessel, 8), 2);
+    json_t *x = json_object_get(json_array_get(json_object_get(g.doc, "nodes"), (size_t)exhibit[1]), "extras");
+    cr_expect_str_eq(json_string_value(json_object_get(x, "title")), "Vase des âges");
+    cr_expect_str_eq(json_string_value(json_object_get(x, "size")), "Height not recorded");
+    cr_expect_str_eq(json_string_value(json_object_get(x, "size_from")), "default (not recorded)");
+    cr_expect_not_null(json_object_get(x, "note"), "the label says the shape is below the gate");
+    cr_expect_str_eq(json_string_value(json_object_get(x, "profile")), "vessels/vase-des-âges/profile.json");
+    glb_close(&g);
+    snprintf(path, sizeof path, "%s/labels/vase-des-âges.png", out);
+    cr_expect(exists(path), "%s", path);
+    snprintf(path, sizeof path, "%s/museum.json", out);
+    json_t *m = json_load_file(path, 0, NULL);
+    cr_assert_not_null(m);
+    json_t *v = json_object_get(m, "vessels");
+    cr_expect(json_is_true(json_object_get(json_array_get(v, 0), "quality_gate_passed")));
+    cr_expect(json_is_false(json_object_get(json_array_get(v, 1), "quality_gate_passed")));
+    json_decref(m);
+    unsetenv("CELADON_PRIOR_MODEL");
 }

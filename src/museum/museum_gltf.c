@@ -347,8 +347,13 @@ static json_t *exhibit_extras(const museum_exhibit *e, int index)
 {
     char profile[160];
     snprintf(profile, sizeof profile, "vessels/%s/profile.json", e->slug);
-    json_t *x = json_pack("{s:i, s:s, s:f, s:s, s:s}", "index", index, "title", e->title, "height_cm",
-                          100.0 * e->height_m, "photo", e->photo, "profile", profile);
+    char size[128];
+    vessel_size_line(e->height_cm_given, e->diameter_cm_given, size, sizeof size);
+    json_t *x = json_pack("{s:i, s:s, s:f, s:s, s:s, s:s, s:s}", "index", index, "title", e->title, "height_cm",
+                          100.0 * e->height_m, "size", size, "size_from", vessel_size_source_name(e->size_source),
+                          "photo", e->photo, "profile", profile);
+    if (e->below_gate)
+        json_object_set_new(x, "note", json_string(MUSEUM_BELOW_GATE_NOTE));
     if (e->date)
         json_object_set_new(x, "date", json_string(e->date));
     if (e->description)

@@ -6,7 +6,9 @@
  *     "Entrance camera"        perspective camera at the entrance
  *     "Ceiling light K"        KHR_lights_punctual point lights
  *     "Exhibit: T"             per vessel, on the floor at the footprint centre;
- *                              extras: title, date, height_cm, description, photo,
+ *                              extras: title, date, height_cm (as shown), size (the
+ *                              label's line: the catalogue's figures only), size_from,
+ *                              note (below the quality gate), description, photo,
  *                              profile (its vessels/SLUG/profile.json)
  *       "Pedestal: T", "Glass case: T"   KHR_materials_transmission + _ior
  *       "Vessel: T"            the vessel's base; extras.lod: segments and distances
