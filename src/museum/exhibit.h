@@ -25,7 +25,7 @@ typedef struct {
     bspline_t curve;          /* the shape (profile_shape): (r, h), px, or units of the height for a meridian */
     lod_level lods[LOD_MAX_LEVELS];
     int n_lods;
-    uint8_t *texture_png, *label_png; /* the files' bytes, owned */
+    uint8_t *texture_jpg, *label_png; /* the glb's images: the texture as JPEG, the label as PNG; owned */
     size_t texture_len, label_len;
 } museum_exhibit;
 

@@ -16,6 +16,7 @@
 #include "celadon/reconstruct.h"
 #include "museum/catalogue.h"
 #include "museum/exhibit.h"
+#include "museum/jpeg_memory.h"
 #include "museum/label.h"
 #include "museum/layout.h"
 #include "museum/museum_folder.h"
@@ -24,7 +25,7 @@
 #include "museum/museum_scene.h"
 #include "museum/slug.h"
 
-enum { LABEL_WIDTH_PX = 768 };
+enum { LABEL_WIDTH_PX = 768, MUSEUM_TEXTURE_JPEG_QUALITY = 85 };
 #define VISITOR_RADIUS 0.25 /* m: how close a visitor's eye gets to a case wall */
 
 museum_options museum_options_default(void)
@@ -131,10 +132,12 @@ static void make_exhibit(const museum_options *opt, const char *tmp, museum_exhi
         int rc = profile_write_json(path, &prof, why, sizeof why);
         snprintf(path, sizeof path, "%s/%s/texture.png", tmp, dir);
         rc = rc ? rc : image_write_u8(path, r.texture.width, r.texture.height, 3, r.texture.rgb, why, sizeof why);
-        e->texture_png = rc ? NULL : read_bytes(path, &e->texture_len);
-        if (!e->texture_png) {
+        if (rc == 0 && jpeg_encode_rgb(r.texture.rgb, r.texture.width, r.texture.height, MUSEUM_TEXTURE_JPEG_QUALITY,
+                                       &e->texture_jpg, &e->texture_len) != 0)
+            rc = -1, snprintf(why, sizeof why, "cannot encode its JPEG");
+        if (rc != 0) {
             rep->status = 1;
-            snprintf(rep->error, sizeof rep->error, "cannot write the vessel's files: %s", rc ? why : "read back");
+            snprintf(rep->error, sizeof rep->error, "cannot write the vessel's files: %s", why);
         }
     }
     reconstruction_free(&r);

@@ -2,7 +2,9 @@
  *
  * Nodes (every name says what it is, with the vessel's title):
  *   "Museum: TITLE"            root; extras.celadon_museum: room size, aisle, vessel count
- *     "Floor", "Walls", "Ceiling"
+ *     "Floor", "Walls", "Ceiling"   an oak-coloured floor, warm white walls
+ *     "Lamps", "Lamp rods"     the ceiling lights' fixtures: glowing shades
+ *                              (emissive) on rods, one mesh each
  *     "Entrance camera"        perspective camera at the entrance
  *     "Ceiling light K"        KHR_lights_punctual point lights
  *     "Exhibit: T"             per vessel, on the floor at the footprint centre;
@@ -11,6 +13,7 @@
  *                              note (below the quality gate), description, photo,
  *                              profile (its vessels/SLUG/profile.json)
  *       "Pedestal: T", "Glass case: T"   KHR_materials_transmission + _ior
+ *       "Case frame: T"        the case's twelve edges as thin dark bars
  *       "Vessel: T"            the vessel's base; extras.lod: segments and distances
  *         "T, LOD K (N segments)"  one mesh per level, extras.lod_distance (m)
  *       "Label: T"             textured quad on the pedestal's front
