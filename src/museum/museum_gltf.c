@@ -275,6 +275,10 @@ static int add_textured_material(builder *b, const char *name, int texture, doub
 {
     json_t *m = json_pack("{s:s, s:{s:{s:i}, s:f, s:f}}", "name", name, "pbrMetallicRoughness", "baseColorTexture",
                           "index", texture, "metallicFactor", 0.0, "roughnessFactor", roughness);
+    /* A glaze is seen from inside too: an open bowl from above shows its
+     * inner wall, the far side's back faces. */
+    if (m && clearcoat)
+        json_object_set_new(m, "doubleSided", json_true());
     if (m && clearcoat)
         json_object_set_new(m, "extensions",
                             json_pack("{s:{s:f, s:f}}", "KHR_materials_clearcoat", "clearcoatFactor", 1.0,
