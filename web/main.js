@@ -137,11 +137,14 @@ async function main() {
     camera.getWorldDirection(d);
     return { x: rig.position.x, z: rig.position.z, yawDeg: Math.atan2(-d.x, -d.z) * 180 / Math.PI };
   };
-  // Stands the visitor at (x, z) looking toward (tx, ty, tz): the docs' views.
-  status.lookFrom = (x, z, tx, ty, tz) => {
+  // Puts the eyes at (x, eyeY, z) looking toward (tx, ty, tz), without the
+  // page's prompts: the docs' views.
+  status.lookFrom = (x, eyeY, z, tx, ty, tz) => {
     rig.position.set(x, 0, z);
     rig.quaternion.identity();
+    camera.position.y = eyeY;
     camera.lookAt(tx, ty, tz);
+    for (const id of ['start', 'hud', 'crosshair']) document.getElementById(id).style.display = 'none';
   };
   status.label = () => (panel.open ? panel.exhibit.userData.title : null);
   // Fewer pixels per frame (the tests' input checks need frames, not pixels).
