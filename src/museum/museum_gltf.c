@@ -288,15 +288,15 @@ static int add_textured_material(builder *b, const char *name, int texture, doub
 
 static int add_materials(builder *b)
 {
-    b->mat_floor = add_plain_material(b, "Floor (oak)", 0.46, 0.33, 0.22, 0.55);
-    b->mat_wall = add_plain_material(b, "Wall", 0.84, 0.82, 0.78, 0.9);
+    b->mat_floor = add_plain_material(b, "Floor (oak)", MUSEUM_FLOOR_RGB, 0.55);
+    b->mat_wall = add_plain_material(b, "Wall", MUSEUM_WALL_RGB, 0.9);
     b->mat_frame = add_plain_material(b, "Case frame", 0.10, 0.10, 0.10, 0.35);
     /* The lamps glow with the lights' colour (emission only: the point lights light the room). */
     b->mat_lamp = glb_append(&b->g, "materials",
                              json_pack("{s:s, s:o, s:[f,f,f]}", "name", "Lamp", "pbrMetallicRoughness",
                                        pbr(1, 1, 1, 0.9), "emissiveFactor", MUSEUM_LIGHT_COLOR_R, MUSEUM_LIGHT_COLOR_G,
                                        MUSEUM_LIGHT_COLOR_B));
-    b->mat_ceiling = add_plain_material(b, "Ceiling", 0.85, 0.85, 0.85, 0.95);
+    b->mat_ceiling = add_plain_material(b, "Ceiling", MUSEUM_CEILING_RGB, 0.95);
     b->mat_pedestal = add_plain_material(b, "Pedestal", 0.9, 0.89, 0.86, 0.6);
     json_t *glass = json_pack("{s:s, s:o, s:{s:{s:f}, s:{s:f}}}", "name", "Glass", "pbrMetallicRoughness",
                               pbr(1, 1, 1, 0.0), "extensions", "KHR_materials_transmission", "transmissionFactor",

@@ -39,6 +39,12 @@
 #define MUSEUM_LIGHT_COLOR_G 0.87
 #define MUSEUM_LIGHT_COLOR_B 0.72
 
+/* The room's colours (linear RGB), the glTF's base colours and the scene's
+ * diffuse reflectances alike, so both are the same room. */
+#define MUSEUM_FLOOR_RGB 0.46, 0.33, 0.22 /* oak */
+#define MUSEUM_WALL_RGB 0.84, 0.82, 0.78
+#define MUSEUM_CEILING_RGB 0.85, 0.85, 0.85
+
 /* The case light's intensity for an exhibit. */
 double museum_case_light(const layout_exhibit *e);
 
