@@ -5,10 +5,10 @@
 CC      ?= cc
 CXX     ?= c++
 # OpenImageIO is linked into its own shared object only (OIIO_SO below).
-LINK_PKGS := OpenEXR gsl jansson libxml-2.0 cairo libpng libmicrohttpd libxxhash zlib
+LINK_PKGS := OpenEXR gsl jansson libxml-2.0 cairo glib-2.0 libjpeg libpng libmicrohttpd libxxhash zlib
 PKGS    := OpenImageIO $(LINK_PKGS)
 DEB_PKGS := build-essential pkg-config libopenimageio-dev libopenexr-dev libembree-dev \
-            libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev libpng-dev \
+            libgsl-dev libjansson-dev libxml2-dev libcriterion-dev libcairo2-dev libglib2.0-dev libjpeg-dev libpng-dev \
             libmicrohttpd-dev libcsv-dev chromium libigraph-dev libxxhash-dev libopenmpi-dev openmpi-bin \
             zlib1g-dev openimageio-tools python3-numpy python3-pytest python3-matplotlib libopencv-dnn-dev python3-onnx
 
@@ -381,6 +381,17 @@ real-dev: check-deps-stamp
 	@rm -rf out/real-dev && mkdir -p out/real-dev
 	build/celadon reconstruct $(REAL_DEV)/*.jpg -o out/real-dev --force --json > out/real-dev.json
 	@mv out/real-dev.json out/real-dev/report.json
+
+# `make museum-real-dev` builds the museum of the real-dev photographs into
+# out/museum-real-dev/ (catalogue from their MANIFEST.tsv: titles and
+# sources, no sizes; refused photos are left out, docs/BENCHMARKS.md).
+.PHONY: museum-real-dev
+museum-real-dev: check-deps-stamp
+	@$(MAKE) --no-print-directory build/celadon web
+	@test -d $(REAL_DEV) || { echo "make museum-real-dev: $(REAL_DEV) not found (set REAL_DEV=...)" >&2; exit 2; }
+	@mkdir -p out
+	tools/real-dev-catalogue.sh $(REAL_DEV) > out/real-dev-catalogue.csv
+	build/celadon museum --catalogue out/real-dev-catalogue.csv -o out/museum-real-dev --preview-spp 0 || test $$? -eq 2
 
 # `make gallery-real` rewrites docs/gallery-real.md and docs/img/real-dev/:
 # every real photo's overlay drawn over its segmentation, not the photo.

@@ -18,7 +18,8 @@
 #include "celadon/image.h"
 #include "support/museum_fixture.h"
 
-enum { N_PHOTOS = 3, SHOT_W = 640, SHOT_H = 360 };
+/* Two vessels: every check below needs no more. */
+enum { N_PHOTOS = 2, SHOT_W = 640, SHOT_H = 360 };
 
 static char workdir[256];
 
@@ -96,7 +97,97 @@ static double luminance_stddev(const image_t *im)
     return sqrt(fmax(s2 / n - (s / n) * (s / n), 0));
 }
 
-Test(museum_web, the_page_loads_and_shows_every_vessel, .timeout = 300)
+static double num(json_t *o, const char *k) { return json_number_value(json_object_get(o, k)); }
+
+static const char *exhibit_extra(const glb_file *g, int exhibit, const char *key)
+{
+    json_t *x = json_object_get(json_array_get(json_object_get(g->doc, "nodes"), (size_t)exhibit), "extras");
+    return json_string_value(json_object_get(x, key));
+}
+
+/* The loading bar counted every byte of the file. */
+static void check_loading(json_t *pg, const char *glb)
+{
+    struct stat st;
+    cr_assert_eq(stat(glb, &st), 0);
+    json_t *b = json_object_get(pg, "bytes");
+    cr_expect_eq((long long)num(b, "loaded"), (long long)st.st_size, "bytes loaded %.0f of %lld", num(b, "loaded"),
+                 (long long)st.st_size);
+    cr_expect_eq((long long)num(b, "total"), (long long)st.st_size);
+}
+
+/* A pick opens the label (panel and floating plate, with the catalogue's
+ * size line); the close button and a pick of nothing close both. */
+static void check_label_closes(json_t *pg, const glb_file *g, int exhibit)
+{
+    json_t *l = json_object_get(pg, "label");
+    json_t *open = json_object_get(l, "open"), *closed = json_object_get(l, "closed"),
+           *nothing = json_object_get(l, "nothing");
+    cr_expect_str_eq(json_string_value(json_object_get(open, "title")), exhibit_extra(g, exhibit, "title"));
+    cr_expect(json_is_true(json_object_get(open, "floating")) && json_is_true(json_object_get(open, "shown")));
+    cr_expect_not_null(strstr(json_string_value(json_object_get(open, "text")), exhibit_extra(g, exhibit, "size")),
+                       "the panel shows the catalogue's size line");
+    for (json_t *c = closed;; c = nothing) {
+        cr_expect(json_is_null(json_object_get(c, "title")) && json_is_false(json_object_get(c, "floating")) &&
+                      json_is_false(json_object_get(c, "shown")),
+                  "the label and its floating plate close");
+        if (c == nothing)
+            break;
+    }
+}
+
+/* Displacement (dx, dz) of the visitor between two poses, and the unit
+ * vector along the floor where the first one looks. */
+static void walked(json_t *a, json_t *b, double *along, double *across)
+{
+    double yaw = num(a, "yawDeg") * M_PI / 180, fx = -sin(yaw), fz = -cos(yaw);
+    double dx = num(b, "x") - num(a, "x"), dz = num(b, "z") - num(a, "z");
+    *along = dx * fx + dz * fz;
+    *across = fabs(dx * fz - dz * fx);
+}
+
+#define WALK_SPEED 1.4 /* m/s, web/walk.js */
+
+static void expect_walked_ahead(json_t *a, json_t *b, double seconds, const char *how)
+{
+    double along, across;
+    walked(a, b, &along, &across);
+    cr_expect(along > 0.05 && along <= WALK_SPEED * seconds + 1e-6 && across < 0.05 * along,
+              "%s: %.3f m ahead (at most %.3f in %.2f s), %.3f m aside", how, along, WALK_SPEED * seconds, seconds,
+              across);
+}
+
+/* Emulated touch: a tap names the vessel under it, a 100 px drag turns the
+ * head by 100 x 0.005 rad (web/touch.js), the stick walks ahead. */
+static void check_touch(json_t *pg, const glb_file *g, int exhibit)
+{
+    json_t *t = json_object_get(pg, "touch");
+    cr_expect_str_eq(json_string_value(json_object_get(t, "tapped")), exhibit_extra(g, exhibit, "title"));
+    double turn = num(json_object_get(t, "turned"), "yawDeg") - num(json_object_get(t, "before"), "yawDeg");
+    cr_expect(fabs(turn + 100 * 0.005 * 180 / M_PI) < 0.1, "a drag right turns right by 28.6 deg, not %.2f", turn);
+    expect_walked_ahead(json_object_get(t, "turned"), json_object_get(t, "walked"), num(t, "seconds"),
+                        "the virtual stick");
+}
+
+/* Emulated WebXR thumbsticks: the left walks ahead, the right snaps 30 deg
+ * once per push. */
+static void check_thumbsticks(json_t *pg)
+{
+    json_t *x = json_object_get(pg, "xr");
+    expect_walked_ahead(json_object_get(x, "before"), json_object_get(x, "walked"), num(x, "seconds"),
+                        "the left thumbstick");
+    double y0 = num(json_object_get(x, "walked"), "yawDeg");
+    double snap = num(json_object_get(x, "snapped"), "yawDeg") - y0;
+    double held = num(json_object_get(x, "held"), "yawDeg") - y0;
+    double again = num(json_object_get(x, "again"), "yawDeg") - y0;
+    cr_expect(fabs(snap + 30) < 1e-3 && fabs(held + 30) < 1e-3 && fabs(again + 60) < 1e-3,
+              "snap turn: %.3f, held %.3f, pushed again %.3f deg (want -30, -30, -60)", snap, held, again);
+    cr_expect(fabs(num(json_object_get(x, "again"), "x") - num(json_object_get(x, "walked"), "x")) < 1e-6 &&
+                  fabs(num(json_object_get(x, "again"), "z") - num(json_object_get(x, "walked"), "z")) < 1e-6,
+              "a snap turn turns on the spot");
+}
+
+Test(museum_web, the_page_loads_and_shows_every_vessel, .timeout = 600)
 {
     skip_unless_tools();
     snprintf(workdir, sizeof workdir, "/tmp/celadon-museum-web-XXXXXX");
@@ -187,6 +278,10 @@ Test(museum_web, the_page_loads_and_shows_every_vessel, .timeout = 300)
     }
     /* Away from the vessels (the floor at the bottom corners) nothing changes. */
     cr_expect_lt(mean_diff(&with, &without, 20, SHOT_H - 20, 8), 0.01);
+    check_loading(pg, path);
+    check_label_closes(pg, &g, exhibit[0]);
+    check_touch(pg, &g, exhibit[1]);
+    check_thumbsticks(pg);
     glb_close(&g);
     image_free(&with);
     image_free(&without);

@@ -1,6 +1,7 @@
 // The celadon museum page: loads museum.glb (celadon museum, docs/museum.md),
 // turns its levels of detail into THREE.LOD objects, keeps the nearest lights,
-// and walks it on a desktop (walk.js) or in a WebXR headset (xr.js).
+// and walks it on a desktop (walk.js), a phone (touch.js) or in a WebXR
+// headset (xr.js); a bar shows the bytes of museum.glb while it loads.
 // window.museum reports what was loaded and what a frame costs (the tests and
 // the HUD read it).
 import * as THREE from 'three';
@@ -12,6 +13,7 @@ import { LightPool } from './light_pool.js';
 import { Obstacles } from './obstacles.js';
 import { Walker } from './walk.js';
 import { XrLocomotion } from './xr.js';
+import { TouchControls } from './touch.js';
 import { LabelPanel } from './label_panel.js';
 
 const status = {
@@ -19,6 +21,20 @@ const status = {
   triangles: 0, drawCalls: 0, trianglesFullDetail: 0,
 };
 window.museum = status;
+
+const MB = 1e6;
+// The loading bar: bytes of museum.glb received (of the total when the
+// server says it).
+function showProgress(e) {
+  const bar = document.getElementById('progress');
+  const text = e.total ? `loading museum.glb: ${(e.loaded / MB).toFixed(1)} of ${(e.total / MB).toFixed(1)} MB`
+    : `loading museum.glb: ${(e.loaded / MB).toFixed(1)} MB`;
+  bar.firstElementChild.style.width = e.total ? `${(100 * e.loaded / e.total).toFixed(1)}%` : '0';
+  bar.lastElementChild.textContent = text;
+  document.getElementById('stats').textContent = text;
+  status.bytesLoaded = e.loaded;
+  status.bytesTotal = e.total;
+}
 
 function fail(message) {
   status.error = message;
@@ -58,7 +74,8 @@ async function main() {
   renderer.xr.setReferenceSpaceType('local-floor');
   document.body.appendChild(renderer.domElement);
 
-  const gltf = await new GLTFLoader().loadAsync('museum.glb');
+  const gltf = await new GLTFLoader().loadAsync('museum.glb', showProgress);
+  document.getElementById('progress').style.display = 'none';
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(0x202020);
   scene.add(gltf.scene);
@@ -94,11 +111,13 @@ async function main() {
   const panel = new LabelPanel(scene);
   const pickables = exhibits;
   const walker = new Walker(camera, rig, renderer.domElement, obstacles);
-  const xr = new XrLocomotion(renderer, rig, scene, obstacles, pickables, (hit) => panel.show(hit, camera));
+  const xr = new XrLocomotion(renderer, rig, camera, scene, obstacles, pickables, walker,
+    (hit) => panel.toggle(hit, camera));
   document.body.appendChild(VRButton.createButton(renderer));
 
   const raycaster = new THREE.Raycaster();
-  // The exhibit under window pixel (x, y), or null.
+  // The exhibit under window pixel (x, y): its label opens (a pick of
+  // nothing closes it); returns its title or null.
   status.pickAt = (x, y) => {
     const ndc = new THREE.Vector2((2 * x) / window.innerWidth - 1, 1 - (2 * y) / window.innerHeight);
     raycaster.setFromCamera(ndc, camera);
@@ -106,15 +125,49 @@ async function main() {
     let o = hit ? hit.object : null;
     while (o && !(o.userData && typeof o.userData.title === 'string')) o = o.parent;
     if (o) panel.show(o, camera);
+    else panel.hide();
     return o ? o.userData.title : null;
   };
   walker.pick = () => status.pickAt(window.innerWidth / 2, window.innerHeight / 2);
+  const touch = new TouchControls(camera, renderer.domElement, walker, (x, y) => { status.lastTap = status.pickAt(x, y); });
+  // For the tests: where the visitor stands and looks, the open label, and
+  // thumbsticks emulated as WebXR input sources.
+  status.pose = () => {
+    const d = new THREE.Vector3();
+    camera.getWorldDirection(d);
+    return { x: rig.position.x, z: rig.position.z, yawDeg: Math.atan2(-d.x, -d.z) * 180 / Math.PI };
+  };
+  // Puts the eyes at (x, eyeY, z) looking toward (tx, ty, tz), without the
+  // page's prompts: the docs' views.
+  status.lookFrom = (x, eyeY, z, tx, ty, tz) => {
+    rig.position.set(x, 0, z);
+    rig.quaternion.identity();
+    camera.position.y = eyeY;
+    camera.lookAt(tx, ty, tz);
+    for (const id of ['start', 'hud', 'crosshair']) document.getElementById(id).style.display = 'none';
+  };
+  status.label = () => (panel.open ? panel.exhibit.userData.title : null);
+  // Fewer pixels per frame (the tests' input checks need frames, not pixels).
+  status.setPixelRatio = (r) => renderer.setPixelRatio(r);
+  status.floatingLabel = () => panel.floating !== null && panel.floating.parent === scene;
+  status.emulateXr = (sources) => xr.emulate(sources);
   // Where each vessel's middle is on the window, in pixels.
   status.vesselScreenPositions = () => exhibits.map((e) => {
     const p = vesselCentre(e).project(camera);
     return { title: e.userData.title, x: (p.x + 1) / 2 * window.innerWidth, y: (1 - p.y) / 2 * window.innerHeight };
   });
   status.setVesselsVisible = (visible) => { for (const v of lodInfo.vessels) v.visible = visible; };
+  // Exhibit k's footprint centre (x, z), side w, its vessel's middle height
+  // y and its label plate's height.
+  status.casePosition = (k) => {
+    const e = exhibits[k];
+    const plate = e.children.find((c) => c.isMesh && c.name.startsWith('Label'));
+    const p = new THREE.Vector3(), l = new THREE.Vector3();
+    e.getWorldPosition(p);
+    plate.getWorldPosition(l);
+    const box = new THREE.Box3().setFromObject(e.children.find((c) => c.isMesh && c.name.startsWith('Pedestal')));
+    return { x: p.x, z: p.z, w: box.max.x - box.min.x, y: vesselCentre(e).y, label: l.y };
+  };
 
   window.addEventListener('resize', () => {
     camera.aspect = window.innerWidth / window.innerHeight;
@@ -128,10 +181,12 @@ async function main() {
   renderer.setAnimationLoop(() => {
     const dt = Math.min(clock.getDelta(), 0.1);
     walker.update(dt);
-    xr.update();
+    touch.update(dt);
+    xr.update(dt);
     const eye = new THREE.Vector3();
     camera.getWorldPosition(eye);
     lights.update(eye);
+    panel.update(eye);
     renderer.render(scene, camera);
     status.triangles = renderer.info.render.triangles;
     status.drawCalls = renderer.info.render.calls;

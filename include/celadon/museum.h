@@ -22,7 +22,8 @@
 
 enum { MUSEUM_MAX_LODS = 8 };
 
-/* The height a vessel is given when the catalogue does not say. */
+/* The height a vessel is given when the catalogue gives neither its height
+ * nor its diameter; its label then says "Height not recorded". */
 #define MUSEUM_DEFAULT_HEIGHT_CM 30.0
 
 typedef struct {
@@ -34,6 +35,8 @@ typedef struct {
     const char *web_dir;     /* the folder holding index.html and museum.js (built by make); NULL or
                                 missing files: the page is left out and web_missing set */
     int progress;            /* 1: progress bar of the preview on a TTY */
+    int force;               /* include vessels that fail the quality gate (reconstruct --force),
+                                their labels and museum.json saying so */
 } museum_options;
 
 /* Defaults: no catalogue, LODs chosen automatically, a 640x360 preview at
@@ -44,6 +47,8 @@ typedef struct {
     char photo[4096];        /* the photo's path */
     int status;              /* 0 in the museum, 2 refused (bad input), 1 internal failure */
     char error[512];         /* why not, one line without the file name */
+    int below_gate;          /* with force: in the museum although it failed the quality gate
+                                (error then says which figures) */
 } museum_photo_report;
 
 typedef struct {

@@ -30,22 +30,26 @@ static void usage(FILE *f)
             "and preview.png (its path-traced view from the entrance). docs/museum.md.\n\n"
             "options:\n"
             "  -o, --output DIR     the museum folder: new, empty, or an earlier museum\n"
-            "  --catalogue FILE     CSV: file,title,date,height_cm,description (only file needed);\n"
-            "                       without photos on the command line, its rows are the photos\n"
+            "  --catalogue FILE     CSV: file,title,date,height_cm,diameter_cm,description\n"
+            "                       (only file needed); without photos on the command line,\n"
+            "                       its rows are the photos\n"
             "  --title TEXT         the museum's name (default \"Celadon museum\")\n"
             "  --lod N,N,...        angular segments of the levels of detail (default: chosen\n"
             "                       per vessel by screen-space error)\n"
             "  --preview-res WxH    size of preview.png (default 640x360)\n"
             "  --preview-spp N      its samples per pixel (default 16; 0: no preview)\n"
+            "  --force              include vessels that fail the quality gate (reconstruct\n"
+            "                       --force); their labels say so\n"
             "  --serve [PORT]       then serve DIR on http://127.0.0.1:PORT/ (default %d;\n"
             "                       0: any free port) until Ctrl-C; without photos, serves an\n"
             "                       existing museum\n"
             "  -h, --help           this text\n\n"
             "Ctrl-C during the preview stops it early: the museum is written with the preview\n"
             "as far as it got.\n\n"
-            "A vessel without a catalogue height is %.0f cm tall. exit status: 0 every photo is in\n"
-            "the museum, 2 bad input or usage (refused photos are left out, the rest still make\n"
-            "the museum), 1 internal failure\n",
+            "A vessel with neither a catalogue height nor diameter is %.0f cm tall (its label\n"
+            "says \"Height not recorded\"). exit status: 0 every photo is in the museum, 2 bad\n"
+            "input or usage (refused photos are left out, the rest still make the museum),\n"
+            "1 internal failure\n",
             DEFAULT_PORT, MUSEUM_DEFAULT_HEIGHT_CM);
 }
 
@@ -71,12 +75,13 @@ static int all_digits(const char *s)
 /* Returns -1 to continue, otherwise the exit code. */
 static int parse_options(int argc, char **argv, options *o)
 {
-    enum { OPT_CATALOGUE = 256, OPT_TITLE, OPT_LOD, OPT_RES, OPT_SPP, OPT_SERVE };
+    enum { OPT_CATALOGUE = 256, OPT_TITLE, OPT_LOD, OPT_RES, OPT_SPP, OPT_SERVE, OPT_FORCE };
     static const struct option longopts[] = {
         {"output", required_argument, NULL, 'o'},      {"catalogue", required_argument, NULL, OPT_CATALOGUE},
         {"title", required_argument, NULL, OPT_TITLE}, {"lod", required_argument, NULL, OPT_LOD},
         {"preview-res", required_argument, NULL, OPT_RES}, {"preview-spp", required_argument, NULL, OPT_SPP},
-        {"serve", optional_argument, NULL, OPT_SERVE}, {"help", no_argument, NULL, 'h'},
+        {"serve", optional_argument, NULL, OPT_SERVE}, {"force", no_argument, NULL, OPT_FORCE},
+        {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
     *o = (options){.museum = museum_options_default(), .port = DEFAULT_PORT};
@@ -115,6 +120,7 @@ static int parse_options(int argc, char **argv, options *o)
             o->port = port ? (int)v : DEFAULT_PORT;
             break;
         }
+        case OPT_FORCE: o->museum.force = 1; break;
         case 'h': usage(stdout); return 0;
         case ':': return cli_usage_error("museum", "%s needs a value", argv[optind - 1]);
         default: return cli_usage_error("museum", "unknown option '%s'", argv[optind - 1]);
@@ -191,6 +197,8 @@ int cmd_museum(int argc, char **argv)
         if (rep.photos[i].status != 0) {
             fprintf(stderr, "celadon: %s: %s\n", rep.photos[i].photo, rep.photos[i].error);
             refused++;
+        } else if (rep.photos[i].below_gate) {
+            fprintf(stderr, "celadon: warning: %s: %s\n", rep.photos[i].photo, rep.photos[i].error);
         }
     if (built > 0 && rc != 1)
         print_summary(&o.museum, &rep);

@@ -13,12 +13,12 @@
 
 #include "core/core.h"
 
-enum { COL_FILE, COL_TITLE, COL_DATE, COL_HEIGHT, COL_DESCRIPTION, COL_COUNT };
-static const char *const column_names[COL_COUNT] = {"file", "title", "date", "height_cm", "description"};
+enum { COL_FILE, COL_TITLE, COL_DATE, COL_HEIGHT, COL_DIAMETER, COL_DESCRIPTION, COL_COUNT };
+static const char *const column_names[COL_COUNT] = {"file", "title", "date", "height_cm", "diameter_cm", "description"};
 
 enum { MAX_FIELDS = 32, MAX_ROWS = 10000 };
 #define MAX_BYTES (16L << 20)
-#define MAX_HEIGHT_CM 1000.0
+#define MAX_SIZE_CM 1000.0
 
 typedef struct {
     const char *csv_path;
@@ -84,7 +84,7 @@ static int header_row(parse_state *s)
             if (!strcmp(s->fields[i], column_names[c]))
                 col = c;
         if (col < 0) {
-            fail(s, "unknown column '%s' (the columns are file, title, date, height_cm, description)", s->fields[i]);
+            fail(s, "unknown column '%s' (the columns are file, title, date, height_cm, diameter_cm, description)", s->fields[i]);
             return -1;
         }
         if (seen[col]++) {
@@ -101,13 +101,14 @@ static int header_row(parse_state *s)
     return 0;
 }
 
-static int parse_height(parse_state *s, const char *text, double *cm)
+/* A size column (height_cm, diameter_cm): centimetres, 0 < x <= 1000. */
+static int parse_size(parse_state *s, int col, const char *text, double *cm)
 {
     char *end;
     errno = 0;
     *cm = strtod(text, &end);
-    if (end == text || *end || errno || !(*cm > 0.0 && *cm <= MAX_HEIGHT_CM)) {
-        fail(s, "height_cm '%s' is not a height in centimetres (0 < h <= 1000)", text);
+    if (end == text || *end || errno || !(*cm > 0.0 && *cm <= MAX_SIZE_CM)) {
+        fail(s, "%s '%s' is not a length in centimetres (0 < x <= 1000)", column_names[col], text);
         return -1;
     }
     return 0;
@@ -153,7 +154,7 @@ static void entry_row(parse_state *s)
         fail(s, "more than %d rows", MAX_ROWS);
         return;
     }
-    catalogue_entry e = {.height_cm = 0.0};
+    catalogue_entry e = {.height_cm = 0.0, .diameter_cm = 0.0};
     for (int i = 0; i < s->n_fields && !s->failed; i++) {
         switch (s->column_of[i]) {
         case COL_FILE: entry_file(s, s->fields[i], &e); break;
@@ -162,7 +163,11 @@ static void entry_row(parse_state *s)
         case COL_DESCRIPTION: e.description = take_nonempty(s, i); break;
         case COL_HEIGHT:
             if (*s->fields[i])
-                parse_height(s, s->fields[i], &e.height_cm);
+                parse_size(s, COL_HEIGHT, s->fields[i], &e.height_cm);
+            break;
+        case COL_DIAMETER:
+            if (*s->fields[i])
+                parse_size(s, COL_DIAMETER, s->fields[i], &e.diameter_cm);
             break;
         }
     }

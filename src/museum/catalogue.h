@@ -1,8 +1,8 @@
 /* The museum's catalogue: a CSV file that gives each photographed vessel its
  * label and its real size (docs/museum.md, "Catalogue").
  *
- *   file,title,date,height_cm,description
- *   photos/maebyeong.jpg,Maebyeong with cranes,12th century,31.5,"Inlaid celadon, ..."
+ *   file,title,date,height_cm,diameter_cm,description
+ *   photos/maebyeong.jpg,Maebyeong with cranes,12th century,31.5,,"Inlaid celadon, ..."
  *
  * The first row names the columns, in any order; `file` is required, the
  * others optional, no other name allowed. `file` is relative to the CSV's own
@@ -17,7 +17,7 @@ typedef struct {
     char path[PATH_MAX];     /* the photo as the catalogue names it, resolved against the CSV's folder */
     char real[PATH_MAX];     /* realpath() of path: what photos are matched by */
     char *title, *date, *description; /* NULL when the row or the column has none */
-    double height_cm;        /* 0 when not given */
+    double height_cm, diameter_cm; /* 0 when not given */
 } catalogue_entry;
 
 typedef struct {

@@ -11,7 +11,7 @@ void museum_exhibit_free(museum_exhibit *e)
     free(e->description);
     bspline_free(&e->curve);
     lod_free(e->lods, e->n_lods);
-    free(e->texture_png);
+    free(e->texture_jpg);
     free(e->label_png);
     memset(e, 0, sizeof *e);
 }

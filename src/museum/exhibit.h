@@ -8,17 +8,24 @@
 
 #include "celadon/bspline.h"
 #include "museum/lod.h"
+#include "museum/vessel_size.h"
+
+/* The label's line for a vessel included with --force. */
+#define MUSEUM_BELOW_GATE_NOTE "Shape uncertain: below the quality gate (shown with --force)"
 
 typedef struct {
     const char *photo;        /* the photo as given */
     char slug[96];            /* unique file-name form of the title: vessels/SLUG/, labels/SLUG.png */
     char *title, *date, *description; /* owned; date and description may be NULL */
+    double height_cm_given, diameter_cm_given; /* the catalogue's, 0 when not given */
+    vessel_size_source size_source; /* which rule of vessel_size.h set height_m */
+    int below_gate;           /* failed the quality gate, included with --force */
     double height_m;          /* real height, the rim at y = height_m */
     double radius_m;          /* bound on the largest radius (the control polygon's) */
     bspline_t curve;          /* the shape (profile_shape): (r, h), px, or units of the height for a meridian */
     lod_level lods[LOD_MAX_LEVELS];
     int n_lods;
-    uint8_t *texture_png, *label_png; /* the files' bytes, owned */
+    uint8_t *texture_jpg, *label_png; /* the glb's images: the texture as JPEG, the label as PNG; owned */
     size_t texture_len, label_len;
 } museum_exhibit;
 

@@ -64,6 +64,11 @@ static int reserve(glb_t *g, size_t more)
 
 int glb_add_view(glb_t *g, const void *data, size_t len, int target)
 {
+    return glb_add_strided_view(g, data, len, target, 0);
+}
+
+int glb_add_strided_view(glb_t *g, const void *data, size_t len, int target, int stride)
+{
     size_t pad = (4 - g->bin_len % 4) % 4;
     if (len == 0 || reserve(g, pad + len) != 0)
         return -1;
@@ -76,6 +81,8 @@ int glb_add_view(glb_t *g, const void *data, size_t len, int target)
                              (json_int_t)len);
     if (view && target)
         json_object_set_new(view, "target", json_integer(target));
+    if (view && stride)
+        json_object_set_new(view, "byteStride", json_integer(stride));
     return glb_append(g, "bufferViews", view);
 }
 
@@ -100,15 +107,29 @@ int glb_add_accessor(glb_t *g, int view, int component_type, int count, const ch
     return glb_append(g, "accessors", acc);
 }
 
-int glb_use_extension(glb_t *g, const char *name)
+int glb_set_normalized(glb_t *g, int accessor)
 {
-    json_t *used = json_object_get(g->doc, "extensionsUsed");
+    json_t *a = json_array_get(json_object_get(g->doc, "accessors"), (size_t)accessor);
+    return a ? json_object_set_new(a, "normalized", json_true()) : -1;
+}
+
+/* Appends name to the top-level list key unless it is there. */
+static int list_once(glb_t *g, const char *key, const char *name)
+{
+    json_t *list = json_object_get(g->doc, key);
     size_t i;
     json_t *v;
-    json_array_foreach(used, i, v)
+    json_array_foreach(list, i, v)
         if (!strcmp(json_string_value(v), name))
             return 0;
-    return glb_append(g, "extensionsUsed", json_string(name)) < 0 ? -1 : 0;
+    return glb_append(g, key, json_string(name)) < 0 ? -1 : 0;
+}
+
+int glb_use_extension(glb_t *g, const char *name) { return list_once(g, "extensionsUsed", name); }
+
+int glb_require_extension(glb_t *g, const char *name)
+{
+    return list_once(g, "extensionsUsed", name) || list_once(g, "extensionsRequired", name) ? -1 : 0;
 }
 
 static void put_u32(uint8_t *p, uint32_t v)

@@ -13,6 +13,8 @@
 #include <stdint.h>
 
 enum {
+    GLB_BYTE = 5120,
+    GLB_SHORT = 5122,
     GLB_UNSIGNED_SHORT = 5123,
     GLB_UNSIGNED_INT = 5125,
     GLB_FLOAT = 5126,
@@ -38,6 +40,10 @@ int glb_append(glb_t *g, const char *key, json_t *obj);
  * none, e.g. an image). Returns its index or -1. */
 int glb_add_view(glb_t *g, const void *data, size_t len, int target);
 
+/* glb_add_view for interleaved or padded vertex data: elements stride bytes
+ * apart (a multiple of 4, as glTF wants of vertex attributes). */
+int glb_add_strided_view(glb_t *g, const void *data, size_t len, int target, int stride);
+
 /* A tightly packed accessor over a whole bufferView: count elements of type
  * ("SCALAR", "VEC2", "VEC3") with the given component type; min/max (may be
  * NULL) have as many values as the type has components. Returns its index
@@ -45,8 +51,14 @@ int glb_add_view(glb_t *g, const void *data, size_t len, int target);
 int glb_add_accessor(glb_t *g, int view, int component_type, int count, const char *type, const double *min,
                      const double *max);
 
+/* Marks the accessor's integers as normalized (to [0, 1] or [-1, 1]). */
+int glb_set_normalized(glb_t *g, int accessor);
+
 /* Declares an extension in extensionsUsed (once). Returns 0 or -1. */
 int glb_use_extension(glb_t *g, const char *name);
+
+/* ... and in extensionsRequired: a loader without it cannot read the file. */
+int glb_require_extension(glb_t *g, const char *name);
 
 /* Writes the GLB file atomically. Returns 0, or -1 with a one-line reason. */
 int glb_write(glb_t *g, const char *path, char *err, size_t errlen);

@@ -1,5 +1,5 @@
-/* Label plates with cairo's toy text API (word wrap by measured extents).
- * See label.h. */
+/* Label plates with cairo's toy text API: lines broken by measured
+ * extents, then drawn. See label.h. */
 #include "museum/label.h"
 
 #include <cairo.h>
@@ -11,6 +11,7 @@
 #define TITLE_SIZE 0.075   /* font sizes, of the plate's width */
 #define BODY_SIZE 0.05
 #define LINE_SPACING 1.3
+#define ELLIPSIS "\xe2\x80\xa6" /* U+2026 */
 
 typedef struct {
     uint8_t *data;
@@ -38,58 +39,130 @@ static cairo_status_t sink_write(void *closure, const unsigned char *data, unsig
     return CAIRO_STATUS_SUCCESS;
 }
 
-/* Length of the longest prefix of text (ending at a space or the end) that
- * fits in width; at least one word, cut to fit when a single word is wider. */
-static size_t fitting_prefix(cairo_t *cr, const char *text, double width)
+static void set_font(cairo_t *cr, label_role role, double size)
 {
-    size_t best = 0, n = strlen(text);
-    char *buf = malloc(n + 1);
-    if (!buf)
-        return n;
-    for (size_t i = 1; i <= n; i++) {
-        if (i < n && text[i] != ' ')
-            continue;
-        memcpy(buf, text, i);
-        buf[i] = 0;
-        cairo_text_extents_t ext;
-        cairo_text_extents(cr, buf, &ext);
-        if (ext.x_advance > width && best > 0)
-            break;
-        best = i;
-        if (ext.x_advance > width)
-            break;
-    }
-    free(buf);
-    return best;
+    cairo_select_font_face(cr, "sans-serif",
+                           role == LABEL_DATE || role == LABEL_NOTE ? CAIRO_FONT_SLANT_ITALIC : CAIRO_FONT_SLANT_NORMAL,
+                           role == LABEL_TITLE ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, size);
 }
 
-/* Draws text wrapped into lines from *y down, at most until y_max; the last
- * line that fits ends with an ellipsis when text remains. */
-static void draw_wrapped(cairo_t *cr, const char *text, double x, double *y, double width, double size, double y_max)
+/* Width of text[0..n) followed by tail. */
+static double advance(cairo_t *cr, const char *text, size_t n, const char *tail)
 {
-    cairo_set_font_size(cr, size);
-    char line[1024];
-    while (*text) {
+    char buf[LABEL_LINE_BYTES];
+    snprintf(buf, sizeof buf, "%.*s%s", (int)n, text, tail);
+    cairo_text_extents_t ext;
+    cairo_text_extents(cr, buf, &ext);
+    return ext.x_advance;
+}
+
+static int utf8_continuation(char c) { return ((unsigned char)c & 0xC0) == 0x80; }
+
+/* The longest prefix of text that, followed by tail, fits in width: ending
+ * before a space (or at the end) when one word at least fits, else between
+ * characters (at least one). Never longer than the line buffer allows. */
+static size_t fitting_prefix(cairo_t *cr, const char *text, double width, const char *tail)
+{
+    size_t n = strlen(text), cap = LABEL_LINE_BYTES - 8, best = 0;
+    for (size_t i = 1; i <= n && i <= cap; i++) {
+        if (i < n && text[i] != ' ')
+            continue;
+        if (advance(cr, text, i, tail) > width)
+            break;
+        best = i;
+    }
+    if (best)
+        return best;
+    size_t chars = 0;
+    for (size_t i = 1; i <= n && i <= cap; i++) {
+        if (i < n && utf8_continuation(text[i]))
+            continue;
+        if (chars && advance(cr, text, i, tail) > width)
+            break;
+        chars = i;
+    }
+    return chars;
+}
+
+typedef struct {
+    cairo_t *cr;
+    double x, y, y_max, width;
+    label_line *lines;
+    int n, max;
+} layout_state;
+
+/* Lays text out in at most max_lines lines of role at size from s->y; the
+ * last line ends with an ellipsis when text remains. */
+static void wrap(layout_state *s, const char *text, label_role role, double size, int max_lines)
+{
+    if (!text)
+        return;
+    set_font(s->cr, role, size);
+    for (int k = 0; k < max_lines && s->n < s->max; k++) {
         while (*text == ' ')
             text++;
-        if (!*text || *y + size > y_max)
-            break;
-        size_t n = fitting_prefix(cr, text, width);
-        int last = *y + 2 * size * LINE_SPACING > y_max && text[n];
-        snprintf(line, sizeof line, "%.*s%s", (int)(n < 1000 ? n : 1000), text, last ? " ..." : "");
-        cairo_move_to(cr, x, *y + size);
-        cairo_show_text(cr, line);
-        *y += size * LINE_SPACING;
+        if (!*text || s->y + size > s->y_max)
+            return;
+        int last = k == max_lines - 1 || s->y + size * LINE_SPACING + size > s->y_max;
+        size_t n = fitting_prefix(s->cr, text, s->width, "");
+        const char *rest = text + n;
+        while (*rest == ' ')
+            rest++;
+        int cut = last && *rest;
+        if (cut) {
+            n = fitting_prefix(s->cr, text, s->width, ELLIPSIS);
+            while (n > 0 && text[n - 1] == ' ')
+                n--;
+        }
+        label_line *l = &s->lines[s->n++];
+        snprintf(l->text, sizeof l->text, "%.*s%s", (int)n, text, cut ? ELLIPSIS : "");
+        l->role = role;
+        l->x = s->x;
+        l->y = s->y + size;
+        l->size = size;
+        l->cut = cut;
+        cairo_text_extents_t ext;
+        cairo_text_extents(s->cr, l->text, &ext);
+        l->advance = ext.x_advance;
+        s->y += size * LINE_SPACING;
         text += n;
-        if (last)
-            break;
+        if (cut)
+            return;
     }
+}
+
+double label_text_width(int width) { return width - 2 * MARGIN * width; }
+
+static int layout_on(cairo_t *cr, const label_text *t, int width, int height, label_line *lines, int max_lines)
+{
+    double m = MARGIN * width;
+    layout_state s = {cr, m, m, height - m, label_text_width(width), lines, 0, max_lines};
+    wrap(&s, t->title, LABEL_TITLE, TITLE_SIZE * width, LABEL_TITLE_LINES);
+    s.y += 0.8 * BODY_SIZE * width; /* room for the rule under the title */
+    wrap(&s, t->date, LABEL_DATE, BODY_SIZE * width, 1);
+    wrap(&s, t->size, LABEL_SIZE, BODY_SIZE * width, 1);
+    wrap(&s, t->note, LABEL_NOTE, BODY_SIZE * width, 2);
+    s.y += 0.4 * BODY_SIZE * width;
+    wrap(&s, t->description, LABEL_DESCRIPTION, BODY_SIZE * width, LABEL_MAX_LINES);
+    return s.n;
+}
+
+int label_layout(const label_text *t, int width, int height, label_line *lines, int max_lines)
+{
+    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+    cairo_t *cr = cairo_create(surf);
+    int n = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? layout_on(cr, t, width, height, lines, max_lines) : -1;
+    cairo_destroy(cr);
+    cairo_surface_destroy(surf);
+    return n;
 }
 
 int label_render_png(const label_text *t, int width, int height, uint8_t **png, size_t *len)
 {
     *png = NULL;
     *len = 0;
+    label_line lines[LABEL_MAX_LINES];
     cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
     cairo_t *cr = cairo_create(surf);
     if (cairo_status(cr) != CAIRO_STATUS_SUCCESS) {
@@ -97,28 +170,24 @@ int label_render_png(const label_text *t, int width, int height, uint8_t **png, 
         cairo_surface_destroy(surf);
         return -1;
     }
+    int n = layout_on(cr, t, width, height, lines, LABEL_MAX_LINES);
     cairo_set_source_rgb(cr, 0.94, 0.92, 0.87); /* card */
     cairo_paint(cr);
-    double m = MARGIN * width, w = width - 2 * m, y = m, y_max = height - m;
-    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
-    draw_wrapped(cr, t->title, m, &y, w, TITLE_SIZE * width, y_max);
-    y += 0.3 * BODY_SIZE * width;
-    cairo_set_source_rgb(cr, 0.35, 0.45, 0.38); /* a celadon rule under the title */
-    cairo_rectangle(cr, m, y, w, 0.006 * width);
-    cairo_fill(cr);
-    y += 0.5 * BODY_SIZE * width;
-    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
-    char line[128];
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_ITALIC, CAIRO_FONT_WEIGHT_NORMAL);
-    if (t->date)
-        draw_wrapped(cr, t->date, m, &y, w, BODY_SIZE * width, y_max);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    snprintf(line, sizeof line, "Height %.1f cm", t->height_cm);
-    draw_wrapped(cr, line, m, &y, w, BODY_SIZE * width, y_max);
-    if (t->description) {
-        y += 0.4 * BODY_SIZE * width;
-        draw_wrapped(cr, t->description, m, &y, w, BODY_SIZE * width, y_max);
+    int ruled = 0;
+    for (int i = 0; i < n; i++) {
+        const label_line *l = &lines[i];
+        if (!ruled && l->role != LABEL_TITLE) { /* a celadon rule under the title */
+            cairo_set_source_rgb(cr, 0.35, 0.45, 0.38);
+            cairo_rectangle(cr, l->x, l->y - l->size - 0.5 * BODY_SIZE * width, label_text_width(width),
+                            0.006 * width);
+            cairo_fill(cr);
+            ruled = 1;
+        }
+        cairo_set_source_rgb(cr, l->role == LABEL_TITLE ? 0.1 : l->role == LABEL_NOTE ? 0.55 : 0.15,
+                             l->role == LABEL_NOTE ? 0.2 : 0.1, 0.1);
+        set_font(cr, l->role, l->size);
+        cairo_move_to(cr, l->x, l->y);
+        cairo_show_text(cr, l->text);
     }
     cairo_destroy(cr);
     byte_sink sink = {0};

@@ -4,7 +4,6 @@
 #include "core/core.h"
 #include "celadon/museum.h"
 
-#include <ctype.h>
 #include <errno.h>
 #include <jansson.h>
 #include <math.h>
@@ -17,14 +16,16 @@
 #include "celadon/reconstruct.h"
 #include "museum/catalogue.h"
 #include "museum/exhibit.h"
+#include "museum/jpeg_memory.h"
 #include "museum/label.h"
 #include "museum/layout.h"
 #include "museum/museum_folder.h"
 #include "museum/museum_gltf.h"
 #include "museum/museum_preview.h"
 #include "museum/museum_scene.h"
+#include "museum/slug.h"
 
-enum { LABEL_WIDTH_PX = 768, MAX_SLUG = 60 };
+enum { LABEL_WIDTH_PX = 768, MUSEUM_TEXTURE_JPEG_QUALITY = 85 };
 #define VISITOR_RADIUS 0.25 /* m: how close a visitor's eye gets to a case wall */
 
 museum_options museum_options_default(void)
@@ -49,38 +50,11 @@ static void file_stem(const char *path, char *stem, size_t len)
     snprintf(stem, len, "%.*s", n, base);
 }
 
-/* Lower-case ASCII letters and digits of the title, other runs as one '-';
- * "vessel" when nothing is left; -2, -3, ... when taken by an earlier one. */
-static void make_slug(const museum_exhibit *ex, int i, char *slug, size_t len)
-{
-    char base[MAX_SLUG + 1];
-    int n = 0;
-    for (const unsigned char *p = (const unsigned char *)ex[i].title; *p && n < MAX_SLUG; p++) {
-        if (isalnum(*p) && *p < 128)
-            base[n++] = (char)tolower(*p);
-        else if (n > 0 && base[n - 1] != '-')
-            base[n++] = '-';
-    }
-    while (n > 0 && base[n - 1] == '-')
-        n--;
-    base[n] = 0;
-    if (!n)
-        snprintf(base, sizeof base, "vessel");
-    snprintf(slug, len, "%s", base);
-    for (int k = 2;; k++) {
-        int taken = 0;
-        for (int j = 0; j < i && !taken; j++)
-            taken = !strcmp(ex[j].slug, slug);
-        if (!taken)
-            return;
-        snprintf(slug, len, "%s-%d", base, k);
-    }
-}
-
 static char *dup_or_null(const char *s) { return s ? strdup(s) : NULL; }
 
-/* Titles, heights and slugs from the catalogue (or the defaults). */
-static int describe(const char *const *photos, int n, const catalogue_t *cat, museum_exhibit *ex)
+/* Titles, sizes and slugs from the catalogue (or the defaults). */
+static int describe(const char *const *photos, int n, const catalogue_t *cat, museum_exhibit *ex,
+                    const char **slugs)
 {
     for (int i = 0; i < n; i++) {
         const catalogue_entry *c = catalogue_find(cat, photos[i]);
@@ -90,10 +64,12 @@ static int describe(const char *const *photos, int n, const catalogue_t *cat, mu
         ex[i].title = strdup(c && c->title ? c->title : stem[0] ? stem : "Vessel");
         ex[i].date = dup_or_null(c ? c->date : NULL);
         ex[i].description = dup_or_null(c ? c->description : NULL);
-        ex[i].height_m = (c && c->height_cm > 0 ? c->height_cm : MUSEUM_DEFAULT_HEIGHT_CM) / 100.0;
+        ex[i].height_cm_given = c ? c->height_cm : 0.0;
+        ex[i].diameter_cm_given = c ? c->diameter_cm : 0.0;
         if (!ex[i].title)
             return -1;
-        make_slug(ex, i, ex[i].slug, sizeof ex[i].slug);
+        slugs[i] = ex[i].slug;
+        slug_make(ex[i].title, slugs, i, ex[i].slug, sizeof ex[i].slug);
     }
     return 0;
 }
@@ -132,7 +108,12 @@ static void make_exhibit(const museum_options *opt, const char *tmp, museum_exhi
 {
     reconstruction r;
     reconstruct_options ro = reconstruct_options_default();
+    ro.force = opt->force;
     rep->status = reconstruct_photo(e->photo, &ro, &r, rep->error, sizeof rep->error);
+    if (rep->status == 0 && !r.quality.passed) {
+        e->below_gate = rep->below_gate = 1;
+        snprintf(rep->error, sizeof rep->error, "below the quality gate (%s), included with --force", r.quality.failed);
+    }
     char dir[PATH_MAX + 128], path[PATH_MAX + 160], why[400];
     snprintf(dir, sizeof dir, "vessels/%s", e->slug);
     profile_t prof;
@@ -151,10 +132,12 @@ static void make_exhibit(const museum_options *opt, const char *tmp, museum_exhi
         int rc = profile_write_json(path, &prof, why, sizeof why);
         snprintf(path, sizeof path, "%s/%s/texture.png", tmp, dir);
         rc = rc ? rc : image_write_u8(path, r.texture.width, r.texture.height, 3, r.texture.rgb, why, sizeof why);
-        e->texture_png = rc ? NULL : read_bytes(path, &e->texture_len);
-        if (!e->texture_png) {
+        if (rc == 0 && jpeg_encode_rgb(r.texture.rgb, r.texture.width, r.texture.height, MUSEUM_TEXTURE_JPEG_QUALITY,
+                                       &e->texture_jpg, &e->texture_len) != 0)
+            rc = -1, snprintf(why, sizeof why, "cannot encode its JPEG");
+        if (rc != 0) {
             rep->status = 1;
-            snprintf(rep->error, sizeof rep->error, "cannot write the vessel's files: %s", rc ? why : "read back");
+            snprintf(rep->error, sizeof rep->error, "cannot write the vessel's files: %s", why);
         }
     }
     reconstruction_free(&r);
@@ -163,6 +146,9 @@ static void make_exhibit(const museum_options *opt, const char *tmp, museum_exhi
         museum_folder_remove(path); /* a refused photo leaves nothing */
         return;
     }
+    double rim = bspline_eval(&e->curve, 1.0).y;
+    e->height_m = vessel_size_height_m(e->height_cm_given, e->diameter_cm_given, rim,
+                                       vessel_shape_max_radius(&e->curve), &e->size_source);
     e->radius_m = radius_bound(&e->curve, e->height_m);
     layout_vessel lv = {e->height_m, e->radius_m};
     double nearest = e->radius_m + layout_clearance(&lv) + VISITOR_RADIUS;
@@ -190,7 +176,10 @@ static int write_labels(build_ctx *b, const layout_t *l, museum_exhibit *ex, int
     }
     for (int i = 0; i < n; i++) {
         const layout_exhibit *le = &l->exhibits[i];
-        label_text t = {ex[i].title, ex[i].date, ex[i].description, 100.0 * ex[i].height_m};
+        char size[128];
+        vessel_size_line(ex[i].height_cm_given, ex[i].diameter_cm_given, size, sizeof size);
+        label_text t = {ex[i].title, ex[i].date, size, ex[i].below_gate ? MUSEUM_BELOW_GATE_NOTE : NULL,
+                        ex[i].description};
         int h = (int)lround(LABEL_WIDTH_PX * le->label_height / le->label_width);
         char path[PATH_MAX + 160];
         snprintf(path, sizeof path, "%s/labels/%s.png", b->tmp, ex[i].slug);
@@ -240,10 +229,12 @@ static json_t *manifest(const build_ctx *b, const char *title, const museum_exhi
                                                   "distance_m", ex[i].lods[k].distance, "error_m",
                                                   ex[i].lods[k].error, "triangles", ex[i].lods[k].mesh.n_tris));
         char title[4 * 512], photo[4 * 4096];
-        json_array_append_new(vessels, json_pack("{s:s, s:s, s:s, s:f, s:f, s:o}", "title",
+        json_array_append_new(vessels, json_pack("{s:s, s:s, s:s, s:f, s:s, s:f, s:b, s:o}", "title",
                                                  json_text(ex[i].title, title, sizeof title), "photo",
-                                                 json_text(ex[i].photo, photo, sizeof photo), "folder", ex[i].slug, "height_cm",
-                                                 100.0 * ex[i].height_m, "radius_cm", 100.0 * ex[i].radius_m,
+                                                 json_text(ex[i].photo, photo, sizeof photo), "folder", ex[i].slug,
+                                                 "height_cm", 100.0 * ex[i].height_m, "size_from",
+                                                 vessel_size_source_name(ex[i].size_source), "radius_cm",
+                                                 100.0 * ex[i].radius_m, "quality_gate_passed", !ex[i].below_gate,
                                                  "lods", lods));
     }
     json_t *figures = json_pack("{s:I, s:I, s:I, s:i, s:I, s:[f,f,f]}", "triangles_full",
@@ -343,9 +334,10 @@ static int build(const char *const *photos, int n, const museum_options *opt, co
     const char **list = photo_list(photos, &n, cat);
     museum_exhibit *ex = calloc((size_t)(n > 0 ? n : 1), sizeof *ex);
     rep->photos = calloc((size_t)(n > 0 ? n : 1), sizeof *rep->photos);
+    const char **slugs = calloc((size_t)(n > 0 ? n : 1), sizeof *slugs);
     build_ctx b = {.files = json_array()};
     int rc = 1;
-    if (!list || !ex || !rep->photos || !b.files || describe(list, n, cat, ex) != 0) {
+    if (!list || !ex || !slugs || !rep->photos || !b.files || describe(list, n, cat, ex, slugs) != 0) {
         snprintf(err, errlen, "out of memory");
         goto done;
     }
@@ -381,6 +373,7 @@ done:
     for (int i = 0; i < rep->n_vessels; i++)
         museum_exhibit_free(&ex[i]);
     free(ex);
+    free(slugs);
     free(list);
     json_decref(b.files);
     return rc;

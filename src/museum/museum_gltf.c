@@ -25,9 +25,9 @@ typedef struct {
 
 typedef struct {
     glb_t g;
-    int mat_floor, mat_wall, mat_ceiling, mat_pedestal, mat_glass;
-    geometry_accessors box, quad;
-    int mesh_pedestal, mesh_glass;
+    int mat_floor, mat_wall, mat_ceiling, mat_pedestal, mat_glass, mat_frame, mat_lamp;
+    geometry_accessors box, quad, frame;
+    int mesh_pedestal, mesh_glass, mesh_frame;
     long long static_tris; /* per frame, besides the vessels */
     int static_calls;
 } builder;
@@ -59,6 +59,80 @@ static int upload(builder *b, const geometry *geo, geometry_accessors *acc)
     acc->texcoord = glb_add_accessor(&b->g, vt, GLB_FLOAT, geo->n_verts, "VEC2", NULL, NULL);
     acc->indices = glb_add_accessor(&b->g, vi, GLB_UNSIGNED_INT, geo->n_tris * 3, "SCALAR", NULL, NULL);
     return acc->position < 0 || acc->normal < 0 || acc->texcoord < 0 || acc->indices < 0 ? -1 : 0;
+}
+
+/* The vessels' levels with KHR_mesh_quantization: positions as 16-bit
+ * integers q with p = offset + scale q (the level's node carries offset and
+ * scale, uniform so normals stay normal), normals as normalized bytes,
+ * texture coordinates as normalized 16-bit, indices 16-bit when they fit:
+ * 16 bytes a vertex instead of 32, and a third of the indices' bytes. A
+ * vertex moves by at most sqrt(3)/2 scale, scale = half the level's largest
+ * extent / 32767 (9 micrometres on a 60 cm vessel). */
+enum { Q_POSITION_MAX = 32767, Q_NORMAL_MAX = 127, Q_UV_MAX = 65535 };
+
+typedef struct {
+    int16_t p[4]; /* x, y, z, padding: 8-byte stride */
+} q_position;
+
+static double clampd(double v, double lo, double hi) { return v < lo ? lo : v > hi ? hi : v; }
+
+static int upload_quantized(builder *b, const geometry *geo, geometry_accessors *acc, vec3 *offset, double *scale)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, half = 0;
+    for (int i = 0; i < geo->n_verts; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], geo->pos[3 * i + k]);
+            hi[k] = fmax(hi[k], geo->pos[3 * i + k]);
+        }
+    double mid[3];
+    for (int k = 0; k < 3; k++)
+        mid[k] = 0.5 * (lo[k] + hi[k]), half = fmax(half, 0.5 * (hi[k] - lo[k]));
+    *offset = v3(mid[0], mid[1], mid[2]);
+    *scale = half > 0 ? half / Q_POSITION_MAX : 1.0;
+    size_t nv = (size_t)geo->n_verts, ni = (size_t)geo->n_tris * 3;
+    int small = geo->n_verts <= 65535; /* 65535 itself is the restart index some APIs reserve */
+    q_position *qp = malloc(nv * sizeof *qp);
+    int8_t *qn = malloc(nv * 4);
+    uint16_t *qt = malloc(nv * 2 * sizeof *qt);
+    void *qi = malloc(ni * (small ? sizeof(uint16_t) : sizeof(uint32_t)));
+    int rc = -1;
+    if (!qp || !qn || !qt || !qi)
+        goto done;
+    double qlo[3] = {Q_POSITION_MAX, Q_POSITION_MAX, Q_POSITION_MAX}, qhi[3] = {-Q_POSITION_MAX, -Q_POSITION_MAX, -Q_POSITION_MAX};
+    for (size_t i = 0; i < nv; i++) {
+        for (int k = 0; k < 3; k++) {
+            double q = lround(clampd((geo->pos[3 * i + k] - mid[k]) / *scale, -Q_POSITION_MAX, Q_POSITION_MAX));
+            qp[i].p[k] = (int16_t)q;
+            qlo[k] = fmin(qlo[k], q), qhi[k] = fmax(qhi[k], q);
+            qn[4 * i + k] = (int8_t)lround(clampd(geo->nrm[3 * i + k], -1, 1) * Q_NORMAL_MAX);
+        }
+        qp[i].p[3] = 0, qn[4 * i + 3] = 0;
+        for (int k = 0; k < 2; k++)
+            qt[2 * i + k] = (uint16_t)lround(clampd(geo->uv[2 * i + k], 0, 1) * Q_UV_MAX);
+    }
+    for (size_t i = 0; i < ni; i++) {
+        if (small)
+            ((uint16_t *)qi)[i] = (uint16_t)geo->idx[i];
+        else
+            ((uint32_t *)qi)[i] = geo->idx[i];
+    }
+    int vp = glb_add_strided_view(&b->g, qp, nv * sizeof *qp, GLB_ARRAY_BUFFER, (int)sizeof *qp);
+    int vn = glb_add_strided_view(&b->g, qn, nv * 4, GLB_ARRAY_BUFFER, 4);
+    int vt = glb_add_view(&b->g, qt, nv * 2 * sizeof *qt, GLB_ARRAY_BUFFER);
+    int vi = glb_add_view(&b->g, qi, ni * (small ? sizeof(uint16_t) : sizeof(uint32_t)), GLB_ELEMENT_ARRAY_BUFFER);
+    if (vp < 0 || vn < 0 || vt < 0 || vi < 0)
+        goto done;
+    acc->position = glb_add_accessor(&b->g, vp, GLB_SHORT, geo->n_verts, "VEC3", qlo, qhi);
+    acc->normal = glb_add_accessor(&b->g, vn, GLB_BYTE, geo->n_verts, "VEC3", NULL, NULL);
+    acc->texcoord = glb_add_accessor(&b->g, vt, GLB_UNSIGNED_SHORT, geo->n_verts, "VEC2", NULL, NULL);
+    acc->indices = glb_add_accessor(&b->g, vi, small ? GLB_UNSIGNED_SHORT : GLB_UNSIGNED_INT, (int)ni, "SCALAR", NULL, NULL);
+    rc = acc->position < 0 || acc->normal < 0 || acc->texcoord < 0 || acc->indices < 0 ||
+                 glb_set_normalized(&b->g, acc->normal) != 0 || glb_set_normalized(&b->g, acc->texcoord) != 0
+             ? -1
+             : 0;
+done:
+    free(qp), free(qn), free(qt), free(qi);
+    return rc;
 }
 
 static int add_mesh(builder *b, const char *name, const geometry_accessors *acc, int material)
@@ -129,6 +203,37 @@ static int upload_box(builder *b)
     return upload_quads(b, box, 5, &b->box);
 }
 
+/* The six faces of the box [lo, hi] as quads, normals outward. */
+static void box_quads(vec3 lo, vec3 hi, quad_spec *q)
+{
+    vec3 d = v3_sub(hi, lo);
+    q[0] = (quad_spec){{lo.x, lo.y, hi.z}, {d.x, 0, 0}, {0, d.y, 0}};  /* +z */
+    q[1] = (quad_spec){{hi.x, lo.y, lo.z}, {-d.x, 0, 0}, {0, d.y, 0}}; /* -z */
+    q[2] = (quad_spec){{hi.x, lo.y, hi.z}, {0, 0, -d.z}, {0, d.y, 0}}; /* +x */
+    q[3] = (quad_spec){{lo.x, lo.y, lo.z}, {0, 0, d.z}, {0, d.y, 0}};  /* -x */
+    q[4] = (quad_spec){{lo.x, hi.y, hi.z}, {d.x, 0, 0}, {0, 0, -d.z}}; /* +y */
+    q[5] = (quad_spec){{lo.x, lo.y, lo.z}, {d.x, 0, 0}, {0, 0, d.z}};  /* -y */
+}
+
+/* The twelve edges of the unit case box as bars FRAME_BAR thick (of the
+ * box's side, so about 5 mm on a case): the metal frame that makes the
+ * glass read as a case. */
+#define FRAME_BAR 0.012
+static int upload_frame(builder *b)
+{
+    quad_spec q[12 * 6];
+    const double t = FRAME_BAR / 2;
+    int n = 0;
+    for (int a = -1; a <= 1; a += 2)
+        for (int c = -1; c <= 1; c += 2) {
+            double y = a < 0 ? 0 : 1, s = 0.5 * c, u = 0.5 * a;
+            box_quads(v3(-0.5, y - t, s - t), v3(0.5, y + t, s + t), q + 6 * n++); /* along x */
+            box_quads(v3(s - t, y - t, -0.5), v3(s + t, y + t, 0.5), q + 6 * n++); /* along z */
+            box_quads(v3(u - t, 0, s - t), v3(u + t, 1, s + t), q + 6 * n++);     /* upright */
+        }
+    return upload_quads(b, q, 6 * n, &b->frame);
+}
+
 /* The unit quad [-0.5, 0.5]^2 in z = 0 facing +z: labels. */
 static int upload_label_quad(builder *b)
 {
@@ -150,18 +255,19 @@ static int add_plain_material(builder *b, const char *name, double r, double g, 
                                                     pbr(r, g, bl, roughness)));
 }
 
-/* An embedded image (PNG bytes) as a texture; returns the texture index. */
-static int add_texture(builder *b, const char *name, const uint8_t *png, size_t len)
+/* An embedded image (PNG or JPEG bytes, mime its type) as a texture;
+ * returns the texture index. */
+static int add_texture(builder *b, const char *name, const uint8_t *bytes, size_t len, const char *mime)
 {
     if (!json_object_get(b->g.doc, "samplers"))
         glb_append(&b->g, "samplers", json_pack("{s:i, s:i, s:i, s:i}", "magFilter", FILTER_LINEAR, "minFilter",
                                                 FILTER_LINEAR_MIPMAP_LINEAR, "wrapS", SAMPLER_CLAMP, "wrapT",
                                                 SAMPLER_CLAMP));
-    int view = glb_add_view(&b->g, png, len, 0);
+    int view = glb_add_view(&b->g, bytes, len, 0);
     if (view < 0)
         return -1;
     int image = glb_append(&b->g, "images", json_pack("{s:s, s:i, s:s}", "name", name, "bufferView", view,
-                                                      "mimeType", "image/png"));
+                                                      "mimeType", mime));
     return glb_append(&b->g, "textures", json_pack("{s:s, s:i, s:i}", "name", name, "sampler", 0, "source", image));
 }
 
@@ -169,6 +275,10 @@ static int add_textured_material(builder *b, const char *name, int texture, doub
 {
     json_t *m = json_pack("{s:s, s:{s:{s:i}, s:f, s:f}}", "name", name, "pbrMetallicRoughness", "baseColorTexture",
                           "index", texture, "metallicFactor", 0.0, "roughnessFactor", roughness);
+    /* A glaze is seen from inside too: an open bowl from above shows its
+     * inner wall, the far side's back faces. */
+    if (m && clearcoat)
+        json_object_set_new(m, "doubleSided", json_true());
     if (m && clearcoat)
         json_object_set_new(m, "extensions",
                             json_pack("{s:{s:f, s:f}}", "KHR_materials_clearcoat", "clearcoatFactor", 1.0,
@@ -178,15 +288,22 @@ static int add_textured_material(builder *b, const char *name, int texture, doub
 
 static int add_materials(builder *b)
 {
-    b->mat_floor = add_plain_material(b, "Floor", 0.42, 0.38, 0.34, 0.7);
-    b->mat_wall = add_plain_material(b, "Wall", 0.78, 0.77, 0.74, 0.9);
-    b->mat_ceiling = add_plain_material(b, "Ceiling", 0.85, 0.85, 0.85, 0.95);
+    b->mat_floor = add_plain_material(b, "Floor (oak)", MUSEUM_FLOOR_RGB, 0.55);
+    b->mat_wall = add_plain_material(b, "Wall", MUSEUM_WALL_RGB, 0.9);
+    b->mat_frame = add_plain_material(b, "Case frame", 0.10, 0.10, 0.10, 0.35);
+    /* The lamps glow with the lights' colour (emission only: the point lights light the room). */
+    b->mat_lamp = glb_append(&b->g, "materials",
+                             json_pack("{s:s, s:o, s:[f,f,f]}", "name", "Lamp", "pbrMetallicRoughness",
+                                       pbr(1, 1, 1, 0.9), "emissiveFactor", MUSEUM_LIGHT_COLOR_R, MUSEUM_LIGHT_COLOR_G,
+                                       MUSEUM_LIGHT_COLOR_B));
+    b->mat_ceiling = add_plain_material(b, "Ceiling", MUSEUM_CEILING_RGB, 0.95);
     b->mat_pedestal = add_plain_material(b, "Pedestal", 0.9, 0.89, 0.86, 0.6);
     json_t *glass = json_pack("{s:s, s:o, s:{s:{s:f}, s:{s:f}}}", "name", "Glass", "pbrMetallicRoughness",
                               pbr(1, 1, 1, 0.0), "extensions", "KHR_materials_transmission", "transmissionFactor",
                               1.0, "KHR_materials_ior", "ior", 1.5);
     b->mat_glass = glb_append(&b->g, "materials", glass);
-    return b->mat_floor < 0 || b->mat_wall < 0 || b->mat_ceiling < 0 || b->mat_pedestal < 0 || b->mat_glass < 0
+    return b->mat_floor < 0 || b->mat_wall < 0 || b->mat_ceiling < 0 || b->mat_pedestal < 0 || b->mat_glass < 0 ||
+                   b->mat_frame < 0 || b->mat_lamp < 0
                ? -1
                : 0;
 }
@@ -309,6 +426,40 @@ static int room_nodes(builder *b, const layout_t *l, json_t *root)
     return 0;
 }
 
+/* The visible light fixtures, as one mesh: under each ceiling light's point
+ * a glowing shade LAMP_SIDE square, and a rod up to the ceiling. */
+#define LAMP_SIDE 0.3
+#define LAMP_THICK 0.04
+#define ROD_SIDE 0.012
+static int lamp_nodes(builder *b, const layout_t *l, json_t *root)
+{
+    int n = l->n_ceiling_lights;
+    quad_spec *shades = malloc((size_t)(n > 0 ? n : 1) * 6 * sizeof *shades);
+    quad_spec *rods = malloc((size_t)(n > 0 ? n : 1) * 6 * sizeof *rods);
+    int rc = shades && rods ? 0 : -1;
+    for (int k = 0; k < n && rc == 0; k++) {
+        vec3 p = l->ceiling_lights[k];
+        /* The shade sits just above the light, so the point stays in the open. */
+        box_quads(v3(p.x - LAMP_SIDE / 2, p.y + 0.01, p.z - LAMP_SIDE / 2),
+                  v3(p.x + LAMP_SIDE / 2, p.y + 0.01 + LAMP_THICK, p.z + LAMP_SIDE / 2), shades + 6 * k);
+        box_quads(v3(p.x - ROD_SIDE / 2, p.y + 0.01 + LAMP_THICK, p.z - ROD_SIDE / 2),
+                  v3(p.x + ROD_SIDE / 2, l->height, p.z + ROD_SIDE / 2), rods + 6 * k);
+    }
+    const quad_spec *parts[2] = {shades, rods};
+    const int materials[2] = {b->mat_lamp, b->mat_frame};
+    const char *names[2] = {"Lamps", "Lamp rods"};
+    for (int i = 0; i < 2 && rc == 0 && n > 0; i++) {
+        geometry_accessors acc;
+        int mesh = upload_quads(b, parts[i], 6 * n, &acc) == 0 ? add_mesh(b, names[i], &acc, materials[i]) : -1;
+        rc = mesh < 0 || add_child(root, mesh_node(b, names[i], mesh, v3(0, 0, 0), v3(1, 1, 1))) != 0 ? -1 : 0;
+        b->static_tris += 12 * n;
+        b->static_calls++;
+    }
+    free(shades);
+    free(rods);
+    return rc;
+}
+
 /* The vessel node and one child per level; returns the vessel node. */
 static int vessel_node(builder *b, const museum_exhibit *e, vec3 at, int material)
 {
@@ -328,11 +479,14 @@ static int vessel_node(builder *b, const museum_exhibit *e, vec3 at, int materia
             uv[2 * i] = l->mesh.uv[2 * i], uv[2 * i + 1] = 1.0f - l->mesh.uv[2 * i + 1];
         geo.uv = uv;
         geometry_accessors acc;
-        int rc = upload(b, &geo, &acc);
+        vec3 offset;
+        double scale;
+        int rc = upload_quantized(b, &geo, &acc, &offset, &scale);
         free(uv);
         snprintf(name, sizeof name, "%s, LOD %d (%d segments)", e->title, k, l->segments);
         int mesh = rc == 0 ? add_mesh(b, name, &acc, material) : -1;
-        json_t *child = json_pack("{s:s, s:i, s:{s:f, s:i, s:f}}", "name", name, "mesh", mesh, "extras",
+        json_t *child = json_pack("{s:s, s:i, s:o, s:[f,f,f], s:{s:f, s:i, s:f}}", "name", name, "mesh", mesh,
+                                  "translation", vec_json(offset), "scale", scale, scale, scale, "extras",
                                   "lod_distance", l->distance, "segments", l->segments, "error_m", l->error);
         if (mesh < 0 || add_child(vn, glb_append(&b->g, "nodes", child)) != 0)
             return -1;
@@ -347,8 +501,13 @@ static json_t *exhibit_extras(const museum_exhibit *e, int index)
 {
     char profile[160];
     snprintf(profile, sizeof profile, "vessels/%s/profile.json", e->slug);
-    json_t *x = json_pack("{s:i, s:s, s:f, s:s, s:s}", "index", index, "title", e->title, "height_cm",
-                          100.0 * e->height_m, "photo", e->photo, "profile", profile);
+    char size[128];
+    vessel_size_line(e->height_cm_given, e->diameter_cm_given, size, sizeof size);
+    json_t *x = json_pack("{s:i, s:s, s:f, s:s, s:s, s:s, s:s}", "index", index, "title", e->title, "height_cm",
+                          100.0 * e->height_m, "size", size, "size_from", vessel_size_source_name(e->size_source),
+                          "photo", e->photo, "profile", profile);
+    if (e->below_gate)
+        json_object_set_new(x, "note", json_string(MUSEUM_BELOW_GATE_NOTE));
     if (e->date)
         json_object_set_new(x, "date", json_string(e->date));
     if (e->description)
@@ -367,14 +526,16 @@ static int exhibit_node(builder *b, const museum_exhibit *e, const layout_exhibi
     int rc = add_child(en, mesh_node(b, name, b->mesh_pedestal, v3(0, 0, 0), v3(le->width, le->pedestal_height, le->width)));
     snprintf(name, sizeof name, "Glass case: %s", e->title);
     rc |= add_child(en, mesh_node(b, name, b->mesh_glass, up, v3(le->width, le->case_height, le->width)));
+    snprintf(name, sizeof name, "Case frame: %s", e->title);
+    rc |= add_child(en, mesh_node(b, name, b->mesh_frame, up, v3(le->width, le->case_height, le->width)));
 
     snprintf(name, sizeof name, "Glaze: %s", e->title);
-    int tex = add_texture(b, name, e->texture_png, e->texture_len);
+    int tex = add_texture(b, name, e->texture_jpg, e->texture_len, "image/jpeg");
     int glaze = tex < 0 ? -1 : add_textured_material(b, name, tex, 0.45, 1);
     rc |= glaze < 0 ? -1 : add_child(en, vessel_node(b, e, up, glaze));
 
     snprintf(name, sizeof name, "Label: %s", e->title);
-    int ltex = add_texture(b, name, e->label_png, e->label_len);
+    int ltex = add_texture(b, name, e->label_png, e->label_len, "image/png");
     int lmat = ltex < 0 ? -1 : add_textured_material(b, name, ltex, 0.9, 0);
     int lmesh = lmat < 0 ? -1 : add_mesh(b, name, &b->quad, lmat);
     rc |= lmesh < 0 ? -1
@@ -398,8 +559,9 @@ static int level_at(const museum_exhibit *e, double d)
 
 static void figures(const builder *b, const layout_t *l, const museum_exhibit *ex, int n, museum_report *rep)
 {
-    /* Per exhibit: pedestal and case (5 quads each), label (1 quad). */
-    long long per_exhibit = 10 + 10 + 2;
+    /* Per exhibit: pedestal and case (5 quads each), the case's frame (12
+     * bars of 6 quads), label (1 quad). */
+    long long per_exhibit = 10 + 10 + 12 * 6 * 2 + 2;
     rep->triangles_full = rep->triangles_entrance = rep->triangles_coarsest = b->static_tris + n * per_exhibit;
     for (int i = 0; i < n; i++) {
         double d = v3_len(v3_sub(l->camera_position, l->exhibits[i].vessel_base));
@@ -407,7 +569,7 @@ static void figures(const builder *b, const layout_t *l, const museum_exhibit *e
         rep->triangles_entrance += ex[i].lods[level_at(&ex[i], d)].mesh.n_tris;
         rep->triangles_coarsest += ex[i].lods[ex[i].n_lods - 1].mesh.n_tris;
     }
-    rep->draw_calls = b->static_calls + 4 * n;
+    rep->draw_calls = b->static_calls + 5 * n;
 }
 
 static int build(builder *b, const char *title, const layout_t *l, const museum_exhibit *ex, int n)
@@ -417,8 +579,11 @@ static int build(builder *b, const char *title, const layout_t *l, const museum_
     for (size_t k = 0; k < sizeof extensions / sizeof *extensions; k++)
         if (glb_use_extension(&b->g, extensions[k]) != 0)
             return -1;
-    if (add_materials(b) != 0 || upload_box(b) != 0 || upload_label_quad(b) != 0)
+    if (glb_require_extension(&b->g, "KHR_mesh_quantization") != 0)
         return -1;
+    if (add_materials(b) != 0 || upload_box(b) != 0 || upload_label_quad(b) != 0 || upload_frame(b) != 0)
+        return -1;
+    b->mesh_frame = add_mesh(b, "Case frame", &b->frame, b->mat_frame);
     b->mesh_pedestal = add_mesh(b, "Pedestal", &b->box, b->mat_pedestal);
     b->mesh_glass = add_mesh(b, "Glass case", &b->box, b->mat_glass);
     char name[400];
@@ -428,6 +593,7 @@ static int build(builder *b, const char *title, const layout_t *l, const museum_
                         json_pack("{s:{s:s, s:i, s:[f,f,f], s:f}}", "celadon_museum", "title", title, "vessels", n,
                                   "room", l->width, l->depth, l->height, "aisle", LAYOUT_AISLE));
     int rc = room_nodes(b, l, root);
+    rc |= lamp_nodes(b, l, root);
     rc |= add_child(root, camera_node(b, l));
     for (int k = 0; k < l->n_ceiling_lights && rc == 0; k++) {
         snprintf(name, sizeof name, "Ceiling light %d", k + 1);

@@ -2,13 +2,18 @@
  *
  * Nodes (every name says what it is, with the vessel's title):
  *   "Museum: TITLE"            root; extras.celadon_museum: room size, aisle, vessel count
- *     "Floor", "Walls", "Ceiling"
+ *     "Floor", "Walls", "Ceiling"   an oak-coloured floor, warm white walls
+ *     "Lamps", "Lamp rods"     the ceiling lights' fixtures: glowing shades
+ *                              (emissive) on rods, one mesh each
  *     "Entrance camera"        perspective camera at the entrance
  *     "Ceiling light K"        KHR_lights_punctual point lights
  *     "Exhibit: T"             per vessel, on the floor at the footprint centre;
- *                              extras: title, date, height_cm, description, photo,
+ *                              extras: title, date, height_cm (as shown), size (the
+ *                              label's line: the catalogue's figures only), size_from,
+ *                              note (below the quality gate), description, photo,
  *                              profile (its vessels/SLUG/profile.json)
  *       "Pedestal: T", "Glass case: T"   KHR_materials_transmission + _ior
+ *       "Case frame: T"        the case's twelve edges as thin dark bars
  *       "Vessel: T"            the vessel's base; extras.lod: segments and distances
  *         "T, LOD K (N segments)"  one mesh per level, extras.lod_distance (m)
  *       "Label: T"             textured quad on the pedestal's front
@@ -33,6 +38,12 @@
 #define MUSEUM_LIGHT_COLOR_R 1.0       /* a warm white (about 3500 K) */
 #define MUSEUM_LIGHT_COLOR_G 0.87
 #define MUSEUM_LIGHT_COLOR_B 0.72
+
+/* The room's colours (linear RGB), the glTF's base colours and the scene's
+ * diffuse reflectances alike, so both are the same room. */
+#define MUSEUM_FLOOR_RGB 0.46, 0.33, 0.22 /* oak */
+#define MUSEUM_WALL_RGB 0.84, 0.82, 0.78
+#define MUSEUM_CEILING_RGB 0.85, 0.85, 0.85
 
 /* The case light's intensity for an exhibit. */
 double museum_case_light(const layout_exhibit *e);

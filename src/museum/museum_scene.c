@@ -257,9 +257,9 @@ static int write_document(writer w, const char *title, const layout_t *l, const 
     prop(w, "integer", "max_depth", "8");
     end(w);
     camera(w, l);
-    diffuse(w, "floor", 0.42, 0.38, 0.34);
-    diffuse(w, "wall", 0.78, 0.77, 0.74);
-    diffuse(w, "ceiling", 0.85, 0.85, 0.85);
+    diffuse(w, "floor", MUSEUM_FLOOR_RGB);
+    diffuse(w, "wall", MUSEUM_WALL_RGB);
+    diffuse(w, "ceiling", MUSEUM_CEILING_RGB);
     diffuse(w, "pedestal", 0.9, 0.89, 0.86);
     object(w, "bsdf", "thindielectric", "glass");
     prop(w, "float", "int_ior", "1.5");

@@ -115,6 +115,45 @@ const float *glb_floats(const glb_file *g, int accessor, int *count)
     return (const float *)(const void *)(g->bin + off);
 }
 
+double *glb_positions(const glb_file *g, int accessor, int node, int *count, double *step)
+{
+    json_t *a = json_array_get(json_object_get(g->doc, "accessors"), (size_t)accessor);
+    cr_assert_not_null(a);
+    int type = (int)json_integer_value(json_object_get(a, "componentType"));
+    if (type == 5126) {
+        const float *f = glb_floats(g, accessor, count);
+        double *p = malloc((size_t)*count * 3 * sizeof *p);
+        for (int i = 0; i < 3 * *count; i++)
+            p[i] = f[i];
+        *step = 0;
+        return p;
+    }
+    cr_assert_eq(type, 5122, "positions are floats or 16-bit integers");
+    cr_assert(!json_is_true(json_object_get(a, "normalized")));
+    json_t *v = json_array_get(json_object_get(g->doc, "bufferViews"),
+                               (size_t)json_integer_value(json_object_get(a, "bufferView")));
+    size_t off = (size_t)json_integer_value(json_object_get(v, "byteOffset"));
+    size_t stride = (size_t)json_integer_value(json_object_get(v, "byteStride"));
+    *count = (int)json_integer_value(json_object_get(a, "count"));
+    cr_assert_geq(stride, 6u);
+    cr_assert_leq(off + (size_t)*count * stride, g->bin_len);
+    json_t *n = json_array_get(json_object_get(g->doc, "nodes"), (size_t)node);
+    json_t *t = json_object_get(n, "translation"), *s = json_object_get(n, "scale");
+    double scale = json_number_value(json_array_get(s, 0));
+    cr_assert(scale > 0 && json_number_value(json_array_get(s, 1)) == scale &&
+                  json_number_value(json_array_get(s, 2)) == scale,
+              "a uniform dequantization scale");
+    double *p = malloc((size_t)*count * 3 * sizeof *p);
+    for (int i = 0; i < *count; i++)
+        for (int k = 0; k < 3; k++) {
+            int16_t q;
+            memcpy(&q, g->bin + off + (size_t)i * stride + 2 * (size_t)k, 2);
+            p[3 * i + k] = json_number_value(json_array_get(t, (size_t)k)) + scale * q;
+        }
+    *step = scale;
+    return p;
+}
+
 /* The parent of node (the node whose children list it), or -1. */
 static int parent_of(const glb_file *g, int node)
 {

@@ -37,6 +37,12 @@ void glb_close(glb_file *g);
 /* The floats of a tightly packed FLOAT accessor (count * components). */
 const float *glb_floats(const glb_file *g, int accessor, int *count);
 
+/* The vertex positions of a POSITION accessor in its node's frame (count *
+ * 3 doubles, malloc'd): floats as they are, or KHR_mesh_quantization's
+ * 16-bit integers through the node's translation and uniform scale (*step
+ * receives that scale: the quantization step; 0 for floats). */
+double *glb_positions(const glb_file *g, int accessor, int node, int *count, double *step);
+
 /* The node's translation added up along the path from the scene's root
  * (the museum uses no rotations or scales above vessels). */
 vec3 glb_node_world_translation(const glb_file *g, int node);

@@ -1,12 +1,17 @@
 // Drives a built museum for tests/test_museum_web.c: validates museum.glb
 // with the Khronos glTF validator, serves the folder with `celadon museum
 // --serve 0`, opens index.html in headless Chromium (Debian's, through
-// playwright-core) and takes two screenshots from the entrance, with and
-// without the vessels. Prints one JSON object on stdout; the C test judges it.
+// playwright-core), takes two screenshots from the entrance, with and
+// without the vessels, then in the same page picks each vessel, opens and
+// closes a label, walks by touch (a tap, a drag, the virtual stick) and by
+// emulated WebXR thumbsticks. Prints one JSON object on stdout; the C test
+// judges it.
 //
-//   node tests/web/museum_page.mjs CELADON_BIN MUSEUM_DIR OUT_DIR WIDTH HEIGHT [server]
+//   node tests/web/museum_page.mjs CELADON_BIN MUSEUM_DIR OUT_DIR WIDTH HEIGHT [server|load]
 //
-// With "server" it validates and probes the server only, without the browser.
+// With "server" it validates and probes the server only, without the browser;
+// with "load" it only times the page to its first frames (loadMs: from the
+// request to three rendered frames; docs/BENCHMARKS.md).
 // Run from the repository root: the npm packages come from web/node_modules.
 import { spawn } from 'node:child_process';
 import { createRequire } from 'node:module';
@@ -17,7 +22,7 @@ import path from 'node:path';
 const require = createRequire(path.resolve('web/package.json'));
 const [bin, dir, out, width, height, mode] = process.argv.slice(2);
 const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
-const TIMEOUT_MS = 120000;
+const TIMEOUT_MS = mode === 'shots' || mode === 'load' ? 600000 : 120000;  // the benchmarks' big museums wait longer
 
 async function validate(file) {
   const validator = require('gltf-validator');
@@ -51,6 +56,114 @@ function stop(child) {
   });
 }
 
+const frames = (page, n) => page.evaluate((k) => new Promise((resolve) => {
+  const step = () => (k-- > 0 ? requestAnimationFrame(step) : resolve());
+  step();
+}), n);
+const pose = (page) => page.evaluate(() => window.museum.pose());
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+// A label opened by a pick closes with the panel's button (and its
+// floating plate with it), and again with a pick of nothing.
+async function labelCloses(page, at) {
+  const state = () => page.evaluate(() => ({
+    title: window.museum.label(), floating: window.museum.floatingLabel(),
+    shown: getComputedStyle(document.getElementById('label')).display !== 'none',
+    text: document.getElementById('label').textContent,
+  }));
+  await page.evaluate(([x, y]) => window.museum.pickAt(x, y), [at.x, at.y]);
+  const open = await state();
+  // A real click where the button is (playwright's click() waits for
+  // stable frames, which software WebGL under load may not give in time).
+  const box = await page.locator('#label .close').boundingBox();
+  await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
+  const closed = await state();
+  await page.evaluate(([x, y]) => window.museum.pickAt(x, y), [at.x, at.y]);
+  await page.evaluate(([x, y]) => window.museum.pickAt(x, y), [8, Number(height) - 8]);
+  const nothing = await state();
+  return { open, closed, nothing };
+}
+
+// A finger, through Chromium's own touch input (CDP): points are [x, y].
+async function finger(cdp, points, holdMs) {
+  const at = ([x, y]) => [{ x, y, id: 1 }];
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: at(points[0]) });
+  for (const p of points.slice(1)) await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: at(p) });
+  if (holdMs) await sleep(holdMs);
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
+}
+
+// On a touch screen: a tap on a vessel opens its label, a drag turns the
+// head, the virtual stick walks where the eyes look.
+async function touchWalk(page, context, positions) {
+  const cdp = await context.newCDPSession(page);
+  const w = Number(width), h = Number(height);
+  await finger(cdp, [[positions[1].x, positions[1].y]], 0);
+  await frames(page, 1);
+  const tapped = await page.evaluate(() => window.museum.lastTap);
+  const p0 = await pose(page);
+  const drag = [];
+  for (let k = 0; k <= 10; k++) drag.push([0.7 * w + 10 * k, 0.5 * h]);
+  await finger(cdp, drag, 0);
+  const p1 = await pose(page);
+  const r = await page.evaluate(() => {
+    const b = document.getElementById('stick').getBoundingClientRect();  // shown since the first touch
+    return { x: b.left + b.width / 2, y: b.top + b.height / 2 };
+  });
+  const stick = [[r.x, r.y], [r.x, r.y - 30], [r.x, r.y - 60]];  // the stick's centre, then full ahead
+  const t0 = Date.now();
+  await finger(cdp, stick, 400);
+  const seconds = (Date.now() - t0) / 1000;
+  await frames(page, 1);
+  const p2 = await pose(page);
+  return { tapped, before: p0, turned: p1, walked: p2, seconds };
+}
+
+// WebXR thumbsticks, emulated as the session's input sources: the left one
+// walks where the head looks, the right one turns in snaps.
+async function thumbsticks(page) {
+  const emulate = (sources) => page.evaluate((s) => window.museum.emulateXr(s), sources);
+  const left = (y) => [{ handedness: 'left', gamepad: { axes: [0, 0, 0, y] } }];
+  const right = (x) => [{ handedness: 'right', gamepad: { axes: [0, 0, x, 0] } }];
+  const p0 = await pose(page);
+  const t0 = Date.now();
+  await emulate(left(-1));
+  await sleep(400);
+  await emulate(left(0));
+  const seconds = (Date.now() - t0) / 1000;
+  await frames(page, 1);
+  const walked = await pose(page);
+  await emulate(right(1));
+  await frames(page, 3);
+  const snapped = await pose(page);
+  await frames(page, 3);
+  const held = await pose(page);
+  await emulate(right(0));
+  await frames(page, 1);
+  await emulate(right(1));
+  await frames(page, 2);
+  const again = await pose(page);
+  await emulate(null);
+  return { before: p0, walked, seconds, snapped, held, again };
+}
+
+// The docs' screenshots (docs/museum.md): the entrance, the first case
+// close up, and its label open.
+async function shots(page) {
+  const at = await page.evaluate(() => window.museum.casePosition(0));
+  const entrance = await page.evaluate(() => window.museum.pose());
+  await page.evaluate((p) => window.museum.lookFrom(p.x, 1.6, p.z, 0, 1.1, 0), entrance);
+  await frames(page, 2);
+  await page.screenshot({ path: path.join(out, 'museum-entrance.png'), timeout: 0 });
+  await page.evaluate((c) => window.museum.lookFrom(c.x + 0.35, 1.35, c.z + c.w / 2 + 0.7, c.x, c.y, c.z), at);
+  await frames(page, 2);
+  await page.screenshot({ path: path.join(out, 'museum-case.png'), timeout: 0 });
+  await page.evaluate((c) => window.museum.lookFrom(c.x, c.label + 0.15, c.z + c.w / 2 + 0.45, c.x, c.label, c.z + c.w / 2), at);
+  await frames(page, 2);
+  await page.screenshot({ path: path.join(out, 'museum-label.png'), timeout: 0 });
+  return at;
+}
+
 async function browse(url) {
   const { chromium } = require('playwright-core');
   const profile = mkdtempSync(path.join(tmpdir(), 'celadon-chromium-'));
@@ -72,6 +185,8 @@ async function browse(url) {
     await page.waitForFunction(() => window.museum && (window.museum.ready || window.museum.error),
       null, { timeout: TIMEOUT_MS });
     const loadMs = Date.now() - t0;
+    if (mode === 'load') return { loadMs, consoleErrors };
+    if (mode === 'shots') return { loadMs, shots: await shots(page), consoleErrors };
     const status = await page.evaluate(() => { const m = window.museum; return { error: m.error, title: m.title, vessels: m.vessels, trianglesFullDetail: m.trianglesFullDetail }; });
     const positions = await page.evaluate(() => window.museum.vesselScreenPositions());
     const frame = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
@@ -84,7 +199,19 @@ async function browse(url) {
     await page.evaluate(() => window.museum.setVesselsVisible(true));
     const picked = [];
     for (const p of positions) picked.push(await page.evaluate(([x, y]) => window.museum.pickAt(x, y), [p.x, p.y]));
-    return { ...status, ...figures, loadMs, positions, picked, consoleErrors };
+    const bytes = await page.evaluate(() => ({ loaded: window.museum.bytesLoaded, total: window.museum.bytesTotal }));
+    const phaseMs = { load: loadMs, shots: Date.now() - t0 - loadMs };
+    // The input checks need frames, not pixels: software WebGL draws an
+    // eighth of the width and height from here on, 64 times faster.
+    await page.evaluate(() => window.museum.setPixelRatio(0.125));
+    let t = Date.now();
+    const label = await labelCloses(page, positions[0]);
+    phaseMs.label = Date.now() - t, t = Date.now();
+    const touch = await touchWalk(page, context, positions);
+    phaseMs.touch = Date.now() - t, t = Date.now();
+    const xr = await thumbsticks(page);
+    phaseMs.xr = Date.now() - t;
+    return { ...status, ...figures, loadMs, phaseMs, positions, picked, bytes, label, touch, xr, consoleErrors };
   } finally {
     await context.close();
     rmSync(profile, { recursive: true, force: true });
