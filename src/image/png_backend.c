@@ -105,40 +105,6 @@ static void decode_error(const png_session *s, char *err, size_t errlen)
         snprintf(err, errlen, "damaged PNG (%s)", s->message[0] ? s->message : "libpng failed");
 }
 
-static int png_probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen)
-{
-    png_session s;
-    int rc = read_begin(&s, path, err, errlen);
-    if (rc == 0) {
-        if (setjmp(png_jmpbuf(s.png))) {
-            decode_error(&s, err, errlen);
-            rc = -1;
-        } else {
-            png_set_sig_bytes(s.png, 8);
-            png_init_io(s.png, s.file);
-            png_read_info(s.png, s.info);
-            if (declined(s.png, s.info)) {
-                rc = IMAGE_BACKEND_DECLINED;
-            } else {
-                *width = (int)png_get_image_width(s.png, s.info);
-                *height = (int)png_get_image_height(s.png, s.info);
-                *channels = png_get_channels(s.png, s.info);
-            }
-        }
-    }
-    session_end(&s);
-    return rc;
-}
-
-/* A PNG it decodes has no EXIF: it declines those with an eXIf chunk. */
-static int png_exif_focal_35mm(const char *path, double *mm)
-{
-    int w, h, ch;
-    char err[8];
-    *mm = 0;
-    return png_probe(path, &w, &h, &ch, err, sizeof err) == 0 ? 0 : IMAGE_BACKEND_DECLINED;
-}
-
 /* Decodes s's image (header read) into img. */
 static int decode(png_session *s, image_t *img, char *err, size_t errlen)
 {
@@ -182,9 +148,11 @@ static int decode(png_session *s, image_t *img, char *err, size_t errlen)
     return 0;
 }
 
-static int png_read(const char *path, image_t *img, char *err, size_t errlen)
+/* Reads the header of the PNG at path, then decodes its pixels into img,
+ * or when img is NULL gives its size. */
+static int read_png(const char *path, image_t *img, int *width, int *height, int *channels, char *err,
+                    size_t errlen)
 {
-    memset(img, 0, sizeof *img);
     png_session s;
     int rc = read_begin(&s, path, err, errlen);
     if (rc == 0) {
@@ -195,10 +163,39 @@ static int png_read(const char *path, image_t *img, char *err, size_t errlen)
             png_set_sig_bytes(s.png, 8);
             png_init_io(s.png, s.file);
             png_read_info(s.png, s.info);
-            rc = declined(s.png, s.info) ? IMAGE_BACKEND_DECLINED : decode(&s, img, err, errlen);
+            if (declined(s.png, s.info)) {
+                rc = IMAGE_BACKEND_DECLINED;
+            } else if (img) {
+                rc = decode(&s, img, err, errlen);
+            } else {
+                *width = (int)png_get_image_width(s.png, s.info);
+                *height = (int)png_get_image_height(s.png, s.info);
+                *channels = png_get_channels(s.png, s.info);
+            }
         }
     }
     session_end(&s);
+    return rc;
+}
+
+static int png_probe(const char *path, int *width, int *height, int *channels, char *err, size_t errlen)
+{
+    return read_png(path, NULL, width, height, channels, err, errlen);
+}
+
+/* A PNG it decodes has no EXIF: it declines those with an eXIf chunk. */
+static int png_exif_focal_35mm(const char *path, double *mm)
+{
+    int w, h, ch;
+    char err[8];
+    *mm = 0;
+    return png_probe(path, &w, &h, &ch, err, sizeof err) == 0 ? 0 : IMAGE_BACKEND_DECLINED;
+}
+
+static int png_read(const char *path, image_t *img, char *err, size_t errlen)
+{
+    memset(img, 0, sizeof *img);
+    int rc = read_png(path, img, NULL, NULL, NULL, err, errlen);
     if (rc != 0) {
         free(img->data);
         img->data = NULL;
