@@ -100,7 +100,12 @@ static void check_level_on_surface(const glb_file *g, int node, json_t *mesh, co
     const bspline_t *c = profile_shape(p, &domains, &n_domains);
     double step;
     double *pos = glb_positions(g, (int)json_integer_value(json_object_get(attrs, "POSITION")), node, &n, &step);
-    double rim = bspline_eval(c, 1.0).y, scale = height_m / rim;
+    /* The catalogue's height is the vessel's top: its highest point, which
+     * a lip rolled over the rim puts above the curve's end (sampled here). */
+    double shape_top = 0.0;
+    for (int k = 0; k <= 100000; k++)
+        shape_top = fmax(shape_top, bspline_eval(c, k / 100000.0).y);
+    double scale = height_m / shape_top;
     /* Rounding each coordinate to the step moves a vertex by at most
      * sqrt(3)/2 steps (9 um on a 60 cm vessel); float math adds ~3e-8 m. */
     double tol = sqrt(3.0) / 2 * step + 1e-7;
@@ -124,7 +129,11 @@ static void check_level_on_surface(const glb_file *g, int node, json_t *mesh, co
     }
     cr_expect_gt(step, 0, "the levels are quantized (KHR_mesh_quantization)");
     cr_expect_lt(worst, tol, "a vertex lies %.2g m off the profile's surface (step %.2g m)", worst, step);
-    cr_expect(fabs(top - height_m) < tol, "the rim at %.6f m, the catalogue says %.6f m", top, height_m);
+    /* Never taller than the catalogue; lower by at most the level's sagitta
+     * where the top falls between two rings (88 um on a 14 cm vessel's
+     * coarsest level). */
+    cr_expect(top < height_m + tol && top > height_m * (1 - 1e-3), "the top at %.6f m, the catalogue says %.6f m",
+              top, height_m);
     free(pos);
 }
 

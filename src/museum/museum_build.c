@@ -93,13 +93,13 @@ static int write_bytes(const char *path, const uint8_t *data, size_t len)
 }
 
 /* The largest radius of the profile's control polygon (a bound on the
- * curve's, by the convex hull property), in metres. */
-static double radius_bound(const bspline_t *c, double height_m)
+ * curve's, by the convex hull property), in metres at m_per_unit. */
+static double radius_bound(const bspline_t *c, double m_per_unit)
 {
     double r = 0.0;
     for (int i = 0; i < c->n_ctrl; i++)
         r = fmax(r, fabs(c->ctrl[i].x));
-    return r * height_m / bspline_eval(c, 1.0).y;
+    return r * m_per_unit;
 }
 
 /* One photo: the pipeline, its profile.json and texture.png in
@@ -146,13 +146,14 @@ static void make_exhibit(const museum_options *opt, const char *tmp, museum_exhi
         museum_folder_remove(path); /* a refused photo leaves nothing */
         return;
     }
-    double rim = bspline_eval(&e->curve, 1.0).y;
-    e->height_m = vessel_size_height_m(e->height_cm_given, e->diameter_cm_given, rim,
+    double top = vessel_shape_top(&e->curve), rim = bspline_eval(&e->curve, 1.0).y;
+    e->height_m = vessel_size_height_m(e->height_cm_given, e->diameter_cm_given, top,
                                        vessel_shape_max_radius(&e->curve), &e->size_source);
-    e->radius_m = radius_bound(&e->curve, e->height_m);
+    e->rim_height_m = e->height_m * rim / top;
+    e->radius_m = radius_bound(&e->curve, e->height_m / top);
     layout_vessel lv = {e->height_m, e->radius_m};
     double nearest = e->radius_m + layout_clearance(&lv) + VISITOR_RADIUS;
-    e->n_lods = lod_make(&e->curve, e->height_m, opt->lods, opt->n_lods, nearest, e->lods);
+    e->n_lods = lod_make(&e->curve, e->rim_height_m, opt->lods, opt->n_lods, nearest, e->lods);
     if (e->n_lods < 1) {
         e->n_lods = 0;
         rep->status = 1;

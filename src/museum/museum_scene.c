@@ -148,7 +148,7 @@ static void vessel(writer w, const museum_exhibit *e, const layout_exhibit *le)
     attr(w, "name", buf);
     snprintf(buf, sizeof buf, "vessels/%s/profile.json", e->slug);
     prop(w, "string", "filename", buf);
-    propf(w, "float", "height", "%.6g", e->height_m);
+    propf(w, "float", "height", "%.6g", e->rim_height_m);
     prop(w, "boolean", "caps", "false");
     start(w, "transform");
     attr(w, "name", "to_world");
