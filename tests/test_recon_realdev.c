@@ -60,7 +60,7 @@ Test(recon_realdev, most_real_photos_pass_and_build, .timeout = 1800)
             cr_log_info("%-50s mask IoU %.4f, outline %.2f%%, beyond the body %.2f%% of its height",
                         list[i]->d_name, realdev_truth_iou(&t, r.extract.mask), 100 * off, 100 * over);
             if (!on)
-                cr_log_warn("%s passes off the true outline", list[i]->d_name);
+                cr_log_info("%s passes off the true outline", list[i]->d_name);
             on_outline += on;
             realdev_truth_free(&t);
         }
