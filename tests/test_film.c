@@ -72,6 +72,18 @@ Test(film, averages_weights_and_merges)
     film_free(&b);
     const film_aov bad[] = {{"x", 2, NULL}};
     cr_assert_eq(film_init(&a, 4, 3, bad, 1, err, sizeof err), -1);
+    /* channels written under one name twice: refused before any render */
+    static const char *const z[1] = {"Z"}, *const y[1] = {"Y"}, *const none[1] = {""};
+    const film_aov depth_z[] = {{"Z", 1, none}};
+    cr_assert_eq(film_init_format(&a, 4, 3, FILM_XYZ, depth_z, 1, err, sizeof err), -1);
+    cr_expect_str_eq(err, "the channel 'Z' of AOV 'Z' is written twice on a xyz film");
+    cr_assert_eq(film_init_format(&a, 4, 3, FILM_RGB, depth_z, 1, err, sizeof err), 0, "%s", err);
+    film_free(&a);
+    const film_aov twice[] = {{"Depth", 1, z}, {"Depth", 1, z}}, lum[] = {{"", 1, y}};
+    cr_assert_eq(film_init(&a, 4, 3, twice, 2, err, sizeof err), -1);
+    cr_assert_eq(film_init_format(&a, 4, 3, FILM_LUMINANCE_ALPHA, lum, 1, err, sizeof err), -1);
+    cr_assert_eq(film_init_format(&a, 4, 3, FILM_XYZA, twice, 1, err, sizeof err), 0, "%s", err);
+    film_free(&a);
     cr_assert_eq(film_init(&a, 0, 3, NULL, 0, err, sizeof err), -1);
 }
 

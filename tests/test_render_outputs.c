@@ -520,3 +520,30 @@ Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
         cr_expect_eq(found[k], want[k].n, "pass %s has %d channels", want[k].pass, found[k]);
     exr_planes_free(&e);
 }
+
+/* On an X, Y, Z film the depth is Depth.Z: the colour keeps X, Y and Z, the
+ * depth opens as Blender's Depth pass (it used to be a second Z, and the
+ * EXR could not be written after the whole render). */
+Test(render_outputs, depth_on_an_xyz_film_is_depth_z, .timeout = 60)
+{
+    char xml[sizeof lit_floor_xml + 64], scene[128], out[160], layer[32], pass[32], chan[32];
+    const char *film = strstr(lit_floor_xml, "<rfilter");
+    snprintf(xml, sizeof xml, "%.*s<string name=\"pixel_format\" value=\"xyz\"/>%s", (int)(film - lit_floor_xml),
+             lit_floor_xml, film);
+    scratch_write_file(dir, "xyz.xml", xml, scene, sizeof scene);
+    snprintf(out, sizeof out, "%s/xyz.exr", dir);
+    render_ok((const char *[]){"render", scene, "-o", out, "--aov", "depth", "--spp", "1", NULL});
+    exr_planes e;
+    read_exr(out, &e);
+    cr_expect_eq(e.nch, 4);
+    cr_expect(exr_planes_has(&e, "X") && exr_planes_has(&e, "Y") && exr_planes_has(&e, "Z"));
+    cr_assert(exr_planes_has(&e, "Depth.Z"));
+    blender_split("Depth.Z", 1, layer, pass, chan);
+    cr_expect(!strcmp(pass, "Depth") && !strcmp(chan, "Z"));
+    float near = INFINITY;
+    const float *z = e.planes[plane_index(&e, "Depth.Z")];
+    for (int p = 0; p < e.width * e.height; p++)
+        near = z[p] > 0 && z[p] < near ? z[p] : near;
+    cr_expect(fabsf(near - 2.0f) < 0.05f, "nearest depth %g: the sphere's top is 2 below the camera", near);
+    exr_planes_free(&e);
+}

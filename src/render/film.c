@@ -33,6 +33,55 @@ int film_format_parse(const char *name, film_pixel_format *f)
     return -1;
 }
 
+/* Channel c of an AOV as the film names it: "name.suffix", a one-channel
+ * AOV's suffix Y, a three-channel one's R, G, B unless it names its own. */
+static char *aov_channel_name(const film_aov *a, int c)
+{
+    return dup_name(a->name, a->suffixes ? a->suffixes[c] : a->channels == 1 ? "Y" : rgb_names[c]);
+}
+
+/* The colour channels as the pixel format writes them (film_develop_exr). */
+static int written_colour_names(film_pixel_format format, const char **names)
+{
+    static const char *const xyz_names[3] = {"X", "Y", "Z"};
+    int lum = format == FILM_LUMINANCE || format == FILM_LUMINANCE_ALPHA;
+    int xyz = format == FILM_XYZ || format == FILM_XYZA, n = lum ? 1 : 3;
+    for (int c = 0; c < n; c++)
+        names[c] = lum ? "Y" : xyz ? xyz_names[c] : rgb_names[c];
+    if (film_format_has_alpha(format))
+        names[n++] = "A";
+    return n;
+}
+
+/* An AOV channel written under the name of a colour channel or of another
+ * AOV's channel (depth's Z on an X, Y, Z film) would make an EXR no
+ * reader accepts: refused before anything is rendered. */
+static int aov_names_collide(film_pixel_format format, const film_aov *aovs, int naovs, char *err, size_t errlen)
+{
+    const char *colour[4];
+    int ncolour = written_colour_names(format, colour);
+    for (int a = 0; a < naovs; a++)
+        for (int c = 0; c < aovs[a].channels; c++) {
+            char *name = aov_channel_name(&aovs[a], c);
+            int clash = 0;
+            for (int k = 0; k < ncolour && !clash; k++)
+                clash = !strcmp(name, colour[k]);
+            for (int b = 0; b < a && !clash; b++)
+                for (int d = 0; d < aovs[b].channels && !clash; d++) {
+                    char *other = aov_channel_name(&aovs[b], d);
+                    clash = !strcmp(name, other);
+                    free(other);
+                }
+            if (clash)
+                snprintf(err, errlen, "the channel '%s' of AOV '%s' is written twice on a %s film", name, aovs[a].name,
+                         film_format_name(format));
+            free(name);
+            if (clash)
+                return 1;
+        }
+    return 0;
+}
+
 int film_init_format(film_t *f, int width, int height, film_pixel_format format, const film_aov *aovs, int naovs,
                      char *err, size_t errlen)
 {
@@ -51,6 +100,8 @@ int film_init_format(film_t *f, int width, int height, film_pixel_format format,
         }
         n += aovs[a].channels;
     }
+    if (aov_names_collide(format, aovs, naovs, err, errlen))
+        return -1;
     f->width = width;
     f->height = height;
     f->nchannels = n;
@@ -68,10 +119,8 @@ int film_init_format(film_t *f, int width, int height, film_pixel_format format,
     if (alpha)
         f->names[k++] = dup_name("", "A");
     for (int a = 0; a < naovs; a++)
-        for (int c = 0; c < aovs[a].channels; c++) {
-            const char *suffix = aovs[a].suffixes ? aovs[a].suffixes[c] : aovs[a].channels == 1 ? "Y" : rgb_names[c];
-            f->names[k++] = dup_name(aovs[a].name, suffix);
-        }
+        for (int c = 0; c < aovs[a].channels; c++)
+            f->names[k++] = aov_channel_name(&aovs[a], c);
     return 0;
 }
 

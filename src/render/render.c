@@ -253,17 +253,20 @@ static void describe(const scene_t *s, film_metadata *m)
  * the integrator's own ones; the extras written from the pixels' samples. */
 int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, size_t errlen)
 {
-    static const char *const xyz[3] = {"X", "Y", "Z"}, *const rgb_names[3] = {"R", "G", "B"};
+    static const char *const xyz_names[3] = {"X", "Y", "Z"}, *const rgb_names[3] = {"R", "G", "B"};
     static const char *const whole[1] = {""};
     int nown = integrator_channel_count(s->integrator);
     film_aov *list = malloc(sizeof *list * (size_t)(3 + nown));
     if (!list)
         abort();
     int naov = 0;
+    /* Z is Blender's Depth pass, unless X, Y and Z are the colour: then
+     * Depth.Z, the same pass as Blender reads it. */
+    int xyz = s->film.format == FILM_XYZ || s->film.format == FILM_XYZA;
     if (aovs & RENDER_AOV_DEPTH)
-        list[naov++] = (film_aov){"Z", 1, whole};
+        list[naov++] = xyz ? (film_aov){"Depth", 1, xyz_names + 2} : (film_aov){"Z", 1, whole};
     if (aovs & RENDER_AOV_NORMAL)
-        list[naov++] = (film_aov){"N", 3, xyz};
+        list[naov++] = (film_aov){"N", 3, xyz_names};
     if (aovs & RENDER_AOV_ALBEDO)
         list[naov++] = (film_aov){"albedo", 3, rgb_names};
     for (int i = 0; i < nown; i++)
