@@ -181,19 +181,17 @@ Test(reconstruct_option_set, checks_as_the_command_line)
 
 /* The outermost crossing of height h found on a dense sampling of the
  * curve (linear between samples): the brute-force reference. */
-static double sampled_radius(const bspline_t *c, double h_abs, int *found)
+enum { RADIUS_SAMPLES = 200000 };
+static double sampled_radius(const vec2 *pts, double h_abs, int *found)
 {
-    enum { N = 200000 };
     double best = 0;
     *found = 0;
-    vec2 prev = bspline_eval(c, 0);
-    for (int i = 1; i <= N; i++) {
-        vec2 p = bspline_eval(c, (double)i / N);
+    for (int i = 1; i <= RADIUS_SAMPLES; i++) {
+        vec2 prev = pts[i - 1], p = pts[i];
         if ((prev.y - h_abs) * (p.y - h_abs) <= 0 && prev.y != p.y) {
             double r = prev.x + (h_abs - prev.y) / (p.y - prev.y) * (p.x - prev.x);
             best = (*found)++ ? fmax(best, r) : r;
         }
-        prev = p;
     }
     return best;
 }
@@ -202,15 +200,19 @@ static double sampled_radius(const bspline_t *c, double h_abs, int *found)
  * wall turns back), at heights across the whole range. */
 Test(profile_radius, is_the_outermost_crossing)
 {
+    vec2 *pts = malloc(sizeof *pts * (RADIUS_SAMPLES + 1));
+    cr_assert_not_null(pts);
     for (int i = 0; i < sor_test_profile_count(); i++) {
         profile_t p;
         memset(&p, 0, sizeof p);
         sor_test_profile(i, &p.curve);
+        for (int j = 0; j <= RADIUS_SAMPLES; j++)
+            pts[j] = bspline_eval(&p.curve, (double)j / RADIUS_SAMPLES);
         double h_rim = bspline_eval(&p.curve, 1.0).y;
         for (int k = 0; k <= 20; k++) {
             double h = 0.025 + 0.95 * k / 20.0, r;
             int found;
-            double want = sampled_radius(&p.curve, h * h_rim, &found);
+            double want = sampled_radius(pts, h * h_rim, &found);
             int rc = profile_radius(&p, h, &r);
             cr_expect_eq(rc == 0, found > 0, "%s at h = %g", sor_test_profile_name(i), h);
             if (rc == 0 && found)
@@ -221,4 +223,5 @@ Test(profile_radius, is_the_outermost_crossing)
         cr_expect_eq(profile_radius(&p, 1.5, &r), -1, "above the rim");
         bspline_free(&p.curve);
     }
+    free(pts);
 }

@@ -17,6 +17,7 @@
 
 #include "celadon/image.h"
 #include "support/museum_fixture.h"
+#include "support/test_build.h"
 
 /* Two vessels: every check below needs no more. */
 enum { N_PHOTOS = 2, SHOT_W = 640, SHOT_H = 360 };
@@ -205,8 +206,7 @@ Test(museum_web, the_page_loads_and_shows_every_vessel, .timeout = 600)
      * page: the ASan+UBSan run builds the museum and probes its server, and
      * leaves the page (Chromium's software WebGL, most of the test's time)
      * to the optimised run. */
-    const char *build = getenv("CELADON_BUILD");
-    int page = !(build && !strcmp(build, "asan"));
+    int page = !test_build_is_sanitized();
     json_t *res = drive(out, page);
     json_t *val = json_object_get(res, "validator");
     cr_expect_eq(json_integer_value(json_object_get(val, "errors")), 0, "glTF validator: %s",
