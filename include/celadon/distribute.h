@@ -25,6 +25,14 @@ typedef struct {
     int rank, size; /* this process's rank and the job's size (0 and 1 outside MPI) */
 } distribute_job;
 
+/* The number of processes the launcher (mpirun, srun, mpiexec) says the job
+ * has: 0 when no launcher started this process, -1 when one did without
+ * saying how many. */
+int distribute_launched_size(void);
+/* This process's rank as the launcher says it (0 when none does), known
+ * before distribute_begin. */
+int distribute_launched_rank(void);
+
 /* Joins the MPI job when mpirun or srun started this process (MPI's
  * environment variables say so); otherwise *job is {0, 1} and MPI is not
  * touched. Returns 0, or -1 with one line in err (empty on the ranks other

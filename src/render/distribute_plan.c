@@ -2,6 +2,8 @@
  * environment. */
 #include "render/distribute_plan.h"
 
+#include "celadon/distribute.h"
+
 #include <stdlib.h>
 
 enum { ROW_ALIGN = 16 };       /* the render loop's tile size: bands of whole tiles */
