@@ -1,14 +1,16 @@
 /* `celadon render` under mpirun (distribute.h): the ranks' image is the
  * one-process image of the same seed within float rounding, a stopped rank
- * does not hold the others, SIGINT to mpirun leaves the partial image, and
- * the plan's units cover every sample of every pixel once. The MPI tests
- * skip when celadon was built without MPI or mpirun is missing. */
+ * does not hold the others, SIGINT to mpirun leaves the partial image, the
+ * plan's units cover every sample of every pixel once, and a job on one node
+ * is given shared memory. The MPI tests skip when celadon was built without
+ * MPI or mpirun is missing. */
 #include <criterion/criterion.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include "celadon/distribute.h"
 #include "render/distribute_plan.h"
 #include "test_distribute_support.h"
 
@@ -51,6 +53,30 @@ Test(distribute_plan, units_cover_every_sample_once)
         cr_assert_eq(covered, total, "case %zu: %lld of %lld covered", c, covered, total);
         free(seen);
     }
+}
+
+/* The launcher's environment: shared memory is chosen for a job on one node
+ * only, and never over a transport the user chose. (Criterion runs each
+ * test in a process of its own: the environment changed here stays here.) */
+Test(distribute_env, shared_memory_only_for_one_node_and_no_choice)
+{
+    static const char *const vars[] = {"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_LOCAL_SIZE", "OMPI_MCA_pml",
+                                       "OMPI_MCA_btl", "OMPI_MCA_mtl"};
+    for (int i = 0; i < 5; i++)
+        unsetenv(vars[i]);
+    cr_expect_eq(distribute_prefer_shared_memory(), 0, "not under Open MPI");
+    setenv("OMPI_COMM_WORLD_SIZE", "4", 1);
+    setenv("OMPI_COMM_WORLD_LOCAL_SIZE", "2", 1);
+    cr_expect_eq(distribute_prefer_shared_memory(), 0, "ranks on two nodes");
+    cr_expect_null(getenv("OMPI_MCA_pml"));
+    setenv("OMPI_COMM_WORLD_LOCAL_SIZE", "4", 1);
+    setenv("OMPI_MCA_mtl", "psm2", 1);
+    cr_expect_eq(distribute_prefer_shared_memory(), 0, "the user chose an MTL");
+    cr_expect_null(getenv("OMPI_MCA_pml"));
+    unsetenv("OMPI_MCA_mtl");
+    cr_expect_eq(distribute_prefer_shared_memory(), 1, "every rank on this node");
+    cr_expect_str_eq(getenv("OMPI_MCA_pml"), "ob1");
+    cr_expect_str_eq(getenv("OMPI_MCA_btl"), "self,vader");
 }
 
 /* mpirun's command line for `celadon ARGS` on np ranks. */

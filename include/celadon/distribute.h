@@ -33,6 +33,15 @@ int distribute_launched_size(void);
  * before distribute_begin. */
 int distribute_launched_rank(void);
 
+/* Under Open MPI with every rank on this node (OMPI_COMM_WORLD_LOCAL_SIZE
+ * is OMPI_COMM_WORLD_SIZE) and no transport chosen (none of OMPI_MCA_pml,
+ * _btl, _mtl set, as mpirun --mca does): chooses shared memory, pml ob1 and
+ * btl self,vader (what Open MPI ends up with on a machine without a fabric),
+ * so that MPI_Init does not first open and probe the fabrics' components
+ * (Debian's psm, psm2, tcp: 0.2 s of every rank's wall time,
+ * docs/distributed.md). Returns whether it did; distribute_begin calls it. */
+int distribute_prefer_shared_memory(void);
+
 /* Joins the MPI job when mpirun or srun started this process (MPI's
  * environment variables say so); otherwise *job is {0, 1} and MPI is not
  * touched. Returns 0, or -1 with one line in err (empty on the ranks other

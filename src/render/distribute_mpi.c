@@ -59,6 +59,7 @@ int distribute_begin(distribute_job *job, char *err, size_t errlen)
     *job = (distribute_job){0, 1};
     if (distribute_launched_size() == 0)
         return 0;
+    distribute_prefer_shared_memory();
     int provided;
     if (MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
         snprintf(err, errlen, "MPI_Init_thread failed");
