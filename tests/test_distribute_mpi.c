@@ -8,6 +8,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 
 #include "celadon/distribute.h"
@@ -122,17 +123,36 @@ static int run_mpi(const render_fixture *f, const char *np, const char *const *a
     return r.status;
 }
 
-/* The units each rank took, from rank 0's "distribute: ... units per rank:
- * a b c; ..." line; returns how many ranks it lists. */
-static int units_per_rank(const char *err, int *units, int max)
+/* The numbers after label in rank 0's balance line ("distribute: units per
+ * rank: a b c; CPU s before rendering per rank: x y z; ..."); returns how
+ * many it lists. */
+static int per_rank(const char *err, const char *label, double *v, int max)
 {
-    const char *p = strstr(err, "units per rank:");
-    cr_assert_not_null(p, "no balance line in: %s", err);
-    p += strlen("units per rank:");
+    const char *p = strstr(err, label);
+    cr_assert_not_null(p, "no \"%s\" in: %s", label, err);
+    p += strlen(label);
     int n = 0, len;
-    while (n < max && sscanf(p, " %d%n", &units[n], &len) == 1)
+    while (n < max && sscanf(p, " %lf%n", &v[n], &len) == 1)
         n++, p += len;
     return n;
+}
+
+/* The units each rank took. */
+static int units_per_rank(const char *err, int *units, int max)
+{
+    double v[8];
+    int n = per_rank(err, "units per rank:", v, max < 8 ? max : 8);
+    for (int r = 0; r < n; r++)
+        units[r] = (int)v[r];
+    return n;
+}
+
+static double children_cpu_seconds(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_CHILDREN, &ru);
+    return (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec + (double)ru.ru_stime.tv_sec +
+           1e-6 * (double)ru.ru_stime.tv_usec;
 }
 
 Test(distribute_mpi, two_and_three_ranks_give_the_single_image, .timeout = 600)
@@ -148,12 +168,23 @@ Test(distribute_mpi, two_and_three_ranks_give_the_single_image, .timeout = 600)
     for (int i = 0; i < 2; i++) {
         const char *a[] = {"render", scene, "-o", fixture_path(&f, "ranks.exr", out, sizeof out), "--threads", "1",
                            "--aov", "normal", NULL};
+        double cpu0 = children_cpu_seconds();
         cr_assert_eq(run_mpi(&f, nps[i], a, err, sizeof err), 0, "%s", err);
+        double job_cpu = children_cpu_seconds() - cpu0;
         int units[8], n = units_per_rank(err, units, 8), sum = 0;
         cr_expect_eq(n, atoi(nps[i]), "%s", err);
         for (int r = 0; r < n; r++)
             sum += units[r];
         cr_expect_eq(sum, distribute_plan_make(0, 96, 64, 48, n).units, "%s", err);
+        /* Each rank's fixed cost (start, MPI_Init, build) is some CPU time,
+         * and together less than the job's, which also rendered. */
+        double ready[8], ready_sum = 0.0;
+        cr_expect_eq(per_rank(err, "CPU s before rendering per rank:", ready, 8), n, "%s", err);
+        for (int r = 0; r < n; r++) {
+            cr_expect_gt(ready[r], 0.0, "rank %d: %s", r, err);
+            ready_sum += ready[r];
+        }
+        cr_expect_lt(ready_sum, job_cpu, "the ranks' fixed cost %g s of a job of %g s", ready_sum, job_cpu);
         image_t m = read_image(out);
         double worst;
         cr_expect(same_within_rounding(&s, &m, &worst), "%s ranks differ from one process by %g", nps[i], worst);

@@ -349,13 +349,26 @@ static void reduce_to_root(double *a, size_t n, int rank)
     }
 }
 
-static void print_balance(const coordinator *c, double reduce_seconds)
+static void print_balance(const coordinator *c, const double *ready_cpu, double reduce_seconds)
 {
     fprintf(stderr, "distribute: units per rank:");
     for (int r = 0; r < c->size; r++)
         fprintf(stderr, " %d", c->units[r]);
+    fprintf(stderr, "; CPU s before rendering per rank:");
+    for (int r = 0; r < c->size; r++)
+        fprintf(stderr, " %.2f", ready_cpu[r]);
     fprintf(stderr, "; films summed in %.3f s\n", reduce_seconds);
 }
+
+static double process_cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The process's CPU time at the end of its last distributed render. */
+static double cpu_after_last_render;
 
 int distribute_render(const scene_t *s, const render_options *opt, film_t *film, render_stats *stats, char *err,
                       size_t errlen)
@@ -363,6 +376,9 @@ int distribute_render(const scene_t *s, const render_options *opt, film_t *film,
     int size = job_size();
     if (size == 1)
         return render_scene(s, opt, film, stats, err, errlen);
+    /* A rank's fixed cost: its start, MPI_Init and scene build (the first
+     * render), or the next frame's build. */
+    double ready_cpu = process_cpu_seconds() - cpu_after_last_render;
     int rank;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     int s0, s1, width, height;
@@ -415,6 +431,10 @@ int distribute_render(const scene_t *s, const render_options *opt, film_t *film,
     reduce_to_root(film->samples, npix * 3, rank);
     reduce_to_root(film->ids, npix * 2, rank); /* one rank took each pixel's sample 0 */
     double t_end = now_seconds();
+    double *ready = rank == 0 ? calloc((size_t)size, sizeof(double)) : NULL;
+    if (rank == 0 && !ready)
+        abort();
+    MPI_Gather(&ready_cpu, 1, MPI_DOUBLE, ready, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
     /* Interrupted: fewer samples than asked for. Every rank learns it from
      * rank 0, so that they all stop or go on (--frames) together. */
     render_stats st = {t_end - w.tally.t_start, rank == 0 ? all : taken, all < render_sample_count(s, s0, s1),
@@ -431,14 +451,15 @@ int distribute_render(const scene_t *s, const render_options *opt, film_t *film,
             char who[64];
             snprintf(who, sizeof who, "%d ranks (rank 0: %d thread%s)", size, w.threads, w.threads > 1 ? "s" : "");
             render_print_summary(s, opt, &st, who);
-            print_balance(&c, t_end - t_reduce);
+            print_balance(&c, ready, t_end - t_reduce);
         }
-        free(c.told_none), free(c.told_stop), free(c.units), free(c.taken);
+        free(c.told_none), free(c.told_stop), free(c.units), free(c.taken), free(ready);
     } else {
         film_free(film);
     }
     if (stats)
         *stats = st;
     render_stop_clear();
+    cpu_after_last_render = process_cpu_seconds();
     return 0;
 }
