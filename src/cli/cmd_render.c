@@ -360,8 +360,8 @@ static scene_t *build_scene(render_args *a, int i, int *s0, int *s1, char *err, 
 }
 
 /* The first render's scene, built in a thread of its own while the main
- * thread joins the MPI job (MPI_Init waits for every rank to start: a
- * quarter of a second of wall time and little CPU, docs/distributed.md). */
+ * thread joins the MPI job (MPI_Init waits for every rank to start:
+ * 0.15-0.4 s of wall time and little CPU, docs/distributed.md). */
 typedef struct {
     render_args *a;
     scene_t *scene;
@@ -388,6 +388,7 @@ static int render_one(render_args *a, const distribute_job *job, scene_build *b,
         else if (failed == job->rank)
             fprintf(stderr, "celadon: %s\n", b->err);
         scene_destroy(b->scene);
+        b->scene = NULL;
         return 2;
     }
     a->ro.sample_begin = b->s0, a->ro.sample_end = b->s1;
