@@ -67,7 +67,7 @@ BENCH_C  := $(wildcard bench/*.c)
 # $(call objs,VARIANT,SOURCES)
 objs = $(patsubst %.c,build/$(1)/%.o,$(filter %.c,$(2))) $(patsubst %.cpp,build/$(1)/%.o,$(filter %.cpp,$(2)))
 
-.PHONY: all deps test test-fast test-asan check-layout demo bench bench-sor bench-denoise clean web
+.PHONY: all deps test test-fast test-asan check-layout demo bench bench-sor bench-denoise bench-mpi clean web
 all: check-deps-stamp
 	@$(MAKE) --no-print-directory build/celadon web
 
@@ -337,6 +337,17 @@ bench-render: check-deps-stamp
 	@$(MAKE) --no-print-directory build/bench/bench_render
 	@mkdir -p out/bench
 	build/bench/bench_render | tee out/bench/bench_render.txt
+
+# ---------------------------------------------------------------- MPI scaling
+# One process against mpirun -np 1, 2, 4 on studio (320x180, 64 spp, one
+# thread per rank), the fixed cost F(R) and the cost model of
+# docs/distributed.md ("What a rank costs"); docs/BENCHMARKS.md, "MPI
+# scaling". REPEAT runs of each (default 3); the fastest is reported.
+.PHONY: bench-mpi
+bench-mpi: check-deps-stamp
+	@$(MAKE) --no-print-directory build/celadon
+	@mkdir -p out/bench
+	bench/mpi_scaling.sh $(REPEAT) | tee out/bench/mpi_scaling.txt
 
 # ---------------------------------------------------------------- denoising benchmark
 # relMSE of the denoised 16-spp image against a 4096-spp reference, beside the

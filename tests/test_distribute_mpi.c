@@ -1,14 +1,17 @@
 /* `celadon render` under mpirun (distribute.h): the ranks' image is the
  * one-process image of the same seed within float rounding, a stopped rank
- * does not hold the others, SIGINT to mpirun leaves the partial image, and
- * the plan's units cover every sample of every pixel once. The MPI tests
- * skip when celadon was built without MPI or mpirun is missing. */
+ * does not hold the others, SIGINT to mpirun leaves the partial image, the
+ * plan's units cover every sample of every pixel once, and a job on one node
+ * is given shared memory. The MPI tests skip when celadon was built without
+ * MPI or mpirun is missing. */
 #include <criterion/criterion.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 
+#include "celadon/distribute.h"
 #include "render/distribute_plan.h"
 #include "test_distribute_support.h"
 
@@ -51,6 +54,30 @@ Test(distribute_plan, units_cover_every_sample_once)
         cr_assert_eq(covered, total, "case %zu: %lld of %lld covered", c, covered, total);
         free(seen);
     }
+}
+
+/* The launcher's environment: shared memory is chosen for a job on one node
+ * only, and never over a transport the user chose. (Criterion runs each
+ * test in a process of its own: the environment changed here stays here.) */
+Test(distribute_env, shared_memory_only_for_one_node_and_no_choice)
+{
+    static const char *const vars[] = {"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_LOCAL_SIZE", "OMPI_MCA_pml",
+                                       "OMPI_MCA_btl", "OMPI_MCA_mtl"};
+    for (int i = 0; i < 5; i++)
+        unsetenv(vars[i]);
+    cr_expect_eq(distribute_prefer_shared_memory(), 0, "not under Open MPI");
+    setenv("OMPI_COMM_WORLD_SIZE", "4", 1);
+    setenv("OMPI_COMM_WORLD_LOCAL_SIZE", "2", 1);
+    cr_expect_eq(distribute_prefer_shared_memory(), 0, "ranks on two nodes");
+    cr_expect_null(getenv("OMPI_MCA_pml"));
+    setenv("OMPI_COMM_WORLD_LOCAL_SIZE", "4", 1);
+    setenv("OMPI_MCA_mtl", "psm2", 1);
+    cr_expect_eq(distribute_prefer_shared_memory(), 0, "the user chose an MTL");
+    cr_expect_null(getenv("OMPI_MCA_pml"));
+    unsetenv("OMPI_MCA_mtl");
+    cr_expect_eq(distribute_prefer_shared_memory(), 1, "every rank on this node");
+    cr_expect_str_eq(getenv("OMPI_MCA_pml"), "ob1");
+    cr_expect_str_eq(getenv("OMPI_MCA_btl"), "self,vader");
 }
 
 /* mpirun's command line for `celadon ARGS` on np ranks. */
@@ -96,17 +123,36 @@ static int run_mpi(const render_fixture *f, const char *np, const char *const *a
     return r.status;
 }
 
-/* The units each rank took, from rank 0's "distribute: ... units per rank:
- * a b c; ..." line; returns how many ranks it lists. */
-static int units_per_rank(const char *err, int *units, int max)
+/* The numbers after label in rank 0's balance line ("distribute: units per
+ * rank: a b c; CPU s before rendering per rank: x y z; ..."); returns how
+ * many it lists. */
+static int per_rank(const char *err, const char *label, double *v, int max)
 {
-    const char *p = strstr(err, "units per rank:");
-    cr_assert_not_null(p, "no balance line in: %s", err);
-    p += strlen("units per rank:");
+    const char *p = strstr(err, label);
+    cr_assert_not_null(p, "no \"%s\" in: %s", label, err);
+    p += strlen(label);
     int n = 0, len;
-    while (n < max && sscanf(p, " %d%n", &units[n], &len) == 1)
+    while (n < max && sscanf(p, " %lf%n", &v[n], &len) == 1)
         n++, p += len;
     return n;
+}
+
+/* The units each rank took. */
+static int units_per_rank(const char *err, int *units, int max)
+{
+    double v[8];
+    int n = per_rank(err, "units per rank:", v, max < 8 ? max : 8);
+    for (int r = 0; r < n; r++)
+        units[r] = (int)v[r];
+    return n;
+}
+
+static double children_cpu_seconds(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_CHILDREN, &ru);
+    return (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec + (double)ru.ru_stime.tv_sec +
+           1e-6 * (double)ru.ru_stime.tv_usec;
 }
 
 Test(distribute_mpi, two_and_three_ranks_give_the_single_image, .timeout = 600)
@@ -122,12 +168,23 @@ Test(distribute_mpi, two_and_three_ranks_give_the_single_image, .timeout = 600)
     for (int i = 0; i < 2; i++) {
         const char *a[] = {"render", scene, "-o", fixture_path(&f, "ranks.exr", out, sizeof out), "--threads", "1",
                            "--aov", "normal", NULL};
+        double cpu0 = children_cpu_seconds();
         cr_assert_eq(run_mpi(&f, nps[i], a, err, sizeof err), 0, "%s", err);
+        double job_cpu = children_cpu_seconds() - cpu0;
         int units[8], n = units_per_rank(err, units, 8), sum = 0;
         cr_expect_eq(n, atoi(nps[i]), "%s", err);
         for (int r = 0; r < n; r++)
             sum += units[r];
         cr_expect_eq(sum, distribute_plan_make(0, 96, 64, 48, n).units, "%s", err);
+        /* Each rank's fixed cost (start, MPI_Init, build) is some CPU time,
+         * and together less than the job's, which also rendered. */
+        double ready[8], ready_sum = 0.0;
+        cr_expect_eq(per_rank(err, "CPU s before rendering per rank:", ready, 8), n, "%s", err);
+        for (int r = 0; r < n; r++) {
+            cr_expect_gt(ready[r], 0.0, "rank %d: %s", r, err);
+            ready_sum += ready[r];
+        }
+        cr_expect_lt(ready_sum, job_cpu, "the ranks' fixed cost %g s of a job of %g s", ready_sum, job_cpu);
         image_t m = read_image(out);
         double worst;
         cr_expect(same_within_rounding(&s, &m, &worst), "%s ranks differ from one process by %g", nps[i], worst);

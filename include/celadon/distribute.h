@@ -25,6 +25,23 @@ typedef struct {
     int rank, size; /* this process's rank and the job's size (0 and 1 outside MPI) */
 } distribute_job;
 
+/* The number of processes the launcher (mpirun, srun, mpiexec) says the job
+ * has: 0 when no launcher started this process, -1 when one did without
+ * saying how many. */
+int distribute_launched_size(void);
+/* This process's rank as the launcher says it (0 when none does), known
+ * before distribute_begin. */
+int distribute_launched_rank(void);
+
+/* Under Open MPI with every rank on this node (OMPI_COMM_WORLD_LOCAL_SIZE
+ * is OMPI_COMM_WORLD_SIZE) and no transport chosen (none of OMPI_MCA_pml,
+ * _btl, _mtl set, as mpirun --mca does): chooses shared memory, pml ob1 and
+ * btl self,vader (what Open MPI ends up with on a machine without a fabric),
+ * so that MPI_Init does not first open and probe the fabrics' components
+ * (Debian's psm, psm2, tcp: 0.2 s of every rank's wall time,
+ * docs/distributed.md). Returns whether it did; distribute_begin calls it. */
+int distribute_prefer_shared_memory(void);
+
 /* Joins the MPI job when mpirun or srun started this process (MPI's
  * environment variables say so); otherwise *job is {0, 1} and MPI is not
  * touched. Returns 0, or -1 with one line in err (empty on the ranks other

@@ -3,6 +3,7 @@
  * shared among the ranks (distribute.h), as one part of several (parts.h),
  * and over a range of frames. */
 #include <errno.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -333,63 +334,97 @@ static int write_result(const render_args *a, const scene_t *scene, film_t *film
     return stop_signal ? 128 + stop_signal : 0;
 }
 
-/* Builds the scene on every rank and renders it; rank 0 writes out. */
-static int render_one(render_args *a, const distribute_job *job, const char *out)
+/* The frame the i-th render of the command shows (0 without --frames). */
+static int frame_number(const render_args *a, int i) { return a->frames ? a->frame_from + i * a->frame_step : 0; }
+
+/* The scene of the i-th render (with -D frame=F under --frames) and, with
+ * --part, its share of the samples: NULL with the reason in err. */
+static scene_t *build_scene(render_args *a, int i, int *s0, int *s1, char *err, size_t errlen)
 {
-    char err[2048];
-    scene_t *scene = scene_create_from_file(a->scene_path, a->defs, a->ndefs, &a->bo, err, sizeof err);
-    int s0 = 0, s1 = 0;
-    if (scene && a->part.n && render_part_samples(a->part, scene_spp(scene), &s0, &s1) != 0) {
-        snprintf(err, sizeof err, "%s: part %d/%d of a render of %d spp gets no samples: use at most %d parts",
+    char value[16];
+    if (a->frames) {
+        snprintf(value, sizeof value, "%d", frame_number(a, i));
+        a->defs[a->ndefs++] = (scene_define){"frame", value, false};
+    }
+    scene_t *scene = scene_create_from_file(a->scene_path, a->defs, a->ndefs, &a->bo, err, errlen);
+    if (a->frames)
+        a->ndefs--;
+    *s0 = *s1 = 0;
+    if (scene && a->part.n && render_part_samples(a->part, scene_spp(scene), s0, s1) != 0) {
+        snprintf(err, errlen, "%s: part %d/%d of a render of %d spp gets no samples: use at most %d parts",
                  a->scene_path, a->part.k, a->part.n, scene_spp(scene), scene_spp(scene));
         scene_destroy(scene);
         scene = NULL;
     }
-    int failed = distribute_first_failure(scene != NULL);
+    return scene;
+}
+
+/* The first render's scene, built in a thread of its own while the main
+ * thread joins the MPI job (MPI_Init waits for every rank to start:
+ * 0.15-0.4 s of wall time and little CPU, docs/distributed.md). */
+typedef struct {
+    render_args *a;
+    scene_t *scene;
+    int s0, s1;
+    char err[2048];
+    pthread_t thread;
+} scene_build;
+
+static void *scene_build_main(void *arg)
+{
+    scene_build *b = arg;
+    b->scene = build_scene(b->a, 0, &b->s0, &b->s1, b->err, sizeof b->err);
+    return NULL;
+}
+
+/* Renders b's scene (built on every rank; NULL with the reason in b->err
+ * when it could not be), and rank 0 writes out; frees the scene. */
+static int render_one(render_args *a, const distribute_job *job, scene_build *b, const char *out)
+{
+    int failed = distribute_first_failure(b->scene != NULL);
     if (failed >= 0) {
         if (failed == job->rank && failed != 0)
-            fprintf(stderr, "celadon: rank %d: %s\n", job->rank, err);
+            fprintf(stderr, "celadon: rank %d: %s\n", job->rank, b->err);
         else if (failed == job->rank)
-            fprintf(stderr, "celadon: %s\n", err);
-        scene_destroy(scene);
+            fprintf(stderr, "celadon: %s\n", b->err);
+        scene_destroy(b->scene);
+        b->scene = NULL;
         return 2;
     }
-    a->ro.sample_begin = s0, a->ro.sample_end = s1;
+    a->ro.sample_begin = b->s0, a->ro.sample_end = b->s1;
     film_t film;
     render_stats st;
-    int rc = distribute_render(scene, &a->ro, &film, &st, err, sizeof err);
+    int rc = distribute_render(b->scene, &a->ro, &film, &st, b->err, sizeof b->err);
     if (rc != 0) {
-        if (err[0])
-            fprintf(stderr, "celadon: %s\n", err);
+        if (b->err[0])
+            fprintf(stderr, "celadon: %s\n", b->err);
         rc = 1;
     } else {
         if (job->rank == 0) {
-            rc = write_result(a, scene, &film, &st, out);
+            rc = write_result(a, b->scene, &film, &st, out);
             film_free(&film);
         }
         /* Every rank ends (or goes on to the next frame) with rank 0. */
         if (distribute_first_failure(job->rank != 0 || rc == 0) >= 0 && job->rank != 0)
             rc = st.interrupted ? 128 + (stop_signal ? stop_signal : SIGINT) : 1;
     }
-    scene_destroy(scene);
+    scene_destroy(b->scene);
+    b->scene = NULL;
     return rc;
 }
 
-/* Every frame in turn (or the one render), until one fails or is stopped. */
-static int render_frames(render_args *a, const distribute_job *job)
+/* Every frame in turn (or the one render), until one fails or is stopped;
+ * b holds the first one's scene. */
+static int render_frames(render_args *a, const distribute_job *job, scene_build *b)
 {
-    if (!a->frames)
-        return render_one(a, job, a->out);
     int rc = 0;
-    for (int i = 0; i < a->frames && rc == 0; i++) {
-        int f = a->frame_from + i * a->frame_step;
-        char value[16], out[4096];
-        snprintf(value, sizeof value, "%d", f);
-        frame_path(a->out, f, out, sizeof out);
-        a->defs[a->ndefs] = (scene_define){"frame", value, false};
-        a->ndefs++;
-        rc = render_one(a, job, out);
-        a->ndefs--;
+    for (int i = 0; i < (a->frames ? a->frames : 1) && rc == 0; i++) {
+        char out[4096];
+        if (i > 0)
+            b->scene = build_scene(a, i, &b->s0, &b->s1, b->err, sizeof b->err);
+        if (a->frames)
+            frame_path(a->out, frame_number(a, i), out, sizeof out);
+        rc = render_one(a, job, b, a->frames ? out : a->out);
     }
     return rc;
 }
@@ -397,41 +432,51 @@ static int render_frames(render_args *a, const distribute_job *job)
 int cmd_render(int argc, char **argv)
 {
     render_args a = {.bo = scene_options_default()};
-    distribute_job job;
-    char err[1024];
-    if (distribute_begin(&job, err, sizeof err) != 0) {
-        if (err[0])
-            fprintf(stderr, "celadon: %s\n", err);
-        distribute_end();
-        return 2;
-    }
-    cli_set_quiet(job.rank != 0); /* every rank would print the same usage error */
-    a.ro.progress = job.rank == 0;
+    /* The launcher's environment gives the rank before MPI_Init. */
+    int rank = distribute_launched_rank();
+    cli_set_quiet(rank != 0); /* every rank would print the same usage error */
+    a.ro.progress = rank == 0;
     a.ro.preview_seconds = DEFAULT_PREVIEW_SECONDS;
     int rc = parse_args(argc, argv, &a);
-    if (rc < 0 && job.size > 1 && (a.ro.time_budget > 0 || a.ro.preview))
-        rc = cli_usage_error("render", "%s", "--time and --preview are for one process, not under mpirun");
     a.bo.search_dirs = (const char *const *)a.dirs;
     a.bo.n_search_dirs = a.ndirs;
     if (rc < 0 && cli_check_output(a.out, 0) != 0)
         rc = CLI_CANNOT_WRITE; /* every rank checks: they all stop */
-    if (rc < 0) {
-        /* From here Ctrl-C asks for the image so far (an empty one while
-         * loading); under mpirun, which turns Ctrl-C into SIGTERM to every
-         * rank, SIGTERM does too. */
-        struct sigaction sa, old_int, old_term, old_hup;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = on_stop;
-        sigemptyset(&sa.sa_mask);
-        sigaction(SIGINT, &sa, &old_int);
-        sigaction(SIGTERM, &sa, &old_term);
-        sigaction(SIGHUP, &sa, &old_hup);
-        command_line(argc, argv, a.command_line, sizeof a.command_line);
-        rc = render_frames(&a, &job);
-        sigaction(SIGINT, &old_int, NULL);
-        sigaction(SIGTERM, &old_term, NULL);
-        sigaction(SIGHUP, &old_hup, NULL);
+    /* From here Ctrl-C asks for the image so far (an empty one while
+     * loading); under mpirun, which turns Ctrl-C into SIGTERM to every rank,
+     * SIGTERM does too. */
+    struct sigaction sa, old_int, old_term, old_hup;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
+    sigaction(SIGHUP, &sa, &old_hup);
+    scene_build b = {.a = &a};
+    int building = rc < 0 && pthread_create(&b.thread, NULL, scene_build_main, &b) == 0;
+    if (rc < 0 && !building)
+        scene_build_main(&b);
+    distribute_job job;
+    char err[1024];
+    int joined = distribute_begin(&job, err, sizeof err) == 0;
+    if (building)
+        pthread_join(b.thread, NULL);
+    if (!joined) {
+        if (err[0])
+            fprintf(stderr, "celadon: %s\n", err);
+        rc = 2;
+    } else if (rc < 0 && job.size > 1 && (a.ro.time_budget > 0 || a.ro.preview)) {
+        rc = cli_usage_error("render", "%s", "--time and --preview are for one process, not under mpirun");
     }
+    if (rc < 0) {
+        command_line(argc, argv, a.command_line, sizeof a.command_line);
+        rc = render_frames(&a, &job, &b);
+    } else {
+        scene_destroy(b.scene);
+    }
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+    sigaction(SIGHUP, &old_hup, NULL);
     for (int i = 0; i < a.ndefs; i++)
         free((char *)a.defs[i].name);
     for (int i = 0; i < a.ndirs; i++)

@@ -2,7 +2,10 @@
  * environment. */
 #include "render/distribute_plan.h"
 
+#include "celadon/distribute.h"
+
 #include <stdlib.h>
+#include <string.h>
 
 enum { ROW_ALIGN = 16 };       /* the render loop's tile size: bands of whole tiles */
 enum { MOST_UNITS = 1 << 24 }; /* so that passes x bands stays an int (at most about twice this) */
@@ -82,4 +85,18 @@ int distribute_launched_rank(void)
             return atoi(v);
     }
     return 0;
+}
+
+int distribute_prefer_shared_memory(void)
+{
+    const char *size = getenv("OMPI_COMM_WORLD_SIZE"), *local = getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+    if (!size || !local || strcmp(size, local) != 0)
+        return 0;
+    static const char *const chosen[] = {"OMPI_MCA_pml", "OMPI_MCA_btl", "OMPI_MCA_mtl"};
+    for (int i = 0; i < 3; i++)
+        if (getenv(chosen[i]))
+            return 0;
+    setenv("OMPI_MCA_pml", "ob1", 0);
+    setenv("OMPI_MCA_btl", "self,vader", 0);
+    return 1;
 }

@@ -34,11 +34,4 @@ distribute_plan distribute_plan_make(int s0, int s1, int width, int height, int 
 /* The samples and rows of unit u. */
 void distribute_plan_unit(const distribute_plan *p, int u, int *s0, int *s1, int *y0, int *y1);
 
-/* The number of processes the launcher (mpirun, srun, mpiexec) says the job
- * has: 0 when no launcher started this process, -1 when one did without
- * saying how many. */
-int distribute_launched_size(void);
-/* This process's rank as the launcher says it (0 when none does). */
-int distribute_launched_rank(void);
-
 #endif
