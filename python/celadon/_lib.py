@@ -173,8 +173,8 @@ def interruptible(work):
             out["error"] = e
 
     t = threading.Thread(target=run, name="celadon-render", daemon=True)
-    t.start()
-    try:
+    try:  # t.start() inside: a Ctrl-C while it waits for the thread to run stops the work too
+        t.start()
         while t.is_alive():
             t.join(0.05)
     except KeyboardInterrupt:

@@ -128,6 +128,27 @@ def test_ctrl_c_stops_a_render_in_this_process(vessel):
     assert scene.render(**SMALL)[..., :3].max() > 0
 
 
+def test_ctrl_c_while_the_render_thread_starts_stops_it(vessel, monkeypatch):
+    # The Ctrl-C lands in Thread.start, after the render thread began: it
+    # used to escape before the stop was asked for, leaving that render
+    # running (and the next one waiting for it).
+    scene = celadon.load_scene(vessel)
+    start = threading.Thread.start
+
+    def start_then_interrupt(self):
+        start(self)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(threading.Thread, "start", start_then_interrupt)
+    t0 = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        scene.render(spp=65536, res=(160, 90))  # minutes if not stopped
+    monkeypatch.undo()
+    assert not [t for t in threading.enumerate() if t.name == "celadon-render" and t.is_alive()]
+    assert scene.render(**SMALL)[..., :3].max() > 0
+    assert time.monotonic() - t0 < 10
+
+
 def test_ctrl_c_stops_a_render_in_a_subprocess(vessel):
     code = ("import celadon, sys\nscene = celadon.load_scene(sys.argv[1])\nprint('rendering', flush=True)\n"
             "scene.render(spp=65536, res=(160, 90))\n")
