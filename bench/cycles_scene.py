@@ -70,17 +70,22 @@ def diffuse(name, rgb):
     return m
 
 
+def mix_into(tree, fac, a, b, out):
+    """(1 - fac) a + fac b into the material's output (sockets)."""
+    mix = tree.nodes.new("ShaderNodeMixShader")
+    tree.links.new(fac, mix.inputs[0])
+    tree.links.new(a, mix.inputs[1])
+    tree.links.new(b, mix.inputs[2])
+    tree.links.new(mix.outputs[0], out.inputs[0])
+
+
 def front_only(tree, front, out):
     """front on the front side, black behind (Mitsuba's one-sided BSDFs;
     Cycles' are two-sided)."""
     black = tree.nodes.new("ShaderNodeBsdfDiffuse")
     black.inputs[0].default_value = (0.0, 0.0, 0.0, 1.0)
     geometry = tree.nodes.new("ShaderNodeNewGeometry")
-    mix = tree.nodes.new("ShaderNodeMixShader")
-    tree.links.new(geometry.outputs["Backfacing"], mix.inputs[0])
-    tree.links.new(front, mix.inputs[1])
-    tree.links.new(black.outputs[0], mix.inputs[2])
-    tree.links.new(mix.outputs[0], out.inputs[0])
+    mix_into(tree, geometry.outputs["Backfacing"], front, black.outputs[0], out)
 
 
 def plastic(name, rgb, alpha, ior, texture=None, one_sided=False):
@@ -122,11 +127,7 @@ def fresnel_plastic(name, rgb, alpha, ior):
     g.inputs["Roughness"].default_value = math.sqrt(alpha)  # Cycles squares it
     fresnel = tree.nodes.new("ShaderNodeFresnel")
     fresnel.inputs["IOR"].default_value = ior
-    mix = tree.nodes.new("ShaderNodeMixShader")
-    tree.links.new(fresnel.outputs[0], mix.inputs[0])
-    tree.links.new(d.outputs[0], mix.inputs[1])
-    tree.links.new(g.outputs[0], mix.inputs[2])
-    tree.links.new(mix.outputs[0], out.inputs[0])
+    mix_into(tree, fresnel.outputs[0], d.outputs[0], g.outputs[0], out)
     return m
 
 
@@ -176,11 +177,7 @@ def thin_glass(name, ior):
     transparent = tree.nodes.new("ShaderNodeBsdfTransparent")
     mirror = tree.nodes.new("ShaderNodeBsdfGlossy")
     mirror.distribution = "SHARP"
-    mix = tree.nodes.new("ShaderNodeMixShader")
-    tree.links.new(sheet_r.outputs[0], mix.inputs[0])
-    tree.links.new(transparent.outputs[0], mix.inputs[1])
-    tree.links.new(mirror.outputs[0], mix.inputs[2])
-    tree.links.new(mix.outputs[0], out.inputs[0])
+    mix_into(tree, sheet_r.outputs[0], transparent.outputs[0], mirror.outputs[0], out)
     return m
 
 
