@@ -360,6 +360,20 @@ bench-denoise: check-deps-stamp
 	@mkdir -p out/bench
 	CELADON_BIN=$(CURDIR)/build/celadon build/bench/bench_denoise | tee out/bench/bench_denoise.txt
 
+# ---------------------------------------------------------------- against Blender Cycles
+# Noise per CPU second of celadon and Cycles on studio, cornell-sor and the
+# showcase, rendered alternately in one run (docs/BENCHMARKS.md, "Noise per
+# CPU second"). Blender (about 340 MB) is not among `make deps`' packages:
+# `make deps-cycles` installs it and the script's Python modules.
+CYCLES_DEB_PKGS := blender python3-numpy python3-openimageio
+.PHONY: deps-cycles bench-cycles
+deps-cycles:
+	@$(call deb_install_missing,$(CYCLES_DEB_PKGS))
+bench-cycles: check-deps-stamp deps-cycles
+	@$(MAKE) --no-print-directory -j2 build/celadon
+	@mkdir -p out/bench
+	/usr/bin/python3 bench/cycles_efficiency.py | tee out/bench/cycles_efficiency.txt
+
 # ---------------------------------------------------------------- demo and benchmarks
 # The test drawers of synthetic photographs: bench_recon and the tools in
 # tests/tools/ link the vessel's and the scene's.

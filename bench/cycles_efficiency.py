@@ -2,12 +2,12 @@
 """Noise per CPU second, celadon against Blender Cycles (docs/BENCHMARKS.md,
 "Noise per CPU second"). From the repository root, after `make`:
 
-    /usr/bin/python3 bench/cycles_efficiency.py [--scene studio|cornell-sor]...
+    /usr/bin/python3 bench/cycles_efficiency.py [--scene studio|cornell-sor|showcase]...
         [--spp 4,16,64] [--res 320x180] [--bin build/celadon]
 
 Each scene is rendered by celadon (scenes/NAME/scene.xml, given a 1-pixel
 box filter) and by Cycles (bench/cycles_scene.py: the same scene rebuilt in
-Blender, the vessel as celadon's own 360-segment OBJ, a 1-pixel box filter,
+Blender, each vessel as celadon's own 360-segment OBJ, a 1-pixel box filter,
 no denoising, no adaptive sampling), both on 2 threads, at each spp with
 seeds 1 and 2, the two renderers alternating so that they share the machine's load. For each:
 MSE = mean((a - b)^2) / 2 over the seed pair (an unbiased renderer's
@@ -27,7 +27,17 @@ import tempfile
 import numpy as np
 import OpenImageIO as oiio
 
-HEIGHT = {"studio": 1.0, "cornell-sor": 1.15}  # the sor's height in each scene
+# Each scene's sor shapes: the name Blender finds its OBJ by, the profile
+# (under scenes/), the height, and whether the shape has its caps (`caps`
+# false: the OBJ loses `celadon mesh`'s base disc).
+VESSELS = {
+    "studio": [("vessel", "studio/vessel/profile.json", 1.0, True)],
+    "cornell-sor": [("vessel", "studio/vessel/profile.json", 1.15, True)],
+    "showcase": [("maebyeong", "showcase/maebyeong/profile.json", 0.46, True),
+                 ("bowl", "showcase/bowl/profile.json", 0.24, False),
+                 ("bottle", "showcase/bottle/profile.json", 0.43, True),
+                 ("jar", "showcase/jar/profile.json", 0.38, True)],
+}
 ROOT = os.getcwd()
 
 
@@ -57,6 +67,24 @@ def box_filtered(scene_xml):
     return out
 
 
+def without_base(obj):
+    """Drops the base disc `celadon mesh` adds (every face with its three
+    vertices at the lowest height), for a sor declared without caps."""
+    with open(obj) as f:
+        lines = f.readlines()
+    ys = [float(line.split()[2]) for line in lines if line.startswith("v ")]
+    low = min(ys)
+    keep = []
+    for line in lines:
+        if line.startswith("f "):
+            idx = [int(v.split("/")[0]) for v in line.split()[1:]]
+            if all(ys[i - 1] == low for i in idx):
+                continue
+        keep.append(line)
+    with open(obj, "w") as f:
+        f.writelines(keep)
+
+
 def read(path):
     return oiio.ImageBuf(path).get_pixels(oiio.FLOAT)[..., :3].astype(np.float64)
 
@@ -73,17 +101,20 @@ def main():
     ap.add_argument("--res", default="320x180")
     ap.add_argument("--bin", default="build/celadon")
     o = ap.parse_args()
-    scenes = o.scene or ["studio", "cornell-sor"]
+    scenes = o.scene or ["studio", "cornell-sor", "showcase"]
     spps = [int(s) for s in o.spp.split(",")]
     exe = os.path.abspath(o.bin)
     script = os.path.join(ROOT, "bench", "cycles_scene.py")
     tmp = tempfile.mkdtemp(prefix="celadon-cycles-")
     for scene in scenes:
-        vessel_dir = os.path.join(ROOT, "scenes", "studio", "vessel")
-        obj = os.path.join(tmp, f"{scene}.obj")
-        subprocess.run([exe, "mesh", os.path.join(vessel_dir, "profile.json"), "-o", obj, "--segments", "360",
-                        "--height", str(HEIGHT[scene])], check=True, capture_output=True)
-        texture = os.path.join(vessel_dir, "texture.png")
+        objdir = os.path.join(tmp, scene)
+        os.mkdir(objdir)
+        for name, profile, height, caps in VESSELS[scene]:
+            obj = os.path.join(objdir, name + ".obj")
+            subprocess.run([exe, "mesh", os.path.join(ROOT, "scenes", profile), "-o", obj, "--segments", "360",
+                            "--height", str(height)], check=True, capture_output=True)
+            if not caps:
+                without_base(obj)
         scene_xml = box_filtered(os.path.join(ROOT, "scenes", scene, "scene.xml"))
         runs = {"celadon": {}, "cycles": {}}
         load0 = os.getloadavg()[0]
@@ -95,7 +126,7 @@ def main():
                 runs["celadon"][(spp, seed)] = (c, out)
                 out = os.path.join(tmp, f"cycles-{spp}-{seed}.exr")
                 c = cpu_of(["blender", "-b", "--factory-startup", "--python", script, "--", scene, str(spp), o.res,
-                            out, str(seed), obj, texture])
+                            out, str(seed), objdir])
                 runs["cycles"][(spp, seed)] = (c, out)
         os.remove(scene_xml)
         print(f"\n{scene}, {o.res}, 2 threads; load average {load0:.1f} -> {os.getloadavg()[0]:.1f}\n")
