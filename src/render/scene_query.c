@@ -51,3 +51,17 @@ bool scene_first_hit(const scene_t *s, const ray3 *r, double tmin, double tmax, 
     hit->sheet = (bsdf_flags(h.shape->bsdf) & BSDF_STRAIGHT_TRANSMISSION) != 0;
     return true;
 }
+
+rgb scene_radiance(const scene_t *s, const ray3 *r, double tmin, double tmax, uint32_t px, uint32_t py)
+{
+    integrator_scene sc = {&s->shapes, &s->emitters, s->camera_medium};
+    rgb sum = {0, 0, 0};
+    long long n = s->sampler.sample_count;
+    for (long long k = 0; k < n; k++) {
+        sampler_stream smp;
+        sampler_start(&s->sampler, &smp, px, py, (uint32_t)k);
+        rgb L = integrator_li(s->integrator, &sc, r, tmin, tmax, &smp, NULL);
+        sum.r += L.r, sum.g += L.g, sum.b += L.b;
+    }
+    return (rgb){sum.r / (double)n, sum.g / (double)n, sum.b / (double)n};
+}

@@ -190,13 +190,14 @@ async function browse(url) {
     const status = await page.evaluate(() => { const m = window.museum; return { error: m.error, title: m.title, vessels: m.vessels, trianglesFullDetail: m.trianglesFullDetail }; });
     const positions = await page.evaluate(() => window.museum.vesselScreenPositions());
     const frame = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    await page.evaluate(() => window.museum.overlays(false));
     await frame();
     const figures = await page.evaluate(() => ({ triangles: window.museum.triangles, drawCalls: window.museum.drawCalls }));
     await page.screenshot({ path: path.join(out, 'page.png') });
     await page.evaluate(() => window.museum.setVesselsVisible(false));
     await frame();
     await page.screenshot({ path: path.join(out, 'page-without-vessels.png') });
-    await page.evaluate(() => window.museum.setVesselsVisible(true));
+    await page.evaluate(() => { window.museum.setVesselsVisible(true); window.museum.overlays(true); });
     const picked = [];
     for (const p of positions) picked.push(await page.evaluate(([x, y]) => window.museum.pickAt(x, y), [p.x, p.y]));
     const bytes = await page.evaluate(() => ({ loaded: window.museum.bytesLoaded, total: window.museum.bytesTotal }));
