@@ -97,7 +97,10 @@ bool scene_first_hit(const scene_t *s, const ray3 *r, double tmin, double tmax, 
  * integrator estimates it for a camera ray: the mean of the scene's spp
  * samples, drawn from the sampler's streams of "pixel" (px, py), so a
  * caller tracing from arbitrary points (a light bake) gets the render's
- * estimator, deterministic for a seed. Thread-safe. */
-rgb scene_radiance(const scene_t *s, const ray3 *r, double tmin, double tmax, uint32_t px, uint32_t py);
+ * estimator, deterministic for a seed. variance (may be NULL) receives the
+ * variance of that mean's luminance, estimated from its samples (what the
+ * denoiser weighs by: denoise.h). Thread-safe. */
+rgb scene_radiance(const scene_t *s, const ray3 *r, double tmin, double tmax, uint32_t px, uint32_t py,
+                   double *variance);
 
 #endif

@@ -21,9 +21,13 @@
 enum { PROBE_WIDTH = 128, PROBE_HEIGHT = 64 };
 
 /* Linear radiance (RGB floats, rows down) of every texel of the lightmap m
- * of quads q, the gutters repeating their tiles' borders. Sampler streams:
- * "pixel" (x, y + stream_row) of the image. Uses OpenMP's threads. */
-void bake_lightmap(const scene_t *s, const quad_spec *q, const lightmap_layout *m, uint32_t stream_row, float *rgb);
+ * of quads q, the gutters repeating their tiles' borders; with denoise,
+ * through celadon's denoiser (denoise.h: each face's texels alike but for
+ * their noise, told apart from other faces by the normal). Sampler
+ * streams: "pixel" (x, y + stream_row) of the image. Uses OpenMP's
+ * threads. */
+void bake_lightmap(const scene_t *s, const quad_spec *q, const lightmap_layout *m, uint32_t stream_row, int denoise,
+                   float *rgb);
 
 /* The light arriving at `at` from every direction, an equirectangular
  * PROBE_WIDTH x PROBE_HEIGHT image (RGB floats, rows down) in three.js's

@@ -24,7 +24,8 @@ static int bake_jpeg(const scene_t *s, const quad_spec *q, const lightmap_layout
     uint8_t *code = malloc((size_t)n * 3);
     int rc = -1;
     if (lin && code) {
-        bake_lightmap(s, q, m, stream_row, lin);
+        /* One sample a texel tells no variance: nothing for the denoiser to weigh. */
+        bake_lightmap(s, q, m, stream_row, scene_spp(s) > 1, lin);
         bake_encode(lin, n, code);
         rc = jpeg_encode_rgb(code, m->width, m->height, MUSEUM_LIGHTMAP_JPEG_QUALITY, &out->bytes, &out->len);
     }
