@@ -147,9 +147,13 @@ async function thumbsticks(page) {
   return { before: p0, walked, seconds, snapped, held, again };
 }
 
-// The docs' screenshots (docs/museum.md): the entrance, the first case
-// close up, and its label open.
+// The docs' screenshots (docs/museum.md): the entrance camera's view (the
+// path tracer's), the entrance, the first case close up, and its label open.
 async function shots(page) {
+  // The glb's entrance camera, as museum.xml's sensor sees the room.
+  await page.evaluate(() => window.museum.overlays(false));
+  await frames(page, 2);
+  await page.screenshot({ path: path.join(out, 'museum-camera.png'), timeout: 0 });
   const at = await page.evaluate(() => window.museum.casePosition(0));
   const entrance = await page.evaluate(() => window.museum.pose());
   await page.evaluate((p) => window.museum.lookFrom(p.x, 1.6, p.z, 0, 1.1, 0), entrance);
