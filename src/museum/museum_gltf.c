@@ -296,10 +296,14 @@ static int add_textured_material(builder *b, const char *name, int texture, doub
      * inner wall, the far side's back faces. */
     if (m && clearcoat)
         json_object_set_new(m, "doubleSided", json_true());
+    /* museum.xml's `plastic`: a diffuse body under one smooth dielectric
+     * coat, so the clear coat is the glaze's only specular layer (the base
+     * layer's own is off: KHR_materials_specular). */
     if (m && clearcoat)
         json_object_set_new(m, "extensions",
-                            json_pack("{s:{s:f, s:f}}", "KHR_materials_clearcoat", "clearcoatFactor", 1.0,
-                                      "clearcoatRoughnessFactor", 0.05));
+                            json_pack("{s:{s:f, s:f}, s:{s:f}}", "KHR_materials_clearcoat", "clearcoatFactor", 1.0,
+                                      "clearcoatRoughnessFactor", 0.05, "KHR_materials_specular", "specularFactor",
+                                      0.0));
     return glb_append(&b->g, "materials", m);
 }
 
@@ -600,7 +604,8 @@ static void figures(const builder *b, const layout_t *l, const museum_exhibit *e
 static int build(builder *b, const char *title, const layout_t *l, const museum_exhibit *ex, int n)
 {
     static const char *const extensions[] = {"KHR_materials_clearcoat", "KHR_materials_transmission",
-                                             "KHR_materials_ior", "KHR_lights_punctual", "KHR_materials_unlit"};
+                                             "KHR_materials_ior", "KHR_lights_punctual", "KHR_materials_unlit",
+                                             "KHR_materials_specular"};
     for (size_t k = 0; k < sizeof extensions / sizeof *extensions; k++)
         if (glb_use_extension(&b->g, extensions[k]) != 0)
             return -1;
