@@ -4,10 +4,11 @@
  * render's own integrator, so this is its direct light, exact with next
  * event estimation); a probe sees a small emitter only in the direction
  * three.js's equirectangular lookup gives it; a lightmap texel's UV on the
- * glb's quad is the texel's centre. */
+ * glb's quad is the texel's centre; RGBE keeps 8 bits of mantissa. */
 #include <math.h>
 
 #include "museum/museum_bake.h"
+#include "museum/rgbe.h"
 #include "museum/room_surfaces.h"
 #include "test_render_util.h"
 
@@ -124,4 +125,23 @@ Test(museum_bake, lightmap_uv_is_texel_centre)
                 cr_expect_float_eq(v * m.height, 1 + y + 0.5, 1e-9);
             }
     }
+}
+
+Test(museum_bake, rgbe_keeps_eight_bits)
+{
+    const float c[4][3] = {{1, 0.5f, 0.25f}, {1e-3f, 2e-3f, 3e-3f}, {700, 1, 0}, {0.1f, 0.1f, 0.1f}};
+    for (int i = 0; i < 4; i++) {
+        uint8_t e[4];
+        float back[3];
+        rgbe_from_float(c[i], e);
+        rgbe_to_float(e, back);
+        float m = fmaxf(fmaxf(c[i][0], c[i][1]), c[i][2]);
+        for (int k = 0; k < 3; k++)
+            cr_expect_leq(fabsf(back[k] - c[i][k]), m / 128, "%g -> %g", c[i][k], back[k]);
+    }
+    float black[3] = {0, 0, 0}, back[3];
+    uint8_t e[4];
+    rgbe_from_float(black, e);
+    rgbe_to_float(e, back);
+    cr_expect_eq(back[0] + back[1] + back[2], 0.0f);
 }

@@ -13,14 +13,12 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "celadon/image.h"
 #include "celadon/reconstruct.h"
 #include "museum/catalogue.h"
 #include "museum/exhibit.h"
 #include "museum/jpeg_memory.h"
 #include "museum/label.h"
 #include "museum/layout.h"
-#include "museum/museum_bake.h"
 #include "museum/museum_folder.h"
 #include "museum/museum_gltf.h"
 #include "museum/museum_light.h"
@@ -268,19 +266,16 @@ static int bake_light(build_ctx *b, const museum_options *opt, const char *title
     remove(room);
     if (rc != 0)
         return -1;
-    char why[400];
     snprintf(path, sizeof path, "%s/probe.hdr", b->tmp);
-    rc = image_write_with_text(path, PROBE_WIDTH, PROBE_HEIGHT, 3, IMAGE_F32, light->room_probe, NULL, 0, why,
-                               sizeof why);
+    rc = write_bytes(path, light->room_probe.bytes, light->room_probe.len);
     add_file(b, "%s", "probe.hdr");
     for (int i = 0; i < n && rc == 0; i++) {
         snprintf(path, sizeof path, "%s/vessels/%s/probe.hdr", b->tmp, ex[i].slug);
-        rc = image_write_with_text(path, PROBE_WIDTH, PROBE_HEIGHT, 3, IMAGE_F32, light->probe[i], NULL, 0, why,
-                                   sizeof why);
+        rc = write_bytes(path, light->probe[i].bytes, light->probe[i].len);
         add_file(b, "vessels/%s/probe.hdr", ex[i].slug);
     }
     if (rc != 0) {
-        snprintf(err, errlen, "cannot write the light probes: %s", why);
+        snprintf(err, errlen, "cannot write the light probes: %s", strerror(errno));
         museum_light_free(light);
         return -1;
     }

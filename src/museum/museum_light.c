@@ -8,6 +8,7 @@
 #include "celadon/scene.h"
 #include "museum/jpeg_memory.h"
 #include "museum/museum_bake.h"
+#include "museum/rgbe.h"
 
 vec3 museum_probe_point(const layout_exhibit *le, const museum_exhibit *e)
 {
@@ -32,12 +33,15 @@ static int bake_jpeg(const scene_t *s, const quad_spec *q, const lightmap_layout
     return rc;
 }
 
-static float *bake_hdr(const scene_t *s, vec3 at, uint32_t stream_row)
+static int bake_hdr(const scene_t *s, vec3 at, uint32_t stream_row, museum_file_bytes *out)
 {
     float *lin = malloc((size_t)PROBE_WIDTH * PROBE_HEIGHT * 3 * sizeof *lin);
-    if (lin)
-        bake_probe(s, at, stream_row, lin);
-    return lin;
+    if (!lin)
+        return -1;
+    bake_probe(s, at, stream_row, lin);
+    int rc = rgbe_encode(lin, PROBE_WIDTH, PROBE_HEIGHT, &out->bytes, &out->len);
+    free(lin);
+    return rc;
 }
 
 /* Every map's streams start on a row of their own ("pixel" rows of the sampler). */
@@ -66,11 +70,11 @@ static int bake_maps(const scene_t *s, const layout_t *l, museum_light *m)
 
 static int bake_probes(const scene_t *s, const layout_t *l, const museum_exhibit *ex, museum_light *m)
 {
-    if (!(m->room_probe = bake_hdr(s, l->camera_position, 0)))
+    if (bake_hdr(s, l->camera_position, 0, &m->room_probe) != 0)
         return -1;
     for (int i = 0; i < m->n; i++)
-        if (!(m->probe[i] = bake_hdr(s, museum_probe_point(&l->exhibits[i], &ex[i]),
-                                     (uint32_t)((i + 1) * PROBE_HEIGHT) % 65536)))
+        if (bake_hdr(s, museum_probe_point(&l->exhibits[i], &ex[i]), (uint32_t)((i + 1) * PROBE_HEIGHT) % 65536,
+                     &m->probe[i]) != 0)
             return -1;
     return 0;
 }
@@ -119,8 +123,8 @@ void museum_light_free(museum_light *m)
     for (int i = 0; m->pedestal && i < m->n; i++)
         free(m->pedestal[i].bytes);
     for (int i = 0; m->probe && i < m->n; i++)
-        free(m->probe[i]);
-    free(m->room_probe);
+        free(m->probe[i].bytes);
+    free(m->room_probe.bytes);
     free(m->pedestal_layout), free(m->pedestal), free(m->probe);
     memset(m, 0, sizeof *m);
 }

@@ -3,9 +3,8 @@
  * each room surface and of each pedestal (museum_bake.h, JPEG, the
  * render's 8-bit code values), which museum.glb draws unlit; from the same
  * room without its vessels: an environment probe at each vessel's middle
- * and one for the room at the entrance camera, which the museum writes as
- * Radiance .hdr files and the page gives the glazes (and the glass) to
- * reflect. */
+ * and one for the room at the entrance camera, Radiance .hdr files the page
+ * gives the glazes (and the glass) to reflect. */
 #ifndef CELADON_MUSEUM_LIGHT_H
 #define CELADON_MUSEUM_LIGHT_H
 
@@ -26,7 +25,7 @@ typedef struct {
 typedef struct {
     lightmap_layout room_layout[ROOM_SURFACES], *pedestal_layout; /* pedestal: one per exhibit */
     museum_file_bytes room[ROOM_SURFACES], *pedestal;             /* JPEG */
-    float *room_probe, **probe; /* PROBE_WIDTH x PROBE_HEIGHT linear RGB (museum_bake.h); probe: one per exhibit */
+    museum_file_bytes room_probe, *probe;                         /* .hdr; probe: one per exhibit */
     int n;
 } museum_light;
 
