@@ -12,23 +12,6 @@
 #include "museum/room_surfaces.h"
 #include "test_render_util.h"
 
-static const char *scene_fmt =
-    "<scene version=\"3.0.0\">\n"
-    "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"4\"/></integrator>\n"
-    "  <sensor type=\"perspective\"><sampler type=\"zsobol\"><integer name=\"sample_count\" value=\"1\"/></sampler>"
-    "<film type=\"hdrfilm\"><integer name=\"width\" value=\"4\"/><integer name=\"height\" value=\"4\"/></film></sensor>\n"
-    "  %s\n"
-    "</scene>\n";
-
-static scene_t *load_scene(render_fixture *f, const char *body)
-{
-    char xml[4096], path[256], err[512];
-    snprintf(xml, sizeof xml, scene_fmt, body);
-    render_write_file(f, "scene.xml", xml, path, sizeof path);
-    scene_t *s = scene_create_from_file(path, NULL, 0, NULL, err, sizeof err);
-    cr_assert_not_null(s, "%s", err);
-    return s;
-}
 
 Test(museum_bake, floor_under_point_light_is_closed_form)
 {
@@ -36,7 +19,7 @@ Test(museum_bake, floor_under_point_light_is_closed_form)
     render_fixture f;
     render_fixture_open(&f);
     /* A 2 m x 2 m floor at y = 0 facing up (the default rectangle faces +z: turned by -90 deg about x). */
-    scene_t *s = load_scene(&f, "<shape type=\"rectangle\"><transform name=\"to_world\"><rotate x=\"1\" angle=\"-90\"/>"
+    scene_t *s = render_scene_of(&f, "<shape type=\"rectangle\"><transform name=\"to_world\"><rotate x=\"1\" angle=\"-90\"/>"
                                 "</transform><bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.5\"/></bsdf>"
                                 "</shape><emitter type=\"point\"><point name=\"position\" x=\"0.3\" y=\"0.8\" z=\"0\"/>"
                                 "<rgb name=\"intensity\" value=\"3\"/></emitter>");
@@ -76,7 +59,7 @@ Test(museum_bake, probe_sees_emitter_where_threejs_looks)
     render_fixture f;
     render_fixture_open(&f);
     /* A 0.4 m square emitter 1 m along +z, facing the probe at the origin. */
-    scene_t *s = load_scene(&f, "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"0.2\"/>"
+    scene_t *s = render_scene_of(&f, "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"0.2\"/>"
                                 "<rotate y=\"1\" angle=\"180\"/><translate z=\"1\"/></transform>"
                                 "<emitter type=\"area\"><rgb name=\"radiance\" value=\"2\"/></emitter></shape>");
     float *rgb = malloc(sizeof(float) * 3 * PROBE_WIDTH * PROBE_HEIGHT);
