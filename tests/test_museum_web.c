@@ -305,6 +305,14 @@ Test(museum_web, the_page_loads_and_shows_every_vessel, .timeout = 600)
         /* ... the screenshot shows it there ... */
         double d = mean_diff(&with, &without, px, py, 3);
         cr_expect_gt(d, 0.05, "%s: the screenshot changes by %.3f around (%.0f, %.0f) without it", title, d, px, py);
+        /* ... standing on its pedestal at its height as drawn (each level
+         * keeps its quantization offset: they once sank by half their
+         * height) ... */
+        json_t *hts = json_array_get(json_object_get(pg, "heights"), (size_t)k);
+        double base = glb_node_world_translation(&g, vessel[k]).y;
+        cr_expect(fabs(num(hts, "bottom") - base) < 0.01 && fabs(num(hts, "top") - (base + height_m)) < 0.01,
+                  "%s: drawn from y %.3f to %.3f, stands from %.3f to %.3f", title, num(hts, "bottom"),
+                  num(hts, "top"), base, base + height_m);
         /* ... and clicking there names it. */
         cr_expect_str_eq(json_string_value(json_array_get(picked, (size_t)k)), title);
     }

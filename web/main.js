@@ -185,6 +185,11 @@ async function main() {
     return { title: e.userData.title, x: (p.x + 1) / 2 * window.innerWidth, y: (1 - p.y) / 2 * window.innerHeight };
   });
   status.setVesselsVisible = (visible) => { for (const v of lodInfo.vessels) v.visible = visible; };
+  // Each vessel's lowest and highest point as drawn (m, world y).
+  status.vesselHeights = () => exhibits.map((e) => {
+    const box = new THREE.Box3().setFromObject(e.userData.vessel);
+    return { bottom: box.min.y, top: box.max.y };
+  });
   // Exhibit k's footprint centre (x, z), side w, its vessel's middle height
   // y and its label plate's height.
   status.casePosition = (k) => {

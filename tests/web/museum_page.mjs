@@ -193,6 +193,7 @@ async function browse(url) {
     if (mode === 'shots') return { loadMs, shots: await shots(page), consoleErrors };
     const status = await page.evaluate(() => { const m = window.museum; return { error: m.error, title: m.title, vessels: m.vessels, trianglesFullDetail: m.trianglesFullDetail }; });
     const positions = await page.evaluate(() => window.museum.vesselScreenPositions());
+    const heights = await page.evaluate(() => window.museum.vesselHeights());
     const frame = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     await page.evaluate(() => window.museum.overlays(false));
     await frame();
@@ -216,7 +217,7 @@ async function browse(url) {
     phaseMs.touch = Date.now() - t, t = Date.now();
     const xr = await thumbsticks(page);
     phaseMs.xr = Date.now() - t;
-    return { ...status, ...figures, loadMs, phaseMs, positions, picked, bytes, label, touch, xr, consoleErrors };
+    return { ...status, ...figures, loadMs, phaseMs, positions, heights, picked, bytes, label, touch, xr, consoleErrors };
   } finally {
     await context.close();
     rmSync(profile, { recursive: true, force: true });
