@@ -13,28 +13,11 @@
 #include "test_bsdf_support.h"
 #include "test_render_util.h"
 
-static const char *one_shape_fmt =
-    "<scene version=\"3.0.0\">\n"
-    "  <sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"4\"/>"
-    "<integer name=\"height\" value=\"4\"/></film></sensor>\n"
-    "  %s\n"
-    "</scene>\n";
-
-static scene_t *load_scene(render_fixture *f, const char *body)
-{
-    char xml[16384], path[256], err[512];
-    snprintf(xml, sizeof xml, one_shape_fmt, body);
-    render_write_file(f, "scene.xml", xml, path, sizeof path);
-    scene_t *s = scene_create_from_file(path, NULL, 0, NULL, err, sizeof err);
-    cr_assert_not_null(s, "%s", err);
-    return s;
-}
-
 /* The fixture opened, body loaded, and its first shape in *sh. */
 static scene_t *open_first_shape(render_fixture *f, const char *body, const shape_t **sh)
 {
     render_fixture_open(f);
-    scene_t *s = load_scene(f, body);
+    scene_t *s = render_scene_of(f, body);
     *sh = &s->shapes.items[0];
     return s;
 }
@@ -70,7 +53,7 @@ Test(light_sampling, spherical_rectangle_is_uniform_in_solid_angle)
 {
     render_fixture f;
     render_fixture_open(&f);
-    scene_t *s = load_scene(&f, "<shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"1.5\" y=\"1\"/>"
+    scene_t *s = render_scene_of(&f, "<shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"1.5\" y=\"1\"/>"
                                 "<rotate x=\"1\" angle=\"30\"/><translate y=\"2\"/></transform>"
                                 "<emitter type=\"area\"/></shape>");
     const shape_t *sh = &s->shapes.items[0];
@@ -118,7 +101,7 @@ Test(light_sampling, sphere_cone_is_uniform_in_solid_angle)
 {
     render_fixture f;
     render_fixture_open(&f);
-    scene_t *s = load_scene(&f, "<shape type=\"sphere\"><point name=\"center\" value=\"1, 2, 3\"/>"
+    scene_t *s = render_scene_of(&f, "<shape type=\"sphere\"><point name=\"center\" value=\"1, 2, 3\"/>"
                                 "<float name=\"radius\" value=\"0.5\"/><emitter type=\"area\"/></shape>");
     const shape_t *sh = &s->shapes.items[0];
     cr_assert_not_null(sh->solid_angle);
@@ -210,7 +193,7 @@ Test(light_sampling, area_fallback_is_consistent)
 {
     render_fixture f;
     render_fixture_open(&f);
-    scene_t *s = load_scene(
+    scene_t *s = render_scene_of(
         &f, "<shape type=\"rectangle\"><transform name=\"to_world\"><matrix value=\"1 0.5 0 0  0 1 0 0  0 0 1 0  0 0 0 1\"/>"
             "</transform><emitter type=\"area\"/></shape>"
             "<shape type=\"sphere\"><point name=\"center\" value=\"5, 0, 0\"/><float name=\"radius\" value=\"1\"/>"
@@ -273,7 +256,7 @@ static scene_t *load_many_lights(render_fixture *f)
                       "<float name=\"radius\" value=\"%g\"/><emitter type=\"area\">"
                       "<rgb name=\"radiance\" value=\"%g\"/></emitter></shape>",
                       3.0 - i, 2.0 + 0.3 * i, -3.0 + i, 0.1 + 0.05 * i, 5.0 - 0.5 * i);
-    return load_scene(f, body);
+    return render_scene_of(f, body);
 }
 
 /* A flat light that radiates from its front only: wherever

@@ -98,6 +98,36 @@ static double luminance_stddev(const image_t *im)
     return sqrt(fmax(s2 / n - (s / n) * (s / n), 0));
 }
 
+/* The mean of the linear luminance (Rec. 709) of an sRGB image. */
+static double mean_linear_luminance(const image_t *im)
+{
+    static const double w[3] = {0.2126, 0.7152, 0.0722};
+    double s = 0;
+    int n = im->width * im->height;
+    for (int i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) {
+            double v = im->data[i * im->channels + c];
+            s += w[c] * (v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4));
+        }
+    return s / n;
+}
+
+/* The page's entrance view and the path tracer's (preview.png, museum.xml)
+ * are the same room: their mean luminances within 10% (docs/museum.md,
+ * "Light"). */
+static void check_same_light(const image_t *page, const char *museum)
+{
+    char path[600], err[256];
+    image_t preview;
+    snprintf(path, sizeof path, "%s/preview.png", museum);
+    cr_assert_eq(image_read(path, &preview, err, sizeof err), 0, "%s", err);
+    double lp = mean_linear_luminance(page), lr = mean_linear_luminance(&preview);
+    cr_expect(fabs(lp / lr - 1) < 0.10, "mean luminance: page %.4f, path-traced %.4f", lp, lr);
+    cr_log_info("mean linear luminance of the entrance view: page %.4f, path-traced %.4f (%+.1f%%)", lp, lr,
+                100 * (lp / lr - 1));
+    image_free(&preview);
+}
+
 static double num(json_t *o, const char *k) { return json_number_value(json_object_get(o, k)); }
 
 static const char *exhibit_extra(const glb_file *g, int exhibit, const char *key)
@@ -197,7 +227,8 @@ Test(museum_web, the_page_loads_and_shows_every_vessel, .timeout = 600)
     museum_fixture_photos(workdir, N_PHOTOS, photos);
     snprintf(csv, sizeof csv, "%s/catalogue.csv", workdir);
     snprintf(out, sizeof out, "%s/museum", workdir);
-    const char *args[] = {"--catalogue", csv, "-o", out, "--preview-spp", "0", NULL};
+    /* A small, noisy preview: its mean luminance is what the page must match. */
+    const char *args[] = {"--catalogue", csv, "-o", out, "--preview-spp", "4", "--preview-res", "160x90", NULL};
     cli_result r = museum_fixture_run(workdir, args);
     cr_assert_eq(r.status, 0, "%s", r.err);
     cli_result_free(&r);
@@ -250,6 +281,7 @@ Test(museum_web, the_page_loads_and_shows_every_vessel, .timeout = 600)
     cr_assert_eq(image_read(path, &without, err, sizeof err), 0, "%s", err);
     cr_assert(with.width == SHOT_W && with.height == SHOT_H);
     cr_expect_gt(luminance_stddev(&with), 0.03, "the screenshot is not blank");
+    check_same_light(&with, out);
 
     snprintf(path, sizeof path, "%s/museum.glb", out);
     glb_file g;
@@ -273,6 +305,14 @@ Test(museum_web, the_page_loads_and_shows_every_vessel, .timeout = 600)
         /* ... the screenshot shows it there ... */
         double d = mean_diff(&with, &without, px, py, 3);
         cr_expect_gt(d, 0.05, "%s: the screenshot changes by %.3f around (%.0f, %.0f) without it", title, d, px, py);
+        /* ... standing on its pedestal at its height as drawn (each level
+         * keeps its quantization offset: they once sank by half their
+         * height) ... */
+        json_t *hts = json_array_get(json_object_get(pg, "heights"), (size_t)k);
+        double base = glb_node_world_translation(&g, vessel[k]).y;
+        cr_expect(fabs(num(hts, "bottom") - base) < 0.01 && fabs(num(hts, "top") - (base + height_m)) < 0.01,
+                  "%s: drawn from y %.3f to %.3f, stands from %.3f to %.3f", title, num(hts, "bottom"),
+                  num(hts, "top"), base, base + height_m);
         /* ... and clicking there names it. */
         cr_expect_str_eq(json_string_value(json_array_get(picked, (size_t)k)), title);
     }

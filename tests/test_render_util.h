@@ -78,6 +78,25 @@ static inline void render_write_file(const render_fixture *f, const char *name, 
     fclose(fp);
 }
 
+/* Builds (asserting it builds) the scene of body (shapes, emitters) with a
+ * 4x4 perspective sensor and the default integrator and sampler, written
+ * to dir/scene.xml. */
+static inline scene_t *render_scene_of(const render_fixture *f, const char *body)
+{
+    char xml[16384], path[256], err[512];
+    snprintf(xml, sizeof xml,
+             "<scene version=\"3.0.0\">\n"
+             "  <sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"4\"/>"
+             "<integer name=\"height\" value=\"4\"/></film></sensor>\n"
+             "  %s\n"
+             "</scene>\n",
+             body);
+    render_write_file(f, "scene.xml", xml, path, sizeof path);
+    scene_t *s = scene_create_from_file(path, NULL, 0, NULL, err, sizeof err);
+    cr_assert_not_null(s, "%s", err);
+    return s;
+}
+
 /* Writes len bytes to dir/name; returns the path in out. */
 static inline void render_write_bytes(const render_fixture *f, const char *name, const void *bytes, size_t len,
                                       char *out, size_t outlen)

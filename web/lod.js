@@ -25,9 +25,10 @@ export function makeLods(root) {
     lod.scale.copy(node.scale);
     const levels = node.children.filter((c) => c.userData.lod_distance !== undefined)
       .sort((a, b) => a.userData.lod_distance - b.userData.lod_distance);
+    // Each level keeps its node's translation and scale: they turn its
+    // quantized positions back into metres (KHR_mesh_quantization).
     levels.forEach((mesh, k) => {
       if (k === 0) full += triangles(mesh);
-      mesh.position.set(0, 0, 0);
       lod.addLevel(mesh, mesh.userData.lod_distance);
     });
     node.parent.add(lod);

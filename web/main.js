@@ -7,7 +7,7 @@
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { VRButton } from 'three/addons/webxr/VRButton.js';
-import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
+import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
 import { makeLods } from './lod.js';
 import { LightPool } from './light_pool.js';
 import { Obstacles } from './obstacles.js';
@@ -65,6 +65,26 @@ function vesselCentre(exhibit) {
   return p;
 }
 
+// Equirectangular Radiance .hdr probes, prefiltered for roughness (PMREM).
+async function loadProbes(renderer, scene, info, exhibits) {
+  const pmrem = new THREE.PMREMGenerator(renderer);
+  const loader = new HDRLoader();
+  const probe = async (url) => {
+    const t = await loader.loadAsync(url);
+    t.mapping = THREE.EquirectangularReflectionMapping;
+    const env = pmrem.fromEquirectangular(t).texture;
+    t.dispose();
+    return env;
+  };
+  scene.environment = await probe(info.probe);
+  await Promise.all(exhibits.map(async (e) => {
+    const env = await probe(e.userData.probe);
+    e.userData.vessel.traverse((o) => { if (o.isMesh) o.material.envMap = env; });
+  }));
+  pmrem.dispose();
+  status.probes = 1 + exhibits.length;
+}
+
 async function main() {
   const renderer = new THREE.WebGLRenderer({ antialias: true });
   renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
@@ -90,12 +110,12 @@ async function main() {
   status.vessels = exhibits.length;
   status.trianglesFullDetail = lodInfo.fullDetailTriangles;
 
-  // No global illumination in a rasteriser: a dim room-like environment
-  // stands in for the light the walls bounce (the path tracer computes it),
-  // and gives the glaze's clear coat and the glass something to reflect.
-  const pmrem = new THREE.PMREMGenerator(renderer);
-  scene.environment = pmrem.fromScene(new RoomEnvironment(), 0.04).texture;
-  scene.environmentIntensity = 0.35;
+  // The room's light comes from celadon's path tracer (docs/museum.md,
+  // "Light"): floor, walls, ceiling and pedestals carry it baked (unlit
+  // lightmaps), and each vessel's glaze is lit and mirrored by the probe
+  // baked at its middle (the room as it sees it); the room's own probe, from
+  // the entrance, lights the glass and the labels.
+  await loadProbes(renderer, scene, info, exhibits);
   const lights = new LightPool(gltf.scene, scene);
 
   const pose = entrancePose(gltf);
@@ -139,12 +159,20 @@ async function main() {
   };
   // Puts the eyes at (x, eyeY, z) looking toward (tx, ty, tz), without the
   // page's prompts: the docs' views.
+  // The page's prompts and buttons over the view, shown or hidden (the
+  // tests' and docs' views are of the room alone).
+  status.overlays = (visible) => {
+    for (const id of ['start', 'hud', 'crosshair', 'VRButton']) {
+      const e = document.getElementById(id);
+      if (e) e.style.visibility = visible ? '' : 'hidden';
+    }
+  };
   status.lookFrom = (x, eyeY, z, tx, ty, tz) => {
     rig.position.set(x, 0, z);
     rig.quaternion.identity();
     camera.position.y = eyeY;
     camera.lookAt(tx, ty, tz);
-    for (const id of ['start', 'hud', 'crosshair']) document.getElementById(id).style.display = 'none';
+    status.overlays(false);
   };
   status.label = () => (panel.open ? panel.exhibit.userData.title : null);
   // Fewer pixels per frame (the tests' input checks need frames, not pixels).
@@ -157,6 +185,11 @@ async function main() {
     return { title: e.userData.title, x: (p.x + 1) / 2 * window.innerWidth, y: (1 - p.y) / 2 * window.innerHeight };
   });
   status.setVesselsVisible = (visible) => { for (const v of lodInfo.vessels) v.visible = visible; };
+  // Each vessel's lowest and highest point as drawn (m, world y).
+  status.vesselHeights = () => exhibits.map((e) => {
+    const box = new THREE.Box3().setFromObject(e.userData.vessel);
+    return { bottom: box.min.y, top: box.max.y };
+  });
   // Exhibit k's footprint centre (x, z), side w, its vessel's middle height
   // y and its label plate's height.
   status.casePosition = (k) => {

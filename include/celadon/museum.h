@@ -11,7 +11,9 @@
  *                 vessel an exact `sor`), preview.png its path-traced view
  *                 from the entrance
  *   museum.json   what was built: the manifest of the folder, the figures
- *   vessels/SLUG/profile.json, texture.png; labels/SLUG.png
+ *   probe.hdr     the room's light at the entrance, baked by the path tracer
+ *   vessels/SLUG/profile.json, texture.png, probe.hdr (the light around it);
+ *   labels/SLUG.png
  *
  * The folder appears whole or not at all; a folder that already holds a
  * museum (and nothing else) is replaced. Units are metres, Y up. */
@@ -32,6 +34,7 @@ typedef struct {
     const char *title;       /* the museum's name; NULL: "Celadon museum" */
     int lods[MUSEUM_MAX_LODS], n_lods; /* segments per level; n_lods = 0 chooses them by screen-space error */
     int preview_width, preview_height, preview_spp; /* preview_spp = 0: no preview.png */
+    int bake_spp;            /* >= 1: samples per texel of the baked light (lightmaps and probes) */
     const char *web_dir;     /* the folder holding index.html and museum.js (built by make); NULL or
                                 missing files: the page is left out and web_missing set */
     int progress;            /* 1: progress bar of the preview on a TTY */
@@ -40,7 +43,9 @@ typedef struct {
 } museum_options;
 
 /* Defaults: no catalogue, LODs chosen automatically, a 640x360 preview at
- * 16 samples per pixel, no web folder. */
+ * 16 samples per pixel, the light baked at MUSEUM_DEFAULT_BAKE_SPP, no web
+ * folder. */
+#define MUSEUM_DEFAULT_BAKE_SPP 16
 museum_options museum_options_default(void);
 
 typedef struct {
@@ -60,7 +65,7 @@ typedef struct {
     int draw_calls;                /* meshes drawn per frame (one level per vessel) */
     long long glb_bytes;
     double room[3];                /* width, depth, height, m */
-    double ms_reconstruct, ms_write, ms_preview, ms_total; /* wall clock */
+    double ms_reconstruct, ms_write, ms_bake, ms_preview, ms_total; /* wall clock; ms_write includes ms_bake */
     int web_missing;               /* index.html or museum.js was not found in web_dir */
 } museum_report;
 

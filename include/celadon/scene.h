@@ -20,6 +20,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "celadon/color.h"
 #include "celadon/scene_xml.h"
 #include "celadon/vecmath.h"
 
@@ -91,5 +92,15 @@ typedef struct {
 
 /* The nearest hit along r with t in (tmin, tmax): true with *hit filled. */
 bool scene_first_hit(const scene_t *s, const ray3 *r, double tmin, double tmax, scene_hit *hit);
+
+/* The radiance arriving along r (t in (tmin, tmax)) as the scene's own
+ * integrator estimates it for a camera ray: the mean of the scene's spp
+ * samples, drawn from the sampler's streams of "pixel" (px, py), so a
+ * caller tracing from arbitrary points (a light bake) gets the render's
+ * estimator, deterministic for a seed. variance (may be NULL) receives the
+ * variance of that mean's luminance, estimated from its samples (what the
+ * denoiser weighs by: denoise.h). Thread-safe. */
+rgb scene_radiance(const scene_t *s, const ray3 *r, double tmin, double tmax, uint32_t px, uint32_t py,
+                   double *variance);
 
 #endif

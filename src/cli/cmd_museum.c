@@ -38,6 +38,8 @@ static void usage(FILE *f)
             "                       per vessel by screen-space error)\n"
             "  --preview-res WxH    size of preview.png (default 640x360)\n"
             "  --preview-spp N      its samples per pixel (default 16; 0: no preview)\n"
+            "  --bake-spp N         samples per texel of the room's light, baked by the path\n"
+            "                       tracer into the page (default %d)\n"
             "  --force              include vessels that fail the quality gate (reconstruct\n"
             "                       --force); their labels say so\n"
             "  --serve [PORT]       then serve DIR on http://127.0.0.1:PORT/ (default %d;\n"
@@ -50,7 +52,7 @@ static void usage(FILE *f)
             "says \"Height not recorded\"). exit status: 0 every photo is in the museum, 2 bad\n"
             "input or usage (refused photos are left out, the rest still make the museum),\n"
             "1 internal failure\n",
-            DEFAULT_PORT, MUSEUM_DEFAULT_HEIGHT_CM);
+            MUSEUM_DEFAULT_BAKE_SPP, DEFAULT_PORT, MUSEUM_DEFAULT_HEIGHT_CM);
 }
 
 typedef struct {
@@ -75,12 +77,12 @@ static int all_digits(const char *s)
 /* Returns -1 to continue, otherwise the exit code. */
 static int parse_options(int argc, char **argv, options *o)
 {
-    enum { OPT_CATALOGUE = 256, OPT_TITLE, OPT_LOD, OPT_RES, OPT_SPP, OPT_SERVE, OPT_FORCE };
+    enum { OPT_CATALOGUE = 256, OPT_TITLE, OPT_LOD, OPT_RES, OPT_SPP, OPT_BAKE_SPP, OPT_SERVE, OPT_FORCE };
     static const struct option longopts[] = {
         {"output", required_argument, NULL, 'o'},      {"catalogue", required_argument, NULL, OPT_CATALOGUE},
         {"title", required_argument, NULL, OPT_TITLE}, {"lod", required_argument, NULL, OPT_LOD},
         {"preview-res", required_argument, NULL, OPT_RES}, {"preview-spp", required_argument, NULL, OPT_SPP},
-        {"serve", optional_argument, NULL, OPT_SERVE}, {"force", no_argument, NULL, OPT_FORCE},
+        {"bake-spp", required_argument, NULL, OPT_BAKE_SPP}, {"serve", optional_argument, NULL, OPT_SERVE}, {"force", no_argument, NULL, OPT_FORCE},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
@@ -111,6 +113,11 @@ static int parse_options(int argc, char **argv, options *o)
                 return cli_usage_error("museum", "--preview-spp wants an integer 0..65536, not '%s'", optarg);
             o->museum.preview_spp = (int)v;
             break;
+        case OPT_BAKE_SPP:
+            if (cli_parse_int(optarg, 1, 65536, &v) != 0)
+                return cli_usage_error("museum", "--bake-spp wants an integer 1..65536, not '%s'", optarg);
+            o->museum.bake_spp = (int)v;
+            break;
         case OPT_SERVE: {
             /* --serve=PORT, or --serve PORT when the next word is a number. */
             const char *port = optarg ? optarg : optind < argc && all_digits(argv[optind]) ? argv[optind++] : NULL;
@@ -139,10 +146,10 @@ static void print_summary(const museum_options *o, const museum_report *r)
             "celadon: museum of %d vessel%s in %s/ (room %.1f x %.1f x %.1f m)\n"
             "  museum.glb %.1f MB; triangles %lld at full detail, %lld seen from the entrance (LOD), %lld at the "
             "coarsest; %d draw calls\n"
-            "  reconstruct %.2f s, write %.2f s, preview %.2f s; total %.2f s\n",
+            "  reconstruct %.2f s, write %.2f s (light baked in %.2f s), preview %.2f s; total %.2f s\n",
             r->n_vessels, r->n_vessels == 1 ? "" : "s", o->out_dir, r->room[0], r->room[1], r->room[2],
             r->glb_bytes / 1e6, r->triangles_full, r->triangles_entrance, r->triangles_coarsest, r->draw_calls,
-            r->ms_reconstruct / 1e3, r->ms_write / 1e3, r->ms_preview / 1e3, r->ms_total / 1e3);
+            r->ms_reconstruct / 1e3, r->ms_write / 1e3, r->ms_bake / 1e3, r->ms_preview / 1e3, r->ms_total / 1e3);
     if (r->web_missing)
         fprintf(stderr, "celadon: warning: index.html and museum.js are not in %s (`make` builds them with npm, "
                         "which `make deps` installs): the folder has no page yet\n",

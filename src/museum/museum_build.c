@@ -21,6 +21,7 @@
 #include "museum/layout.h"
 #include "museum/museum_folder.h"
 #include "museum/museum_gltf.h"
+#include "museum/museum_light.h"
 #include "museum/museum_preview.h"
 #include "museum/museum_scene.h"
 #include "museum/slug.h"
@@ -30,7 +31,8 @@ enum { LABEL_WIDTH_PX = 768, MUSEUM_TEXTURE_JPEG_QUALITY = 85 };
 
 museum_options museum_options_default(void)
 {
-    return (museum_options){.preview_width = 640, .preview_height = 360, .preview_spp = 16};
+    return (museum_options){.preview_width = 640, .preview_height = 360, .preview_spp = 16,
+                            .bake_spp = MUSEUM_DEFAULT_BAKE_SPP};
 }
 
 /* The files written into the temporary folder, for the manifest. */
@@ -248,6 +250,39 @@ static json_t *manifest(const build_ctx *b, const char *title, const museum_exhi
 }
 
 /* Everything after the reconstructions, into b->tmp. */
+/* The room's light from museum.xml's path tracer (museum_light.h): the
+ * probes written as files, the lightmaps kept for museum.glb. The vessel-free
+ * scene the probes see is a temporary file of the folder. */
+static int bake_light(build_ctx *b, const museum_options *opt, const char *title, const layout_t *l,
+                      const museum_exhibit *ex, int n, museum_light *light, museum_report *rep, char *err,
+                      size_t errlen)
+{
+    double t0 = now_seconds();
+    char scene[PATH_MAX + 32], room[PATH_MAX + 32], path[PATH_MAX + 160];
+    snprintf(scene, sizeof scene, "%s/museum.xml", b->tmp);
+    snprintf(room, sizeof room, "%s/bake-room.xml", b->tmp);
+    int rc = museum_scene_write(room, title, l, ex, n, 0, 16, 16, 1, err, errlen);
+    rc = rc ? rc : museum_light_bake(scene, room, l, ex, opt->bake_spp > 0 ? opt->bake_spp : 1, light, err, errlen);
+    remove(room);
+    if (rc != 0)
+        return -1;
+    snprintf(path, sizeof path, "%s/probe.hdr", b->tmp);
+    rc = write_bytes(path, light->room_probe.bytes, light->room_probe.len);
+    add_file(b, "%s", "probe.hdr");
+    for (int i = 0; i < n && rc == 0; i++) {
+        snprintf(path, sizeof path, "%s/vessels/%s/probe.hdr", b->tmp, ex[i].slug);
+        rc = write_bytes(path, light->probe[i].bytes, light->probe[i].len);
+        add_file(b, "vessels/%s/probe.hdr", ex[i].slug);
+    }
+    if (rc != 0) {
+        snprintf(err, errlen, "cannot write the light probes: %s", strerror(errno));
+        museum_light_free(light);
+        return -1;
+    }
+    rep->ms_bake = ms_since(t0);
+    return 0;
+}
+
 static int write_museum(build_ctx *b, const museum_options *opt, museum_exhibit *ex, int n, museum_report *rep,
                         char *err, size_t errlen)
 {
@@ -267,12 +302,18 @@ static int write_museum(build_ctx *b, const museum_options *opt, museum_exhibit 
     rep->room[0] = layout.width, rep->room[1] = layout.depth, rep->room[2] = layout.height;
     char path[PATH_MAX + 32];
     rc = write_labels(b, &layout, ex, n, err, errlen);
-    snprintf(path, sizeof path, "%s/museum.glb", b->tmp);
-    rc = rc ? rc : museum_gltf_write(path, title, &layout, ex, n, rep, err, errlen);
     snprintf(path, sizeof path, "%s/museum.xml", b->tmp);
     rc = rc ? rc
-            : museum_scene_write(path, title, &layout, ex, n, opt->preview_width, opt->preview_height,
+            : museum_scene_write(path, title, &layout, ex, n, 1, opt->preview_width, opt->preview_height,
                                  opt->preview_spp > 0 ? opt->preview_spp : 16, err, errlen);
+    museum_light light;
+    rc = rc ? rc : bake_light(b, opt, title, &layout, ex, n, &light, rep, err, errlen);
+    if (rc == 0) {
+        char glb[PATH_MAX + 32];
+        snprintf(glb, sizeof glb, "%s/museum.glb", b->tmp);
+        rc = museum_gltf_write(glb, title, &layout, ex, n, &light, rep, err, errlen);
+        museum_light_free(&light);
+    }
     layout_free(&layout);
     if (rc != 0)
         return -1;

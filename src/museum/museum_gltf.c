@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 #include "museum/glb.h"
+#include "museum/room_surfaces.h"
 
 enum { SAMPLER_CLAMP = 33071, FILTER_LINEAR = 9729, FILTER_LINEAR_MIPMAP_LINEAR = 9987 };
 
@@ -25,9 +26,10 @@ typedef struct {
 
 typedef struct {
     glb_t g;
-    int mat_floor, mat_wall, mat_ceiling, mat_pedestal, mat_glass, mat_frame, mat_lamp;
+    int mat_glass, mat_frame, mat_lamp;
     geometry_accessors box, quad, frame;
-    int mesh_pedestal, mesh_glass, mesh_frame;
+    int mesh_glass, mesh_frame;
+    const museum_light *light;
     long long static_tris; /* per frame, besides the vessels */
     int static_calls;
 } builder;
@@ -142,12 +144,9 @@ static int add_mesh(builder *b, const char *name, const geometry_accessors *acc,
     return glb_append(&b->g, "meshes", json_pack("{s:s, s:[o]}", "name", name, "primitives", prim));
 }
 
-/* Axis-aligned quads, each given by a corner and two edge vectors whose
- * cross product is its normal; UVs span [0,1]^2 per quad (v down the image). */
-typedef struct {
-    vec3 corner, du, dv;
-} quad_spec;
-
+/* Axis-aligned quads (room_surfaces.h), each given by a corner and two edge
+ * vectors whose cross product is its normal; UVs span [0,1]^2 per quad (v
+ * down the image). */
 static int quads_geometry(const quad_spec *q, int n, geometry *geo)
 {
     geo->n_verts = 4 * n;
@@ -185,6 +184,24 @@ static int upload_quads(builder *b, const quad_spec *q, int n, geometry_accessor
 {
     geometry geo = {0};
     int rc = quads_geometry(q, n, &geo) == 0 ? upload(b, &geo, acc) : -1;
+    geometry_free(&geo);
+    return rc;
+}
+
+/* Quads whose UVs are their tiles of lightmap m, moved by -origin. */
+static int upload_lightmapped(builder *b, const quad_spec *q, int n, const lightmap_layout *m, vec3 origin,
+                              geometry_accessors *acc)
+{
+    geometry geo = {0};
+    int rc = quads_geometry(q, n, &geo);
+    for (int i = 0; rc == 0 && i < geo.n_verts; i++) {
+        double u, v;
+        lightmap_uv(m, i / 4, geo.uv[2 * i], 1.0 - geo.uv[2 * i + 1], &u, &v);
+        geo.uv[2 * i] = (float)u, geo.uv[2 * i + 1] = (float)v;
+        for (int k = 0; k < 3; k++)
+            geo.pos[3 * i + k] -= (float)(k == 0 ? origin.x : k == 1 ? origin.y : origin.z);
+    }
+    rc = rc == 0 ? upload(b, &geo, acc) : -1;
     geometry_free(&geo);
     return rc;
 }
@@ -279,33 +296,43 @@ static int add_textured_material(builder *b, const char *name, int texture, doub
      * inner wall, the far side's back faces. */
     if (m && clearcoat)
         json_object_set_new(m, "doubleSided", json_true());
+    /* museum.xml's `plastic`: a diffuse body under one smooth dielectric
+     * coat, so the clear coat is the glaze's only specular layer (the base
+     * layer's own is off: KHR_materials_specular). */
     if (m && clearcoat)
         json_object_set_new(m, "extensions",
-                            json_pack("{s:{s:f, s:f}}", "KHR_materials_clearcoat", "clearcoatFactor", 1.0,
-                                      "clearcoatRoughnessFactor", 0.05));
+                            json_pack("{s:{s:f, s:f}, s:{s:f}}", "KHR_materials_clearcoat", "clearcoatFactor", 1.0,
+                                      "clearcoatRoughnessFactor", 0.05, "KHR_materials_specular", "specularFactor",
+                                      0.0));
     return glb_append(&b->g, "materials", m);
+}
+
+/* A surface whose light is baked (museum_light.h): its lightmap, the
+ * render's code values, drawn as it is (KHR_materials_unlit). */
+static int add_baked_material(builder *b, const char *name, const museum_file_bytes *jpeg)
+{
+    int tex = add_texture(b, name, jpeg->bytes, jpeg->len, "image/jpeg");
+    if (tex < 0)
+        return -1;
+    return glb_append(&b->g, "materials",
+                      json_pack("{s:s, s:{s:{s:i}, s:f, s:f}, s:{s:{}}}", "name", name, "pbrMetallicRoughness",
+                                "baseColorTexture", "index", tex, "metallicFactor", 0.0, "roughnessFactor", 1.0,
+                                "extensions", "KHR_materials_unlit"));
 }
 
 static int add_materials(builder *b)
 {
-    b->mat_floor = add_plain_material(b, "Floor (oak)", MUSEUM_FLOOR_RGB, 0.55);
-    b->mat_wall = add_plain_material(b, "Wall", MUSEUM_WALL_RGB, 0.9);
     b->mat_frame = add_plain_material(b, "Case frame", 0.10, 0.10, 0.10, 0.35);
     /* The lamps glow with the lights' colour (emission only: the point lights light the room). */
     b->mat_lamp = glb_append(&b->g, "materials",
                              json_pack("{s:s, s:o, s:[f,f,f]}", "name", "Lamp", "pbrMetallicRoughness",
                                        pbr(1, 1, 1, 0.9), "emissiveFactor", MUSEUM_LIGHT_COLOR_R, MUSEUM_LIGHT_COLOR_G,
                                        MUSEUM_LIGHT_COLOR_B));
-    b->mat_ceiling = add_plain_material(b, "Ceiling", MUSEUM_CEILING_RGB, 0.95);
-    b->mat_pedestal = add_plain_material(b, "Pedestal", 0.9, 0.89, 0.86, 0.6);
     json_t *glass = json_pack("{s:s, s:o, s:{s:{s:f}, s:{s:f}}}", "name", "Glass", "pbrMetallicRoughness",
                               pbr(1, 1, 1, 0.0), "extensions", "KHR_materials_transmission", "transmissionFactor",
                               1.0, "KHR_materials_ior", "ior", 1.5);
     b->mat_glass = glb_append(&b->g, "materials", glass);
-    return b->mat_floor < 0 || b->mat_wall < 0 || b->mat_ceiling < 0 || b->mat_pedestal < 0 || b->mat_glass < 0 ||
-                   b->mat_frame < 0 || b->mat_lamp < 0
-               ? -1
-               : 0;
+    return b->mat_glass < 0 || b->mat_frame < 0 || b->mat_lamp < 0 ? -1 : 0;
 }
 
 /* ------------------------------------------------------------------ nodes */
@@ -397,30 +424,22 @@ static int mesh_node(builder *b, const char *name, int mesh, vec3 at, vec3 scale
     return glb_append(&b->g, "nodes", n);
 }
 
-/* Floor, walls and ceiling as three meshes; returns -1 or 0 and adds their
- * nodes to the root. */
+/* Floor, ceiling and the four walls, each its own mesh under its
+ * lightmap; returns -1 or 0 and adds their nodes to the root. */
 static int room_nodes(builder *b, const layout_t *l, json_t *root)
 {
-    double w = l->width / 2, d = l->depth / 2, h = l->height;
-    const quad_spec floor_q = {{-w, 0, d}, {2 * w, 0, 0}, {0, 0, -2 * d}};
-    const quad_spec ceiling_q = {{-w, h, -d}, {2 * w, 0, 0}, {0, 0, 2 * d}};
-    const quad_spec walls[4] = {
-        {{-w, 0, -d}, {2 * w, 0, 0}, {0, h, 0}}, /* back wall, facing +z */
-        {{w, 0, d}, {-2 * w, 0, 0}, {0, h, 0}},  /* entrance wall, facing -z */
-        {{-w, 0, d}, {0, 0, -2 * d}, {0, h, 0}}, /* left, facing +x */
-        {{w, 0, -d}, {0, 0, 2 * d}, {0, h, 0}},  /* right, facing -x */
-    };
-    const quad_spec *parts[3] = {&floor_q, walls, &ceiling_q};
-    const int counts[3] = {1, 4, 1}, materials[3] = {b->mat_floor, b->mat_wall, b->mat_ceiling};
-    const char *names[3] = {"Floor", "Walls", "Ceiling"};
-    for (int k = 0; k < 3; k++) {
+    quad_spec q[ROOM_SURFACES];
+    room_surfaces(l, q);
+    for (int k = 0; k < ROOM_SURFACES; k++) {
         geometry_accessors acc;
-        if (upload_quads(b, parts[k], counts[k], &acc) != 0)
+        const char *name = room_surface_names[k];
+        int mat = add_baked_material(b, name, &b->light->room[k]);
+        if (mat < 0 || upload_lightmapped(b, &q[k], 1, &b->light->room_layout[k], v3(0, 0, 0), &acc) != 0)
             return -1;
-        int mesh = add_mesh(b, names[k], &acc, materials[k]);
-        if (mesh < 0 || add_child(root, mesh_node(b, names[k], mesh, v3(0, 0, 0), v3(1, 1, 1))) != 0)
+        int mesh = add_mesh(b, name, &acc, mat);
+        if (mesh < 0 || add_child(root, mesh_node(b, name, mesh, v3(0, 0, 0), v3(1, 1, 1))) != 0)
             return -1;
-        b->static_tris += 2 * counts[k];
+        b->static_tris += 2;
         b->static_calls++;
     }
     return 0;
@@ -499,13 +518,15 @@ static int vessel_node(builder *b, const museum_exhibit *e, vec3 at, int materia
 
 static json_t *exhibit_extras(const museum_exhibit *e, int index)
 {
-    char profile[160];
+    char profile[160], probe[160];
     snprintf(profile, sizeof profile, "vessels/%s/profile.json", e->slug);
+    snprintf(probe, sizeof probe, "vessels/%s/probe.hdr", e->slug);
     char size[128];
     vessel_size_line(e->height_cm_given, e->diameter_cm_given, size, sizeof size);
     json_t *x = json_pack("{s:i, s:s, s:f, s:s, s:s, s:s, s:s}", "index", index, "title", e->title, "height_cm",
                           100.0 * e->height_m, "size", size, "size_from", vessel_size_source_name(e->size_source),
                           "photo", e->photo, "profile", profile);
+    json_object_set_new(x, "probe", json_string(probe));
     if (e->below_gate)
         json_object_set_new(x, "note", json_string(MUSEUM_BELOW_GATE_NOTE));
     if (e->date)
@@ -523,7 +544,15 @@ static int exhibit_node(builder *b, const museum_exhibit *e, const layout_exhibi
     json_object_set_new(en, "extras", exhibit_extras(e, index));
     vec3 up = v3(0, le->pedestal_height, 0);
     snprintf(name, sizeof name, "Pedestal: %s", e->title);
-    int rc = add_child(en, mesh_node(b, name, b->mesh_pedestal, v3(0, 0, 0), v3(le->width, le->pedestal_height, le->width)));
+    quad_spec faces[PEDESTAL_FACES];
+    pedestal_faces(le, faces);
+    geometry_accessors acc;
+    int pmat = add_baked_material(b, name, &b->light->pedestal[index]);
+    int pmesh = pmat < 0 || upload_lightmapped(b, faces, PEDESTAL_FACES, &b->light->pedestal_layout[index],
+                                               le->centre, &acc) != 0
+                    ? -1
+                    : add_mesh(b, name, &acc, pmat);
+    int rc = pmesh < 0 ? -1 : add_child(en, mesh_node(b, name, pmesh, v3(0, 0, 0), v3(1, 1, 1)));
     snprintf(name, sizeof name, "Glass case: %s", e->title);
     rc |= add_child(en, mesh_node(b, name, b->mesh_glass, up, v3(le->width, le->case_height, le->width)));
     snprintf(name, sizeof name, "Case frame: %s", e->title);
@@ -575,7 +604,8 @@ static void figures(const builder *b, const layout_t *l, const museum_exhibit *e
 static int build(builder *b, const char *title, const layout_t *l, const museum_exhibit *ex, int n)
 {
     static const char *const extensions[] = {"KHR_materials_clearcoat", "KHR_materials_transmission",
-                                             "KHR_materials_ior", "KHR_lights_punctual"};
+                                             "KHR_materials_ior", "KHR_lights_punctual", "KHR_materials_unlit",
+                                             "KHR_materials_specular"};
     for (size_t k = 0; k < sizeof extensions / sizeof *extensions; k++)
         if (glb_use_extension(&b->g, extensions[k]) != 0)
             return -1;
@@ -584,14 +614,14 @@ static int build(builder *b, const char *title, const layout_t *l, const museum_
     if (add_materials(b) != 0 || upload_box(b) != 0 || upload_label_quad(b) != 0 || upload_frame(b) != 0)
         return -1;
     b->mesh_frame = add_mesh(b, "Case frame", &b->frame, b->mat_frame);
-    b->mesh_pedestal = add_mesh(b, "Pedestal", &b->box, b->mat_pedestal);
     b->mesh_glass = add_mesh(b, "Glass case", &b->box, b->mat_glass);
     char name[400];
     snprintf(name, sizeof name, "Museum: %s", title);
     json_t *root = node(name, v3(0, 0, 0));
     json_object_set_new(root, "extras",
-                        json_pack("{s:{s:s, s:i, s:[f,f,f], s:f}}", "celadon_museum", "title", title, "vessels", n,
-                                  "room", l->width, l->depth, l->height, "aisle", LAYOUT_AISLE));
+                        json_pack("{s:{s:s, s:i, s:[f,f,f], s:f, s:s}}", "celadon_museum", "title", title, "vessels", n,
+                                  "room", l->width, l->depth, l->height, "aisle", LAYOUT_AISLE, "probe",
+                                  "probe.hdr"));
     int rc = room_nodes(b, l, root);
     rc |= lamp_nodes(b, l, root);
     rc |= add_child(root, camera_node(b, l));
@@ -609,9 +639,9 @@ static int build(builder *b, const char *title, const layout_t *l, const museum_
 }
 
 int museum_gltf_write(const char *path, const char *title, const layout_t *layout, const museum_exhibit *ex,
-                      int n, museum_report *rep, char *err, size_t errlen)
+                      int n, const museum_light *light, museum_report *rep, char *err, size_t errlen)
 {
-    builder b = {0};
+    builder b = {.light = light};
     if (glb_init(&b.g, "celadon museum") != 0 || build(&b, title, layout, ex, n) != 0) {
         glb_free(&b.g);
         snprintf(err, errlen, "cannot build museum.glb (out of memory?)");

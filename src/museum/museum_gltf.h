@@ -2,7 +2,10 @@
  *
  * Nodes (every name says what it is, with the vessel's title):
  *   "Museum: TITLE"            root; extras.celadon_museum: room size, aisle, vessel count
- *     "Floor", "Walls", "Ceiling"   an oak-coloured floor, warm white walls
+ *                              and probe (probe.hdr: the room's light at the entrance)
+ *     "Floor", "Ceiling", "Back wall", "Entrance wall", "Left wall", "Right wall"
+ *                              each under its lightmap baked by the path tracer
+ *                              (museum_light.h), unlit (KHR_materials_unlit)
  *     "Lamps", "Lamp rods"     the ceiling lights' fixtures: glowing shades
  *                              (emissive) on rods, one mesh each
  *     "Entrance camera"        perspective camera at the entrance
@@ -11,8 +14,10 @@
  *                              extras: title, date, height_cm (as shown), size (the
  *                              label's line: the catalogue's figures only), size_from,
  *                              note (below the quality gate), description, photo,
- *                              profile (its vessels/SLUG/profile.json)
- *       "Pedestal: T", "Glass case: T"   KHR_materials_transmission + _ior
+ *                              profile (its vessels/SLUG/profile.json), probe (its
+ *                              vessels/SLUG/probe.hdr: the light around the vessel)
+ *       "Pedestal: T"          its five faces under their lightmap, unlit
+ *       "Glass case: T"        KHR_materials_transmission + _ior
  *       "Case frame: T"        the case's twelve edges as thin dark bars
  *       "Vessel: T"            the vessel's base; extras.lod: segments and distances
  *         "T, LOD K (N segments)"  one mesh per level, extras.lod_distance (m)
@@ -30,6 +35,7 @@
 #include "celadon/museum.h"
 #include "museum/exhibit.h"
 #include "museum/layout.h"
+#include "museum/museum_light.h"
 
 /* Light intensities shared by the glTF (candela) and the scene (W/sr): the
  * same numbers, so both show the same balance. */
@@ -48,9 +54,10 @@
 /* The case light's intensity for an exhibit. */
 double museum_case_light(const layout_exhibit *e);
 
-/* Writes path. Fills rep's triangle and draw-call figures and glb_bytes.
- * Returns 0, or -1 with a one-line reason. */
+/* Writes path, the room and pedestals drawn with light's lightmaps. Fills
+ * rep's triangle and draw-call figures and glb_bytes. Returns 0, or -1 with
+ * a one-line reason. */
 int museum_gltf_write(const char *path, const char *title, const layout_t *layout, const museum_exhibit *ex,
-                      int n, museum_report *rep, char *err, size_t errlen);
+                      int n, const museum_light *light, museum_report *rep, char *err, size_t errlen);
 
 #endif

@@ -229,8 +229,8 @@ static void exhibit(writer w, const museum_exhibit *e, const layout_exhibit *le)
     point_light(w, le->light, museum_case_light(le));
 }
 
-static int write_document(writer w, const char *title, const layout_t *l, const museum_exhibit *ex, int n, int width,
-                          int height, int spp)
+static int write_document(writer w, const char *title, const layout_t *l, const museum_exhibit *ex, int n,
+                          int with_vessels, int width, int height, int spp)
 {
     char buf[512];
     if (xmlTextWriterStartDocument(w, NULL, "utf-8", NULL) < 0)
@@ -266,7 +266,8 @@ static int write_document(writer w, const char *title, const layout_t *l, const 
     end(w);
     room(w, l);
     for (int i = 0; i < n; i++) {
-        vessel(w, &ex[i], &l->exhibits[i]);
+        if (with_vessels)
+            vessel(w, &ex[i], &l->exhibits[i]);
         exhibit(w, &ex[i], &l->exhibits[i]);
     }
     end(w);
@@ -274,7 +275,7 @@ static int write_document(writer w, const char *title, const layout_t *l, const 
 }
 
 int museum_scene_write(const char *path, const char *title, const layout_t *layout, const museum_exhibit *ex,
-                       int n, int width, int height, int spp, char *err, size_t errlen)
+                       int n, int with_vessels, int width, int height, int spp, char *err, size_t errlen)
 {
     char tmp[4200];
     atomic_temp_name(path, tmp, sizeof tmp);
@@ -283,7 +284,7 @@ int museum_scene_write(const char *path, const char *title, const layout_t *layo
         snprintf(err, errlen, "cannot write %s", path);
         return -1;
     }
-    int rc = write_document(w, title, layout, ex, n, width, height, spp);
+    int rc = write_document(w, title, layout, ex, n, with_vessels, width, height, spp);
     xmlFreeTextWriter(w);
     if (rc != 0 || rename(tmp, path) != 0) {
         snprintf(err, errlen, "cannot write %s: %s", path, rc ? "XML writer failed" : strerror(errno));

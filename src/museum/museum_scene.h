@@ -13,8 +13,10 @@
 #include "museum/exhibit.h"
 #include "museum/layout.h"
 
-/* Writes path atomically. Returns 0, or -1 with a one-line reason. */
+/* Writes path atomically; with_vessels = 0 leaves the vessels out (the
+ * room the environment probes see, museum_light.h). Returns 0, or -1 with a
+ * one-line reason. */
 int museum_scene_write(const char *path, const char *title, const layout_t *layout, const museum_exhibit *ex,
-                       int n, int width, int height, int spp, char *err, size_t errlen);
+                       int n, int with_vessels, int width, int height, int spp, char *err, size_t errlen);
 
 #endif

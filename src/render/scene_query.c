@@ -1,5 +1,6 @@
 /* What the public API lets a caller read of a built scene (scene.h): its
  * render settings, and probes of its camera and geometry. */
+#include <math.h>
 #include <string.h>
 
 #include "render/scene_impl.h"
@@ -50,4 +51,26 @@ bool scene_first_hit(const scene_t *s, const ray3 *r, double tmin, double tmax, 
     hit->shape_type = h.shape->type;
     hit->sheet = (bsdf_flags(h.shape->bsdf) & BSDF_STRAIGHT_TRANSMISSION) != 0;
     return true;
+}
+
+rgb scene_radiance(const scene_t *s, const ray3 *r, double tmin, double tmax, uint32_t px, uint32_t py,
+                   double *variance)
+{
+    integrator_scene sc = {&s->shapes, &s->emitters, s->camera_medium};
+    rgb sum = {0, 0, 0};
+    double sum_y2 = 0;
+    long long n = s->sampler.sample_count;
+    for (long long k = 0; k < n; k++) {
+        sampler_stream smp;
+        sampler_start(&s->sampler, &smp, px, py, (uint32_t)k);
+        rgb L = integrator_li(s->integrator, &sc, r, tmin, tmax, &smp, NULL);
+        sum.r += L.r, sum.g += L.g, sum.b += L.b;
+        sum_y2 += rgb_luminance(L) * rgb_luminance(L);
+    }
+    rgb mean = {sum.r / (double)n, sum.g / (double)n, sum.b / (double)n};
+    if (variance) {
+        double y = rgb_luminance(mean);
+        *variance = n > 1 ? fmax(sum_y2 / (double)n - y * y, 0.0) / (double)(n - 1) : 0.0;
+    }
+    return mean;
 }

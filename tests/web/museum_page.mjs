@@ -147,9 +147,13 @@ async function thumbsticks(page) {
   return { before: p0, walked, seconds, snapped, held, again };
 }
 
-// The docs' screenshots (docs/museum.md): the entrance, the first case
-// close up, and its label open.
+// The docs' screenshots (docs/museum.md): the entrance camera's view (the
+// path tracer's), the entrance, the first case close up, and its label open.
 async function shots(page) {
+  // The glb's entrance camera, as museum.xml's sensor sees the room.
+  await page.evaluate(() => window.museum.overlays(false));
+  await frames(page, 2);
+  await page.screenshot({ path: path.join(out, 'museum-camera.png'), timeout: 0 });
   const at = await page.evaluate(() => window.museum.casePosition(0));
   const entrance = await page.evaluate(() => window.museum.pose());
   await page.evaluate((p) => window.museum.lookFrom(p.x, 1.6, p.z, 0, 1.1, 0), entrance);
@@ -189,14 +193,16 @@ async function browse(url) {
     if (mode === 'shots') return { loadMs, shots: await shots(page), consoleErrors };
     const status = await page.evaluate(() => { const m = window.museum; return { error: m.error, title: m.title, vessels: m.vessels, trianglesFullDetail: m.trianglesFullDetail }; });
     const positions = await page.evaluate(() => window.museum.vesselScreenPositions());
+    const heights = await page.evaluate(() => window.museum.vesselHeights());
     const frame = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    await page.evaluate(() => window.museum.overlays(false));
     await frame();
     const figures = await page.evaluate(() => ({ triangles: window.museum.triangles, drawCalls: window.museum.drawCalls }));
     await page.screenshot({ path: path.join(out, 'page.png') });
     await page.evaluate(() => window.museum.setVesselsVisible(false));
     await frame();
     await page.screenshot({ path: path.join(out, 'page-without-vessels.png') });
-    await page.evaluate(() => window.museum.setVesselsVisible(true));
+    await page.evaluate(() => { window.museum.setVesselsVisible(true); window.museum.overlays(true); });
     const picked = [];
     for (const p of positions) picked.push(await page.evaluate(([x, y]) => window.museum.pickAt(x, y), [p.x, p.y]));
     const bytes = await page.evaluate(() => ({ loaded: window.museum.bytesLoaded, total: window.museum.bytesTotal }));
@@ -211,7 +217,7 @@ async function browse(url) {
     phaseMs.touch = Date.now() - t, t = Date.now();
     const xr = await thumbsticks(page);
     phaseMs.xr = Date.now() - t;
-    return { ...status, ...figures, loadMs, phaseMs, positions, picked, bytes, label, touch, xr, consoleErrors };
+    return { ...status, ...figures, loadMs, phaseMs, positions, heights, picked, bytes, label, touch, xr, consoleErrors };
   } finally {
     await context.close();
     rmSync(profile, { recursive: true, force: true });
