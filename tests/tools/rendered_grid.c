@@ -1,0 +1,111 @@
+/* The rendered perspective grid of docs/algorithms-recon.md, "Perspective"
+ * (13.8), as `make check-rendered-grid` prints it: vessels rendered by
+ * POV-Ray (tests/support/pov_vessel.c: a thin-walled open lathe on a sweep,
+ * soft light and shadow) through pinhole_vessel.h's camera, 600 x 800 px,
+ * from 0 to 10 degrees above at focal lengths of 35 to 200 mm (35 mm
+ * equivalent), each run through reconstruct_photo as `celadon reconstruct`
+ * runs it by default (automatic segmenter, the focal length from the
+ * ellipses: no EXIF; --force only so that a result over the quality gate's
+ * limits is still measured, and the gate's verdict is a column). Per photo:
+ * the camera found, the meridian against the true profile over 3-97% of the
+ * height in % of the height, and the axis's angle from the true (vertical)
+ * image axis. Arguments: shape names to run (vase, bowl, wide_mouth), WxH
+ * for another frame size, keep=DIR to keep the photos there. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "celadon/reconstruct.h"
+#include "support/drawn_silhouettes.h"
+#include "support/pinhole_vessel.h"
+#include "support/pov_vessel.h"
+
+static const char *method_name(recon_camera_method m)
+{
+    static const char *const names[] = {"ellipses", "exif", "flag", "orthographic"};
+    return names[m];
+}
+
+static void run(const char *dir, const char *shape, const pinhole_params *p, double e, double f35)
+{
+    char pov[1024], png[1024], err[512] = "";
+    snprintf(pov, sizeof pov, "%s/%s_e%g_f%g.pov", dir, shape, e, f35);
+    snprintf(png, sizeof png, "%s/%s_e%g_f%g.png", dir, shape, e, f35);
+    int rendered = pov_vessel_render(p, pov, png, 2, err, sizeof err);
+    remove(pov); /* 16 MB of mesh */
+    if (rendered != 0) {
+        printf("| %s | %g | %g | %.0f | not rendered: %s |\n", shape, e, f35, p->focal_px, err);
+        return;
+    }
+    reconstruct_options opt = reconstruct_options_default();
+    opt.force = 1;
+    reconstruction r;
+    int rc = reconstruct_photo(png, &opt, &r, err, sizeof err);
+    if (rc != 0) {
+        printf("| %s | %g | %g | %.0f | refused: %s |\n", shape, e, f35, p->focal_px, err);
+    } else if (!r.has_camera) {
+        printf("| %s | %g | %g | %.0f | no camera: %s |\n", shape, e, f35, p->focal_px, r.camera_note);
+    } else {
+        double mean, max;
+        pinhole_profile_error(p, &r.meridian.curve, &mean, &max);
+        double axis = fmax(fabs(r.extract.tilt_deg), fabs(r.camera.roll_deg));
+        printf("| %s | %g | %g | %.0f | %.0f | %.2f | %s | %.3f / %.3f | %.3f | %s%s | %s |\n", shape, e, f35,
+               p->focal_px, r.camera.focal_px, r.camera.elevation_deg, method_name(r.camera.method), 100 * mean,
+               100 * max, axis, r.quality.passed ? "pass" : "over: ", r.quality.failed, r.camera.note);
+    }
+    fflush(stdout);
+    reconstruction_free(&r);
+}
+
+int main(int argc, char **argv)
+{
+    if (!pov_available()) {
+        fprintf(stderr, "rendered_grid: povray not found (make deps installs it)\n");
+        return 2;
+    }
+    const char *shapes[] = {"vase", "bowl", "wide_mouth"};
+    const double elevations[] = {0, 3, 5, 8, 10}, focals[] = {35, 50, 85, 135, 200};
+    int width = 600, height = 800, named = 0;
+    const char *keep = NULL;
+    for (int a = 1; a < argc; a++) {
+        if (!strncmp(argv[a], "keep=", 5))
+            keep = argv[a] + 5;
+        else if (sscanf(argv[a], "%dx%d", &width, &height) != 2)
+            named = 1;
+    }
+    char dir[64] = "/tmp/celadon-rendered-XXXXXX";
+    if (!keep && !mkdtemp(dir)) {
+        perror("rendered_grid: mkdtemp");
+        return 1;
+    }
+    printf("| shape | elevation ° | focal mm | f px true | f px ours | elevation ours ° | camera | meridian mean / max "
+           "%% | axis ° | gate | note |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int s = 0; s < 3; s++) {
+        int wanted = !named;
+        for (int a = 1; a < argc; a++)
+            wanted |= !strcmp(argv[a], shapes[s]);
+        if (!wanted)
+            continue;
+        for (int k = 0; k < 5; k++)
+            for (int i = 0; i < 5; i++) {
+                pinhole_params p = pinhole_defaults(s == 1 ? SYNTH_BOWL : SYNTH_VASE, elevations[i]);
+                if (s == 2)
+                    p.radius = drawn_wide_mouth_vase_radius;
+                p.width = width;
+                p.height = height;
+                p.focal_px = recon_focal_from_35mm(p.width, p.height, focals[k]);
+                pinhole_frame(&p);
+                run(keep ? keep : dir, shapes[s], &p, elevations[i], focals[k]);
+                if (!keep) {
+                    char path[1024];
+                    snprintf(path, sizeof path, "%s/%s_e%g_f%g.png", dir, shapes[s], elevations[i], focals[k]);
+                    remove(path);
+                }
+            }
+    }
+    if (!keep)
+        rmdir(dir);
+    return 0;
+}
