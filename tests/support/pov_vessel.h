@@ -2,7 +2,7 @@
  * renderer: POV-Ray (Debian `povray`) draws the pinhole_params vessel as a
  * thin-walled open solid of revolution (the outer wall is p's profile r(t),
  * exact at 201 heights and linear between them, swept in 360 azimuth steps
- * as a smooth-shaded mesh; a wall 1.5% of the height thick; a floor 3%
+ * as a smooth-shaded mesh, half as fine in a draft; a wall 1.5% of the height thick; a floor 3%
  * above the foot)
  * standing on a photographer's sweep (a matte floor curving up into a wall
  * behind it), lit by a soft area light above and to the left of the camera
@@ -22,9 +22,10 @@
 int pov_available(void);
 
 /* Writes the scene for p to pov_path and renders it to png_path (8-bit
- * sRGB PNG, p->width x p->height) with `threads` render threads. Returns 0,
- * or -1 with a reason in err. */
-int pov_vessel_render(const pinhole_params *p, const char *pov_path, const char *png_path, int threads, char *err,
-                      size_t errlen);
+ * sRGB PNG, p->width x p->height) with `threads` render threads; a draft
+ * (a quarter of the mesh, a coarser soft shadow and anti-aliasing) costs
+ * about half. Returns 0, or -1 with a reason in err. */
+int pov_vessel_render(const pinhole_params *p, int draft, const char *pov_path, const char *png_path, int threads,
+                      char *err, size_t errlen);
 
 #endif

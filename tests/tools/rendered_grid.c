@@ -33,7 +33,7 @@ static void run(const char *dir, const char *shape, const pinhole_params *p, dou
     char pov[1024], png[1024], err[512] = "";
     snprintf(pov, sizeof pov, "%s/%s_e%g_f%g.pov", dir, shape, e, f35);
     snprintf(png, sizeof png, "%s/%s_e%g_f%g.png", dir, shape, e, f35);
-    int rendered = pov_vessel_render(p, pov, png, 2, err, sizeof err);
+    int rendered = pov_vessel_render(p, 0, pov, png, 2, err, sizeof err);
     remove(pov); /* 16 MB of mesh */
     if (rendered != 0) {
         printf("| %s | %g | %g | %.0f | not rendered: %s |\n", shape, e, f35, p->focal_px, err);
