@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "synth_profile.h"
 
@@ -113,4 +114,28 @@ double drawn_moon_jar_radius(double t)
 double drawn_wide_mouth_vase_radius(double t)
 {
     return 0.17 + 0.09 * sin(2 * M_PI * (0.85 * t + 0.08)) + 0.25 * pow(t, 6);
+}
+
+const char *const drawn_grid_shape_names[DRAWN_GRID_SHAPES] = {"vase", "bowl", "wide_mouth"};
+
+int drawn_grid_shape_wanted(int argc, char **argv, int s)
+{
+    int named = 0, wanted = 0;
+    for (int a = 1; a < argc; a++)
+        for (int k = 0; k < DRAWN_GRID_SHAPES; k++)
+            if (!strcmp(argv[a], drawn_grid_shape_names[k]))
+                named = 1, wanted |= k == s;
+    return !named || wanted;
+}
+
+pinhole_params drawn_grid_vessel(int s, double elevation_deg, double focal_35mm, int width, int height)
+{
+    pinhole_params p = pinhole_defaults(s == 1 ? SYNTH_BOWL : SYNTH_VASE, elevation_deg);
+    if (s == 2)
+        p.radius = drawn_wide_mouth_vase_radius;
+    p.width = width;
+    p.height = height;
+    p.focal_px = recon_focal_from_35mm(width, height, focal_35mm);
+    pinhole_frame(&p);
+    return p;
 }

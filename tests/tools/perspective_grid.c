@@ -55,31 +55,17 @@ static void run(const char *shape, const pinhole_params *p, double e, double f35
 
 int main(int argc, char **argv)
 {
-    const char *shapes[] = {"vase", "bowl", "wide_mouth"};
     const double elevations[] = {0, 3, 5, 8, 10}, focals[] = {35, 50, 85, 200};
     printf("| shape | elevation ° | focal mm | f px true | f px ours | elevation ours ° | camera | meridian mean / max "
            "%% | axis ° | note |\n|---|---|---|---|---|---|---|---|---|---|\n");
-    int width = 600, height = 800, named = 0;
+    int width = 600, height = 800;
     for (int a = 1; a < argc; a++)
-        if (sscanf(argv[a], "%dx%d", &width, &height) != 2)
-            named = 1;
-    for (int s = 0; s < 3; s++) {
-        int wanted = !named;
-        for (int a = 1; a < argc; a++)
-            wanted |= !strcmp(argv[a], shapes[s]);
-        if (!wanted)
-            continue;
-        for (int k = 0; k < 4; k++)
+        sscanf(argv[a], "%dx%d", &width, &height);
+    for (int s = 0; s < DRAWN_GRID_SHAPES; s++)
+        for (int k = 0; k < 4 && drawn_grid_shape_wanted(argc, argv, s); k++)
             for (int i = 0; i < 5; i++) {
-                pinhole_params p = pinhole_defaults(s == 1 ? SYNTH_BOWL : SYNTH_VASE, elevations[i]);
-                if (s == 2)
-                    p.radius = drawn_wide_mouth_vase_radius;
-                p.width = width;
-                p.height = height;
-                p.focal_px = recon_focal_from_35mm(p.width, p.height, focals[k]);
-                pinhole_frame(&p);
-                run(shapes[s], &p, elevations[i], focals[k]);
+                pinhole_params p = drawn_grid_vessel(s, elevations[i], focals[k], width, height);
+                run(drawn_grid_shape_names[s], &p, elevations[i], focals[k]);
             }
-    }
     return 0;
 }

@@ -65,15 +65,14 @@ int main(int argc, char **argv)
         fprintf(stderr, "rendered_grid: povray not found (make deps installs it)\n");
         return 2;
     }
-    const char *shapes[] = {"vase", "bowl", "wide_mouth"};
     const double elevations[] = {0, 3, 5, 8, 10}, focals[] = {35, 50, 85, 135, 200};
-    int width = 600, height = 800, named = 0;
+    int width = 600, height = 800;
     const char *keep = NULL;
     for (int a = 1; a < argc; a++) {
         if (!strncmp(argv[a], "keep=", 5))
             keep = argv[a] + 5;
-        else if (sscanf(argv[a], "%dx%d", &width, &height) != 2)
-            named = 1;
+        else
+            sscanf(argv[a], "%dx%d", &width, &height);
     }
     char dir[64] = "/tmp/celadon-rendered-XXXXXX";
     if (!keep && !mkdtemp(dir)) {
@@ -82,29 +81,18 @@ int main(int argc, char **argv)
     }
     printf("| shape | elevation ° | focal mm | f px true | f px ours | elevation ours ° | camera | meridian mean / max "
            "%% | axis ° | gate | note |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
-    for (int s = 0; s < 3; s++) {
-        int wanted = !named;
-        for (int a = 1; a < argc; a++)
-            wanted |= !strcmp(argv[a], shapes[s]);
-        if (!wanted)
-            continue;
-        for (int k = 0; k < 5; k++)
+    for (int s = 0; s < DRAWN_GRID_SHAPES; s++)
+        for (int k = 0; k < 5 && drawn_grid_shape_wanted(argc, argv, s); k++)
             for (int i = 0; i < 5; i++) {
-                pinhole_params p = pinhole_defaults(s == 1 ? SYNTH_BOWL : SYNTH_VASE, elevations[i]);
-                if (s == 2)
-                    p.radius = drawn_wide_mouth_vase_radius;
-                p.width = width;
-                p.height = height;
-                p.focal_px = recon_focal_from_35mm(p.width, p.height, focals[k]);
-                pinhole_frame(&p);
-                run(keep ? keep : dir, shapes[s], &p, elevations[i], focals[k]);
+                pinhole_params p = drawn_grid_vessel(s, elevations[i], focals[k], width, height);
+                const char *name = drawn_grid_shape_names[s];
+                run(keep ? keep : dir, name, &p, elevations[i], focals[k]);
                 if (!keep) {
                     char path[1024];
-                    snprintf(path, sizeof path, "%s/%s_e%g_f%g.png", dir, shapes[s], elevations[i], focals[k]);
+                    snprintf(path, sizeof path, "%s/%s_e%g_f%g.png", dir, name, elevations[i], focals[k]);
                     remove(path);
                 }
             }
-    }
     if (!keep)
         rmdir(dir);
     return 0;
