@@ -433,7 +433,7 @@ perspective-figure: check-deps-stamp
 # `make check-rendered-grid` the same cameras on photos rendered by POV-Ray
 # (Debian povray; a thin-walled vessel on a sweep under a soft light,
 # tests/support/pov_vessel.c) at 135 mm too, through the default segmenter
-# (docs/algorithms-recon.md 13.8), about 40 minutes of both cores.
+# (docs/algorithms-recon.md 13.8), about 15 minutes of CPU.
 .PHONY: check-not-vessel check-perspective-grid check-rendered-grid
 CHECK_TOOL_C := $(SCENE_C) $(addprefix tests/support/,pinhole_vessel.c synthdev_truth.c drawn_silhouettes.c pov_vessel.c)
 build/tools/not_vessel_figures build/tools/perspective_grid build/tools/rendered_grid: build/tools/%: tests/tools/%.c $(CHECK_TOOL_C) \
