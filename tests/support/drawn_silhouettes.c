@@ -3,6 +3,7 @@
 #include "drawn_silhouettes.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -138,4 +139,25 @@ pinhole_params drawn_grid_vessel(int s, double elevation_deg, double focal_35mm,
     p.focal_px = recon_focal_from_35mm(width, height, focal_35mm);
     pinhole_frame(&p);
     return p;
+}
+
+void drawn_grid_print_row(const char *shape, const pinhole_params *p, double e, double f35, int rc,
+                          const reconstruction *r, const char *err, int gate)
+{
+    static const char *const methods[] = {"ellipses", "exif", "flag", "orthographic"};
+    if (rc != 0) {
+        printf("| %s | %g | %g | %.0f | refused: %s |\n", shape, e, f35, p->focal_px, err);
+    } else if (!r->has_camera) {
+        printf("| %s | %g | %g | %.0f | no camera: %s |\n", shape, e, f35, p->focal_px, r->camera_note);
+    } else {
+        double mean, max;
+        pinhole_profile_error(p, &r->meridian.curve, &mean, &max);
+        double axis = fmax(fabs(r->extract.tilt_deg), fabs(r->camera.roll_deg));
+        printf("| %s | %g | %g | %.0f | %.0f | %.2f | %s | %.3f / %.3f | %.3f | ", shape, e, f35, p->focal_px,
+               r->camera.focal_px, r->camera.elevation_deg, methods[r->camera.method], 100 * mean, 100 * max, axis);
+        if (gate)
+            printf("%s%s | ", r->quality.passed ? "pass" : "over: ", r->quality.failed);
+        printf("%s |\n", r->camera.note);
+    }
+    fflush(stdout);
 }

@@ -9,6 +9,7 @@
 #define CELADON_TESTS_DRAWN_SILHOUETTES_H
 
 #include "celadon/image.h"
+#include "celadon/reconstruct.h"
 #include "pinhole_vessel.h"
 
 typedef enum {
@@ -50,5 +51,12 @@ int drawn_grid_shape_wanted(int argc, char **argv, int s);
 /* Grid shape s seen from elevation_deg above at focal_35mm (35 mm
  * equivalent) in a width x height frame, pinhole_defaults' framing. */
 pinhole_params drawn_grid_vessel(int s, double elevation_deg, double focal_35mm, int width, int height);
+
+/* Prints the grid's table row for a reconstruction of p's photo: rc and
+ * err as reconstruct_image gave them; the camera, the meridian against the
+ * truth (% of the height) and the axis; with gate, the quality gate's
+ * verdict as one more column. */
+void drawn_grid_print_row(const char *shape, const pinhole_params *p, double e, double f35, int rc,
+                          const reconstruction *r, const char *err, int gate);
 
 #endif

@@ -19,12 +19,6 @@
 #include "support/drawn_silhouettes.h"
 #include "support/pinhole_vessel.h"
 
-static const char *method_name(recon_camera_method m)
-{
-    static const char *const names[] = {"ellipses", "exif", "flag", "orthographic"};
-    return names[m];
-}
-
 static void run(const char *shape, const pinhole_params *p, double e, double f35)
 {
     image_t img;
@@ -36,19 +30,7 @@ static void run(const char *shape, const pinhole_params *p, double e, double f35
     reconstruction r;
     char err[512] = "";
     int rc = reconstruct_image(&img, &opt, &r, err, sizeof err);
-    if (rc != 0) {
-        printf("| %s | %g | %g | %.0f | refused: %s |\n", shape, e, f35, p->focal_px, err);
-    } else if (!r.has_camera) {
-        printf("| %s | %g | %g | %.0f | no camera: %s |\n", shape, e, f35, p->focal_px, r.camera_note);
-    } else {
-        double mean, max;
-        pinhole_profile_error(p, &r.meridian.curve, &mean, &max);
-        double axis = fmax(fabs(r.extract.tilt_deg), fabs(r.camera.roll_deg));
-        printf("| %s | %g | %g | %.0f | %.0f | %.2f | %s | %.3f / %.3f | %.3f | %s |\n", shape, e, f35, p->focal_px,
-               r.camera.focal_px, r.camera.elevation_deg, method_name(r.camera.method), 100 * mean, 100 * max, axis,
-               r.camera.note);
-    }
-    fflush(stdout);
+    drawn_grid_print_row(shape, p, e, f35, rc, &r, err, 0);
     reconstruction_free(&r);
     image_free(&img);
 }

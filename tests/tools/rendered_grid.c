@@ -22,12 +22,6 @@
 #include "support/pinhole_vessel.h"
 #include "support/pov_vessel.h"
 
-static const char *method_name(recon_camera_method m)
-{
-    static const char *const names[] = {"ellipses", "exif", "flag", "orthographic"};
-    return names[m];
-}
-
 static void run(const char *dir, const char *shape, const pinhole_params *p, double e, double f35)
 {
     char pov[1024], png[1024], err[512] = "";
@@ -43,19 +37,7 @@ static void run(const char *dir, const char *shape, const pinhole_params *p, dou
     opt.force = 1;
     reconstruction r;
     int rc = reconstruct_photo(png, &opt, &r, err, sizeof err);
-    if (rc != 0) {
-        printf("| %s | %g | %g | %.0f | refused: %s |\n", shape, e, f35, p->focal_px, err);
-    } else if (!r.has_camera) {
-        printf("| %s | %g | %g | %.0f | no camera: %s |\n", shape, e, f35, p->focal_px, r.camera_note);
-    } else {
-        double mean, max;
-        pinhole_profile_error(p, &r.meridian.curve, &mean, &max);
-        double axis = fmax(fabs(r.extract.tilt_deg), fabs(r.camera.roll_deg));
-        printf("| %s | %g | %g | %.0f | %.0f | %.2f | %s | %.3f / %.3f | %.3f | %s%s | %s |\n", shape, e, f35,
-               p->focal_px, r.camera.focal_px, r.camera.elevation_deg, method_name(r.camera.method), 100 * mean,
-               100 * max, axis, r.quality.passed ? "pass" : "over: ", r.quality.failed, r.camera.note);
-    }
-    fflush(stdout);
+    drawn_grid_print_row(shape, p, e, f35, rc, &r, err, 1);
     reconstruction_free(&r);
 }
 
