@@ -39,11 +39,11 @@ int recon_envelope_point(const recon_camera *cam, vec2 p, vec2 t, double *r, dou
 }
 
 /* Tangent of the outline at q[k]: least-squares slope du/dw over the
- * neighbouring points (the outline is a function of w). */
-static vec2 tangent_at(const vec2 *q, int n, int k)
+ * neighbouring points q[lo..hi-1] (the outline is a function of w). */
+static vec2 tangent_at(const vec2 *q, int lo, int hi, int k)
 {
-    int a = k - TANGENT_HALF_WINDOW < 0 ? 0 : k - TANGENT_HALF_WINDOW;
-    int b = k + TANGENT_HALF_WINDOW >= n ? n - 1 : k + TANGENT_HALF_WINDOW;
+    int a = k - TANGENT_HALF_WINDOW < lo ? lo : k - TANGENT_HALF_WINDOW;
+    int b = k + TANGENT_HALF_WINDOW >= hi ? hi - 1 : k + TANGENT_HALF_WINDOW;
     double mw = 0, mu = 0;
     for (int i = a; i <= b; i++)
         mw += q[i].y, mu += q[i].x;
@@ -150,7 +150,13 @@ int recon_meridian_from_outline(const recon_camera *cam, const recon_result *res
     int m = 1;
     for (int k = 0; k < n; k++) {
         double r, y;
-        vec2 t = tangent_at(q, n, k);
+        /* A polyline point's tangent from polyline points only: the corners
+         * are where the outline leaves the end ellipses, a turn that a
+         * window across them would average in (the wide-mouthed vase
+         * rendered level at 50 mm: the last rows above its base corners
+         * came out 12% of the radius too wide, 3% of the height). */
+        int inner = k >= mid[0] && k < mid[1];
+        vec2 t = tangent_at(q, inner ? mid[0] : 0, inner ? mid[1] : n, k);
         if ((k < mid[0] || k >= mid[1]) && fabs(t.x) > 1)
             continue;
         if (recon_envelope_point(cam, q[k], t, &r, &y) == 0 && y > cam->base_y && y < cam->rim_y)

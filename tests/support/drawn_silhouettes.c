@@ -3,7 +3,9 @@
 #include "drawn_silhouettes.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "synth_profile.h"
 
@@ -113,4 +115,49 @@ double drawn_moon_jar_radius(double t)
 double drawn_wide_mouth_vase_radius(double t)
 {
     return 0.17 + 0.09 * sin(2 * M_PI * (0.85 * t + 0.08)) + 0.25 * pow(t, 6);
+}
+
+const char *const drawn_grid_shape_names[DRAWN_GRID_SHAPES] = {"vase", "bowl", "wide_mouth"};
+
+int drawn_grid_shape_wanted(int argc, char **argv, int s)
+{
+    int named = 0, wanted = 0;
+    for (int a = 1; a < argc; a++)
+        for (int k = 0; k < DRAWN_GRID_SHAPES; k++)
+            if (!strcmp(argv[a], drawn_grid_shape_names[k]))
+                named = 1, wanted |= k == s;
+    return !named || wanted;
+}
+
+pinhole_params drawn_grid_vessel(int s, double elevation_deg, double focal_35mm, int width, int height)
+{
+    pinhole_params p = pinhole_defaults(s == 1 ? SYNTH_BOWL : SYNTH_VASE, elevation_deg);
+    if (s == 2)
+        p.radius = drawn_wide_mouth_vase_radius;
+    p.width = width;
+    p.height = height;
+    p.focal_px = recon_focal_from_35mm(width, height, focal_35mm);
+    pinhole_frame(&p);
+    return p;
+}
+
+void drawn_grid_print_row(const char *shape, const pinhole_params *p, double e, double f35, int rc,
+                          const reconstruction *r, const char *err, int gate)
+{
+    static const char *const methods[] = {"ellipses", "exif", "flag", "orthographic"};
+    if (rc != 0) {
+        printf("| %s | %g | %g | %.0f | refused: %s |\n", shape, e, f35, p->focal_px, err);
+    } else if (!r->has_camera) {
+        printf("| %s | %g | %g | %.0f | no camera: %s |\n", shape, e, f35, p->focal_px, r->camera_note);
+    } else {
+        double mean, max;
+        pinhole_profile_error(p, &r->meridian.curve, &mean, &max);
+        double axis = fmax(fabs(r->extract.tilt_deg), fabs(r->camera.roll_deg));
+        printf("| %s | %g | %g | %.0f | %.0f | %.2f | %s | %.3f / %.3f | %.3f | ", shape, e, f35, p->focal_px,
+               r->camera.focal_px, r->camera.elevation_deg, methods[r->camera.method], 100 * mean, 100 * max, axis);
+        if (gate)
+            printf("%s%s | ", r->quality.passed ? "pass" : "over: ", r->quality.failed);
+        printf("%s |\n", r->camera.note);
+    }
+    fflush(stdout);
 }

@@ -9,6 +9,8 @@
 #define CELADON_TESTS_DRAWN_SILHOUETTES_H
 
 #include "celadon/image.h"
+#include "celadon/reconstruct.h"
+#include "pinhole_vessel.h"
 
 typedef enum {
     DRAWN_STAR,            /* five-pointed, one point up: mirror-symmetric, backdrop between its legs */
@@ -36,5 +38,25 @@ double drawn_moon_jar_radius(double t);
  * synth_vessel's vase plus 0.25 t^6, radius 0.38 at the rim against 0.26 at
  * the belly (the perspective grid's wide-mouthed vase). */
 double drawn_wide_mouth_vase_radius(double t);
+
+/* The perspective grids' vessels (tests/tools/perspective_grid.c,
+ * rendered_grid.c): shape 0 "vase", 1 "bowl", 2 "wide_mouth". */
+enum { DRAWN_GRID_SHAPES = 3 };
+extern const char *const drawn_grid_shape_names[DRAWN_GRID_SHAPES];
+
+/* Whether the grid runs shape s: every shape when no argument names one,
+ * else the ones named. */
+int drawn_grid_shape_wanted(int argc, char **argv, int s);
+
+/* Grid shape s seen from elevation_deg above at focal_35mm (35 mm
+ * equivalent) in a width x height frame, pinhole_defaults' framing. */
+pinhole_params drawn_grid_vessel(int s, double elevation_deg, double focal_35mm, int width, int height);
+
+/* Prints the grid's table row for a reconstruction of p's photo: rc and
+ * err as reconstruct_image gave them; the camera, the meridian against the
+ * truth (% of the height) and the axis; with gate, the quality gate's
+ * verdict as one more column. */
+void drawn_grid_print_row(const char *shape, const pinhole_params *p, double e, double f35, int rc,
+                          const reconstruction *r, const char *err, int gate);
 
 #endif

@@ -53,6 +53,11 @@ vec2 pinhole_project(const pinhole_params *p, vec3 q)
     return project(&c, q);
 }
 
+vec3 pinhole_camera_location(const pinhole_params *p)
+{
+    return camera_of(p).loc;
+}
+
 double pinhole_elevation(const pinhole_params *p)
 {
     camera c = camera_of(p);

@@ -71,6 +71,10 @@ double pinhole_radius(const pinhole_params *p, double t);
 /* Image point of a vessel point (x, y, z), heights. */
 vec2 pinhole_project(const pinhole_params *p, vec3 q);
 
+/* The camera's position, heights (the point it looks at is
+ * (look_at_side, look_at_height, 0)). */
+vec3 pinhole_camera_location(const pinhole_params *p);
+
 /* The elevation of the optical axis (degrees, + looking down). */
 double pinhole_elevation(const pinhole_params *p);
 

@@ -19,12 +19,6 @@
 #include "support/drawn_silhouettes.h"
 #include "support/pinhole_vessel.h"
 
-static const char *method_name(recon_camera_method m)
-{
-    static const char *const names[] = {"ellipses", "exif", "flag", "orthographic"};
-    return names[m];
-}
-
 static void run(const char *shape, const pinhole_params *p, double e, double f35)
 {
     image_t img;
@@ -36,50 +30,24 @@ static void run(const char *shape, const pinhole_params *p, double e, double f35
     reconstruction r;
     char err[512] = "";
     int rc = reconstruct_image(&img, &opt, &r, err, sizeof err);
-    if (rc != 0) {
-        printf("| %s | %g | %g | %.0f | refused: %s |\n", shape, e, f35, p->focal_px, err);
-    } else if (!r.has_camera) {
-        printf("| %s | %g | %g | %.0f | no camera: %s |\n", shape, e, f35, p->focal_px, r.camera_note);
-    } else {
-        double mean, max;
-        pinhole_profile_error(p, &r.meridian.curve, &mean, &max);
-        double axis = fmax(fabs(r.extract.tilt_deg), fabs(r.camera.roll_deg));
-        printf("| %s | %g | %g | %.0f | %.0f | %.2f | %s | %.3f / %.3f | %.3f | %s |\n", shape, e, f35, p->focal_px,
-               r.camera.focal_px, r.camera.elevation_deg, method_name(r.camera.method), 100 * mean, 100 * max, axis,
-               r.camera.note);
-    }
-    fflush(stdout);
+    drawn_grid_print_row(shape, p, e, f35, rc, &r, err, 0);
     reconstruction_free(&r);
     image_free(&img);
 }
 
 int main(int argc, char **argv)
 {
-    const char *shapes[] = {"vase", "bowl", "wide_mouth"};
     const double elevations[] = {0, 3, 5, 8, 10}, focals[] = {35, 50, 85, 200};
     printf("| shape | elevation ° | focal mm | f px true | f px ours | elevation ours ° | camera | meridian mean / max "
            "%% | axis ° | note |\n|---|---|---|---|---|---|---|---|---|---|\n");
-    int width = 600, height = 800, named = 0;
+    int width = 600, height = 800;
     for (int a = 1; a < argc; a++)
-        if (sscanf(argv[a], "%dx%d", &width, &height) != 2)
-            named = 1;
-    for (int s = 0; s < 3; s++) {
-        int wanted = !named;
-        for (int a = 1; a < argc; a++)
-            wanted |= !strcmp(argv[a], shapes[s]);
-        if (!wanted)
-            continue;
-        for (int k = 0; k < 4; k++)
+        sscanf(argv[a], "%dx%d", &width, &height);
+    for (int s = 0; s < DRAWN_GRID_SHAPES; s++)
+        for (int k = 0; k < 4 && drawn_grid_shape_wanted(argc, argv, s); k++)
             for (int i = 0; i < 5; i++) {
-                pinhole_params p = pinhole_defaults(s == 1 ? SYNTH_BOWL : SYNTH_VASE, elevations[i]);
-                if (s == 2)
-                    p.radius = drawn_wide_mouth_vase_radius;
-                p.width = width;
-                p.height = height;
-                p.focal_px = recon_focal_from_35mm(p.width, p.height, focals[k]);
-                pinhole_frame(&p);
-                run(shapes[s], &p, elevations[i], focals[k]);
+                pinhole_params p = drawn_grid_vessel(s, elevations[i], focals[k], width, height);
+                run(drawn_grid_shape_names[s], &p, elevations[i], focals[k]);
             }
-    }
     return 0;
 }
