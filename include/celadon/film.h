@@ -47,6 +47,10 @@ static inline int film_format_has_alpha(film_pixel_format f)
     return f == FILM_RGBA || f == FILM_LUMINANCE_ALPHA || f == FILM_XYZA;
 }
 
+/* The colour channels as the format writes them into an EXR (Y, or X, Y, Z,
+ * or R, G, B; then A with alpha) into names[0..3]; returns their count. */
+int film_format_colour_names(film_pixel_format f, const char **names);
+
 /* How the image was made, written into the EXR header: "spp" (int, the
  * samples per pixel asked for), "seed" (string: a 64-bit number),
  * "renderer", "integrator", "camera" (strings), the standard

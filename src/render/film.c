@@ -40,45 +40,40 @@ static char *aov_channel_name(const film_aov *a, int c)
     return dup_name(a->name, a->suffixes ? a->suffixes[c] : a->channels == 1 ? "Y" : rgb_names[c]);
 }
 
-/* The colour channels as the pixel format writes them (film_develop_exr). */
-static int written_colour_names(film_pixel_format format, const char **names)
+int film_format_colour_names(film_pixel_format f, const char **names)
 {
     static const char *const xyz_names[3] = {"X", "Y", "Z"};
-    int lum = format == FILM_LUMINANCE || format == FILM_LUMINANCE_ALPHA;
-    int xyz = format == FILM_XYZ || format == FILM_XYZA, n = lum ? 1 : 3;
+    int lum = f == FILM_LUMINANCE || f == FILM_LUMINANCE_ALPHA;
+    int xyz = f == FILM_XYZ || f == FILM_XYZA, n = lum ? 1 : 3;
     for (int c = 0; c < n; c++)
         names[c] = lum ? "Y" : xyz ? xyz_names[c] : rgb_names[c];
-    if (film_format_has_alpha(format))
+    if (film_format_has_alpha(f))
         names[n++] = "A";
     return n;
 }
 
 /* An AOV channel written under the name of a colour channel or of another
  * AOV's channel (depth's Z on an X, Y, Z film) would make an EXR no
- * reader accepts: refused before anything is rendered. */
-static int aov_names_collide(film_pixel_format format, const film_aov *aovs, int naovs, char *err, size_t errlen)
+ * reader accepts: refused before anything is rendered. The AOVs' names
+ * are f->names from `first` on, those of aovs[] in turn. */
+static int aov_names_collide(const film_t *f, int first, const film_aov *aovs, char *err, size_t errlen)
 {
     const char *colour[4];
-    int ncolour = written_colour_names(format, colour);
-    for (int a = 0; a < naovs; a++)
-        for (int c = 0; c < aovs[a].channels; c++) {
-            char *name = aov_channel_name(&aovs[a], c);
-            int clash = 0;
-            for (int k = 0; k < ncolour && !clash; k++)
-                clash = !strcmp(name, colour[k]);
-            for (int b = 0; b < a && !clash; b++)
-                for (int d = 0; d < aovs[b].channels && !clash; d++) {
-                    char *other = aov_channel_name(&aovs[b], d);
-                    clash = !strcmp(name, other);
-                    free(other);
-                }
-            if (clash)
-                snprintf(err, errlen, "the channel '%s' of AOV '%s' is written twice on a %s film", name, aovs[a].name,
-                         film_format_name(format));
-            free(name);
-            if (clash)
-                return 1;
+    int ncolour = film_format_colour_names(f->format, colour);
+    for (int k = first, a = 0, c = 0; k < f->nchannels; k++) {
+        int clash = 0;
+        for (int j = 0; j < ncolour; j++)
+            clash |= !strcmp(f->names[k], colour[j]);
+        for (int j = first; j < k; j++)
+            clash |= !strcmp(f->names[k], f->names[j]);
+        if (clash) {
+            snprintf(err, errlen, "the channel '%s' of AOV '%s' is written twice on a %s film", f->names[k],
+                     aovs[a].name, film_format_name(f->format));
+            return 1;
         }
+        if (++c == aovs[a].channels)
+            a++, c = 0;
+    }
     return 0;
 }
 
@@ -100,8 +95,6 @@ int film_init_format(film_t *f, int width, int height, film_pixel_format format,
         }
         n += aovs[a].channels;
     }
-    if (aov_names_collide(format, aovs, naovs, err, errlen))
-        return -1;
     f->width = width;
     f->height = height;
     f->nchannels = n;
@@ -118,9 +111,14 @@ int film_init_format(film_t *f, int width, int height, film_pixel_format format,
         f->names[k++] = dup_name("", rgb_names[c]);
     if (alpha)
         f->names[k++] = dup_name("", "A");
+    int first = k;
     for (int a = 0; a < naovs; a++)
         for (int c = 0; c < aovs[a].channels; c++)
             f->names[k++] = aov_channel_name(&aovs[a], c);
+    if (aov_names_collide(f, first, aovs, err, errlen)) {
+        film_free(f);
+        return -1;
+    }
     return 0;
 }
 

@@ -65,7 +65,6 @@ float *film_develop_exr(const film_t *f, int *nch, const char **names)
 {
     static const double to_xyz[3][3] = {
         {0.412453, 0.357580, 0.180423}, {0.212671, 0.715160, 0.072169}, {0.019334, 0.119193, 0.950227}};
-    static const char *const xyz_names[3] = {"X", "Y", "Z"};
     size_t npix = (size_t)f->width * f->height;
     float *dev = malloc(sizeof(float) * npix * f->nchannels);
     if (!dev)
@@ -79,8 +78,8 @@ float *film_develop_exr(const film_t *f, int *nch, const char **names)
     int xyz = f->format == FILM_XYZ || f->format == FILM_XYZA;
     int base = lum ? 1 : 3, film_ch = f->nchannels - 3 + base;
     *nch = film_ch + spp + var + ids;
-    for (int c = 0; c < film_ch; c++)
-        names[c] = c >= base ? f->names[c + 3 - base] : lum ? "Y" : xyz ? xyz_names[c] : f->names[c];
+    for (int c = film_format_colour_names(f->format, names); c < film_ch; c++)
+        names[c] = f->names[c + 3 - base];
     if (spp)
         names[film_ch] = "spp";
     if (var)
