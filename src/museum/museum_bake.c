@@ -6,7 +6,6 @@
 #include <string.h>
 
 #include "celadon/denoise.h"
-
 #include "celadon/film.h"
 
 static void put(float *out, long i, rgb L)

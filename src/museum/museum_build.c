@@ -249,7 +249,6 @@ static json_t *manifest(const build_ctx *b, const char *title, const museum_exhi
                      b->files, "vessels", vessels, "figures", figures);
 }
 
-/* Everything after the reconstructions, into b->tmp. */
 /* The room's light from museum.xml's path tracer (museum_light.h): the
  * probes written as files, the lightmaps kept for museum.glb. The vessel-free
  * scene the probes see is a temporary file of the folder. */
@@ -283,6 +282,7 @@ static int bake_light(build_ctx *b, const museum_options *opt, const char *title
     return 0;
 }
 
+/* Everything after the reconstructions, into b->tmp. */
 static int write_museum(build_ctx *b, const museum_options *opt, museum_exhibit *ex, int n, museum_report *rep,
                         char *err, size_t errlen)
 {
