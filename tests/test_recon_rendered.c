@@ -22,12 +22,7 @@ Test(recon_rendered, wide_mouthed_vase_8_degrees_above_at_85mm, .timeout = 120)
 {
     if (!pov_available())
         cr_skip_test("povray not found (make deps installs it)");
-    pinhole_params p = pinhole_defaults(SYNTH_VASE, 8);
-    p.radius = drawn_wide_mouth_vase_radius;
-    p.width = 300;
-    p.height = 400;
-    p.focal_px = recon_focal_from_35mm(p.width, p.height, 85);
-    pinhole_frame(&p);
+    pinhole_params p = drawn_grid_vessel(DRAWN_GRID_WIDE_MOUTH, 8, 85, 300, 400);
     char dir[64], pov[128], png[128], err[512] = "";
     scratch_dir_make(dir, sizeof dir, "rendered");
     snprintf(pov, sizeof pov, "%s/vase.pov", dir);

@@ -131,8 +131,8 @@ int drawn_grid_shape_wanted(int argc, char **argv, int s)
 
 pinhole_params drawn_grid_vessel(int s, double elevation_deg, double focal_35mm, int width, int height)
 {
-    pinhole_params p = pinhole_defaults(s == 1 ? SYNTH_BOWL : SYNTH_VASE, elevation_deg);
-    if (s == 2)
+    pinhole_params p = pinhole_defaults(s == DRAWN_GRID_BOWL ? SYNTH_BOWL : SYNTH_VASE, elevation_deg);
+    if (s == DRAWN_GRID_WIDE_MOUTH)
         p.radius = drawn_wide_mouth_vase_radius;
     p.width = width;
     p.height = height;

@@ -40,8 +40,9 @@ double drawn_moon_jar_radius(double t);
 double drawn_wide_mouth_vase_radius(double t);
 
 /* The perspective grids' vessels (tests/tools/perspective_grid.c,
- * rendered_grid.c): shape 0 "vase", 1 "bowl", 2 "wide_mouth". */
-enum { DRAWN_GRID_SHAPES = 3 };
+ * rendered_grid.c, test_recon_rendered.c), named "vase", "bowl",
+ * "wide_mouth". */
+enum { DRAWN_GRID_VASE, DRAWN_GRID_BOWL, DRAWN_GRID_WIDE_MOUTH, DRAWN_GRID_SHAPES };
 extern const char *const drawn_grid_shape_names[DRAWN_GRID_SHAPES];
 
 /* Whether the grid runs shape s: every shape when no argument names one,
