@@ -2,8 +2,9 @@
  * with exact truth (tests/support/synth_scene.h), small (300 x 400 px): two
  * loop handles at the shoulder never become the rim's corners (the rim is
  * found above them and the handles are left out), and a stand wider than
- * the foot that stops short of the border, or a square plinth seen level,
- * is not revolved into the body (the base's corners on the foot). */
+ * the foot that stops short of the border, or a square plinth seen level or
+ * from above, is not revolved into the body (the base's corners on the
+ * foot). */
 #include <criterion/criterion.h>
 #include <math.h>
 
@@ -58,7 +59,9 @@ Test(recon_appendages, handles_at_the_shoulder_are_not_the_rim, .timeout = 60)
     reconstruction_free(&x.r);
 }
 
-static void stand_case(const char *name, double width, double height, double elevation_deg)
+/* The base's corners within `bound` px of the foot's: the stand is not
+ * revolved into the body. */
+static void stand_case(const char *name, double width, double height, double elevation_deg, double bound)
 {
     synth_scene_params p;
     cr_assert_eq(synth_scene_case(name, W, H, &p), 0);
@@ -70,16 +73,29 @@ static void stand_case(const char *name, double width, double height, double ele
     double e = corner_error(&x, CORNER_BASE_LEFT, CORNER_BASE_RIGHT);
     cr_log_info("%s, stand %.2f x %.2f, %g deg: base corners %.1f px from the foot's", name, width, height,
                 elevation_deg, e);
-    cr_expect_leq(e, 2, "%s: the base's corners are %.1f px from the foot's (the stand revolved?)", name, e);
+    if (bound < 0) /* a fraction of the vessel's drawn height */
+        bound *= -(x.t.corners[CORNER_BASE_LEFT].y - x.t.corners[CORNER_RIM_LEFT].y);
+    cr_expect_leq(e, bound, "%s: the base's corners are %.1f px from the foot's (the stand revolved?)", name, e);
     reconstruction_free(&x.r);
 }
 
 Test(recon_appendages, a_wider_stand_short_of_the_border_is_not_revolved, .timeout = 60)
 {
-    stand_case("bottle_stand", 1.6, 0.15, 0);
+    stand_case("bottle_stand", 1.6, 0.15, 0, 2);
 }
 
 Test(recon_appendages, a_square_plinth_seen_level_is_not_revolved, .timeout = 60)
 {
-    stand_case("vase_plinth", 1.8, 0.16, 0);
+    stand_case("vase_plinth", 1.8, 0.16, 0, 2);
+}
+
+/* From above the plinth's top face shows around the foot, which stands on
+ * it (support.c, the plinth hypothesis): revolved, the base's corners were
+ * 46-48 px off. The foot's own corners seen from above are found to 1% of
+ * the vessel's height (the issue's bound on a profile's largest error): as
+ * close as on the same vessel drawn without the plinth (2.4 px at 10 deg). */
+Test(recon_appendages, a_square_plinth_seen_from_above_is_not_revolved, .timeout = 60)
+{
+    stand_case("vase_plinth", 1.8, 0.16, 10, -0.01);
+    stand_case("vase_plinth", 1.8, 0.16, 15, -0.01);
 }

@@ -15,9 +15,17 @@
  *            cut through an even body means the vessel itself runs off the
  *            photo, which the quality gate refuses.
  *
- * A stand that stops short of the border is not looked for: from the outline
- * and colours alone it is not told from a foot ring or a pedestal foot in
- * another colour (tried: a ledge test cut a lidded jar in half at a band).
+ *   plinth   a stand short of the border, seen from above: the object ends
+ *            in a straight column (a box's sides and straight front edge, rows
+ *            within a pixel of the lowest row's extent) under a ledge (the row
+ *            above steps in on both sides). Seeds: its lowest rows and its
+ *            pixels beyond the ledge. Accepted when the cut follows an edge
+ *            and the vessel left reaches down into the column: the top face
+ *            shows around the foot, so the camera is above, and from above a
+ *            revolved base ends in a curved near arc, never in the straight
+ *            edge the column stands on. A foot ring or a disc foot in another
+ *            colour is either curved below (seen from above) or has the
+ *            vessel end on its top (seen level): kept.
  *
  * See recon_internal.h. */
 #include <math.h>
@@ -40,8 +48,18 @@ enum { SEED_COMPONENTS = 3 };
  * misfit about chi-square with 2 degrees of freedom under the shadow's
  * noise (median 1.4): a median over 16 (4 sigmas) is a colour of its own. */
 #define SHADOW_MAX_MISFIT 16.0
+/* A plinth's column is at least 3 rows high, and the vessel's base reaches
+ * at least 2 rows below the plinth's top (at the working resolution: 2 rows
+ * are 1% of the photo's longer side). */
+enum { PLINTH_MIN_ROWS = 3, PLINTH_MIN_STEP = 2, PLINTH_MIN_OVERLAP = 2, PLINTH_MAX_ROUNDS = 3 };
 
-typedef enum { HYPO_SHADOW, HYPO_STAND } hypothesis;
+typedef enum { HYPO_SHADOW, HYPO_STAND, HYPO_PLINTH } hypothesis;
+
+/* A box plinth's column in the object: rows top..bottom of the same extent
+ * as the lowest row, under a ledge whose row (top - 1) spans l..r. */
+typedef struct {
+    int top, bottom, l, r;
+} plinth_column;
 
 /* The mask dilated by a (2r+1)^2 square. */
 static void dilate(const uint8_t *m, int w, int h, int r, uint8_t *out)
@@ -69,8 +87,94 @@ static int row_span(const uint8_t *m, int w, int h, int *top, int *bottom)
     return *bottom >= 0 ? 0 : -1;
 }
 
+/* The extent [*l, *r] of a row's object pixels; 0 when it has none. */
+static int row_extent(const uint8_t *row, int w, int *l, int *r)
+{
+    const uint8_t *a = memchr(row, 1, (size_t)w);
+    if (!a)
+        return 0;
+    *l = (int)(a - row);
+    *r = (int)((const uint8_t *)memrchr(row, 1, (size_t)w) - row);
+    return 1;
+}
+
+/* The first row of the straight column that rises from row y: the rows
+ * whose object extent stays within a pixel, on each side, of row y's. */
+static int column_from(const uint8_t *m, int w, int y)
+{
+    int l0, r0, l, r;
+    if (!row_extent(m + (size_t)y * w, w, &l0, &r0))
+        return y + 1;
+    while (y > 0 && row_extent(m + (size_t)(y - 1) * w, w, &l, &r) && abs(l - l0) <= 1 && abs(r - r0) <= 1)
+        y--;
+    return y;
+}
+
+/* The first row of the straight column that rises from the bottom border
+ * (a stand's cylinder or box, or a vessel's wall cut by the border: nothing
+ * there is surely the vessel). bottom + 1 when the object does not reach
+ * the border. */
+static int column_top(const uint8_t *m, int w, int h, int bottom)
+{
+    return bottom < h - 1 ? bottom + 1 : column_from(m, w, h - 1);
+}
+
+/* A plinth's column under the object (plinth_column): at least
+ * PLINTH_MIN_ROWS rows with the object above it. 1 when the object ends in
+ * one. */
+static int find_plinth_column(const uint8_t *m, int w, int bottom, plinth_column *pc)
+{
+    pc->bottom = bottom;
+    pc->top = column_from(m, w, bottom);
+    return pc->top >= 1 && bottom - pc->top + 1 >= PLINTH_MIN_ROWS &&
+           row_extent(m + (size_t)(pc->top - 1) * w, w, &pc->l, &pc->r);
+}
+
+/* Does the part cut off show beside the vessel's base? The vessel's lowest
+ * row lies at least PLINTH_MIN_OVERLAP rows below the part's top: the
+ * plinth's top face is seen around the foot (from above), where a disc foot
+ * seen level has the body end on its top. */
+static int part_beside_base(const uint8_t *m, const uint8_t *sup, int w, int h)
+{
+    int part_top = h, low = -1;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            size_t p = (size_t)y * w + x;
+            part_top = sup[p] && y < part_top ? y : part_top;
+            low = m[p] && !sup[p] ? y : low;
+        }
+    return low >= part_top + PLINTH_MIN_OVERLAP;
+}
+
+/* Does the object's outline step out onto the part on both sides? A plinth
+ * is a body wider than the foot: somewhere on each side the outline's
+ * outermost pixel moves out by PLINTH_MIN_STEP px or more from a row where
+ * it is the vessel's to the next row down where it is the part's (the
+ * plinth's top edge). A band painted round a body, cut along, leaves the
+ * outline running on smoothly; an L's foot steps out on one side. */
+static int part_steps_out(const uint8_t *m, const uint8_t *sup, int w, int h)
+{
+    int found[2] = {0, 0}, prev[2] = {0, 0}, prev_vessel[2] = {0, 0};
+    for (int y = 0; y < h; y++) {
+        int l, r;
+        if (!row_extent(m + (size_t)y * w, w, &l, &r)) {
+            prev_vessel[0] = prev_vessel[1] = 0;
+            continue;
+        }
+        int edge[2] = {l, r}, reach[2] = {-l, r}; /* how far out, per side */
+        for (int s = 0; s < 2; s++) {
+            int on_part = sup[(size_t)y * w + edge[s]];
+            found[s] |= on_part && prev_vessel[s] && reach[s] - prev[s] >= PLINTH_MIN_STEP;
+            prev[s] = reach[s];
+            prev_vessel[s] = !on_part;
+        }
+    }
+    return found[0] && found[1];
+}
+
 /* Marks the seeds of a hypothesis; returns their count, or -1. */
-static int part_seeds(const recon_segmentation *seg, const uint8_t *m, hypothesis hyp, uint8_t *seed)
+static int part_seeds(const recon_segmentation *seg, const uint8_t *m, hypothesis hyp, const plinth_column *pc,
+                      uint8_t *seed)
 {
     const int w = seg->w, h = seg->h;
     int top, bottom, n = 0;
@@ -93,6 +197,8 @@ static int part_seeds(const recon_segmentation *seg, const uint8_t *m, hypothesi
                 continue;
             if (hyp == HYPO_STAND)
                 seed[p] = y >= h - 2;
+            else if (hyp == HYPO_PLINTH)
+                seed[p] = y >= pc->top && (y >= bottom - 1 || x < pc->l - 1 || x > pc->r + 1);
             else if (y >= low) {
                 int q = recon_segment_mirror(seg, p);
                 seed[p] = q < 0 || !dil[q];
@@ -101,32 +207,6 @@ static int part_seeds(const recon_segmentation *seg, const uint8_t *m, hypothesi
         }
     free(dil);
     return n;
-}
-
-/* The extent [*l, *r] of a row's object pixels; 0 when it has none. */
-static int row_extent(const uint8_t *row, int w, int *l, int *r)
-{
-    const uint8_t *a = memchr(row, 1, (size_t)w);
-    if (!a)
-        return 0;
-    *l = (int)(a - row);
-    *r = (int)((const uint8_t *)memrchr(row, 1, (size_t)w) - row);
-    return 1;
-}
-
-/* The first row of the straight column that rises from the bottom border:
- * the rows whose object extent stays within a pixel, on each side, of the
- * bottom row's (a stand's cylinder or box, or a vessel's wall cut by the
- * border: nothing there is surely the vessel). bottom + 1 when the object
- * does not reach the border. */
-static int column_top(const uint8_t *m, int w, int h, int bottom)
-{
-    int l0, r0, l, r, y = h - 1;
-    if (bottom < h - 1 || !row_extent(m + (size_t)y * w, w, &l0, &r0))
-        return bottom + 1;
-    while (y > 0 && row_extent(m + (size_t)(y - 1) * w, w, &l, &r) && abs(l - l0) <= 1 && abs(r - r0) <= 1)
-        y--;
-    return y;
 }
 
 /* The vessel's seeds: the upper half of the object above the column that
@@ -281,12 +361,11 @@ static double part_shadow_misfit(const recon_segmentation *seg, const uint8_t *s
  * shadow is the backdrop darkened: a part of a colour of its own (the foot
  * of an L in the object's glaze) is none, whatever its outline
  * (SHADOW_MAX_MISFIT). A stand is another body: the cut follows an edge. */
-static int accepted(const recon_segmentation *seg, hypothesis hyp, const uint8_t *m, const uint8_t *sup,
-                    double edge)
+static int accepted(const recon_segmentation *seg, hypothesis hyp, const uint8_t *m, const uint8_t *sup, double edge)
 {
+    const int w = seg->w;
     if (hyp == HYPO_STAND)
         return edge <= EDGE_LINK_MAX;
-    const int w = seg->w;
     long part = 0, unmirrored = 0;
     for (int y = 0; y < seg->h; y++) {
         const uint8_t *row = m + (size_t)y * w, *srow = sup + (size_t)y * w;
@@ -307,6 +386,61 @@ static int accepted(const recon_segmentation *seg, hypothesis hyp, const uint8_t
     return 2 * unmirrored > part && part_shadow_misfit(seg, sup) <= SHADOW_MAX_MISFIT;
 }
 
+/* The plinth hypothesis, in rounds: each cuts the column the object ends in
+ * (a box's front face, then its top face seen from above, ...) between the
+ * vessel's seeds and the column's; every cut must follow an edge, and the
+ * rounds stop, accepted, once the plinth shows beside the vessel's base
+ * (part_beside_base), or give up after PLINTH_MAX_ROUNDS. On acceptance sup
+ * holds all the rounds' parts and *part_gmm their colours. Returns the
+ * part's pixel count, 0 when refused, or -1. */
+static long plinth_cut(const recon_segmentation *seg, const uint8_t *m, uint8_t *seed, uint8_t *sup,
+                       recon_gmm *part_gmm, int *colours)
+{
+    const int w = seg->w, h = seg->h;
+    const size_t n = (size_t)w * h;
+    uint8_t *work = malloc(n * 2), *part = work ? work + n : NULL;
+    int *idx = malloc(n * sizeof *idx);
+    long count = -1;
+    if (!work || !idx)
+        goto out;
+    memcpy(work, m, n);
+    memset(part, 0, n);
+    count = 0;
+    for (int round = 0; round < PLINTH_MAX_ROUNDS; round++) {
+        int top, bottom;
+        plinth_column pc;
+        if (row_span(work, w, h, &top, &bottom) != 0 || bottom - top < 8 || !find_plinth_column(work, w, bottom, &pc))
+            break;
+        double edge;
+        long cut = part_seeds(seg, work, HYPO_PLINTH, &pc, seed) > 0
+                       ? seeded_cut(seg, work, seed, sup, &edge, part_gmm, colours)
+                       : 0;
+        if (cut < 0) {
+            count = -1;
+            goto out;
+        }
+        if (cut == 0 || edge > EDGE_LINK_MAX)
+            break;
+        for (size_t p = 0; p < n; p++) {
+            part[p] |= sup[p];
+            work[p] &= !sup[p];
+        }
+        if (!part_beside_base(m, part, w, h) || !part_steps_out(m, part, w, h))
+            continue;
+        int np = 0;
+        for (size_t p = 0; p < n; p++)
+            if ((sup[p] = part[p]))
+                idx[np++] = (int)p;
+        *colours = recon_gmm_fit(part_gmm, seg->rgb, idx, np, SEED_COMPONENTS, 2) == 0;
+        count = np;
+        break;
+    }
+out:
+    free(idx);
+    free(work);
+    return count;
+}
+
 int recon_cut_support(recon_segmentation *seg, uint8_t *m, recon_excluded *parts, int max_parts, int *n_parts)
 {
     const int w = seg->w, h = seg->h;
@@ -318,23 +452,30 @@ int recon_cut_support(recon_segmentation *seg, uint8_t *m, recon_excluded *parts
     int border = 0;
     for (int x = 0; x < w && !border; x++)
         border = m[(size_t)(h - 1) * w + x];
-    /* shadow first; then a stand at the border */
-    hypothesis order[2] = {HYPO_SHADOW, HYPO_STAND};
-    for (int k = 0; k < 1 + border; k++) {
+    /* shadow first; then a stand at the border, or a plinth short of it */
+    hypothesis order[2] = {HYPO_SHADOW, border ? HYPO_STAND : HYPO_PLINTH};
+    for (int k = 0; k < 2; k++) {
         if (row_span(m, w, h, &top, &bottom) != 0 || bottom - top < 8)
             break;
-        int ns = part_seeds(seg, m, order[k], seed);
-        if (ns < 0)
-            goto out;
-        if (ns == 0)
-            continue;
         double edge;
         recon_gmm part_gmm;
         int colours;
-        long count = seeded_cut(seg, m, seed, sup, &edge, &part_gmm, &colours);
+        long count;
+        if (order[k] == HYPO_PLINTH) {
+            count = plinth_cut(seg, m, seed, sup, &part_gmm, &colours);
+        } else {
+            int ns = part_seeds(seg, m, order[k], NULL, seed);
+            if (ns < 0)
+                goto out;
+            if (ns == 0)
+                continue;
+            count = seeded_cut(seg, m, seed, sup, &edge, &part_gmm, &colours);
+            if (count > 0 && !accepted(seg, order[k], m, sup, edge))
+                count = 0;
+        }
         if (count < 0)
             goto out;
-        if (count == 0 || !accepted(seg, order[k], m, sup, edge))
+        if (count == 0)
             continue;
         int y0 = h, y1 = -1;
         double side_sum = 0;
