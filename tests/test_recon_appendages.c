@@ -1,7 +1,8 @@
 /* Handles and stands that are no part of the revolved body (issue 25), drawn
  * with exact truth (tests/support/synth_scene.h), small (300 x 400 px): two
- * loop handles at the shoulder never become the rim's corners (the rim is
- * found above them and the handles are left out), and a stand wider than
+ * loop handles at the shoulder, or two solid lugs under the rim, never
+ * become the rim's corners (the rim is found above them and the handles are
+ * left out), and a stand wider than
  * the foot that stops short of the border, or a square plinth seen level or
  * from above, is not revolved into the body (the base's corners on the
  * foot). */
@@ -61,6 +62,26 @@ Test(recon_appendages, handles_at_the_shoulder_are_not_the_rim, .timeout = 60)
 
 /* The base's corners within `bound` px of the foot's: the stand is not
  * revolved into the body. */
+/* Two solid lugs just under the rim (jar_lugs_high: round knobs, no hole),
+ * level and from 15 degrees: the rim's corners are the lip's, not the lugs'
+ * tops (issue 25: lugs taken for the rim lost the mouth above them). The
+ * lugs themselves stay in the profile (docs/algorithms-recon.md, section
+ * 12). */
+Test(recon_appendages, lugs_under_the_rim_are_not_the_rim, .timeout = 60)
+{
+    for (int k = 0; k < 2; k++) {
+        synth_scene_params p;
+        cr_assert_eq(synth_scene_case("jar_lugs_high", W, H, &p), 0);
+        p.vessels[0].body.elevation_deg = k ? 15 : 0;
+        drawn x;
+        run(&p, &x);
+        double e = corner_error(&x, CORNER_RIM_LEFT, CORNER_RIM_RIGHT);
+        cr_log_info("lugs under the rim, %g deg: rim corners %.1f px from the truth", p.vessels[0].body.elevation_deg, e);
+        cr_expect_leq(e, 2, "the rim's corners are %.1f px from the truth (taken at a lug?)", e);
+        reconstruction_free(&x.r);
+    }
+}
+
 static void stand_case(const char *name, double width, double height, double elevation_deg, double bound)
 {
     synth_scene_params p;
