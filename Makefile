@@ -164,6 +164,10 @@ build/opt/%.o: %.c
 build/opt/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) $(ALL_CXXFLAGS) $(PIC) -MMD -MP -c $< -o $@
+# The optimised build's test objects keep line tables only too (-g1, as
+# the sanitized ones below): a failing test's stack still names file and
+# line, and they compile a sixth faster (docs/BENCHMARKS.md, "Test suite").
+$(call objs,opt,$(TEST_C)): ALL_CFLAGS += -g1
 # The sanitized objects keep line tables only (-g1): a report's stack still
 # names file and line, and the build takes a third less time.
 build/asan/%.o: %.c
