@@ -35,6 +35,11 @@ ALL_CFLAGS   = -std=c11 -D_GNU_SOURCE $(WARN) $(MATH) -fopenmp -Iinclude -Isrc $
 ALL_CXXFLAGS = -std=c++17 $(WARN) -Iinclude -Isrc $(PKG_CFLAGS) $(OPENCV_CFLAGS) $(CXXFLAGS)
 LDLIBS   = $(PKG_LIBS) $(MPI_LIBS) -fopenmp -lstdc++ -lm
 SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+# Debian's GCC links with --as-needed unless -fsanitize is given: the
+# sanitized programs would then load every library named (the test runner
+# Open MPI's and GnuTLS's, which it never calls) at each of their hundreds
+# of starts (docs/BENCHMARKS.md, "Test suite"). Put after the objects.
+SAN_AS_NEEDED := -Wl,--as-needed
 
 LIB_C    := $(shell find src -name '*.c' ! -path 'src/cli/*' | sort)
 
@@ -164,6 +169,10 @@ build/opt/%.o: %.c
 build/opt/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) $(ALL_CXXFLAGS) $(PIC) -MMD -MP -c $< -o $@
+# The optimised build's test objects keep line tables only too (-g1, as
+# the sanitized ones below): a failing test's stack still names file and
+# line, and they compile a sixth faster (docs/BENCHMARKS.md, "Test suite").
+$(call objs,opt,$(TEST_C)): ALL_CFLAGS += -g1
 # The sanitized objects keep line tables only (-g1): a report's stack still
 # names file and line, and the build takes a third less time.
 build/asan/%.o: %.c
@@ -185,7 +194,7 @@ define backend
 build/opt/libceladon-$(1).so: $(call objs,opt,$(2))
 	$$(CXX) -shared -o $$@ $$^ $(3)
 build/asan/libceladon-$(1).so: $(call objs,asan,$(2))
-	$$(CXX) $$(SAN) -shared -o $$@ $$^ $(3)
+	$$(CXX) $$(SAN) -shared -o $$@ $$^ $$(SAN_AS_NEEDED) $(3)
 build/asan/$(2:.cpp=.o): ALL_CXXFLAGS += -fPIC
 endef
 $(eval $(call backend,oiio,src/image/oiio_shim.cpp,$$(OIIO_LIBS)))
@@ -197,12 +206,12 @@ build/asan/src/core/backend_library.o: ALL_CFLAGS += -DCELADON_BACKEND_DIR='"$(C
 build/celadon: $(call objs,opt,$(CLI_C)) build/opt/libceladon.a
 	$(CC) -o $@ $(call objs,opt,$(CLI_C)) build/opt/libceladon.a $(LDLIBS)
 build/asan/celadon: $(call objs,asan,$(CLI_C)) build/asan/libceladon.a
-	$(CC) $(SAN) -o $@ $^ $(LDLIBS)
+	$(CC) $(SAN) -o $@ $^ $(SAN_AS_NEEDED) $(LDLIBS)
 
 build/opt/celadon-tests: $(call objs,opt,$(TEST_C)) build/opt/libceladon.a
 	$(CC) -o $@ $^ $(LDLIBS) -lcriterion
 build/asan/celadon-tests: $(call objs,asan,$(TEST_C)) build/asan/libceladon.a
-	$(CC) $(SAN) -o $@ $^ $(LDLIBS) -lcriterion
+	$(CC) $(SAN) -o $@ $^ $(SAN_AS_NEEDED) $(LDLIBS) -lcriterion
 
 # ---------------------------------------------------------------- shared library
 # libceladon.so: the optimised objects again (they are position-independent),

@@ -19,8 +19,15 @@
 #include "support/museum_fixture.h"
 #include "support/test_build.h"
 
-/* Two vessels: every check below needs no more. */
-enum { N_PHOTOS = 2, SHOT_W = 640, SHOT_H = 360 };
+/* Two vessels: every check below needs no more. The screenshots are 320 x
+ * 180 (the driver walks in a window of its own): software WebGL's cost goes
+ * with the pixels (the driver took 10.7 s more CPU at 640 x 360,
+ * docs/BENCHMARKS.md, "Test suite"), and the pixel bounds below are those
+ * that held at 640 x 360 scaled to it (POS_TOL_PX) or are stricter at it. */
+enum { N_PHOTOS = 2, SHOT_W = 320, SHOT_H = 180 };
+/* three.js's projection of a vessel against ours: within a pixel of a
+ * 640-wide window. */
+#define POS_TOL_PX (SHOT_W / 640.0)
 
 static char workdir[256];
 
@@ -298,8 +305,8 @@ Test(museum_web, the_page_loads_and_shows_every_vessel, .timeout = 600)
         cr_assert_eq(glb_project(&g, centre, SHOT_W, SHOT_H, &px, &py), 0);
         /* three.js puts the vessel where our own projection of the glb does ... */
         json_t *pos = json_array_get(positions, (size_t)k);
-        cr_expect(fabs(json_number_value(json_object_get(pos, "x")) - px) < 1.0 &&
-                      fabs(json_number_value(json_object_get(pos, "y")) - py) < 1.0,
+        cr_expect(fabs(json_number_value(json_object_get(pos, "x")) - px) < POS_TOL_PX &&
+                      fabs(json_number_value(json_object_get(pos, "y")) - py) < POS_TOL_PX,
                   "%s: page (%.1f, %.1f), glb (%.1f, %.1f)", title, json_number_value(json_object_get(pos, "x")),
                   json_number_value(json_object_get(pos, "y")), px, py);
         /* ... the screenshot shows it there ... */

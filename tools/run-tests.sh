@@ -75,7 +75,7 @@ for b in $suites; do
   echo "== the slowest tests of the $b build (seconds; each also pays its process's start)"
   # <testsuite name="S" ...> then <testcase name="T" ... time="X">
   awk -F'"' '/<testsuite /{s=$2} /<testcase / && !/SKIPPED/{for(i=1;i<NF;i++) if($i~/ time=$/) print $(i+1), s "::" $2}' \
-    "$out/$b.xml" 2>/dev/null | sort -rn | head -8
+    "$out/$b.xml" 2>/dev/null | sort -rn | head -20
 done
 echo "== $suites in $((end - start)) s (Criterion with $jobs jobs each)"
 # One closing line over every suite, from Criterion's syntheses and

@@ -66,8 +66,16 @@ function vesselCentre(exhibit) {
 }
 
 // Equirectangular Radiance .hdr probes, prefiltered for roughness (PMREM).
+// three.js prefilters an equirectangular map into cube faces of at least
+// 256 texels a side, whatever its own detail: for celadon's 128 x 64 probes
+// (32 texels a side) that is 64 times the texels and, without a GPU
+// (software WebGL), some 8 s of CPU a probe before the first frame. Faces of
+// twice the probe's detail (64 texels) keep all of it for a sixth of the CPU
+// (docs/BENCHMARKS.md, "Test suite"); _setSize is three.js's own step, its
+// version pinned by web/package-lock.json.
 async function loadProbes(renderer, scene, info, exhibits) {
   const pmrem = new THREE.PMREMGenerator(renderer);
+  pmrem._setSize = (quarterWidth) => { pmrem._cubeSize = 2 * THREE.MathUtils.floorPowerOfTwo(quarterWidth); };
   const loader = new HDRLoader();
   const probe = async (url) => {
     const t = await loader.loadAsync(url);
