@@ -45,6 +45,11 @@ double bspline_curvature(const bspline_t *c, double u);
  * or -1 when the curve is not cubic or allocation fails. */
 int bspline_to_bezier(const bspline_t *c, bezier3_t **out);
 
+/* The largest |x| (axis 0: a profile's radius) or y (axis 1: its height)
+ * the cubic curve reaches, exactly (each Bézier piece's ends and stationary
+ * points); -1 when the curve is not cubic or allocation fails. */
+double bspline_largest(const bspline_t *curve, int axis);
+
 /* Bézier piece evaluation (de Casteljau) and derivative. */
 vec2 bezier3_eval(const bezier3_t *b, double s);
 vec2 bezier3_deriv(const bezier3_t *b, double s);

@@ -22,6 +22,9 @@
 
 /* Outline points on each side of a point that its tangent is fitted over. */
 enum { TANGENT_HALF_WINDOW = 4 };
+/* How far the meridian's curve may reach beyond its widest point: the
+ * outline curve's tolerance (the quality gate's 2.33 px). */
+#define MAX_OVERSHOOT_PX 2.33
 
 int recon_envelope_point(const recon_camera *cam, vec2 p, vec2 t, double *r, double *y)
 {
@@ -189,6 +192,22 @@ int recon_meridian_from_outline(const recon_camera *cam, const recon_result *res
         free(pts);
         recon_meridian_free(mer);
         snprintf(err, errlen, "cannot fit a curve to the meridian");
+        return -1;
+    }
+    /* A fit that overshoots its points is unstable (a sparse run of points
+     * near an end): the curve reaches out to many times the vessel's width
+     * (the real-dev high-view pyxis: 3098 px beyond its widest point, the
+     * two-handled jar 848; sound fits stay within 0.7 px). Beyond the
+     * outline's own curve tolerance it is no meridian. */
+    double r_points = 0;
+    for (int i = 0; i < m; i++)
+        r_points = fmax(r_points, pts[i].x);
+    double over = bspline_largest(&mer->curve, 0) - r_points;
+    if (!(over <= MAX_OVERSHOOT_PX)) {
+        free(pts);
+        recon_meridian_free(mer);
+        snprintf(err, errlen, "the meridian's curve overshoots its points by %.0f px (an unstable fit; at most %.2f)",
+                 over, MAX_OVERSHOOT_PX);
         return -1;
     }
     /* Fitted in world units (about px at the axis, so the pixel tolerances
