@@ -25,6 +25,10 @@
 #define LAYOUT_ENTRANCE 1.5     /* m: free floor between the entrance wall and the first aisle */
 #define LAYOUT_EYE_HEIGHT 1.6   /* m: the entrance camera */
 #define LAYOUT_CEILING_LIGHT_SPACING 4.0 /* m: at most this far apart */
+/* The entrance door: in the middle of the entrance wall, behind the entrance
+ * camera, at most LAYOUT_ENTRANCE / 2 in front of it. */
+#define LAYOUT_DOOR_WIDTH 1.0
+#define LAYOUT_DOOR_HEIGHT 2.1
 
 typedef struct {
     double height, radius; /* m: the vessel's height and its largest radius (a bound) */
