@@ -188,8 +188,10 @@ static void check_door(const glb_file *g)
         room = museum ? museum : room;
     }
     cr_assert(door && room && camera >= 0, "a door, the room's extras and the camera");
-    json_t *mesh = json_array_get(json_object_get(g->doc, "meshes"), (size_t)json_integer_value(json_object_get(door, "mesh")));
-    json_t *attr = json_object_get(json_object_get(json_array_get(json_object_get(mesh, "primitives"), 0), "attributes"), "POSITION");
+    size_t mesh_index = (size_t)json_integer_value(json_object_get(door, "mesh"));
+    json_t *mesh = json_array_get(json_object_get(g->doc, "meshes"), mesh_index);
+    json_t *prim = json_array_get(json_object_get(mesh, "primitives"), 0);
+    json_t *attr = json_object_get(json_object_get(prim, "attributes"), "POSITION");
     json_t *acc = json_array_get(json_object_get(g->doc, "accessors"), (size_t)json_integer_value(attr));
     double lo[3], hi[3];
     for (int k = 0; k < 3; k++) {
@@ -198,9 +200,12 @@ static void check_door(const glb_file *g)
     }
     double half_depth = 0.5 * json_number_value(json_array_get(json_object_get(room, "room"), 1));
     vec3 eye = glb_node_world_translation(g, camera);
-    cr_expect(fabs(lo[1]) < 1e-6 && hi[1] > 2.0 && hi[1] < 2.5, "on the floor, a door's height: %g to %g", lo[1], hi[1]);
-    cr_expect(fabs(hi[2] - half_depth) < 1e-5 && hi[2] - lo[2] < 0.1, "against the entrance wall: z %g to %g", lo[2], hi[2]);
-    cr_expect(fabs(lo[0] + hi[0]) < 1e-6 && hi[0] - lo[0] > 0.9, "centred, a door's width: x %g to %g", lo[0], hi[0]);
+    cr_expect(fabs(lo[1]) < 1e-6 && hi[1] > 2.0 && hi[1] < 2.5, "on the floor, a door's height: %g to %g", lo[1],
+              hi[1]);
+    cr_expect(fabs(hi[2] - half_depth) < 1e-5 && hi[2] - lo[2] < 0.1, "against the entrance wall: z %g to %g", lo[2],
+              hi[2]);
+    cr_expect(fabs(lo[0] + hi[0]) < 1e-6 && hi[0] - lo[0] > 0.9, "centred, a door's width: x %g to %g", lo[0],
+              hi[0]);
     cr_expect(eye.z < lo[2] && eye.x > lo[0] && eye.x < hi[0], "the entrance camera stands in front of it");
 }
 

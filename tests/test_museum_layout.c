@@ -128,7 +128,8 @@ Test(museum_layout, rows_follow_their_own_footprints)
         for (int i = r * l.columns; i < 8 && i < (r + 1) * l.columns; i++) {
             length += l.exhibits[i].width + LAYOUT_AISLE, depth = fmax(depth, l.exhibits[i].width);
             if (i > r * l.columns)
-                cr_expect(fabs(gap(&l.exhibits[i], &l.exhibits[i - 1]) - LAYOUT_AISLE) < eps, "neighbours %d, %d", i - 1, i);
+                cr_expect(fabs(gap(&l.exhibits[i], &l.exhibits[i - 1]) - LAYOUT_AISLE) < eps, "neighbours %d, %d",
+                          i - 1, i);
             cr_expect(fabs(l.exhibits[i].centre.z - l.exhibits[r * l.columns].centre.z) < eps, "one row, one line");
         }
         widest = fmax(widest, length);
@@ -139,6 +140,7 @@ Test(museum_layout, rows_follow_their_own_footprints)
     /* A grid of equal cells as large as the big exhibit would have been
      * columns x rows of them; the rows here hold one big and the rest small. */
     cr_expect_lt(l.width, l.columns * (big + LAYOUT_AISLE) + LAYOUT_AISLE - (l.columns - 1) * (big - small) + eps);
-    cr_expect_lt(l.depth, l.rows * (big + LAYOUT_AISLE) + LAYOUT_AISLE + LAYOUT_ENTRANCE - (l.rows - 1) * (big - small) + eps);
+    cr_expect_lt(l.depth,
+                 l.rows * (big + LAYOUT_AISLE) + LAYOUT_AISLE + LAYOUT_ENTRANCE - (l.rows - 1) * (big - small) + eps);
     layout_free(&l);
 }

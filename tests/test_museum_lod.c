@@ -72,12 +72,14 @@ Test(museum_lod, every_level_is_within_its_stated_error_of_the_exact_surface)
                 const float *v[3];
                 for (int i = 0; i < 3; i++)
                     v[i] = m->pos + 3 * m->tri[3 * t + i];
-                static const double w[4][3] = {{0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}, {1 / 3.0, 1 / 3.0, 1 / 3.0}};
+                static const double w[4][3] = {
+                    {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}, {1 / 3.0, 1 / 3.0, 1 / 3.0}};
                 for (int i = 0; i < 4; i++)
                     worst = fmax(worst, polyline_distance(p, meridian(v, w[i][0], w[i][1], w[i][2])));
             }
             cr_log_info("%s LOD %d: %.4g of %.4g mm", sor_test_profile_name(k), j, worst * 1e3, lv[j].error * 1e3);
-            cr_expect_leq(worst, lv[j].error * (1 + 1e-3) + 1e-7, "%s LOD %d (%d segments): %.4g mm from the surface, stated %.4g mm",
+            cr_expect_leq(worst, lv[j].error * (1 + 1e-3) + 1e-7,
+                          "%s LOD %d (%d segments): %.4g mm from the surface, stated %.4g mm",
                           sor_test_profile_name(k), j, lv[j].segments, worst * 1e3, lv[j].error * 1e3);
             cr_expect_gt(worst, 0.25 * lv[j].error, "%s LOD %d: the bound is not slack (%.4g of %.4g mm)",
                          sor_test_profile_name(k), j, worst * 1e3, lv[j].error * 1e3);
