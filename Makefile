@@ -428,6 +428,13 @@ museum-real-dev: check-deps-stamp
 	tools/real-dev-catalogue.sh $(REAL_DEV) > out/real-dev-catalogue.csv
 	build/celadon museum --catalogue out/real-dev-catalogue.csv -o out/museum-real-dev --preview-spp 0 || test $$? -eq 2
 
+# `make check-museum-real-dev` builds that museum and checks its glb: under
+# 8 MB, no error or warning from the Khronos validator, all of it imported
+# by Blender (docs/museum.md, "Light to load"); about 8 minutes of 2 cores.
+.PHONY: check-museum-real-dev
+check-museum-real-dev: museum-real-dev
+	tools/check-museum-glb.sh out/museum-real-dev 8000000
+
 # `make gallery-real` rewrites docs/gallery-real.md and docs/img/real-dev/:
 # every real photo's overlay drawn over its segmentation, not the photo.
 .PHONY: gallery-real

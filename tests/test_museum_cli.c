@@ -172,6 +172,43 @@ static void check_vessel(const glb_file *g, const char *museum, int exhibit, int
 static const char *const titles[N_PHOTOS] = {"Vase with a flared mouth", "Wide bowl", "Bottle, \"narrow neck\""};
 static const double heights[N_PHOTOS] = {32.0, 14.0, 28.0};
 
+/* The entrance door stands on the floor in the entrance wall (+z), behind
+ * the entrance camera, which stands within its width: the visitor came in
+ * through it. */
+static void check_door(const glb_file *g)
+{
+    json_t *nodes = json_object_get(g->doc, "nodes"), *door = NULL, *room = NULL;
+    int camera = -1;
+    for (size_t i = 0; i < json_array_size(nodes); i++) {
+        json_t *n = json_array_get(nodes, i);
+        const char *name = json_string_value(json_object_get(n, "name"));
+        door = name && !strcmp(name, "Entrance door") ? n : door;
+        camera = json_object_get(n, "camera") ? (int)i : camera;
+        json_t *museum = json_object_get(json_object_get(n, "extras"), "celadon_museum");
+        room = museum ? museum : room;
+    }
+    cr_assert(door && room && camera >= 0, "a door, the room's extras and the camera");
+    size_t mesh_index = (size_t)json_integer_value(json_object_get(door, "mesh"));
+    json_t *mesh = json_array_get(json_object_get(g->doc, "meshes"), mesh_index);
+    json_t *prim = json_array_get(json_object_get(mesh, "primitives"), 0);
+    json_t *attr = json_object_get(json_object_get(prim, "attributes"), "POSITION");
+    json_t *acc = json_array_get(json_object_get(g->doc, "accessors"), (size_t)json_integer_value(attr));
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        lo[k] = json_number_value(json_array_get(json_object_get(acc, "min"), (size_t)k));
+        hi[k] = json_number_value(json_array_get(json_object_get(acc, "max"), (size_t)k));
+    }
+    double half_depth = 0.5 * json_number_value(json_array_get(json_object_get(room, "room"), 1));
+    vec3 eye = glb_node_world_translation(g, camera);
+    cr_expect(fabs(lo[1]) < 1e-6 && hi[1] > 2.0 && hi[1] < 2.5, "on the floor, a door's height: %g to %g", lo[1],
+              hi[1]);
+    cr_expect(fabs(hi[2] - half_depth) < 1e-5 && hi[2] - lo[2] < 0.1, "against the entrance wall: z %g to %g", lo[2],
+              hi[2]);
+    cr_expect(fabs(lo[0] + hi[0]) < 1e-6 && hi[0] - lo[0] > 0.9, "centred, a door's width: x %g to %g", lo[0],
+              hi[0]);
+    cr_expect(eye.z < lo[2] && eye.x > lo[0] && eye.x < hi[0], "the entrance camera stands in front of it");
+}
+
 Test(museum_cli, glb_parses_back_with_every_vessel_on_its_surface)
 {
     char out[512], path[600];
@@ -207,6 +244,7 @@ Test(museum_cli, glb_parses_back_with_every_vessel_on_its_surface)
         size_t off = (size_t)json_integer_value(json_object_get(v, "byteOffset"));
         cr_expect(!memcmp(g.bin + off, jpeg ? "\xff\xd8\xff" : "\x89PNG\r\n\x1a\n", jpeg ? 3 : 8), "image %zu's signature", i);
     }
+    check_door(&g);
     int exhibit[8], vessel[8];
     cr_assert_eq(glb_exhibits(&g, exhibit, vessel, 8), N_PHOTOS, "one exhibit per photo");
     for (int k = 0; k < N_PHOTOS; k++)

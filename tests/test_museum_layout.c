@@ -105,3 +105,42 @@ Test(museum_layout, refuses_bad_sizes)
     cr_expect_eq(layout_make(bad, 2, &l), -1);
     cr_expect_eq(layout_make(bad, 0, &l), -1);
 }
+
+Test(museum_layout, rows_follow_their_own_footprints)
+{
+    /* One vessel 2 m wide among seven small ones: only its own row and
+     * column of floor grow for it, and the room is as small as the aisles
+     * allow: neighbours in a row, consecutive rows, and the widest row and
+     * the back row against the walls are exactly LAYOUT_AISLE apart. */
+    layout_vessel v[8];
+    for (int i = 0; i < 8; i++)
+        v[i] = vessel(i);
+    v[4] = (layout_vessel){0.3, 1.0};
+    layout_t l;
+    cr_assert_eq(layout_make(v, 8, &l), 0);
+    const double eps = 1e-9;
+    double widest = 0, big = l.exhibits[4].width, small = 0, rows_depth = 0;
+    for (int i = 0; i < 8; i++)
+        if (i != 4)
+            small = fmax(small, l.exhibits[i].width);
+    for (int r = 0; r < l.rows; r++) {
+        double length = -LAYOUT_AISLE, depth = 0;
+        for (int i = r * l.columns; i < 8 && i < (r + 1) * l.columns; i++) {
+            length += l.exhibits[i].width + LAYOUT_AISLE, depth = fmax(depth, l.exhibits[i].width);
+            if (i > r * l.columns)
+                cr_expect(fabs(gap(&l.exhibits[i], &l.exhibits[i - 1]) - LAYOUT_AISLE) < eps, "neighbours %d, %d",
+                          i - 1, i);
+            cr_expect(fabs(l.exhibits[i].centre.z - l.exhibits[r * l.columns].centre.z) < eps, "one row, one line");
+        }
+        widest = fmax(widest, length);
+        rows_depth += depth;
+    }
+    cr_expect(fabs(l.width - widest - 2 * LAYOUT_AISLE) < eps, "the widest row touches the side aisles");
+    cr_expect(fabs(l.depth - rows_depth - (l.rows + 1) * LAYOUT_AISLE - LAYOUT_ENTRANCE) < eps);
+    /* A grid of equal cells as large as the big exhibit would have been
+     * columns x rows of them; the rows here hold one big and the rest small. */
+    cr_expect_lt(l.width, l.columns * (big + LAYOUT_AISLE) + LAYOUT_AISLE - (l.columns - 1) * (big - small) + eps);
+    cr_expect_lt(l.depth,
+                 l.rows * (big + LAYOUT_AISLE) + LAYOUT_AISLE + LAYOUT_ENTRANCE - (l.rows - 1) * (big - small) + eps);
+    layout_free(&l);
+}

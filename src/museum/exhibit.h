@@ -22,7 +22,7 @@ typedef struct {
     int below_gate;           /* failed the quality gate, included with --force */
     double height_m;          /* real height: the vessel's top (vessel_shape_top) at y = height_m */
     double rim_height_m;      /* where that puts the curve's end, the rim (mesh_revolve's and sor's height) */
-    double radius_m;          /* bound on the largest radius (the control polygon's) */
+    double radius_m;          /* the curve's largest radius (vessel_shape_max_radius) */
     bspline_t curve;          /* the shape (profile_shape): (r, h), px, or units of the height for a meridian */
     lod_level lods[LOD_MAX_LEVELS];
     int n_lods;

@@ -68,44 +68,65 @@ static int place_ceiling_lights(layout_t *l)
     return 0;
 }
 
+/* Row `row` of the grid: as long as its own footprints and the aisles
+ * between them, as deep as its widest footprint. */
+static void row_size(const layout_t *l, int row, double *length, double *depth)
+{
+    *length = -LAYOUT_AISLE, *depth = 0.0;
+    for (int i = row * l->columns; i < l->n_exhibits && i < (row + 1) * l->columns; i++)
+        *length += l->exhibits[i].width + LAYOUT_AISLE, *depth = fmax(*depth, l->exhibits[i].width);
+}
+
 int layout_make(const layout_vessel *vessels, int n, layout_t *out)
 {
     memset(out, 0, sizeof *out);
     if (!vessels_valid(vessels, n))
         return -1;
-    double widest = 0.0, tallest = 0.0;
-    for (int i = 0; i < n; i++) {
-        layout_exhibit e = exhibit_for(&vessels[i], v3(0, 0, 0));
-        widest = fmax(widest, e.width);
-        tallest = fmax(tallest, e.pedestal_height + e.case_height);
-    }
-    /* A near-square grid, wider than deep when it cannot be square. */
-    out->columns = (int)ceil(sqrt((double)n));
-    out->rows = (n + out->columns - 1) / out->columns;
-    out->cell = widest + LAYOUT_AISLE;
-    out->width = out->columns * out->cell + LAYOUT_AISLE;
-    out->depth = out->rows * out->cell + LAYOUT_AISLE + LAYOUT_ENTRANCE;
-    out->height = fmax(MIN_ROOM_HEIGHT, tallest + CEILING_MARGIN);
     out->exhibits = calloc((size_t)n, sizeof *out->exhibits);
     if (!out->exhibits)
         return -1;
     out->n_exhibits = n;
-    double front = 0.5 * out->depth - LAYOUT_ENTRANCE - LAYOUT_AISLE; /* z of the first row's front edge */
+    /* A near-square grid, wider than deep when it cannot be square. */
+    out->columns = (int)ceil(sqrt((double)n));
+    out->rows = (n + out->columns - 1) / out->columns;
+    /* Each exhibit where it would stand at the origin, for its size. */
+    double tallest = 0.0, widest_row = 0.0, rows_depth = 0.0;
     for (int i = 0; i < n; i++) {
-        int row = i / out->columns, col = i % out->columns;
-        /* The last row is centred when it is not full. */
-        int in_row = row == out->rows - 1 ? n - row * out->columns : out->columns;
-        double x = (col - 0.5 * (in_row - 1)) * out->cell;
-        double z = front - 0.5 * widest - row * out->cell;
-        out->exhibits[i] = exhibit_for(&vessels[i], v3(x, 0, z));
+        out->exhibits[i] = exhibit_for(&vessels[i], v3(0, 0, 0));
+        tallest = fmax(tallest, out->exhibits[i].pedestal_height + out->exhibits[i].case_height);
+    }
+    for (int row = 0; row < out->rows; row++) {
+        double length, depth;
+        row_size(out, row, &length, &depth);
+        widest_row = fmax(widest_row, length);
+        rows_depth += depth + LAYOUT_AISLE;
+    }
+    out->width = widest_row + 2.0 * LAYOUT_AISLE;
+    out->depth = rows_depth + LAYOUT_AISLE + LAYOUT_ENTRANCE;
+    out->height = fmax(MIN_ROOM_HEIGHT, tallest + CEILING_MARGIN);
+    /* Row by row from the entrance, each row centred on x = 0 and its
+     * exhibits centred on its middle line. */
+    double front = 0.5 * out->depth - LAYOUT_ENTRANCE - LAYOUT_AISLE; /* z of the first row's front edge */
+    double z_front = front;
+    for (int row = 0; row < out->rows; row++) {
+        int first = row * out->columns, last = first + out->columns < n ? first + out->columns : n;
+        double length, depth;
+        row_size(out, row, &length, &depth);
+        double x = -0.5 * length;
+        for (int i = first; i < last; i++) {
+            double w = out->exhibits[i].width;
+            out->exhibits[i] = exhibit_for(&vessels[i], v3(x + 0.5 * w, 0, z_front - 0.5 * depth));
+            x += w + LAYOUT_AISLE;
+        }
+        z_front -= depth + LAYOUT_AISLE;
     }
     if (place_ceiling_lights(out) != 0) {
         layout_free(out);
         return -1;
     }
     /* The camera stands in the entrance zone and looks at the middle of the
-     * grid at display height. */
-    double zc = front - 0.5 * (out->rows * out->cell - LAYOUT_AISLE);
+     * exhibits at display height. */
+    double zc = 0.5 * (front + z_front + LAYOUT_AISLE);
     out->camera_position = v3(0, LAYOUT_EYE_HEIGHT, 0.5 * out->depth - 0.5 * LAYOUT_ENTRANCE);
     out->camera_target = v3(0, DISPLAY_HEIGHT, zc);
     out->camera_yfov_deg = CAMERA_YFOV_DEG;

@@ -8,10 +8,13 @@
  *
  * Each exhibit is a pedestal with a closed glass case on it, both of the
  * same square footprint, the vessel standing on the pedestal in the middle of
- * the case. Exhibits stand on a grid of columns x rows whose cells are all as
- * large as the largest footprint; between any two footprints, between a
- * footprint and a wall, and in front of the first row there is at least
- * LAYOUT_AISLE metres of free floor, and the entrance zone adds
+ * the case. Exhibits stand in rows of `columns` (the last row may hold
+ * fewer), each row as long as its own footprints and the aisles between them
+ * and as deep as its widest footprint, so the room is as large as the
+ * collection needs, not as its largest piece times the count; between any
+ * two footprints, between a footprint and a wall, and in front of the first
+ * row there is at least LAYOUT_AISLE metres of free floor (exactly that
+ * along each row and between rows), and the entrance zone adds
  * LAYOUT_ENTRANCE in front of that. */
 #ifndef CELADON_MUSEUM_LAYOUT_H
 #define CELADON_MUSEUM_LAYOUT_H
@@ -22,6 +25,10 @@
 #define LAYOUT_ENTRANCE 1.5     /* m: free floor between the entrance wall and the first aisle */
 #define LAYOUT_EYE_HEIGHT 1.6   /* m: the entrance camera */
 #define LAYOUT_CEILING_LIGHT_SPACING 4.0 /* m: at most this far apart */
+/* The entrance door: in the middle of the entrance wall, behind the entrance
+ * camera, at most LAYOUT_ENTRANCE / 2 in front of it. */
+#define LAYOUT_DOOR_WIDTH 1.0
+#define LAYOUT_DOOR_HEIGHT 2.1
 
 typedef struct {
     double height, radius; /* m: the vessel's height and its largest radius (a bound) */
@@ -40,8 +47,7 @@ typedef struct {
 
 typedef struct {
     double width, depth, height; /* the room: x in [-width/2, width/2], z in [-depth/2, depth/2] */
-    int columns, rows;
-    double cell;                 /* grid pitch, m: the largest footprint + LAYOUT_AISLE */
+    int columns, rows;           /* exhibits per row (the last may hold fewer), rows */
     int n_exhibits;
     layout_exhibit *exhibits;    /* in the order of the vessels given */
     int n_ceiling_lights;
@@ -50,8 +56,9 @@ typedef struct {
     double camera_yfov_deg, camera_aspect;
 } layout_t;
 
-/* Lays out n >= 1 vessels (positive, finite sizes). Exhibits fill the grid
- * row by row from the entrance, left to right. Returns 0, or -1 for bad
+/* Lays out n >= 1 vessels (positive, finite sizes). Exhibits fill the rows
+ * from the entrance, left to right, each row centred on x = 0 and each
+ * exhibit on its row's middle line. Returns 0, or -1 for bad
  * arguments or out of memory. */
 int layout_make(const layout_vessel *vessels, int n, layout_t *out);
 void layout_free(layout_t *l);

@@ -26,7 +26,7 @@ typedef struct {
 
 typedef struct {
     glb_t g;
-    int mat_glass, mat_frame, mat_lamp;
+    int mat_glass, mat_frame, mat_lamp, mat_door;
     geometry_accessors box, quad, frame;
     int mesh_glass, mesh_frame;
     const museum_light *light;
@@ -332,7 +332,8 @@ static int add_materials(builder *b)
                               pbr(1, 1, 1, 0.0), "extensions", "KHR_materials_transmission", "transmissionFactor",
                               1.0, "KHR_materials_ior", "ior", 1.5);
     b->mat_glass = glb_append(&b->g, "materials", glass);
-    return b->mat_glass < 0 || b->mat_frame < 0 || b->mat_lamp < 0 ? -1 : 0;
+    b->mat_door = add_plain_material(b, "Door", 0.30, 0.18, 0.10, 0.5);
+    return b->mat_glass < 0 || b->mat_frame < 0 || b->mat_lamp < 0 || b->mat_door < 0 ? -1 : 0;
 }
 
 /* ------------------------------------------------------------------ nodes */
@@ -601,6 +602,35 @@ static void figures(const builder *b, const layout_t *l, const museum_exhibit *e
     rep->draw_calls = b->static_calls + 5 * n;
 }
 
+/* The entrance (layout.h): a wooden leaf in the middle of the entrance wall
+ * (+z), behind the entrance camera, standing DOOR_DEPTH proud of the wall
+ * in a casing of bars DOOR_CASING wide and twice as deep, with a dark
+ * handle; the door as one mesh, the handle as another. */
+#define DOOR_DEPTH 0.03
+#define DOOR_CASING 0.08
+static int door_nodes(builder *b, const layout_t *l, json_t *root)
+{
+    const double z = 0.5 * l->depth, w = 0.5 * LAYOUT_DOOR_WIDTH, h = LAYOUT_DOOR_HEIGHT, c = DOOR_CASING;
+    quad_spec door[4 * 6], handle[6];
+    box_quads(v3(-w, 0, z - DOOR_DEPTH), v3(w, h, z), door);                      /* leaf */
+    box_quads(v3(-w - c, 0, z - 2 * DOOR_DEPTH), v3(-w, h + c, z), door + 6);    /* left jamb */
+    box_quads(v3(w, 0, z - 2 * DOOR_DEPTH), v3(w + c, h + c, z), door + 12);     /* right jamb */
+    box_quads(v3(-w, h, z - 2 * DOOR_DEPTH), v3(w, h + c, z), door + 18);        /* head */
+    box_quads(v3(w - 0.12, 0.95, z - DOOR_DEPTH - 0.05), v3(w - 0.1, 1.1, z - DOOR_DEPTH), handle);
+    const quad_spec *parts[2] = {door, handle};
+    const int n_quads[2] = {4 * 6, 6}, materials[2] = {b->mat_door, b->mat_frame};
+    const char *names[2] = {"Entrance door", "Door handle"};
+    for (int i = 0; i < 2; i++) {
+        geometry_accessors acc;
+        int mesh = upload_quads(b, parts[i], n_quads[i], &acc) == 0 ? add_mesh(b, names[i], &acc, materials[i]) : -1;
+        if (mesh < 0 || add_child(root, mesh_node(b, names[i], mesh, v3(0, 0, 0), v3(1, 1, 1))) != 0)
+            return -1;
+        b->static_tris += 2 * n_quads[i];
+        b->static_calls++;
+    }
+    return 0;
+}
+
 static int build(builder *b, const char *title, const layout_t *l, const museum_exhibit *ex, int n)
 {
     static const char *const extensions[] = {"KHR_materials_clearcoat", "KHR_materials_transmission",
@@ -624,6 +654,7 @@ static int build(builder *b, const char *title, const layout_t *l, const museum_
                                   "probe.hdr"));
     int rc = room_nodes(b, l, root);
     rc |= lamp_nodes(b, l, root);
+    rc |= door_nodes(b, l, root);
     rc |= add_child(root, camera_node(b, l));
     for (int k = 0; k < l->n_ceiling_lights && rc == 0; k++) {
         snprintf(name, sizeof name, "Ceiling light %d", k + 1);
