@@ -73,7 +73,7 @@ static float *read_rgb(const char *path, int *w, int *h, float **var)
         exit(1);
     }
     exr_in_size(e, w, h);
-    static const char *const rgb[3] = {"R", "G", "B"}, *const v[1] = {"variance"};
+    static const char *const rgb[3] = {"R", "G", "B"}, *const v[1] = {"variance.X"};
     float *px = malloc(sizeof *px * (size_t)*w * *h * 3);
     if (!px || exr_in_read(e, 3, rgb, px, err, sizeof err) != 0) {
         fprintf(stderr, "bench_denoise: %s\n", err);

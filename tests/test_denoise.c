@@ -151,7 +151,7 @@ static void write_render_exr(const char *name, const char *const *names, int nch
     float *sel = malloc(sizeof *sel * W * H * nch);
     cr_assert_not_null(sel);
     static const char *const all[C + 1] = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y",
-                                           "N.Z", "Z", "variance", "IndexOB.X"};
+                                           "N.Z", "Z", "variance.X", "IndexOB.X"};
     for (int k = 0; k < nch; k++) {
         int from = 0;
         while (strcmp(all[from], names[k]))
@@ -186,7 +186,7 @@ static char *oiio_info(const char *path)
 Test(denoise, command_denoises_the_colour_and_keeps_the_rest, .timeout = 60)
 {
     static const char *const names[C + 1] = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y",
-                                             "N.Z", "Z", "variance", "IndexOB.X"};
+                                             "N.Z", "Z", "variance.X", "IndexOB.X"};
     char in[128], out[160];
     write_render_exr("render.exr", names, C + 1, in, sizeof in);
     snprintf(out, sizeof out, "%s/denoised.exr", dir);
@@ -235,14 +235,14 @@ Test(denoise, bad_inputs_exit_2_with_one_line_and_no_file, .timeout = 60)
     static const char *const rgb_only[4] = {"R", "G", "B", "Z"};
     char path[128], missing[128], text[128], cut[160];
     write_render_exr("plain.exr", rgb_only, 4, path, sizeof path);
-    expect_refused(path, "has no channel albedo.R, albedo.G, albedo.B, N.X, N.Y, N.Z, variance");
+    expect_refused(path, "has no channel albedo.R, albedo.G, albedo.B, N.X, N.Y, N.Z, variance.X");
     snprintf(missing, sizeof missing, "%s/none.exr", dir);
     expect_refused(missing, "none.exr");
     scratch_write_file(dir, "text.exr", "not an image\n", text, sizeof text);
     expect_refused(text, "OpenEXR");
     /* A whole render's EXR cut short: its header reads, its pixels do not. */
     static const char *const names[C] = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z",
-                                         "Z", "variance"};
+                                         "Z", "variance.X"};
     char whole[128];
     write_render_exr("whole.exr", names, C, whole, sizeof whole);
     snprintf(cut, sizeof cut, "%s/cut.exr", dir);

@@ -7,7 +7,7 @@
 #include <string.h>
 
 const char *const denoise_channel_names[DENOISE_CHANNELS] = {
-    "R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "variance"};
+    "R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "variance.X"};
 
 enum {
     RADIUS = 8,      /* the window's half side */

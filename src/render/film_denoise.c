@@ -37,7 +37,7 @@ int denoise_film(film_t *f, char *err, size_t errlen)
         abort();
     int nexr;
     float *exr = film_develop_exr(f, &nexr, names);
-    int var = channel_index(names, nexr, "variance");
+    int var = channel_index(names, nexr, "variance.X");
     film_develop(f, dev);
     for (size_t p = 0; p < npix; p++) {
         for (int k = 0; k < DENOISE_CHANNELS - 1; k++)
