@@ -350,11 +350,11 @@ static double *half_variance(int w, int h, const float *feat, const float *a, co
     }
     double *sample = box_mean(w, h, raw, 1), *sample_wide = box_mean(w, h, raw, 4),
            *diff_wide = box_mean(w, h, diff, 4);
-    for (size_t p = 0; p < n; p++) {
-        /* A half holds half the samples: twice the variance of the whole. */
-        double scaled = sample_wide[p] > 0 ? 2.0 * sample[p] * diff_wide[p] / (2.0 * sample_wide[p]) : 0.0;
-        raw[p] = sample_wide[p] > 0 ? scaled : diff_wide[p];
-    }
+    /* A half holds half the samples: its variance is twice the whole's
+     * (the channel's), so 2 sample[p] rescaled by diff_wide / (2
+     * sample_wide). */
+    for (size_t p = 0; p < n; p++)
+        raw[p] = sample_wide[p] > 0 ? sample[p] * diff_wide[p] / sample_wide[p] : diff_wide[p];
     free(diff), free(sample), free(sample_wide), free(diff_wide);
     return raw;
 }
