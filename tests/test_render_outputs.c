@@ -321,16 +321,23 @@ Test(render_outputs, variance_is_that_of_the_estimate, .timeout = 240)
     cr_expect(fabs(seen / said - 1.0) < 0.15, "across seeds %g, the channel says %g", seen, said);
 }
 
+/* The scene xml rendered with --aov aovs (its own sampler and size), read
+ * into e. */
+static void render_aovs(const char *xml, const char *aovs, exr_planes *e)
+{
+    char scene[128], out[160];
+    scratch_write_file(dir, "aovs.xml", xml, scene, sizeof scene);
+    snprintf(out, sizeof out, "%s/aovs.exr", dir);
+    render_ok((const char *[]){"render", scene, "-o", out, "--aov", aovs, NULL});
+    read_exr(out, e);
+}
+
 /* The index AOVs are never averaged: each pixel holds one shape's number
  * (the floor is 1, the sphere 2) and one material's. */
 Test(render_outputs, index_aovs_hold_whole_numbers, .timeout = 60)
 {
-    char scene[128], out[160];
-    scratch_write_file(dir, "floor.xml", lit_floor_xml, scene, sizeof scene);
-    snprintf(out, sizeof out, "%s/ids.exr", dir);
-    render_ok((const char *[]){"render", scene, "-o", out, "--aov", "index,Z,N,albedo", NULL});
     exr_planes e;
-    read_exr(out, &e);
+    render_aovs(lit_floor_xml, "index,Z,N,albedo", &e);
     int ob = plane_index(&e, "IndexOB.X"), ma = plane_index(&e, "IndexMA.X");
     (void)plane_index(&e, "Z"), (void)plane_index(&e, "N.X"), (void)plane_index(&e, "albedo.R");
     int seen[3] = {0, 0, 0};
@@ -618,12 +625,8 @@ static const char mirror_xml[] =
 
 Test(render_outputs, denoising_aovs_see_through_a_mirror, .timeout = 60)
 {
-    char scene[128], out[160];
-    scratch_write_file(dir, "mirror.xml", mirror_xml, scene, sizeof scene);
-    snprintf(out, sizeof out, "%s/mirror.exr", dir);
-    render_ok((const char *[]){"render", scene, "-o", out, "--aov", "depth,normal,albedo,denoising", NULL});
     exr_planes e;
-    read_exr(out, &e);
+    render_aovs(mirror_xml, "depth,normal,albedo,denoising", &e);
     static const struct {
         const char *name;
         float want, tol;
