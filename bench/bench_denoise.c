@@ -5,7 +5,9 @@
  * film holding the vessels (the reference renders that crop only), and
  * over the pixels along the vessels' silhouettes, found from the exact
  * coverage of each pixel by the SOR shapes (16x16 camera rays per pixel
- * through scene_first_hit, passing glass sheets).
+ * through scene_first_hit, passing glass sheets). The 16- and 128-spp
+ * renders take the zsobol sampler: studio's and cornell-sor's ldsampler
+ * rounds its count up to a power of 4 and would render 256 for 128.
  *
  * Renders are cached in build/bench-denoise/ (delete it to render them
  * again); the references run at nice 10, one at a time (about 10 minutes
@@ -73,7 +75,7 @@ static float *read_rgb(const char *path, int *w, int *h, float **var)
         exit(1);
     }
     exr_in_size(e, w, h);
-    static const char *const rgb[3] = {"R", "G", "B"}, *const v[1] = {"variance"};
+    static const char *const rgb[3] = {"R", "G", "B"}, *const v[1] = {"variance.X"};
     float *px = malloc(sizeof *px * (size_t)*w * *h * 3);
     if (!px || exr_in_read(e, 3, rgb, px, err, sizeof err) != 0) {
         fprintf(stderr, "bench_denoise: %s\n", err);
@@ -240,13 +242,13 @@ int main(int argc, char **argv)
             run(cmd);
         }
         if (!exists(low)) {
-            snprintf(cmd, sizeof cmd, "%s render %s -o %s --spp %d --res %dx%d --aov albedo,normal,depth,variance", bin,
-                     scene, low, SPP_LOW, WIDTH, HEIGHT);
+            snprintf(cmd, sizeof cmd, "%s render %s -o %s --spp %d --res %dx%d --sampler zsobol "
+                     "--aov denoising,half,variance", bin, scene, low, SPP_LOW, WIDTH, HEIGHT);
             run(cmd);
         }
         if (!exists(high)) {
-            snprintf(cmd, sizeof cmd, "%s render %s -o %s --spp %d --res %dx%d", bin, scene, high, SPP_HIGH, WIDTH,
-                     HEIGHT);
+            snprintf(cmd, sizeof cmd, "%s render %s -o %s --spp %d --res %dx%d --sampler zsobol", bin, scene, high,
+                     SPP_HIGH, WIDTH, HEIGHT);
             run(cmd);
         }
         snprintf(cmd, sizeof cmd, "%s denoise %s -o %s", bin, low, den);
@@ -265,7 +267,7 @@ int main(int argc, char **argv)
         unsigned char *band = silhouette_band(cov, cr[2], cr[3], &nband);
         double all[3] = {rel_mse(a, r, cr, NULL), rel_mse(d, r, cr, NULL), rel_mse(b, r, cr, NULL)};
         double edge[3] = {rel_mse(a, r, cr, band), rel_mse(d, r, cr, band), rel_mse(b, r, cr, band)};
-        printf("| %s | %d,%d,%d,%d | %d | %.5f | %.5f | %.5f | %.5f | %.5f | %.5f | %.5f | %.1f |\n", sc->name, cr[0],
+        printf("| %s | %d,%d,%d,%d | %d | %.6f | %.6f | %.6f | %.6f | %.6f | %.6f | %.6f | %.1f |\n", sc->name, cr[0],
                cr[1], cr[2], cr[3], nband, all[0], all[1], all[2], edge[0], edge[1], edge[2], ref_noise(r, rvar, cr), dt);
         measured++;
         if (!(all[1] < all[2]))

@@ -25,7 +25,7 @@ static void close_dir(void) { scratch_dir_remove(dir); }
 
 TestSuite(denoise, .init = open_dir, .fini = close_dir);
 
-enum { W = 64, H = 48, C = DENOISE_CHANNELS };
+enum { W = 64, H = 48, C = DENOISE_HALF_CHANNELS };
 
 /* A standard normal deviate (Box-Muller). */
 static double gauss(rng_t *r)
@@ -37,9 +37,11 @@ static double gauss(rng_t *r)
 /* Two surfaces meeting at a vertical edge at x = EDGE + 0.4 (so column
  * EDGE mixes them 40 / 60, in colour as in features, as a render's pixel
  * does): each a smooth shading times its own albedo, with its own normal
- * and depth. truth gets the clean colour, img the features and the clean
- * colour plus noise of standard deviation sigma (its variance channel
- * says sigma^2). */
+ * and depth. truth gets the clean colour, img (C channels a pixel) the
+ * features and the clean colour plus noise of standard deviation sigma
+ * (its variance channel says sigma^2), the mean of two halves each with
+ * independent noise of sigma sqrt(2), the first of which is half.R/G/B
+ * (premultiplied by its share, half.A = 1/2). */
 #define EDGE 30
 static void two_surfaces(double sigma, float *img, float *truth, uint64_t seed)
 {
@@ -56,13 +58,26 @@ static void two_surfaces(double sigma, float *img, float *truth, uint64_t seed)
             shade[1] = 0.5 + 0.004 * y;
             for (int c = 0; c < 3; c++) {
                 t[c] = (float)(left * albedo[0][c] * shade[0] + (1 - left) * albedo[1][c] * shade[1]);
-                p[c] = (float)(t[c] + sigma * gauss(&r));
+                double a = t[c] + M_SQRT2 * sigma * gauss(&r), b = t[c] + M_SQRT2 * sigma * gauss(&r);
+                p[c] = (float)(0.5 * (a + b));
+                p[11 + c] = (float)(0.5 * a);
                 p[3 + c] = (float)(left * albedo[0][c] + (1 - left) * albedo[1][c]);
                 p[6 + c] = (float)(left * normal[0][c] + (1 - left) * normal[1][c]);
             }
             p[9] = (float)(left * depth[0] + (1 - left) * depth[1]);
             p[10] = (float)(sigma * sigma);
+            p[14] = 0.5f;
         }
+}
+
+/* The first DENOISE_CHANNELS of each pixel of img (denoise_image's input). */
+static float *one_buffer(const float *img)
+{
+    float *one = malloc(sizeof *one * W * H * DENOISE_CHANNELS);
+    cr_assert_not_null(one);
+    for (int p = 0; p < W * H; p++)
+        memcpy(one + (size_t)p * DENOISE_CHANNELS, img + (size_t)p * C, sizeof *one * DENOISE_CHANNELS);
+    return one;
 }
 
 /* The mean squared error of the RGB of img (stride C or 3) against truth,
@@ -82,7 +97,8 @@ static double mse(const float *img, int stride, const float *truth, int x0, int 
 /* Noise of sigma 0.05 (about a tenth of the colours): the error falls by
  * more than 8 (a 16-spp image made better than a 128-spp one), and on the
  * three columns at the edge it stays below a fifth of the raw noise's, where
- * a blur across the edge would leave the step's 0.2 to 0.3. */
+ * a blur across the edge would leave the step's 0.2 to 0.3; from the one
+ * buffer and from the two halves. */
 Test(denoise, removes_noise_and_keeps_a_feature_edge)
 {
     const double sigma = 0.05;
@@ -90,13 +106,20 @@ Test(denoise, removes_noise_and_keeps_a_feature_edge)
           *out = malloc(sizeof *out * W * H * 3);
     cr_assert(img && truth && out);
     two_surfaces(sigma, img, truth, 1);
-    denoise_image(W, H, img, out);
-    double before = mse(img, C, truth, 0, W), after = mse(out, 3, truth, 0, W);
-    double edge_before = mse(img, C, truth, EDGE - 1, EDGE + 2), edge_after = mse(out, 3, truth, EDGE - 1, EDGE + 2);
-    cr_expect_lt(after, before / 8, "MSE %.3g -> %.3g (ratio %.1f)", before, after, before / after);
-    cr_expect_lt(edge_after, edge_before / 5, "edge MSE %.3g -> %.3g (ratio %.1f)", edge_before, edge_after,
-                 edge_before / edge_after);
-    free(img), free(truth), free(out);
+    float *one = one_buffer(img);
+    double before = mse(img, C, truth, 0, W), edge_before = mse(img, C, truth, EDGE - 1, EDGE + 2);
+    for (int halves = 0; halves < 2; halves++) {
+        if (halves)
+            denoise_image_halves(W, H, img, out);
+        else
+            denoise_image(W, H, one, out);
+        double after = mse(out, 3, truth, 0, W), edge_after = mse(out, 3, truth, EDGE - 1, EDGE + 2);
+        cr_expect_lt(after, before / 8, "halves %d: MSE %.3g -> %.3g (ratio %.1f)", halves, before, after,
+                     before / after);
+        cr_expect_lt(edge_after, edge_before / 5, "halves %d: edge MSE %.3g -> %.3g (ratio %.1f)", halves,
+                     edge_before, edge_after, edge_before / edge_after);
+    }
+    free(img), free(truth), free(out), free(one);
 }
 
 /* Colour exactly linear in the screen position, albedo, normal and depth
@@ -104,7 +127,7 @@ Test(denoise, removes_noise_and_keeps_a_feature_edge)
  * that says there is (so the weights are wide): first-order regression
  * gives it back within 1e-3, what the ridge's shrinkage of the slopes of
  * correlated features costs (4e-4 here); a weighted mean (zero order)
- * would be off by tenths. */
+ * would be off by tenths. Alike from two (equal) halves. */
 Test(denoise, keeps_an_image_linear_in_the_features)
 {
     float *img = malloc(sizeof *img * W * H * C), *out = malloc(sizeof *out * W * H * 3);
@@ -124,14 +147,23 @@ Test(denoise, keeps_an_image_linear_in_the_features)
             v[c] = (float)(0.2 + 0.1 * c + 0.003 * x - 0.002 * y + (0.5 + c) * v[3 + c] - 0.3 * v[6 + (c + 1) % 3] +
                            0.05 * (c + 1) * v[9]);
         v[10] = 0.01f;
-    }
-    denoise_image(W, H, img, out);
-    double worst = 0;
-    for (int p = 0; p < W * H; p++)
         for (int c = 0; c < 3; c++)
-            worst = fmax(worst, fabs(out[(size_t)p * 3 + c] - img[(size_t)p * C + c]));
-    cr_expect_lt(worst, 1e-3, "largest change %.3g of a linear image", worst);
-    free(img), free(out);
+            v[11 + c] = 0.5f * v[c];
+        v[14] = 0.5f;
+    }
+    float *one = one_buffer(img);
+    for (int halves = 0; halves < 2; halves++) {
+        if (halves)
+            denoise_image_halves(W, H, img, out);
+        else
+            denoise_image(W, H, one, out);
+        double worst = 0;
+        for (int p = 0; p < W * H; p++)
+            for (int c = 0; c < 3; c++)
+                worst = fmax(worst, fabs(out[(size_t)p * 3 + c] - img[(size_t)p * C + c]));
+        cr_expect_lt(worst, 1e-3, "halves %d: largest change %.3g of a linear image", halves, worst);
+    }
+    free(img), free(out), free(one);
 }
 
 /* Writes the two surfaces as a render's EXR (with an extra channel and a
@@ -150,11 +182,9 @@ static void write_render_exr(const char *name, const char *const *names, int nch
     /* Keep the channels names asks for, in its order. */
     float *sel = malloc(sizeof *sel * W * H * nch);
     cr_assert_not_null(sel);
-    static const char *const all[C + 1] = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y",
-                                           "N.Z", "Z", "variance", "IndexOB.X"};
     for (int k = 0; k < nch; k++) {
         int from = 0;
-        while (strcmp(all[from], names[k]))
+        while (from < C && strcmp(denoise_channel_names[from], names[k]))
             from++;
         for (int p = 0; p < W * H; p++)
             sel[(size_t)p * nch + k] = px[(size_t)p * (C + 1) + from];
@@ -185,8 +215,9 @@ static char *oiio_info(const char *path)
  * and says so in celadon/denoised. */
 Test(denoise, command_denoises_the_colour_and_keeps_the_rest, .timeout = 60)
 {
-    static const char *const names[C + 1] = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y",
-                                             "N.Z", "Z", "variance", "IndexOB.X"};
+    const char *names[C + 1];
+    memcpy(names, denoise_channel_names, sizeof(char *) * C);
+    names[C] = "IndexOB.X";
     char in[128], out[160];
     write_render_exr("render.exr", names, C + 1, in, sizeof in);
     snprintf(out, sizeof out, "%s/denoised.exr", dir);
@@ -232,19 +263,19 @@ static void expect_refused(const char *in, const char *says)
 
 Test(denoise, bad_inputs_exit_2_with_one_line_and_no_file, .timeout = 60)
 {
-    static const char *const rgb_only[4] = {"R", "G", "B", "Z"};
+    static const char *const rgb_only[4] = {"R", "G", "B", "IndexOB.X"};
     char path[128], missing[128], text[128], cut[160];
     write_render_exr("plain.exr", rgb_only, 4, path, sizeof path);
-    expect_refused(path, "has no channel albedo.R, albedo.G, albedo.B, N.X, N.Y, N.Z, variance");
+    expect_refused(path, "has no channel Denoising Albedo.R, Denoising Albedo.G, Denoising Albedo.B, "
+                         "Denoising Normal.X, Denoising Normal.Y, Denoising Normal.Z, Denoising Depth.Z, variance.X, "
+                         "half.R, half.G, half.B, half.A");
     snprintf(missing, sizeof missing, "%s/none.exr", dir);
     expect_refused(missing, "none.exr");
     scratch_write_file(dir, "text.exr", "not an image\n", text, sizeof text);
     expect_refused(text, "OpenEXR");
     /* A whole render's EXR cut short: its header reads, its pixels do not. */
-    static const char *const names[C] = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z",
-                                         "Z", "variance"};
     char whole[128];
-    write_render_exr("whole.exr", names, C, whole, sizeof whole);
+    write_render_exr("whole.exr", denoise_channel_names, C, whole, sizeof whole);
     snprintf(cut, sizeof cut, "%s/cut.exr", dir);
     char cmd[512];
     snprintf(cmd, sizeof cmd, "head -c 2000 '%s' > '%s'", whole, cut);
@@ -283,7 +314,7 @@ Test(denoise, render_denoise_writes_the_denoised_render, .timeout = 60)
     scratch_write_file(dir, "floor.xml", floor_xml, scene, sizeof scene);
     snprintf(raw, sizeof raw, "%s/raw.exr", dir);
     snprintf(den, sizeof den, "%s/den.exr", dir);
-    cli_result r = cli_run(dir, (const char *[]){"render", scene, "-o", raw, "--aov", "albedo,normal,depth,variance",
+    cli_result r = cli_run(dir, (const char *[]){"render", scene, "-o", raw, "--aov", "denoising,half,variance",
                                                  NULL});
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     cli_result_free(&r);

@@ -161,10 +161,10 @@ Test(render_outputs, an_interrupted_render_says_so_pixel_by_pixel, .timeout = 30
         if (sigs[k] != SIGTERM) {
             cr_expect_eq(least, most, "signal %d stopped inside a pass: %s", sigs[k], done);
             cr_expect_eq(least % 64, 0, "not a whole number of passes of 64: %s", done);
-            cr_expect(!exr_planes_has(&e, "spp"));
+            cr_expect(!exr_planes_has(&e, "spp.X"));
         }
-        if (exr_planes_has(&e, "spp")) {
-            int s = plane_index(&e, "spp"), r = plane_index(&e, "R");
+        if (exr_planes_has(&e, "spp.X")) {
+            int s = plane_index(&e, "spp.X"), r = plane_index(&e, "R");
             float lo = 1e30f, hi = -1.0f;
             for (int p = 0; p < e.width * e.height; p++) {
                 float n = e.planes[s][p];
@@ -303,7 +303,7 @@ Test(render_outputs, variance_is_that_of_the_estimate, .timeout = 240)
         exr_planes e;
         read_exr(out, &e);
         int r = plane_index(&e, "R"), g = plane_index(&e, "G"), b = plane_index(&e, "B");
-        int v = plane_index(&e, "variance"), n = plane_index(&e, "spp");
+        int v = plane_index(&e, "variance.X"), n = plane_index(&e, "spp.X");
         for (int p = 0; p < NPIX; p++) {
             double y = 0.212671 * e.planes[r][p] + 0.715160 * e.planes[g][p] + 0.072169 * e.planes[b][p];
             sum[p] += y, sum2[p] += y * y, reported[p] += e.planes[v][p] / SEEDS;
@@ -321,16 +321,23 @@ Test(render_outputs, variance_is_that_of_the_estimate, .timeout = 240)
     cr_expect(fabs(seen / said - 1.0) < 0.15, "across seeds %g, the channel says %g", seen, said);
 }
 
+/* The scene xml rendered with --aov aovs (its own sampler and size), read
+ * into e. */
+static void render_aovs(const char *xml, const char *aovs, exr_planes *e)
+{
+    char scene[128], out[160];
+    scratch_write_file(dir, "aovs.xml", xml, scene, sizeof scene);
+    snprintf(out, sizeof out, "%s/aovs.exr", dir);
+    render_ok((const char *[]){"render", scene, "-o", out, "--aov", aovs, NULL});
+    read_exr(out, e);
+}
+
 /* The index AOVs are never averaged: each pixel holds one shape's number
  * (the floor is 1, the sphere 2) and one material's. */
 Test(render_outputs, index_aovs_hold_whole_numbers, .timeout = 60)
 {
-    char scene[128], out[160];
-    scratch_write_file(dir, "floor.xml", lit_floor_xml, scene, sizeof scene);
-    snprintf(out, sizeof out, "%s/ids.exr", dir);
-    render_ok((const char *[]){"render", scene, "-o", out, "--aov", "index,Z,N,albedo", NULL});
     exr_planes e;
-    read_exr(out, &e);
+    render_aovs(lit_floor_xml, "index,Z,N,albedo", &e);
     int ob = plane_index(&e, "IndexOB.X"), ma = plane_index(&e, "IndexMA.X");
     (void)plane_index(&e, "Z"), (void)plane_index(&e, "N.X"), (void)plane_index(&e, "albedo.R");
     int seen[3] = {0, 0, 0};
@@ -445,25 +452,33 @@ Test(render_outputs, a_time_budget_renders_passes_until_it_is_spent, .timeout = 
 }
 
 /* How Blender's compositor splits an EXR channel name into layer, pass
- * and channel (docs/rendering.md, "How Blender reads these names"): from
- * the right, the last '.'-token is the channel, the one before it the
- * pass, the rest the layer; a name without a dot is the pass of that name,
- * except R, G, B, A (Combined) and Z (Depth, unless X, Y and Z are all
- * channels). */
-static void blender_split(const char *name, int has_xyz, char *layer, char *pass, char *chan)
+ * and channel (docs/rendering.md, "How Blender reads these names"): a
+ * one-letter name is a channel of the default layer, R, G, B, A of the
+ * Combined pass, Z of Depth (unless X, Y and Z are all channels), another
+ * letter of the pass of that name; otherwise, from the right, the last
+ * '.'-token is the channel, the one before it the pass, the rest the layer.
+ * The channel token must be one letter (Blender also knows a few longer
+ * spellings, "red", "alpha", ..., which we never write): Blender 3.4 drops
+ * any other channel ("unknown channel token"), a dotless name longer than
+ * one letter among them. Returns 0 for a dropped name. */
+static int blender_split(const char *name, int has_xyz, char *layer, char *pass, char *chan)
 {
     const char *last = strrchr(name, '.');
-    layer[0] = '\0';
-    if (!last) {
+    layer[0] = pass[0] = chan[0] = '\0';
+    if (!name[0])
+        return 0;
+    if (!name[1]) {
         snprintf(chan, 32, "%s", name);
-        if (!name[1] && strchr("RGBA", name[0]))
+        if (strchr("RGBA", name[0]))
             snprintf(pass, 32, "Combined");
-        else if (!strcmp(name, "Z") && !has_xyz)
+        else if (name[0] == 'Z' && !has_xyz)
             snprintf(pass, 32, "Depth");
         else
             snprintf(pass, 32, "%s", name);
-        return;
+        return 1;
     }
+    if (!last || strlen(last + 1) != 1 || last == name)
+        return 0;
     snprintf(chan, 32, "%s", last + 1);
     const char *p = last;
     while (p > name && p[-1] != '.')
@@ -471,12 +486,14 @@ static void blender_split(const char *name, int has_xyz, char *layer, char *pass
     snprintf(pass, 32, "%.*s", (int)(last - p), p);
     if (p > name)
         snprintf(layer, 32, "%.*s", (int)(p - 1 - name), name);
+    return 1;
 }
 
 /* The rule on the names of Blender's own multilayer EXRs, then on a
  * render with every AOV: each channel lands in the pass a compositor user
- * expects (Combined, Depth, N, albedo, IndexOB, IndexMA, variance, spp),
- * in the default layer, with its channel letter. */
+ * expects (Combined, Depth, N, albedo, IndexOB, IndexMA, variance, spp,
+ * Cycles' Denoising Depth, Normal and Albedo, half), in the default layer,
+ * with its channel letter. */
 Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
 {
     char layer[32], pass[32], chan[32];
@@ -486,37 +503,43 @@ Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
     cr_expect(!strcmp(layer, "ViewLayer") && !strcmp(pass, "Depth") && !strcmp(chan, "Z"));
     blender_split("Z", 1, layer, pass, chan);
     cr_expect(!strcmp(pass, "Z"), "Z of an X, Y, Z colour is not Depth");
+    cr_expect(!blender_split("variance", 0, layer, pass, chan), "Blender 3.4 drops a dotless long name");
+    cr_expect(blender_split("variance.X", 0, layer, pass, chan) && !strcmp(pass, "variance"));
 
     char scene[128], out[160];
     scratch_write_file(dir, "floor.xml", lit_floor_xml, scene, sizeof scene);
     snprintf(out, sizeof out, "%s/passes.exr", dir);
-    render_ok((const char *[]){"render", scene, "-o", out, "--aov", "depth,normal,albedo,index,variance,spp",
+    render_ok((const char *[]){"render", scene, "-o", out, "--aov",
+                               "depth,normal,albedo,index,variance,spp,denoising,half",
                                "--spp", "2", NULL});
     exr_planes e;
     read_exr(out, &e);
-    /* Each pass, its channels (letters, or one whole name), how many. */
+    /* Each pass, its channel letters, how many. */
     static const struct {
         const char *pass, *chans;
         int n;
-    } want[] = {{"Combined", "RGB", 3}, {"Depth", "Z", 1},   {"N", "XYZ", 3},                {"albedo", "RGB", 3},
-                {"IndexOB", "X", 1},    {"IndexMA", "X", 1}, {"variance", "variance", 1}, {"spp", "spp", 1}};
+    } want[] = {{"Combined", "RGB", 3},        {"Depth", "Z", 1},
+                {"N", "XYZ", 3},               {"albedo", "RGB", 3},
+                {"IndexOB", "X", 1},           {"IndexMA", "X", 1},
+                {"variance", "X", 1},          {"spp", "X", 1},
+                {"Denoising Depth", "Z", 1},   {"Denoising Normal", "XYZ", 3},
+                {"Denoising Albedo", "RGB", 3}, {"half", "RGBA", 4}};
+    enum { NPASS = sizeof want / sizeof want[0] };
     int has_xyz = exr_planes_has(&e, "X") && exr_planes_has(&e, "Y") && exr_planes_has(&e, "Z");
-    int found[8] = {0};
+    int found[NPASS] = {0};
     for (int c = 0; c < e.nch; c++) {
-        blender_split(e.names[c], has_xyz, layer, pass, chan);
+        cr_expect(blender_split(e.names[c], has_xyz, layer, pass, chan), "%s: Blender drops it", e.names[c]);
         cr_expect_str_empty(layer, "%s: in layer '%s', not the default one", e.names[c], layer);
         size_t k = 0;
-        while (k < 8 && strcmp(want[k].pass, pass))
+        while (k < NPASS && strcmp(want[k].pass, pass))
             k++;
-        cr_expect_lt(k, 8, "%s: pass '%s' is none of Blender's", e.names[c], pass);
-        if (k == 8)
+        cr_expect_lt(k, NPASS, "%s: pass '%s' is none of Blender's", e.names[c], pass);
+        if (k == NPASS)
             continue;
-        int ok = want[k].n > 1 || strlen(want[k].chans) == 1 ? strlen(chan) == 1 && strchr(want[k].chans, chan[0])
-                                                             : !strcmp(want[k].chans, chan);
-        cr_expect(ok, "%s: channel '%s' in pass %s", e.names[c], chan, pass);
+        cr_expect(strlen(chan) == 1 && strchr(want[k].chans, chan[0]), "%s: channel '%s' in pass %s", e.names[c], chan, pass);
         found[k]++;
     }
-    for (int k = 0; k < 8; k++)
+    for (int k = 0; k < NPASS; k++)
         cr_expect_eq(found[k], want[k].n, "pass %s has %d channels", want[k].pass, found[k]);
     exr_planes_free(&e);
 }
@@ -545,5 +568,83 @@ Test(render_outputs, depth_on_an_xyz_film_is_depth_z, .timeout = 60)
     for (int p = 0; p < e.width * e.height; p++)
         near = z[p] > 0 && z[p] < near ? z[p] : near;
     cr_expect(fabsf(near - 2.0f) < 0.05f, "nearest depth %g: the sphere's top is 2 below the camera", near);
+    exr_planes_free(&e);
+}
+
+/* With the independent sampler, sample k of a pixel is the same whatever
+ * the count, so the first half of an 8-spp render is the 4-spp render: the
+ * half AOV unpremultiplied (half.RGB / half.A) is that render, and the
+ * other half, (RGB - half.RGB) / (1 - half.A), is twice the 8-spp render
+ * less the 4-spp one (box filter: each sample weighs 1). */
+Test(render_outputs, half_aov_is_the_first_half_of_the_samples, .timeout = 60)
+{
+    char scene[128], eight[160], four[160];
+    scratch_write_file(dir, "floor.xml", lit_floor_xml, scene, sizeof scene);
+    snprintf(eight, sizeof eight, "%s/eight.exr", dir);
+    snprintf(four, sizeof four, "%s/four.exr", dir);
+    render_ok((const char *[]){"render", scene, "-o", eight, "--spp", "8", "--aov", "half", NULL});
+    render_ok((const char *[]){"render", scene, "-o", four, "--spp", "4", NULL});
+    exr_planes e, f;
+    read_exr(eight, &e), read_exr(four, &f);
+    int a = plane_index(&e, "half.A");
+    double worst = 0, spread = 0;
+    for (int c = 0; c < 3; c++) {
+        const char *rgb = (const char *[]){"R", "G", "B"}[c], *half = (const char *[]){"half.R", "half.G", "half.B"}[c];
+        const float *all = e.planes[plane_index(&e, rgb)], *h = e.planes[plane_index(&e, half)];
+        const float *first = f.planes[plane_index(&f, rgb)];
+        for (int p = 0; p < e.width * e.height; p++) {
+            cr_assert_float_eq(e.planes[a][p], 0.5f, 1e-6f, "pixel %d: the half's share %g", p, e.planes[a][p]);
+            double second = (all[p] - h[p]) / (1.0 - e.planes[a][p]);
+            worst = fmax(worst, fabs(h[p] / e.planes[a][p] - first[p]) / fmax(first[p], 1e-3));
+            worst = fmax(worst, fabs(second - (2.0 * all[p] - first[p])) / fmax(first[p], 1e-3));
+            spread = fmax(spread, fabs(second - first[p]) / fmax(first[p], 1e-3));
+        }
+    }
+    cr_expect_lt(worst, 1e-5, "relative difference %.3g", worst);
+    cr_expect_gt(spread, 0.05, "the halves differ (noise): %.3g", spread);
+    exr_planes_free(&e), exr_planes_free(&f);
+}
+
+/* A camera looking straight at a perfect mirror at 2 m, tilted 45 degrees
+ * so that it shows a diffuse wall 3 m to its side: the plain AOVs are the
+ * mirror's (depth 2, within the 7% the tilt makes across the 4-degree
+ * view, its normal, albedo 1), the denoising ones the wall's, seen in it
+ * (the path's length 2 + 3 alike, the wall's normal and reflectance). */
+static const char mirror_xml[] =
+    "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
+    "<lookat origin=\"0,0,0\" target=\"0,0,-1\" up=\"0,1,0\"/></transform><float name=\"fov\" value=\"4\"/>"
+    "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"
+    "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/>"
+    "<rfilter type=\"box\"/></film></sensor>"
+    "<emitter type=\"constant\"><rgb name=\"radiance\" value=\"1,1,1\"/></emitter>"
+    "<shape type=\"rectangle\"><transform name=\"to_world\"><rotate y=\"1\" angle=\"45\"/>"
+    "<translate z=\"-2\"/></transform><bsdf type=\"conductor\"/></shape>"
+    "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"3\"/><rotate y=\"1\" angle=\"-90\"/>"
+    "<translate x=\"3\" z=\"-2\"/></transform>"
+    "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.2,0.4,0.6\"/></bsdf></shape></scene>\n";
+
+Test(render_outputs, denoising_aovs_see_through_a_mirror, .timeout = 60)
+{
+    exr_planes e;
+    render_aovs(mirror_xml, "depth,normal,albedo,denoising", &e);
+    static const struct {
+        const char *name;
+        float want, tol;
+    } check[] = {{"Z", 2.0f, 0.15f},
+                 {"N.X", 0.70710678f, 1e-4f},
+                 {"N.Z", 0.70710678f, 1e-4f},
+                 {"albedo.G", 1.0f, 1e-4f},
+                 {"Denoising Depth.Z", 5.0f, 0.35f},
+                 {"Denoising Normal.X", -1.0f, 1e-4f},
+                 {"Denoising Normal.Y", 0.0f, 1e-4f},
+                 {"Denoising Albedo.R", 0.2f, 1e-4f},
+                 {"Denoising Albedo.G", 0.4f, 1e-4f},
+                 {"Denoising Albedo.B", 0.6f, 1e-4f}};
+    for (size_t k = 0; k < sizeof check / sizeof check[0]; k++) {
+        const float *v = e.planes[plane_index(&e, check[k].name)];
+        for (int p = 0; p < e.width * e.height; p++)
+            cr_expect_float_eq(v[p], check[k].want, check[k].tol, "pixel %d: %s %g, not %g", p, check[k].name, v[p],
+                               check[k].want);
+    }
     exr_planes_free(&e);
 }

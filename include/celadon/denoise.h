@@ -6,7 +6,12 @@
  * means distances of 3x3 colour patches normalised by the pixels'
  * variance (Rousselle et al. 2012), times a closeness in the features,
  * times the inverse of the neighbour's variance relative to the pixel's
- * where it is the noisier.
+ * where it is the noisier. With two independent half-sample renders
+ * (render --aov half), as NFOR: each half is regressed with weights from
+ * the other's patches (cross-filtering), at two bandwidths of the patch
+ * weights; per pixel, the bandwidth whose error the halves estimate least
+ * (averaged over 7x7 pixels) is kept, and the two filtered halves
+ * averaged.
  *
  * What the regression keeps: an image that is exactly linear in the
  * features over a window is reproduced (up to the ridge's 1e-4 relative
@@ -21,30 +26,41 @@
 
 #include "celadon/film.h"
 
-/* The channels the denoiser reads, in this order, per pixel, with the
- * names the renderer's EXR gives them (docs/rendering.md, "AOVs"):
- * R, G, B, albedo.R, albedo.G, albedo.B, N.X, N.Y, N.Z, Z, variance. */
-enum { DENOISE_CHANNELS = 11 };
-extern const char *const denoise_channel_names[DENOISE_CHANNELS];
+/* The channels the denoiser reads, in this order, per pixel: colour,
+ * albedo (3), normal (3), depth, the variance of the colour's estimate
+ * (DENOISE_CHANNELS of them), then, for denoise_image_halves, the first
+ * half of the samples, premultiplied by its share of the pixel (4: R, G,
+ * B, A; render.h, RENDER_AOV_HALF). denoise_channel_names has the names
+ * the renderer's EXR gives them (docs/rendering.md, "AOVs"): R, G, B,
+ * Denoising Albedo.R/G/B, Denoising Normal.X/Y/Z, Denoising Depth.Z (the
+ * features at the first rough vertex), variance.X, half.R/G/B/A. */
+enum { DENOISE_CHANNELS = 11, DENOISE_HALF_CHANNELS = 15 };
+extern const char *const denoise_channel_names[DENOISE_HALF_CHANNELS];
 
 /* Denoises the RGB of in (width * height * DENOISE_CHANNELS floats, as
  * above) into out (width * height * 3 floats; not in). Pixels whose values
  * are not finite are taken as they are. width, height >= 1. Uses OpenMP's
  * threads; the result does not depend on their count. */
 void denoise_image(int width, int height, const float *in, float *out);
+/* The same from two halves: in has DENOISE_HALF_CHANNELS floats a pixel.
+ * Where a half's share is below 5% or above 95% (an interrupted render),
+ * both halves are taken as the whole pixel. */
+void denoise_image_halves(int width, int height, const float *in, float *out);
 
 /* What a denoised image's "celadon/denoised" attribute says. */
-#define DENOISE_DESCRIPTION "first-order feature regression on albedo, N, Z and variance (NFOR-like)"
+#define DENOISE_DESCRIPTION                                                                                           \
+    "first-order feature regression on the first rough vertex's albedo, N, depth; half buffers cross-filtered "  \
+    "(NFOR-like)"
 
-/* Denoises the film's colour in place (render --denoise): the film needs
- * the albedo, normal and depth AOVs (RENDER_AOV_*, render.h) and the
- * variance (FILM_EXTRA_VARIANCE); its other channels, the variance among
- * them, stay those of the render. Sets f->meta.denoised. Returns 0, or -1
- * with the missing channel named in err. */
+/* Denoises the film's colour in place (render --denoise) from two halves:
+ * the film needs the denoising and half AOVs (RENDER_AOV_DENOISING,
+ * RENDER_AOV_HALF, render.h) and the variance (FILM_EXTRA_VARIANCE); its
+ * other channels, the variance among them, stay those of the render. Sets
+ * f->meta.denoised. Returns 0, or -1 with the missing channel named in err. */
 int denoise_film(film_t *f, char *err, size_t errlen);
 
 /* Reads the OpenEXR in_path (a render with the channels of
- * denoise_channel_names), denoises its R, G, B and writes every channel to
+ * denoise_channel_names), denoises its R, G, B from its halves and writes every channel to
  * the OpenEXR out_path (whole or not at all), its header the input's plus
  * "celadon/denoised". Returns 0; -2 when in_path is not such a file, with
  * "IN: problem" in err (every missing channel named); -1 when out_path

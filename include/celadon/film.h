@@ -82,9 +82,9 @@ typedef struct {
 } film_metadata;
 
 /* What film_write adds from each pixel's own samples (film_t.samples),
- * as channels named as compositors read them: "spp" (the camera samples
+ * as channels named as compositors read them: "spp.X" (the camera samples
  * the pixel got; written anyway when the pixels' counts differ) and
- * "variance" (the sample variance of the luminance of the pixel's samples
+ * "variance.X" (the sample variance of the luminance of the pixel's samples
  * over their count: the variance of the estimate of their mean). */
 enum { FILM_EXTRA_SPP = 1u, FILM_EXTRA_VARIANCE = 2u, FILM_EXTRA_INDEX = 4u };
 

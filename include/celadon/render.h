@@ -20,8 +20,16 @@ enum {
     RENDER_AOV_NORMAL = 2u,   /* N.X, N.Y, N.Z: its world shading normal */
     RENDER_AOV_ALBEDO = 4u,   /* albedo.R, .G, .B: its BSDF's albedo */
     RENDER_AOV_INDEX = 8u,    /* IndexOB.X, IndexMA.X: its shape's and material's numbers */
-    RENDER_AOV_VARIANCE = 16u,/* variance: of the pixel's estimate (film.h, FILM_EXTRA_VARIANCE) */
-    RENDER_AOV_SPP = 32u      /* spp: the pixel's camera samples */
+    RENDER_AOV_VARIANCE = 16u,/* variance.X: of the pixel's estimate (film.h, FILM_EXTRA_VARIANCE) */
+    RENDER_AOV_SPP = 32u,     /* spp.X: the pixel's camera samples */
+    /* Denoising Depth.Z, Denoising Normal.X/Y/Z, Denoising Albedo.R/G/B: depth,
+     * normal and albedo at the path's first rough vertex (integrators.h) */
+    RENDER_AOV_DENOISING = 64u,
+    /* half.R, .G, .B, .A: the samples of the first half of the sample
+     * indices (k < spp / 2), premultiplied by their share A of the pixel's
+     * filter weight: half.RGB / A and (RGB - half.RGB) / (1 - A) are two
+     * independent half-sample renders (denoise.h) */
+    RENDER_AOV_HALF = 128u
 };
 
 typedef struct {
@@ -51,8 +59,8 @@ typedef struct {
     double idle_cpu_seconds;
 } render_stats;
 
-/* Parses "depth,normal,albedo,index,variance,spp" (any subset, any order;
- * "Z" and "N" too) into a mask; -1 for an unknown name. */
+/* Parses "depth,normal,albedo,index,variance,spp,denoising,half" (any
+ * subset, any order; "Z" and "N" too) into a mask; -1 for an unknown name. */
 int render_aov_parse(const char *list, unsigned *mask);
 
 /* Renders into film (initialised here with the scene's size and the AOVs;

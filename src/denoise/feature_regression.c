@@ -1,25 +1,34 @@
 /* The denoiser (celadon/denoise.h): per pixel, a weighted first-order
- * regression of the colours of a (2R+1)^2 window on the features. */
+ * regression of the colours of a (2R+1)^2 window on the features; with
+ * two half-sample renders, each regressed with the weights of the other
+ * (cross-filtering) at several colour bandwidths, the one chosen per pixel
+ * whose error the halves estimate least (NFOR, Bitterli et al. 2016). */
 #include "celadon/denoise.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-const char *const denoise_channel_names[DENOISE_CHANNELS] = {
-    "R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "variance"};
+const char *const denoise_channel_names[DENOISE_HALF_CHANNELS] = {
+    "R",        "G",       "B",       "Denoising Albedo.R", "Denoising Albedo.G", "Denoising Albedo.B",
+    "Denoising Normal.X", "Denoising Normal.Y", "Denoising Normal.Z", "Denoising Depth.Z", "variance.X",
+    "half.R",   "half.G",  "half.B",  "half.A"};
 
 enum {
     RADIUS = 8,      /* the window's half side */
     WINDOW = (2 * RADIUS + 1) * (2 * RADIUS + 1),
     NREG = 10,       /* regressors: 1, dx, dy, albedo (3), normal (3), depth */
-    CH_ALBEDO = 3, CH_NORMAL = 6, CH_DEPTH = 9, CH_VARIANCE = 10
+    CH_ALBEDO = 3, CH_NORMAL = 6, CH_DEPTH = 9, CH_VARIANCE = 10, CH_HALF = 11,
+    MAX_BANDWIDTHS = 4,
+    SELECT_RADIUS = 3 /* the error estimates are averaged over 7x7 pixels before choosing */
 };
 
 /* Rousselle et al.'s NL-means on colour: k sets how many standard
  * deviations of difference still count as alike; EPS keeps noise-free
- * pixels (variance 0) from dividing by zero. */
+ * pixels (variance 0) from dividing by zero. One buffer: K_COLOUR; two
+ * halves: each of K_HALVES, chosen per pixel. */
 static const double K_COLOUR = 0.45, EPS_COLOUR = 1e-8;
+static const double K_HALVES[] = {0.45, 1.0};
 /* The features' scales in the weights: albedo and normal differences, and
  * depth relative to the pixel's own. */
 static const double SIGMA_ALBEDO = 0.1, SIGMA_NORMAL = 0.3, SIGMA_DEPTH = 0.1;
@@ -29,71 +38,89 @@ static const double RIDGE = 1e-4;
 /* A regressor whose weighted spread in the window is below this is left
  * out (constant feature, e.g. one flat wall's normal). */
 static const double MIN_SPREAD = 1e-6;
+/* A half whose share of the pixel's weight is outside [MIN_SHARE, 1 -
+ * MIN_SHARE] (an interrupted render) tells too little: both halves are
+ * then taken as the whole. */
+static const double MIN_SHARE = 0.05;
 
+/* What one regression reads: the features (stride DENOISE_CHANNELS), the
+ * colour whose patches weigh the neighbours (guide) and the colour that is
+ * regressed (target), both stride 3, and the variance of the guide's
+ * pixels (each channel). */
 typedef struct {
     int w, h;
-    const float *in;
-    const double *var; /* the variance channel, 3x3 box-filtered */
+    const float *feat;
+    const float *guide, *target;
+    const double *var;
 } image;
 
 static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
 
-static const float *pixel(const image *im, int x, int y) { return im->in + ((size_t)y * im->w + x) * DENOISE_CHANNELS; }
-
-static int finite_pixel(const float *v)
+static const float *features(const image *im, int x, int y)
 {
-    for (int c = 0; c < DENOISE_CHANNELS; c++)
+    return im->feat + ((size_t)y * im->w + x) * DENOISE_CHANNELS;
+}
+
+static int finite_pixel(const float *v, int n)
+{
+    for (int c = 0; c < n; c++)
         if (!isfinite(v[c]))
             return 0;
     return 1;
 }
 
-/* The variance averaged over each 3x3 neighbourhood (a 16-spp estimate of
- * it is itself noisy); non-finite values count as 0. */
-static double *smoothed_variance(int w, int h, const float *in)
+/* v averaged over each (2r+1)^2 neighbourhood within the image. */
+static double *box_mean(int w, int h, const double *v, int r)
 {
-    double *v = malloc(sizeof *v * (size_t)w * h);
-    if (!v)
+    double *out = malloc(sizeof *out * (size_t)w * h);
+    if (!out)
         abort();
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             double s = 0;
             int n = 0;
-            for (int dy = -1; dy <= 1; dy++)
-                for (int dx = -1; dx <= 1; dx++) {
-                    int xx = x + dx, yy = y + dy;
-                    if (xx < 0 || yy < 0 || xx >= w || yy >= h)
-                        continue;
-                    float s1 = in[((size_t)yy * w + xx) * DENOISE_CHANNELS + CH_VARIANCE];
-                    s += isfinite(s1) && s1 > 0 ? s1 : 0.0;
-                    n++;
-                }
-            v[(size_t)y * w + x] = s / n;
+            for (int yy = clampi(y - r, 0, h - 1); yy <= clampi(y + r, 0, h - 1); yy++)
+                for (int xx = clampi(x - r, 0, w - 1); xx <= clampi(x + r, 0, w - 1); xx++)
+                    s += v[(size_t)yy * w + xx], n++;
+            out[(size_t)y * w + x] = s / n;
         }
+    return out;
+}
+
+/* The variance channel of in, non-finite or negative values as 0. */
+static double *variance_channel(int w, int h, const float *in)
+{
+    double *v = malloc(sizeof *v * (size_t)w * h);
+    if (!v)
+        abort();
+    for (size_t p = 0; p < (size_t)w * h; p++) {
+        float s = in[p * DENOISE_CHANNELS + CH_VARIANCE];
+        v[p] = isfinite(s) && s > 0 ? s : 0.0;
+    }
     return v;
 }
 
-/* The NL-means weight of q for p: the variance-cancelled squared colour
- * distance of their 3x3 patches (edges clamped), each term over the
- * pixels' summed variance. */
-static double colour_weight(const image *im, int px, int py, int qx, int qy)
+/* The squared distance of the 3x3 patches of the guide around p and q
+ * (edges clamped), each term less the pixels' variance and over their
+ * summed variance (Rousselle et al. 2012); the NL-means weight for
+ * bandwidth k is exp(-max(d, 0) / k^2). */
+static double patch_distance(const image *im, int px, int py, int qx, int qy)
 {
     double d = 0;
     for (int oy = -1; oy <= 1; oy++)
         for (int ox = -1; ox <= 1; ox++) {
             int ax = clampi(px + ox, 0, im->w - 1), ay = clampi(py + oy, 0, im->h - 1);
             int bx = clampi(qx + ox, 0, im->w - 1), by = clampi(qy + oy, 0, im->h - 1);
-            const float *a = pixel(im, ax, ay), *b = pixel(im, bx, by);
+            const float *a = im->guide + ((size_t)ay * im->w + ax) * 3, *b = im->guide + ((size_t)by * im->w + bx) * 3;
             double va = im->var[(size_t)ay * im->w + ax], vb = im->var[(size_t)by * im->w + bx];
             double diff = 0;
             for (int c = 0; c < 3; c++) {
                 double e = (double)a[c] - b[c];
                 diff += e * e;
             }
-            d += (diff / 3 - (va + fmin(va, vb))) / (EPS_COLOUR + K_COLOUR * K_COLOUR * (va + vb));
+            d += (diff / 3 - (va + fmin(va, vb))) / (EPS_COLOUR + va + vb);
         }
-    d /= 9;
-    return d > 0 ? exp(-d) : 1.0;
+    return d / 9;
 }
 
 static double feature_weight(const float *p, const float *q)
@@ -166,29 +193,11 @@ static void regressors(const float *p, const float *q, int dx, int dy, double *x
     x[9] = ((double)q[CH_DEPTH] - p[CH_DEPTH]) / fmax(fabs(p[CH_DEPTH]), 1e-6);
 }
 
-/* The denoised colour of pixel (px, py): the intercept (the value at p's
- * own features) of the weighted least-squares fit over the window. */
-static void denoise_pixel(const image *im, int px, int py, float *out)
+/* The intercept (the value at p's own features) of the least-squares fit
+ * of y on x with weights w over n neighbours, into out; p's own colour
+ * when the fit fails. */
+static void fit_intercept(int n, const double *w, double x[][NREG], double y[][3], const float *own, float *out)
 {
-    const float *p = pixel(im, px, py);
-    double w[WINDOW], x[WINDOW][NREG], y[WINDOW][3];
-    int n = 0;
-    for (int qy = py - RADIUS; qy <= py + RADIUS; qy++)
-        for (int qx = px - RADIUS; qx <= px + RADIUS; qx++) {
-            if (qx < 0 || qy < 0 || qx >= im->w || qy >= im->h)
-                continue;
-            const float *q = pixel(im, qx, qy);
-            if (!finite_pixel(q))
-                continue;
-            double wq = colour_weight(im, px, py, qx, qy) * feature_weight(p, q) * variance_weight(im, px, py, qx, qy);
-            if (!(wq > 1e-6))
-                continue;
-            w[n] = wq;
-            regressors(p, q, qx - px, qy - py, x[n]);
-            for (int c = 0; c < 3; c++)
-                y[n][c] = q[c];
-            n++;
-        }
     /* Standardise each slope regressor by its weighted root mean square
      * about p (0 leaves it out), so that one ridge fits every feature. */
     double total = 0, scale[NREG] = {1.0};
@@ -205,6 +214,8 @@ static void denoise_pixel(const image *im, int px, int py, float *out)
     memset(a, 0, sizeof a);
     memset(b, 0, sizeof b);
     for (int i = 0; i < n; i++) {
+        if (w[i] == 0.0)
+            continue;
         double xs[NREG];
         for (int j = 0; j < NREG; j++)
             xs[j] = x[i][j] * scale[j];
@@ -219,26 +230,180 @@ static void denoise_pixel(const image *im, int px, int py, float *out)
     for (int j = 1; j < NREG; j++)
         a[j][j] += scale[j] > 0 ? RIDGE * total : total;
     if (cholesky_solve(a, b, NREG) != 0) {
-        for (int c = 0; c < 3; c++)
-            out[c] = p[c];
+        memcpy(out, own, 3 * sizeof *out);
         return;
     }
     for (int c = 0; c < 3; c++)
         out[c] = (float)b[0][c];
 }
 
+/* The target's colour at (px, py) denoised at each of the nk bandwidths
+ * ks, into out[k * 3 ...]. */
+static void denoise_pixel(const image *im, int px, int py, const double *ks, int nk, float *out)
+{
+    const float *p = features(im, px, py);
+    double d[WINDOW], wf[WINDOW], w[WINDOW], x[WINDOW][NREG], y[WINDOW][3];
+    int n = 0;
+    for (int qy = py - RADIUS; qy <= py + RADIUS; qy++)
+        for (int qx = px - RADIUS; qx <= px + RADIUS; qx++) {
+            if (qx < 0 || qy < 0 || qx >= im->w || qy >= im->h)
+                continue;
+            const float *q = features(im, qx, qy), *t = im->target + ((size_t)qy * im->w + qx) * 3;
+            if (!finite_pixel(q, DENOISE_CHANNELS) || !finite_pixel(t, 3) ||
+                !finite_pixel(im->guide + ((size_t)qy * im->w + qx) * 3, 3))
+                continue;
+            wf[n] = feature_weight(p, q) * variance_weight(im, px, py, qx, qy);
+            if (!(wf[n] > 1e-6))
+                continue;
+            d[n] = fmax(patch_distance(im, px, py, qx, qy), 0.0);
+            regressors(p, q, qx - px, qy - py, x[n]);
+            for (int c = 0; c < 3; c++)
+                y[n][c] = t[c];
+            n++;
+        }
+    const float *own = im->target + ((size_t)py * im->w + px) * 3;
+    for (int k = 0; k < nk; k++) {
+        for (int i = 0; i < n; i++) {
+            w[i] = wf[i] * exp(-d[i] / (ks[k] * ks[k]));
+            w[i] = w[i] > 1e-6 ? w[i] : 0.0;
+        }
+        fit_intercept(n, w, x, y, own, out + 3 * k);
+    }
+}
+
+/* Every pixel of im denoised at the nk bandwidths ks: out holds, per
+ * pixel, nk colours. Non-finite pixels are taken as they are. */
+static void denoise_all(const image *im, const double *ks, int nk, float *out)
+{
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) {
+            float *o = out + ((size_t)y * im->w + x) * 3 * nk;
+            const float *t = im->target + ((size_t)y * im->w + x) * 3;
+            if (finite_pixel(features(im, x, y), DENOISE_CHANNELS) && finite_pixel(t, 3))
+                denoise_pixel(im, x, y, ks, nk, o);
+            else
+                for (int k = 0; k < nk; k++)
+                    memcpy(o + 3 * k, t, 3 * sizeof *o);
+        }
+}
+
+/* The RGB of in (stride DENOISE_CHANNELS or more), stride 3. */
+static float *colour_of(int w, int h, const float *in, int stride)
+{
+    float *c = malloc(sizeof *c * (size_t)w * h * 3);
+    if (!c)
+        abort();
+    for (size_t p = 0; p < (size_t)w * h; p++)
+        memcpy(c + 3 * p, in + p * stride, 3 * sizeof *c);
+    return c;
+}
+
 void denoise_image(int width, int height, const float *in, float *out)
 {
-    image im = {width, height, in, smoothed_variance(width, height, in)};
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int y = 0; y < height; y++)
-        for (int x = 0; x < width; x++) {
-            const float *p = pixel(&im, x, y);
-            float *o = out + ((size_t)y * width + x) * 3;
-            if (finite_pixel(p))
-                denoise_pixel(&im, x, y, o);
-            else
-                memcpy(o, p, 3 * sizeof *o);
+    double *raw = variance_channel(width, height, in);
+    /* The variance averaged over each 3x3 neighbourhood (a 16-spp estimate
+     * of it is itself noisy). */
+    double *var = box_mean(width, height, raw, 1);
+    float *colour = colour_of(width, height, in, DENOISE_CHANNELS);
+    image im = {width, height, in, colour, colour, var};
+    denoise_all(&im, &K_COLOUR, 1, out);
+    free(raw), free(var), free(colour);
+}
+
+/* The two halves of each pixel: a = half.RGB / A, b = (RGB - half.RGB) /
+ * (1 - A), each stride 3, and their features (the first DENOISE_CHANNELS
+ * of in). */
+static void split_halves(int w, int h, const float *in, float *a, float *b, float *feat)
+{
+    for (size_t p = 0; p < (size_t)w * h; p++) {
+        const float *v = in + p * DENOISE_HALF_CHANNELS;
+        double share = v[CH_HALF + 3];
+        int both = isfinite(share) && share >= MIN_SHARE && share <= 1.0 - MIN_SHARE;
+        for (int c = 0; c < 3; c++) {
+            a[3 * p + c] = both ? (float)(v[CH_HALF + c] / share) : v[c];
+            b[3 * p + c] = both ? (float)((v[c] - v[CH_HALF + c]) / (1.0 - share)) : v[c];
         }
-    free((void *)im.var);
+        memcpy(feat + p * DENOISE_CHANNELS, v, DENOISE_CHANNELS * sizeof *feat);
+    }
+}
+
+/* The variance of a half's pixels (each channel): the renderer's sample
+ * variance (3x3-averaged), rescaled by how far the halves actually differ
+ * around the pixel, since with quasi-random samplers the sample variance
+ * overstates the error of the mean several times (Rousselle et al. 2012
+ * use the halves' difference alike). Where the sample variance is 0 the
+ * halves' difference alone, averaged. */
+static double *half_variance(int w, int h, const float *feat, const float *a, const float *b)
+{
+    size_t n = (size_t)w * h;
+    double *raw = variance_channel(w, h, feat), *diff = calloc(n, sizeof *diff);
+    if (!diff)
+        abort();
+    for (size_t p = 0; p < n; p++) {
+        double s = 0;
+        for (int c = 0; c < 3; c++) {
+            double e = (double)a[3 * p + c] - b[3 * p + c];
+            s += isfinite(e) ? e * e : 0.0;
+        }
+        diff[p] = s / 6; /* E[(a - b)^2] = 2 var(half) */
+    }
+    double *sample = box_mean(w, h, raw, 1), *sample_wide = box_mean(w, h, raw, 4),
+           *diff_wide = box_mean(w, h, diff, 4);
+    /* A half holds half the samples: its variance is twice the whole's
+     * (the channel's), so 2 sample[p] rescaled by diff_wide / (2
+     * sample_wide). */
+    for (size_t p = 0; p < n; p++)
+        raw[p] = sample_wide[p] > 0 ? sample[p] * diff_wide[p] / sample_wide[p] : diff_wide[p];
+    free(diff), free(sample), free(sample_wide), free(diff_wide);
+    return raw;
+}
+
+void denoise_image_halves(int width, int height, const float *in, float *out)
+{
+    enum { NK = sizeof K_HALVES / sizeof K_HALVES[0] };
+    size_t n = (size_t)width * height;
+    float *a = malloc(sizeof *a * n * 3), *b = malloc(sizeof *b * n * 3),
+          *feat = calloc(n * DENOISE_CHANNELS, sizeof *feat), *fa = malloc(sizeof *fa * n * 3 * NK),
+          *fb = malloc(sizeof *fb * n * 3 * NK);
+    double *err = malloc(sizeof *err * n * NK);
+    if (!a || !b || !feat || !fa || !fb || !err)
+        abort();
+    split_halves(width, height, in, a, b, feat);
+    double *var = half_variance(width, height, feat, a, b);
+    /* Cross-filtering: each half regressed with the weights of the other,
+     * so that a half's noise does not choose its own weights. */
+    image ia = {width, height, feat, b, a, var}, ib = {width, height, feat, a, b, var};
+    denoise_all(&ia, K_HALVES, NK, fa);
+    denoise_all(&ib, K_HALVES, NK, fb);
+    /* Each bandwidth's error per pixel, estimated from the halves: the
+     * filtered a against b (independent of a; E[(fa - b)^2] = MSE(fa) +
+     * var(b)) and vice versa, less what averaging fa and fb removes of
+     * their variance, (fa - fb)^2 / 4; then averaged over SELECT_RADIUS. */
+    for (int k = 0; k < NK; k++) {
+        double *e = malloc(sizeof *e * n);
+        if (!e)
+            abort();
+        for (size_t p = 0; p < n; p++) {
+            double s = 0;
+            for (int c = 0; c < 3; c++) {
+                double xa = fa[(p * NK + k) * 3 + c], xb = fb[(p * NK + k) * 3 + c];
+                double ea = xa - b[3 * p + c], eb = xb - a[3 * p + c], dab = xa - xb;
+                s += 0.5 * (ea * ea + eb * eb) - 0.25 * dab * dab;
+            }
+            e[p] = isfinite(s) ? s / 3 - var[p] : INFINITY;
+        }
+        double *smooth = box_mean(width, height, e, SELECT_RADIUS);
+        for (size_t p = 0; p < n; p++)
+            err[p * NK + k] = isfinite(smooth[p]) ? smooth[p] : INFINITY;
+        free(e), free(smooth);
+    }
+    for (size_t p = 0; p < n; p++) {
+        int best = 0;
+        for (int k = 1; k < NK; k++)
+            best = err[p * NK + k] < err[p * NK + best] ? k : best;
+        for (int c = 0; c < 3; c++)
+            out[3 * p + c] = 0.5f * (fa[(p * NK + best) * 3 + c] + fb[(p * NK + best) * 3 + c]);
+    }
+    free(a), free(b), free(feat), free(fa), free(fb), free(err), free(var);
 }

@@ -34,13 +34,34 @@ integrator_t *integrator_alloc(const scene_obj *o, const integrator_ops *ops, co
     return in;
 }
 
+/* Depth, normal and albedo (times weight) of hit at aov[at...]. */
+static void hit_features(double *aov, int at_depth, int at_normal, int at_albedo, const surface_hit *hit, double depth,
+                         rgb weight)
+{
+    aov[at_depth] = depth;
+    double *n = aov + at_normal, *albedo = aov + at_albedo;
+    n[0] = hit->sh.n.x, n[1] = hit->sh.n.y, n[2] = hit->sh.n.z;
+    rgb a = rgb_mul(bsdf_albedo(hit->shape->bsdf, hit->uv), weight);
+    albedo[0] = a.r, albedo[1] = a.g, albedo[2] = a.b;
+}
+
 void integrator_first_hit_aovs(double *aov, const surface_hit *hit)
 {
-    aov[INTEGRATOR_AOV_DEPTH] = hit->t;
-    double *n = aov + INTEGRATOR_AOV_NORMAL, *albedo = aov + INTEGRATOR_AOV_ALBEDO;
-    n[0] = hit->sh.n.x, n[1] = hit->sh.n.y, n[2] = hit->sh.n.z;
-    rgb a = bsdf_albedo(hit->shape->bsdf, hit->uv);
-    albedo[0] = a.r, albedo[1] = a.g, albedo[2] = a.b;
+    hit_features(aov, INTEGRATOR_AOV_DEPTH, INTEGRATOR_AOV_NORMAL, INTEGRATOR_AOV_ALBEDO, hit, hit->t, rgb_gray(1.0));
+    integrator_rough_hit_aovs(aov, hit, hit->t, rgb_gray(1.0));
+}
+
+bool integrator_rough_hit_aovs(double *aov, const surface_hit *hit, double path_length, rgb weight)
+{
+    hit_features(aov, INTEGRATOR_AOV_ROUGH_DEPTH, INTEGRATOR_AOV_ROUGH_NORMAL, INTEGRATOR_AOV_ROUGH_ALBEDO, hit,
+                 path_length, weight);
+    return (bsdf_flags(hit->shape->bsdf) & BSDF_SMOOTH) != 0;
+}
+
+void integrator_clear_rough_aovs(double *aov)
+{
+    for (int i = INTEGRATOR_AOV_ROUGH_DEPTH; i < INTEGRATOR_AOV_COUNT; i++)
+        aov[i] = 0.0;
 }
 
 void integrator_clear_aovs(double *aov, bool covered)

@@ -24,10 +24,18 @@ struct integrator {
 integrator_t *integrator_alloc(const scene_obj *o, const integrator_ops *ops, const void *data, size_t data_size,
                                char *err, size_t errlen);
 /* The AOV values of a camera ray's first hit: its depth, shading normal
- * and the BSDF's albedo (the alpha is the integrator's to say). */
+ * and the BSDF's albedo, as the rough vertex's too (the alpha is the
+ * integrator's to say). */
 void integrator_first_hit_aovs(double *aov, const surface_hit *hit);
 /* The AOV values of a sample: all zero, the alpha 1 when covered. */
 void integrator_clear_aovs(double *aov, bool covered);
+/* The rough-vertex features (INTEGRATOR_AOV_ROUGH_*) of a path's vertex
+ * hit, path_length from the camera, the path's weight weight there; returns
+ * whether hit is rough (its BSDF has a non-delta lobe: the features stay
+ * those of this vertex) rather than a mirror, glass or sheet the path goes
+ * through. integrator_clear_rough_aovs zeroes them (the path escaped). */
+bool integrator_rough_hit_aovs(double *aov, const surface_hit *hit, double path_length, rgb weight);
+void integrator_clear_rough_aovs(double *aov);
 
 /* A ray leaving hit toward w, lifted off the surface on w's side. */
 ray3 integrator_spawn(const surface_hit *hit, vec3 w);

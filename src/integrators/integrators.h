@@ -30,15 +30,23 @@ typedef struct {
 
 /* The first hit's values for the AOV channels, in this order: depth (the
  * distance along the camera ray), the world shading normal, the BSDF's
- * albedo, zero where the ray escapes; and the sample's alpha: 1 when it
- * counts as covered (Mitsuba's "valid" sample: the ray met a surface other
- * than a null one, or sees a visible environment), else 0. */
+ * albedo, zero where the ray escapes; the sample's alpha: 1 when it counts
+ * as covered (Mitsuba's "valid" sample: the ray met a surface other than a
+ * null one, or sees a visible environment), else 0; then the same three
+ * features at the first rough vertex, the denoiser's (docs/rendering.md,
+ * "AOVs"): the path's first surface with a non-delta lobe, seen through
+ * the mirrors, glass and sheets before it (depth: the path's length to it;
+ * albedo: times the path's weight there), zero where the path escapes
+ * before one. Integrators other than `path` give the first hit's. */
 enum {
     INTEGRATOR_AOV_DEPTH = 0,
     INTEGRATOR_AOV_NORMAL = 1,
     INTEGRATOR_AOV_ALBEDO = 4,
     INTEGRATOR_AOV_ALPHA = 7,
-    INTEGRATOR_AOV_COUNT = 8
+    INTEGRATOR_AOV_ROUGH_DEPTH = 8,
+    INTEGRATOR_AOV_ROUGH_NORMAL = 9,
+    INTEGRATOR_AOV_ROUGH_ALBEDO = 12,
+    INTEGRATOR_AOV_COUNT = 15
 };
 
 /* Radiance along ray (t in (tmin, tmax)) from the numbers of smp; aov (may

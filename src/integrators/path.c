@@ -134,6 +134,8 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
     bool prev_delta = true;
     ray3 ray = *ray0;
     emitter_ref prev = {ray.o, v3(0.0, 0.0, 0.0)}; /* the last scattering vertex, as NEE saw it */
+    bool rough_pending = aov != NULL; /* the rough-vertex AOVs are still to be found */
+    double path_length = 0.0;         /* the ray directions are unit: t is a distance */
     if (aov) {
         for (int i = 0; i < INTEGRATOR_AOV_COUNT; i++)
             aov[i] = 0.0;
@@ -144,6 +146,8 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         bool found = shape_list_intersect(sc->shapes, &ray, t0, t1, &hit);
         bool show = !(depth == 0 && pd->hide_emitters);
         if (!found) {
+            if (rough_pending)
+                integrator_clear_rough_aovs(aov);
             if (emitters->env && show) {
                 const emitter_t *e = emitters->env;
                 double w = prev_delta ? 1.0
@@ -154,8 +158,11 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             break;
         }
         const shape_t *sh = hit.shape;
+        path_length += hit.t;
         if (depth == 0 && aov)
             integrator_first_hit_aovs(aov, &hit);
+        if (rough_pending)
+            rough_pending = !integrator_rough_hit_aovs(aov, &hit, path_length, beta);
         if (sh->emitter && show) {
             const emitter_t *e = sh->emitter;
             rgb le = emitter_eval_hit(e, &hit, ray.d);

@@ -12,11 +12,11 @@ static void missing_channels(const exr_in *e, char *out, size_t outlen)
 {
     size_t n = 0;
     out[0] = '\0';
-    for (int k = 0; k < DENOISE_CHANNELS && n < outlen; k++)
+    for (int k = 0; k < DENOISE_HALF_CHANNELS && n < outlen; k++)
         if (!exr_in_has_channel(e, denoise_channel_names[k]))
             n += (size_t)snprintf(out + n, outlen - n, "%s%s", n ? ", " : "has no channel ", denoise_channel_names[k]);
     if (n && n < outlen)
-        snprintf(out + n, outlen - n, " (denoising needs R, G, B and render --aov albedo,normal,depth,variance)");
+        snprintf(out + n, outlen - n, " (denoising needs R, G, B and render --aov denoising,half,variance)");
 }
 
 int denoise_exr(const char *in_path, const char *out_path, char *err, size_t errlen)
@@ -35,7 +35,7 @@ int denoise_exr(const char *in_path, const char *out_path, char *err, size_t err
     exr_in_size(e, &w, &h);
     size_t npix = (size_t)w * h;
     const char **names = malloc(sizeof *names * (size_t)nch);
-    float *all = malloc(sizeof *all * npix * nch), *in = malloc(sizeof *in * npix * DENOISE_CHANNELS),
+    float *all = malloc(sizeof *all * npix * nch), *in = malloc(sizeof *in * npix * DENOISE_HALF_CHANNELS),
           *out = malloc(sizeof *out * npix * 3);
     if (!names || !all || !in || !out)
         abort();
@@ -43,8 +43,8 @@ int denoise_exr(const char *in_path, const char *out_path, char *err, size_t err
         names[c] = exr_in_channel_name(e, c);
     int rc = -2;
     if (exr_in_read(e, nch, names, all, err, errlen) == 0 &&
-        exr_in_read(e, DENOISE_CHANNELS, denoise_channel_names, in, err, errlen) == 0) {
-        denoise_image(w, h, in, out);
+        exr_in_read(e, DENOISE_HALF_CHANNELS, denoise_channel_names, in, err, errlen) == 0) {
+        denoise_image_halves(w, h, in, out);
         for (int c = 0; c < nch; c++)
             for (int k = 0; k < 3; k++)
                 if (!strcmp(names[c], denoise_channel_names[k]))

@@ -22,29 +22,28 @@ int denoise_film(film_t *f, char *err, size_t errlen)
     }
     /* R, G, B and the AOVs are the film's own channels (whatever its pixel
      * format), the variance is what its EXR holds. */
-    int src[DENOISE_CHANNELS];
-    for (int k = 0; k < DENOISE_CHANNELS - 1; k++)
-        if ((src[k] = channel_index((const char *const *)f->names, f->nchannels, denoise_channel_names[k])) < 0) {
-            snprintf(err, errlen, "denoising needs the channel %s (--aov albedo,normal,depth)",
-                     denoise_channel_names[k]);
+    int src[DENOISE_HALF_CHANNELS];
+    for (int k = 0; k < DENOISE_HALF_CHANNELS; k++)
+        if (k != DENOISE_CHANNELS - 1 &&
+            (src[k] = channel_index((const char *const *)f->names, f->nchannels, denoise_channel_names[k])) < 0) {
+            snprintf(err, errlen, "denoising needs the channel %s (--aov denoising,half)", denoise_channel_names[k]);
             return -1;
         }
     size_t npix = (size_t)f->width * f->height;
     const char **names = malloc(sizeof *names * (size_t)(f->nchannels + FILM_EXR_EXTRA_MAX));
-    float *dev = malloc(sizeof *dev * npix * f->nchannels), *in = malloc(sizeof *in * npix * DENOISE_CHANNELS),
+    float *dev = malloc(sizeof *dev * npix * f->nchannels), *in = malloc(sizeof *in * npix * DENOISE_HALF_CHANNELS),
           *out = malloc(sizeof *out * npix * 3);
     if (!names || !dev || !in || !out)
         abort();
     int nexr;
     float *exr = film_develop_exr(f, &nexr, names);
-    int var = channel_index(names, nexr, "variance");
+    int var = channel_index(names, nexr, "variance.X");
     film_develop(f, dev);
-    for (size_t p = 0; p < npix; p++) {
-        for (int k = 0; k < DENOISE_CHANNELS - 1; k++)
-            in[p * DENOISE_CHANNELS + k] = dev[p * f->nchannels + src[k]];
-        in[p * DENOISE_CHANNELS + DENOISE_CHANNELS - 1] = exr[p * nexr + var];
-    }
-    denoise_image(f->width, f->height, in, out);
+    for (size_t p = 0; p < npix; p++)
+        for (int k = 0; k < DENOISE_HALF_CHANNELS; k++)
+            in[p * DENOISE_HALF_CHANNELS + k] =
+                k == DENOISE_CHANNELS - 1 ? exr[p * nexr + var] : dev[p * f->nchannels + src[k]];
+    denoise_image_halves(f->width, f->height, in, out);
     for (size_t p = 0; p < npix; p++)
         for (int c = 0; c < 3; c++)
             f->sum[p * f->nchannels + c] = f->weight[p] > 0 ? out[p * 3 + c] * f->weight[p] : 0.0;

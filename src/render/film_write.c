@@ -81,9 +81,9 @@ float *film_develop_exr(const film_t *f, int *nch, const char **names)
     for (int c = film_format_colour_names(f->format, names); c < film_ch; c++)
         names[c] = f->names[c + 3 - base];
     if (spp)
-        names[film_ch] = "spp";
+        names[film_ch] = "spp.X";
     if (var)
-        names[film_ch + spp] = "variance";
+        names[film_ch + spp] = "variance.X";
     if (ids)
         names[film_ch + spp + var] = "IndexOB.X", names[film_ch + spp + var + 1] = "IndexMA.X";
     float *px = malloc(sizeof(float) * npix * *nch);

@@ -56,6 +56,10 @@ int render_aov_parse(const char *list, unsigned *mask)
             *mask |= RENDER_AOV_VARIANCE;
         else if (!strcmp(tok, "spp"))
             *mask |= RENDER_AOV_SPP;
+        else if (!strcmp(tok, "denoising"))
+            *mask |= RENDER_AOV_DENOISING;
+        else if (!strcmp(tok, "half"))
+            *mask |= RENDER_AOV_HALF;
         else
             return -1;
     }
@@ -80,6 +84,7 @@ typedef struct {
     int border;          /* its width: the sampler numbers pixels from the border's corner */
     const int *material; /* with RENDER_AOV_INDEX: each shape's material number */
     int ox, oy;          /* the crop window's corner: film pixel (x, y) is the output's (x - ox, y - oy) */
+    int half_end;        /* with RENDER_AOV_HALF: samples k < half_end make the first half */
 } render_job;
 
 /* A shape's BSDF and number, ordered by BSDF, then number. */
@@ -126,9 +131,9 @@ static void record_ids(const render_job *j, const camera_ray_t *cr, int x, int y
     }
 }
 
-/* Film values of one sample: RGB, A, then the requested AOVs and the
+/* Film values of sample k: RGB, A, then the requested AOVs and the
  * integrator's own channels, in that order. */
-static void pack_values(const render_job *j, rgb L, const double *aov, double *out)
+static void pack_values(const render_job *j, rgb L, const double *aov, int k, double *out)
 {
     int n = 0;
     out[n++] = L.r, out[n++] = L.g, out[n++] = L.b;
@@ -140,6 +145,17 @@ static void pack_values(const render_job *j, rgb L, const double *aov, double *o
         out[n++] = aov[INTEGRATOR_AOV_NORMAL + i];
     for (int i = 0; i < 3 && (j->aovs & RENDER_AOV_ALBEDO); i++)
         out[n++] = aov[INTEGRATOR_AOV_ALBEDO + i];
+    if (j->aovs & RENDER_AOV_DENOISING) {
+        out[n++] = aov[INTEGRATOR_AOV_ROUGH_DEPTH];
+        for (int i = 0; i < 3; i++)
+            out[n++] = aov[INTEGRATOR_AOV_ROUGH_NORMAL + i];
+        for (int i = 0; i < 3; i++)
+            out[n++] = aov[INTEGRATOR_AOV_ROUGH_ALBEDO + i];
+    }
+    if (j->aovs & RENDER_AOV_HALF) { /* the film's average makes them premultiplied by the half's share */
+        double in = k < j->half_end;
+        out[n++] = in * L.r, out[n++] = in * L.g, out[n++] = in * L.b, out[n++] = in;
+    }
     for (int i = 0; i < j->nown; i++)
         out[n++] = aov[INTEGRATOR_AOV_COUNT + i];
 }
@@ -203,7 +219,7 @@ static uint64_t render_tile(const render_job *j, int tx, int ty, int s0, int s1)
                 }
                 camera_ray_t cr = camera_ray_at(cam, sx, sy, lens);
                 rgb L = integrator_li(s->integrator, &sc, &cr.ray, cr.tmin, cr.tmax, &smp, need_aov ? aov : NULL);
-                pack_values(j, L, aov, vals);
+                pack_values(j, L, aov, k, vals);
                 int fx = x - j->ox, fy = y - j->oy; /* in the output */
                 splat(j->film, &s->film.filter, fx, fy, sx - j->ox, sy - j->oy, vals);
                 /* A tile owns its pixels: no other thread counts into them. */
@@ -253,10 +269,10 @@ static void describe(const scene_t *s, film_metadata *m)
  * the integrator's own ones; the extras written from the pixels' samples. */
 int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, size_t errlen)
 {
-    static const char *const xyz_names[3] = {"X", "Y", "Z"}, *const rgb_names[3] = {"R", "G", "B"};
+    static const char *const xyz_names[3] = {"X", "Y", "Z"}, *const rgba_names[4] = {"R", "G", "B", "A"};
     static const char *const whole[1] = {""};
     int nown = integrator_channel_count(s->integrator);
-    film_aov *list = malloc(sizeof *list * (size_t)(3 + nown));
+    film_aov *list = malloc(sizeof *list * (size_t)(7 + nown));
     if (!list)
         abort();
     int naov = 0;
@@ -268,7 +284,16 @@ int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, s
     if (aovs & RENDER_AOV_NORMAL)
         list[naov++] = (film_aov){"N", 3, xyz_names};
     if (aovs & RENDER_AOV_ALBEDO)
-        list[naov++] = (film_aov){"albedo", 3, rgb_names};
+        list[naov++] = (film_aov){"albedo", 3, rgba_names};
+    /* Cycles' names for its denoiser's features, which it takes past
+     * specular surfaces too. */
+    if (aovs & RENDER_AOV_DENOISING) {
+        list[naov++] = (film_aov){"Denoising Depth", 1, xyz_names + 2};
+        list[naov++] = (film_aov){"Denoising Normal", 3, xyz_names};
+        list[naov++] = (film_aov){"Denoising Albedo", 3, rgba_names};
+    }
+    if (aovs & RENDER_AOV_HALF)
+        list[naov++] = (film_aov){"half", 4, rgba_names};
     for (int i = 0; i < nown; i++)
         list[naov++] = (film_aov){integrator_channel_name(s->integrator, i), 1, whole};
     int rc = film_init_format(film, s->film.crop_w, s->film.crop_h, s->film.format, list, naov, err, errlen);
@@ -344,7 +369,8 @@ void render_samples(const scene_t *s, int threads, unsigned aovs, film_t *film, 
                       border,
                       (aovs & RENDER_AOV_INDEX) && s0 == 0 ? material_numbers(&s->shapes) : NULL,
                       fs->crop_x,
-                      fs->crop_y};
+                      fs->crop_y,
+                      scene_spp(s) / 2};
     int tiles_x = (job.x1 - job.x0 + TILE - 1) / TILE, tiles_y = (job.y1 - job.y0 + TILE - 1) / TILE;
     /* Tiles of one colour are k tiles apart: (k - 1) TILE > 2 radius. */
     int k = rfilter_is_box(filter) ? 1 : 2 + (int)floor(2.0 * filter->radius / TILE);

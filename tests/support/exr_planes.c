@@ -19,7 +19,7 @@ void read_exr(const char *path, exr_planes *out)
     const exr_attr_chlist_t *chl;
     cr_assert_eq(exr_get_channels(ctx, 0, &chl), EXR_ERR_SUCCESS);
     out->nch = chl->num_channels;
-    cr_assert_leq(out->nch, 16);
+    cr_assert_leq(out->nch, EXR_PLANES_MAX);
     for (int c = 0; c < out->nch; c++) {
         snprintf(out->names[c], sizeof out->names[c], "%s", chl->entries[c].name.str);
         cr_assert_eq(chl->entries[c].pixel_type, EXR_PIXEL_FLOAT, "float32 on disk");

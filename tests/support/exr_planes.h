@@ -4,10 +4,11 @@
 #ifndef CELADON_TEST_EXR_PLANES_H
 #define CELADON_TEST_EXR_PLANES_H
 
+enum { EXR_PLANES_MAX = 32 };
 typedef struct {
     int width, height, nch;
-    char names[16][32];
-    float *planes[16];
+    char names[EXR_PLANES_MAX][32];
+    float *planes[EXR_PLANES_MAX];
 } exr_planes;
 
 /* Reads path (asserting it is whole and float32) into out. */
