@@ -14,18 +14,19 @@
  *            is a separate body: accepted when the cut follows an edge; a
  *            cut through an even body means the vessel itself runs off the
  *            photo, which the quality gate refuses.
- *
  *   plinth   a stand short of the border, seen from above: the object ends
- *            in a straight column (a box's sides and straight front edge, rows
- *            within a pixel of the lowest row's extent) under a ledge (the row
- *            above steps in on both sides). Seeds: its lowest rows and its
- *            pixels beyond the ledge. Accepted when the cut follows an edge
- *            and the vessel left reaches down into the column: the top face
- *            shows around the foot, so the camera is above, and from above a
- *            revolved base ends in a curved near arc, never in the straight
- *            edge the column stands on. A foot ring or a disc foot in another
- *            colour is either curved below (seen from above) or has the
- *            vessel end on its top (seen level): kept.
+ *            in a straight column (a box's front face or its top face's
+ *            front edge: rows within a pixel of the lowest row's extent).
+ *            Seeds: its two lowest rows and its pixels beyond the row above
+ *            it. Cut in rounds (the front face, then the top face), each
+ *            along an edge; accepted once the vessel's base lies below the
+ *            part's top (the top face shows around the foot: the camera is
+ *            above, where a revolved base would end in a curved near arc,
+ *            not on a straight column) and the outline steps out onto the
+ *            part on both sides (a plinth is wider than its foot). A band
+ *            painted round a body leaves the outline smooth, an L's foot
+ *            steps out on one side, a disc foot seen level has the body end
+ *            on its top: none is cut.
  *
  * See recon_internal.h. */
 #include <math.h>
@@ -48,15 +49,16 @@ enum { SEED_COMPONENTS = 3 };
  * misfit about chi-square with 2 degrees of freedom under the shadow's
  * noise (median 1.4): a median over 16 (4 sigmas) is a colour of its own. */
 #define SHADOW_MAX_MISFIT 16.0
-/* A plinth's column is at least 3 rows high, and the vessel's base reaches
- * at least 2 rows below the plinth's top (at the working resolution: 2 rows
- * are 1% of the photo's longer side). */
+/* A plinth's column is at least 3 rows high, the outline steps out onto it
+ * by at least 2 px on each side, and the vessel's base reaches at least 2
+ * rows below its top (at the working resolution 2 rows are 1% of the
+ * photo's longer side); at most 3 rounds of cuts. */
 enum { PLINTH_MIN_ROWS = 3, PLINTH_MIN_STEP = 2, PLINTH_MIN_OVERLAP = 2, PLINTH_MAX_ROUNDS = 3 };
 
 typedef enum { HYPO_SHADOW, HYPO_STAND, HYPO_PLINTH } hypothesis;
 
-/* A box plinth's column in the object: rows top..bottom of the same extent
- * as the lowest row, under a ledge whose row (top - 1) spans l..r. */
+/* A plinth's column in the object: rows top..bottom of the same extent as
+ * the lowest row, under the row top - 1, which spans l..r. */
 typedef struct {
     int top, bottom, l, r;
 } plinth_column;
