@@ -16,8 +16,9 @@
 #                              a part of the suite of your choosing
 #   MUTATE_WORK=/tmp/m tools/mutate.sh 1
 #                              builds in that folder and keeps it, so that the
-#                              next run with it rebuilds only what a mutant
-#                              touches (it holds HEAD as of its first run)
+#                              next run at the same commit rebuilds only what
+#                              a mutant touches (at another commit the folder
+#                              is made again from HEAD)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 
@@ -68,8 +69,16 @@ mutants=(
 )
 
 if [ -n "${MUTATE_WORK:-}" ]; then
+  # A folder holding another commit is made again from HEAD: kept as it
+  # was, it tested the mutants against that commit's code and tests.
   work=$MUTATE_WORK
-  [ -f "$work/Makefile" ] || { mkdir -p "$work" && git -C "$root" archive HEAD | tar -x -C "$work"; }
+  head=$(git -C "$root" rev-parse HEAD)
+  if [ "$(cat "$work/.mutate-head" 2>/dev/null)" != "$head" ]; then
+    [ ! -e "$work" ] || [ -f "$work/.mutate-head" ] ||
+      { echo "tools/mutate.sh: $work exists and was not made by an earlier run; choose another MUTATE_WORK" >&2; exit 2; }
+    rm -rf "$work" && mkdir -p "$work" && git -C "$root" archive HEAD | tar -x -C "$work"
+    echo "$head" >"$work/.mutate-head"
+  fi
 else
   work=$(mktemp -d /tmp/celadon-mutate-XXXXXX)
   trap 'rm -rf "$work"' EXIT
