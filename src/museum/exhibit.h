@@ -20,9 +20,10 @@ typedef struct {
     double height_cm_given, diameter_cm_given; /* the catalogue's, 0 when not given */
     vessel_size_source size_source; /* which rule of vessel_size.h set height_m */
     int below_gate;           /* failed the quality gate, included with --force */
-    double height_m;          /* real height: the vessel's top (vessel_shape_top) at y = height_m */
+    double height_m;          /* real height: the vessel's top (bspline_largest; a rolled lip puts it above
+                               * the rim) at y = height_m */
     double rim_height_m;      /* where that puts the curve's end, the rim (mesh_revolve's and sor's height) */
-    double radius_m;          /* the curve's largest radius (vessel_shape_max_radius) */
+    double radius_m;          /* the curve's largest radius (bspline_largest) */
     bspline_t curve;          /* the shape (profile_shape): (r, h), px, or units of the height for a meridian */
     lod_level lods[LOD_MAX_LEVELS];
     int n_lods;

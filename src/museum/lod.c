@@ -7,7 +7,6 @@
 
 #include "celadon/curve_domains.h"
 #include "celadon/mesh_rings.h"
-#include "museum/vessel_size.h"
 
 /* The profile's scale and its curve's largest radius. */
 typedef struct {
@@ -61,7 +60,7 @@ int lod_make(const bspline_t *profile, double height_m, const int *segments, int
     double rim_px = bspline_eval(profile, 1.0).y;
     if (!(rim_px > 0))
         return -1;
-    lod_scale sc = {height_m / rim_px, vessel_shape_max_radius(profile)};
+    lod_scale sc = {height_m / rim_px, bspline_largest(profile, 0)};
     if (!(sc.r_max_px > 0))
         return -1;
     int counts[LOD_MAX_LEVELS], n = 0;

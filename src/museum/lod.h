@@ -43,7 +43,7 @@ typedef struct {
  * order; repeated values count once); with n_segments = 0 they are chosen
  * for the nearest viewing distance nearest_m (LOD_AUTO_LEVELS levels).
  * Returns the number of levels written to out, or -1 (bad arguments, a
- * profile that is not a cubic B-spline (vessel_shape_max_radius), out of
+ * profile that is not a cubic B-spline (bspline_largest), out of
  * memory). */
 int lod_make(const bspline_t *profile, double height_m, const int *segments, int n_segments, double nearest_m,
              lod_level *out);

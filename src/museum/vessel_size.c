@@ -5,10 +5,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-double vessel_shape_max_radius(const bspline_t *curve) { return bspline_largest(curve, 0); }
-
-double vessel_shape_top(const bspline_t *curve) { return bspline_largest(curve, 1); }
-
 double vessel_size_height_m(double height_cm, double diameter_cm, double shape_height, double shape_max_radius,
                             vessel_size_source *source)
 {

@@ -20,14 +20,6 @@
 
 typedef enum { VESSEL_SIZE_HEIGHT, VESSEL_SIZE_DIAMETER, VESSEL_SIZE_DEFAULT } vessel_size_source;
 
-/* The largest |r| of the curve C(u) = (r, h) itself (not a bound): the
- * maximum over the ends and the stationary points of r on each of its
- * cubic Bézier pieces. -1 when the curve is not a valid cubic. */
-double vessel_shape_max_radius(const bspline_t *curve);
-/* The largest h of the curve itself, likewise: the vessel's top, which a
- * lip rolled over its rim puts above the curve's end. */
-double vessel_shape_top(const bspline_t *curve);
-
 /* The vessel's height in metres for the catalogue's height_cm and
  * diameter_cm (0: not given), its shape's height (top minus base, > 0) and
  * largest radius in the shape's own units; *source says which rule held. */
