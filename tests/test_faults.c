@@ -328,6 +328,37 @@ Test(faults, a_hold_that_never_ends_delays_a_signal_two_seconds_at_most)
     cr_expect(t >= 1.9 && t < 30.0, "the signal took %.2f s, not the 2 s the handler waits", t);
 }
 
+/* A signal that another thread handles while this one holds: the hold
+ * ends, and the thread must not go on to end the process normally while
+ * the handler cleans up (the batch test once saw exit status 0 for the
+ * signal sent at its last change). The child's hold lasts 50 ms (a
+ * write), long enough for the other thread to take the signal; then it
+ * ends the hold and exits at once, as a batch does after its last rename. */
+Test(faults, a_signal_handled_in_another_thread_ends_the_process_after_the_hold)
+{
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+    for (size_t k = 0; k < sizeof sigs / sizeof *sigs; k++) {
+        pid_t pid = fork();
+        cr_assert_geq(pid, 0);
+        if (pid == 0) {
+            char at[32];
+            snprintf(at, sizeof at, "1:%d", sigs[k]);
+            setenv("CELADON_TEST_SIGNAL_AT", at, 1);
+            temp_files_install();
+            pthread_t other; /* not in a hold: the signal goes to it */
+            if (pthread_create(&other, NULL, sleep_forever, NULL) != 0)
+                _exit(3);
+            temp_files_hold();
+            nanosleep(&(struct timespec){0, 50000000}, NULL);
+            temp_files_release();
+            _exit(0);
+        }
+        int status;
+        cr_assert_eq(waitpid(pid, &status, 0), pid);
+        cr_expect(WIFSIGNALED(status) && WTERMSIG(status) == sigs[k], "signal %d gave status %#x", sigs[k], status);
+    }
+}
+
 /* A tmpfs of 16 KiB at dir/full; 0, or -1 when this process may not mount. */
 static int mount_small_disk(char *mnt, size_t len)
 {

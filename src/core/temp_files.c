@@ -25,10 +25,12 @@ static _Thread_local sigset_t mask_before; /* its signal mask outside them */
 
 /* CELADON_TEST_SIGNAL_AT=N:SIG (docs/faults.md): the Nth hold of the
  * process sends the process SIG once it has begun, so that tests can
- * interrupt at every change to the file system in turn. */
+ * interrupt at every change to the file system in turn; the thread that
+ * sent it does not go on past that hold until a handler has begun. */
 static long signal_at;
 static int signal_at_sig;
 static atomic_long holds_begun;
+static _Thread_local int sent_signal_at; /* this thread's hold sent it */
 
 void temp_files_track(const char *path)
 {
@@ -151,14 +153,26 @@ void temp_files_hold(void)
         for (;;)
             pause();
     }
-    if (signal_at > 0 && atomic_fetch_add(&holds_begun, 1) + 1 == signal_at)
+    if (signal_at > 0 && atomic_fetch_add(&holds_begun, 1) + 1 == signal_at) {
+        sent_signal_at = 1;
         kill(getpid(), signal_at_sig);
+    }
 }
 
+/* Once a handler has begun (in another thread, waiting for the holds), the
+ * thread that ends a hold goes no further: were it to reach exit() first,
+ * the process would end with status 0 in the middle of the clean-up. Here
+ * the signals are unblocked again, so a signal pending for this thread runs
+ * its handler before the check. */
 void temp_files_release(void)
 {
     if (--depth > 0)
         return;
     atomic_fetch_sub(&changes, 1);
     pthread_sigmask(SIG_SETMASK, &mask_before, NULL);
+    for (int ms = 0; sent_signal_at && !atomic_load(&dying) && ms < 2000; ms++)
+        nanosleep(&(struct timespec){0, 1000000}, NULL); /* the other thread's handler is on its way */
+    if (atomic_load(&dying))
+        for (;;)
+            pause();
 }
