@@ -89,9 +89,8 @@ static void outline_error(const pinhole_params *p, const recon_result *x, double
  * photo is accepted and its outline lies on the solid's (the issue's
  * measure: mean distance at most 0.5% of the height over at least 80% of
  * it; a clean render gives a tenth of that). What this does not hold is
- * the 3D profile: the moon jar's foot hides behind its belly from above,
- * and the camera read from a base ellipse that is not there is wrong
- * (docs/algorithms-recon.md 13.8). */
+ * the 3D profile: the camera read from the dark, tangentially-left base
+ * is wrong (docs/algorithms-recon.md 13.9). */
 Test(recon_rendered, a_moon_jar_on_a_sweep_is_not_refused, .timeout = 120)
 {
     if (!pov_available())
