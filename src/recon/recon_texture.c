@@ -68,6 +68,23 @@ static int fill_missing_rows(double *s_row, const unsigned char *hit, int rows)
 }
 
 
+/* An outline farther out than the profile by this fraction of its radius,
+ * and at least PART_DEPARTURE_PX, is a part's, not the body's. */
+#define PART_DEPARTURE 0.02
+#define PART_DEPARTURE_PX 1.0
+#define PART_MARGIN_ROWS 3
+
+/* The profile polyline's radius at height h (px), linear between its points. */
+static double polyline_radius(const recon_result *res, double h)
+{
+    const vec2 *p = res->polyline;
+    int i = 0;
+    while (i + 2 < res->n_polyline && p[i + 1].y < h)
+        i++;
+    double t = p[i + 1].y > p[i].y ? fmin(fmax((h - p[i].y) / (p[i + 1].y - p[i].y), 0.0), 1.0) : 0.0;
+    return p[i].x + t * (p[i + 1].x - p[i].x);
+}
+
 int recon_texture_from_photo(const image_t *photo, const recon_result *res, recon_texture_t *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
@@ -79,8 +96,9 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
     int rows = (int)lround(H);
     double *s_row[2] = {calloc((size_t)rows, sizeof(double)), calloc((size_t)rows, sizeof(double))};
     unsigned char *hit[2] = {calloc((size_t)rows, 1), calloc((size_t)rows, 1)};
+    unsigned char *sides = calloc((size_t)rows, 1); /* recon_texture_fill_parts's */
     int status = -1;
-    if (!s_row[0] || !s_row[1] || !hit[0] || !hit[1]) {
+    if (!s_row[0] || !s_row[1] || !hit[0] || !hit[1] || !sides) {
         snprintf(err, errlen, "texture: out of memory");
         goto done;
     }
@@ -94,6 +112,26 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
         snprintf(err, errlen, "texture: neither silhouette reaches the profile's heights");
         goto done;
     }
+    /* Over the rows of a part left out of the profile (a handle, a lug),
+     * and wherever an outline stands out of the profile by more than
+     * PART_DEPARTURE (a handle's root the extraction kept), with
+     * PART_MARGIN_ROWS more on each side of such a run (where the root
+     * tapers into the outline), the outline on that side is not the body's:
+     * the profile's radius is (taken from the other side, or bridged). */
+    for (int j = 0; j < rows && res->n_polyline >= 2; j++) {
+        double r = polyline_radius(res, row_height(j, rows, H));
+        sides[j] |= (unsigned char)recon_texture_parts_at(
+            res, v2_add(res->axis_origin, v2_scale(res->axis_direction, row_height(j, rows, H))).y);
+        for (int k = 0; k < 2; k++)
+            if (!missing[k] && (k ? 1 : -1) * s_row[k][j] > r + fmax(PART_DEPARTURE_PX, PART_DEPARTURE * r))
+                for (int d = -PART_MARGIN_ROWS; d <= PART_MARGIN_ROWS; d++)
+                    if (j + d >= 0 && j + d < rows)
+                        sides[j + d] |= (unsigned char)(1 << k);
+    }
+    for (int j = 0; j < rows && res->n_polyline >= 2; j++)
+        for (int k = 0; k < 2; k++)
+            if (sides[j] & (1 << k))
+                s_row[k][j] = (k ? 1 : -1) * polyline_radius(res, row_height(j, rows, H));
     /* A side washed out over its whole height: the other side's mirror image
      * (the vessel is symmetric about its axis). */
     for (int k = 0; k < 2; k++)
@@ -135,8 +173,10 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
         }
     }
     free(cos_u);
+    recon_texture_fill_parts(out, sides);
     status = 0;
 done:
+    free(sides);
     for (int k = 0; k < 2; k++) {
         free(s_row[k]);
         free(hit[k]);
