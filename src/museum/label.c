@@ -55,6 +55,18 @@ static int surface_png(cairo_surface_t *surf, uint8_t **png, size_t *len)
     return 0;
 }
 
+/* A width x height RGB surface and its context, or NULL (nothing left over). */
+static cairo_t *canvas(int width, int height, cairo_surface_t **surf)
+{
+    *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+    cairo_t *cr = cairo_create(*surf);
+    if (cairo_status(cr) == CAIRO_STATUS_SUCCESS)
+        return cr;
+    cairo_destroy(cr);
+    cairo_surface_destroy(*surf);
+    return NULL;
+}
+
 static void set_font(cairo_t *cr, label_role role, double size)
 {
     cairo_select_font_face(cr, role == LABEL_SIGN ? LABEL_SIGN_FONT : "sans-serif",
@@ -180,13 +192,10 @@ int label_render_png(const label_text *t, int width, int height, uint8_t **png, 
     *png = NULL;
     *len = 0;
     label_line lines[LABEL_MAX_LINES];
-    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
-    cairo_t *cr = cairo_create(surf);
-    if (cairo_status(cr) != CAIRO_STATUS_SUCCESS) {
-        cairo_destroy(cr);
-        cairo_surface_destroy(surf);
+    cairo_surface_t *surf;
+    cairo_t *cr = canvas(width, height, &surf);
+    if (!cr)
         return -1;
-    }
     int n = layout_on(cr, t, width, height, lines, LABEL_MAX_LINES);
     cairo_set_source_rgb(cr, 0.94, 0.92, 0.87); /* card */
     cairo_paint(cr);
@@ -260,13 +269,10 @@ int label_sign_png(const char *title, int width, int height, double cap_px, uint
     *png = NULL;
     *len = 0;
     label_line lines[LABEL_TITLE_LINES];
-    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
-    cairo_t *cr = cairo_create(surf);
-    if (cairo_status(cr) != CAIRO_STATUS_SUCCESS) {
-        cairo_destroy(cr);
-        cairo_surface_destroy(surf);
+    cairo_surface_t *surf;
+    cairo_t *cr = canvas(width, height, &surf);
+    if (!cr)
         return -1;
-    }
     int n = sign_layout_on(cr, title, width, height, cap_px, lines, LABEL_TITLE_LINES);
     cairo_set_source_rgb(cr, 0.16, 0.24, 0.20); /* a dark celadon plate */
     cairo_paint(cr);
