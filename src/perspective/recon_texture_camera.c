@@ -74,7 +74,8 @@ int recon_texture_from_camera(const image_t *photo, const recon_camera *cam, con
     int rows = (int)lround(H), cols = (int)ceil(2 * rmax * H);
     out->rgb = malloc((size_t)rows * cols * 3);
     out->seen = malloc((size_t)rows * cols);
-    double *r = malloc(3 * (size_t)rows * sizeof *r), *slope = r + rows, *row_y = r + 2 * rows;
+    /* r, slope, row_y (each row's image row) and body_x (its outline's x on either side) */
+    double *r = malloc(5 * (size_t)rows * sizeof *r), *slope = r + rows, *row_y = r + 2 * rows, *body_x = r + 3 * rows;
     int *seen_rows = malloc((size_t)rows * sizeof *seen_rows);
     if (!out->rgb || !out->seen || !r || !seen_rows || radius_by_row(mer, rows, r, slope) != 0) {
         free(r);
@@ -100,7 +101,9 @@ int recon_texture_from_camera(const image_t *photo, const recon_camera *cam, con
                 px[3 * i + k] = recon_to_u8(rgb[k]);
             seen[i] = (uint8_t)recon_camera_sees(cam, mer, r[j], h, phi, slope[j], min_cos);
         }
-        row_y[j] = 0.5 * (recon_camera_project(cam, mer, r[j], h, 0).y + recon_camera_project(cam, mer, r[j], h, M_PI).y);
+        vec2 left = recon_camera_project(cam, mer, r[j], h, M_PI), right = recon_camera_project(cam, mer, r[j], h, 0);
+        row_y[j] = 0.5 * (left.y + right.y);
+        body_x[2 * j] = left.x, body_x[2 * j + 1] = right.x;
         seen_rows[j] = fill_row(px, seen, cols);
     }
     /* Rows the camera did not see at all (an underside): the nearest row
@@ -116,10 +119,10 @@ int recon_texture_from_camera(const image_t *photo, const recon_camera *cam, con
             memcpy(out->rgb + (size_t)j * cols * 3, out->rgb + (size_t)best * cols * 3, (size_t)cols * 3);
     }
     unsigned char *sides = parts ? malloc((size_t)rows) : NULL;
-    for (int j = 0; sides && j < rows; j++)
-        sides[j] = (unsigned char)recon_texture_parts_at(parts, row_y[j]);
-    if (sides)
+    if (sides) {
+        recon_texture_covered_rows(parts, rows, row_y, body_x, sides);
         recon_texture_fill_parts(out, sides);
+    }
     free(sides);
     free(r);
     free(seen_rows);

@@ -68,12 +68,6 @@ static int fill_missing_rows(double *s_row, const unsigned char *hit, int rows)
 }
 
 
-/* An outline farther out than the profile by this fraction of its radius,
- * and at least PART_DEPARTURE_PX, is a part's, not the body's. */
-#define PART_DEPARTURE 0.02
-#define PART_DEPARTURE_PX 1.0
-#define PART_MARGIN_ROWS 3
-
 /* The profile polyline's radius at height h (px), linear between its points. */
 static double polyline_radius(const recon_result *res, double h)
 {
@@ -97,8 +91,9 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
     double *s_row[2] = {calloc((size_t)rows, sizeof(double)), calloc((size_t)rows, sizeof(double))};
     unsigned char *hit[2] = {calloc((size_t)rows, 1), calloc((size_t)rows, 1)};
     unsigned char *sides = calloc((size_t)rows, 1); /* recon_texture_fill_parts's */
+    double *row_y = calloc(3 * (size_t)rows, sizeof *row_y), *body_x = row_y ? row_y + rows : NULL;
     int status = -1;
-    if (!s_row[0] || !s_row[1] || !hit[0] || !hit[1] || !sides) {
+    if (!s_row[0] || !s_row[1] || !hit[0] || !hit[1] || !sides || !row_y) {
         snprintf(err, errlen, "texture: out of memory");
         goto done;
     }
@@ -112,23 +107,21 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
         snprintf(err, errlen, "texture: neither silhouette reaches the profile's heights");
         goto done;
     }
-    /* Over the rows of a part left out of the profile (a handle, a lug),
-     * and wherever an outline stands out of the profile by more than
-     * PART_DEPARTURE (a handle's root the extraction kept), with
-     * PART_MARGIN_ROWS more on each side of such a run (where the root
-     * tapers into the outline), the outline on that side is not the body's:
-     * the profile's radius is (taken from the other side, or bridged). */
+    /* Over the rows where a part covers a side (recon_texture_covered_rows:
+     * a part left out of the profile, or an outline standing out of the
+     * profile) the outline on that side is not the body's: the profile's
+     * radius is (taken from the other side, or bridged). */
+    vec2 dir = res->axis_direction, right = v2(-dir.y, dir.x);
     for (int j = 0; j < rows && res->n_polyline >= 2; j++) {
-        double r = polyline_radius(res, row_height(j, rows, H));
-        sides[j] |= (unsigned char)recon_texture_parts_at(
-            res, v2_add(res->axis_origin, v2_scale(res->axis_direction, row_height(j, rows, H))).y);
-        for (int k = 0; k < 2; k++)
-            if (!missing[k] && (k ? 1 : -1) * s_row[k][j] > r + fmax(PART_DEPARTURE_PX, PART_DEPARTURE * r))
-                for (int d = -PART_MARGIN_ROWS; d <= PART_MARGIN_ROWS; d++)
-                    if (j + d >= 0 && j + d < rows)
-                        sides[j + d] |= (unsigned char)(1 << k);
+        double h = row_height(j, rows, H), r = polyline_radius(res, h);
+        vec2 on_axis = v2_add(res->axis_origin, v2_scale(dir, h));
+        row_y[j] = on_axis.y;
+        body_x[2 * j] = v2_add(on_axis, v2_scale(right, -r)).x;
+        body_x[2 * j + 1] = v2_add(on_axis, v2_scale(right, r)).x;
     }
-    for (int j = 0; j < rows && res->n_polyline >= 2; j++)
+    if (res->n_polyline >= 2)
+        recon_texture_covered_rows(res, rows, row_y, body_x, sides);
+    for (int j = 0; j < rows; j++)
         for (int k = 0; k < 2; k++)
             if (sides[j] & (1 << k))
                 s_row[k][j] = (k ? 1 : -1) * polyline_radius(res, row_height(j, rows, H));
@@ -157,7 +150,6 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
     }
     for (int i = 0; i < out->width; i++)
         cos_u[i] = cos(M_PI * (i + 0.5) / out->width);
-    vec2 dir = res->axis_direction, right = v2(-dir.y, dir.x);
     for (int j = 0; j < rows; j++) {
         double c = 0.5 * (s_row[0][j] + s_row[1][j]), a = 0.5 * (s_row[1][j] - s_row[0][j]);
         /* The outermost half pixel is a mix of vessel and background: sample
@@ -177,6 +169,7 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
     status = 0;
 done:
     free(sides);
+    free(row_y);
     for (int k = 0; k < 2; k++) {
         free(s_row[k]);
         free(hit[k]);
