@@ -230,14 +230,16 @@ Test(museum_cli, glb_parses_back_with_every_vessel_on_its_surface)
         cr_expect(found, "%s declared", ext[k]);
     }
     /* Textures are embedded images: the room's six lightmaps, then per
-     * exhibit its pedestal's lightmap and its vessel's texture as JPEG and
-     * its label as PNG (sharp text), each what its mimeType says. */
+     * exhibit its pedestal's lightmap and its vessel's texture as JPEG, its
+     * label and its title sign as PNG (sharp text), each what its mimeType
+     * says. */
     json_t *images = json_object_get(g.doc, "images");
-    cr_expect_eq(json_array_size(images), 6 + 3 * N_PHOTOS);
+    cr_expect_eq(json_array_size(images), 6 + 4 * N_PHOTOS);
     for (size_t i = 0; i < json_array_size(images); i++) {
         json_t *im = json_array_get(images, i);
-        int jpeg = strncmp(json_string_value(json_object_get(im, "name")), "Label: ", 7) != 0;
-        cr_expect_eq(jpeg, i < 6 || (i - 6) % 3 != 2, "image %zu is %s", i, json_string_value(json_object_get(im, "name")));
+        const char *name = json_string_value(json_object_get(im, "name"));
+        int jpeg = strncmp(name, "Label: ", 7) != 0 && strncmp(name, "Sign: ", 6) != 0;
+        cr_expect_eq(jpeg, i < 6 || (i - 6) % 4 < 2, "image %zu is %s", i, name);
         cr_expect_str_eq(json_string_value(json_object_get(im, "mimeType")), jpeg ? "image/jpeg" : "image/png");
         json_t *v = json_array_get(json_object_get(g.doc, "bufferViews"),
                                    (size_t)json_integer_value(json_object_get(im, "bufferView")));

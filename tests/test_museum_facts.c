@@ -106,10 +106,11 @@ static double measure(const label_line *l)
 {
     cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
     cairo_t *cr = cairo_create(s);
-    cairo_select_font_face(cr, "sans-serif",
+    cairo_select_font_face(cr, l->role == LABEL_SIGN ? LABEL_SIGN_FONT : "sans-serif",
                            l->role == LABEL_DATE || l->role == LABEL_NOTE ? CAIRO_FONT_SLANT_ITALIC
                                                                           : CAIRO_FONT_SLANT_NORMAL,
-                           l->role == LABEL_TITLE ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+                           l->role == LABEL_TITLE || l->role == LABEL_SIGN ? CAIRO_FONT_WEIGHT_BOLD
+                                                                           : CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, l->size);
     cairo_text_extents_t e;
     cairo_text_extents(cr, l->text, &e);
@@ -216,6 +217,44 @@ Test(museum_label, a_word_wider_than_the_plate_breaks_between_characters)
     cr_assert_gt(n, 2);
     expect_lines_fit(l, n);
     cr_expect(l[0].text[0] != 0 && !l[0].cut, "the first title line is full and whole characters");
+}
+
+/* The title sign: a long title on a 540 x 264 px plate (0.54 x 0.264 m at
+ * the museum's 1000 px a metre) with 55 px capitals: two centred lines
+ * inside the margins, the second cut with "…", the title's beginning word
+ * for word, and its capitals ("H" at the lines' font) 55 px tall (cairo). */
+Test(museum_label, a_sign_has_capitals_as_tall_as_asked)
+{
+    const char *title = "Terracotta column-krater (bowl for mixing wine and water)";
+    enum { SW = 540, SH = 264 };
+    label_line l[LABEL_MAX_LINES];
+    int n = label_sign_layout(title, SW, SH, 55.0, l, LABEL_MAX_LINES);
+    cr_assert_eq(n, 2);
+    cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+    cairo_t *cr = cairo_create(s);
+    cairo_select_font_face(cr, LABEL_SIGN_FONT, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+    cairo_set_font_size(cr, l[0].size);
+    cairo_text_extents_t h;
+    cairo_text_extents(cr, "H", &h);
+    cairo_destroy(cr);
+    cairo_surface_destroy(s);
+    cr_expect(fabs(h.height - 55.0) < 0.5, "capitals %.2f px tall", h.height);
+    for (int i = 0; i < n; i++) {
+        double w = measure(&l[i]);
+        cr_expect_leq(w, SW - 2 * 0.07 * SW + 1e-9, "line %d '%s' is too wide", i, l[i].text);
+        cr_expect(fabs(l[i].x - 0.5 * (SW - w)) < 1e-6, "line %d is centred", i);
+        cr_expect(l[i].y - h.height >= 0 && l[i].y + 0.3 * h.height <= SH, "line %d is off the plate", i);
+        cr_expect_eq(ends_with_ellipsis(l[i].text), l[i].cut);
+    }
+    cr_expect(l[1].cut, "the rest of the title is cut with an ellipsis");
+    char text[1024];
+    joined(l, n, LABEL_SIGN, text, sizeof text);
+    cr_expect(strlen(text) > 10 && !strncmp(title, text, strlen(text)), "'%s' is the title's beginning", text);
+    uint8_t *png;
+    size_t len;
+    cr_expect_eq(label_sign_png(title, SW, SH, 55.0, &png, &len), 0);
+    cr_expect(len > 8 && !memcmp(png, "\x89PNG", 4));
+    free(png);
 }
 
 /* ------------------------------------------------------------------ slugs */

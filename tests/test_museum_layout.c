@@ -44,6 +44,16 @@ static void check(int n, layout_t *l)
         cr_expect_leq(e->label_width, e->width);
         cr_expect(e->label_centre.y + e->label_height / 2 < e->pedestal_height);
         cr_expect(e->label_centre.y - e->label_height / 2 > 0);
+        /* The title sign, when there is room for one, is on the same face
+         * under the label and above the floor, within the face: under the
+         * pedestal's top, so it hides no vessel. */
+        if (e->sign_lines > 0) {
+            cr_expect_leq(e->sign_lines, LAYOUT_SIGN_LINES);
+            cr_expect_leq(e->sign_width, e->width);
+            cr_expect_lt(e->sign_centre.y + e->sign_height / 2, e->label_centre.y - e->label_height / 2);
+            cr_expect_gt(e->sign_centre.y - e->sign_height / 2, 0);
+            cr_expect(fabs(e->sign_centre.z - e->label_centre.z) < eps && fabs(e->sign_centre.x - e->centre.x) < eps);
+        }
         /* Aisles along the walls: LAYOUT_AISLE from the side and back walls,
          * LAYOUT_AISLE + LAYOUT_ENTRANCE from the entrance wall. */
         cr_expect_geq(l->width / 2 - (fabs(e->centre.x) + e->width / 2), LAYOUT_AISLE - eps, "side wall aisle");
@@ -142,5 +152,48 @@ Test(museum_layout, rows_follow_their_own_footprints)
     cr_expect_lt(l.width, l.columns * (big + LAYOUT_AISLE) + LAYOUT_AISLE - (l.columns - 1) * (big - small) + eps);
     cr_expect_lt(l.depth,
                  l.rows * (big + LAYOUT_AISLE) + LAYOUT_AISLE + LAYOUT_ENTRANCE - (l.rows - 1) * (big - small) + eps);
+    layout_free(&l);
+}
+
+/* The title signs from the entrance (issue 30: labels readable from the
+ * entrance, size and placement checked from its view): sixteen 30 cm
+ * vessels like the real-dev museum's (no sizes in its catalogue). Every
+ * sign of the first row has room for two lines; those in the entrance
+ * camera's view at 960x540 (at least the middle two of the four) have
+ * capitals, projected by that camera, at least 8 px tall (logged beside
+ * the label's title capitals, 0.72 of its 7.5% of the plate's width: about
+ * 3 px, which is why the signs are there). */
+Test(museum_layout, title_signs_are_legible_from_the_entrance)
+{
+    layout_vessel v[16];
+    for (int i = 0; i < 16; i++)
+        v[i] = (layout_vessel){0.30, 0.06 + 0.01 * i};
+    layout_t l;
+    cr_assert_eq(layout_make(v, 16, &l), 0);
+    const double W = 960, H = 540, focal = 0.5 * H / tan(0.5 * l.camera_yfov_deg * M_PI / 180);
+    vec3 f = v3_norm(v3_sub(l.camera_target, l.camera_position)), right = v3_norm(v3_cross(f, v3(0, 1, 0)));
+    vec3 up = v3_cross(right, f);
+    double smallest = INFINITY, label_caps = 0;
+    int in_view = 0;
+    for (int i = 0; i < l.columns; i++) {
+        const layout_exhibit *e = &l.exhibits[i];
+        cr_expect_eq(e->sign_lines, LAYOUT_SIGN_LINES, "sign %d has room for %d lines", i, e->sign_lines);
+        vec3 d = v3_sub(e->sign_centre, l.camera_position);
+        double z = v3_dot(d, f), x = focal * v3_dot(d, right) / z, y = focal * v3_dot(d, up) / z;
+        if (!(z > 0 && fabs(x) < W / 2 && fabs(y) < H / 2))
+            continue;
+        in_view++;
+        /* A capital standing at the sign's centre, projected. */
+        vec3 top = v3_sub(v3_add(e->sign_centre, v3(0, LAYOUT_SIGN_CAP / 2, 0)), l.camera_position);
+        vec3 bottom = v3_sub(v3_sub(e->sign_centre, v3(0, LAYOUT_SIGN_CAP / 2, 0)), l.camera_position);
+        double px = focal * (v3_dot(top, up) / v3_dot(top, f) - v3_dot(bottom, up) / v3_dot(bottom, f));
+        smallest = fmin(smallest, px);
+        label_caps = fmax(label_caps, focal * 0.72 * 0.075 * e->label_width / z);
+    }
+    cr_log_info("first row from the entrance at 960x540: %d signs in view, capitals at least %.1f px, label "
+                "titles' at most %.1f px",
+                in_view, smallest, label_caps);
+    cr_expect_geq(in_view, 2);
+    cr_expect_geq(smallest, 8.0, "the first row's sign capitals are %.1f px tall from the entrance", smallest);
     layout_free(&l);
 }

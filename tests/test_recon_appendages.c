@@ -46,8 +46,8 @@ Test(recon_appendages, handles_at_the_shoulder_are_not_the_rim, .timeout = 60)
     cr_assert_eq(synth_scene_case("jar_handles_bw", W, H, &p), 0);
     p.grayscale = 0;
     p.jpeg_quality = 0;
-    p.attachments[0] = (synth_attachment){SYNTH_ATTACH_HANDLE, -1, 0.55, 0.85, 0.10, 0.04};
-    p.attachments[1] = (synth_attachment){SYNTH_ATTACH_HANDLE, 1, 0.55, 0.85, 0.10, 0.04};
+    p.attachments[0] = (synth_attachment){SYNTH_ATTACH_HANDLE, -1, 0.55, 0.85, 0.10, 0.04, {0, 0, 0}};
+    p.attachments[1] = (synth_attachment){SYNTH_ATTACH_HANDLE, 1, 0.55, 0.85, 0.10, 0.04, {0, 0, 0}};
     drawn x;
     run(&p, &x);
     double e = corner_error(&x, CORNER_RIM_LEFT, CORNER_RIM_RIGHT);

@@ -116,7 +116,7 @@ Test(recon_camera_texture, checkerboard_unrolls_straight, .timeout = 180)
     char err[256];
     cr_assert_eq(pinhole_camera(&p, &sh, err, sizeof err), 0, "%s", err);
     recon_texture_t ours, scan;
-    cr_assert_eq(recon_texture_from_camera(&sh.img, &sh.cam, &sh.mer, &ours, err, sizeof err), 0, "%s", err);
+    cr_assert_eq(recon_texture_from_camera(&sh.img, &sh.cam, &sh.mer, NULL, &ours, err, sizeof err), 0, "%s", err);
     cr_assert_eq(recon_texture_from_photo(&sh.img, &sh.res, &scan, err, sizeof err), 0, "%s", err);
     double mid = 255 * 0.5 * (0.299 * (p.fg[0] + p.fg2[0]) + 0.587 * (p.fg[1] + p.fg2[1]) +
                               0.114 * (p.fg[2] + p.fg2[2]));

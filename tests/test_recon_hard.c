@@ -356,7 +356,7 @@ Test(recon_hard, vessels_clear_of_the_border_are_not_refused_for_it, .timeout = 
  * docs/algorithms-recon.md, section 15.) */
 static void huge_spout(synth_scene_params *p)
 {
-    p->attachments[0] = (synth_attachment){SYNTH_ATTACH_LUG, 1, 0.5, 0, 0.04, 0.8};
+    p->attachments[0] = (synth_attachment){SYNTH_ATTACH_LUG, 1, 0.5, 0, 0.04, 0.8, {0, 0, 0}};
 }
 
 Test(recon_hard, a_result_over_the_limits_is_refused_unless_forced, .timeout = 60)

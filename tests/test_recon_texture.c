@@ -8,6 +8,8 @@
 #include <string.h>
 
 #include "celadon/recon_texture.h"
+#include "celadon/reconstruct.h"
+#include "support/synth_scene.h"
 #include "support/synth_vessel.h"
 
 /* What a perfect extraction gives for the drawing: its true axis, its exact
@@ -222,5 +224,49 @@ Test(recon_texture, a_missing_side_is_the_other_mirrored)
     res.n_silhouette[1] = n_right;
     recon_texture_free(&both);
     free_truth(&res);
+    image_free(&img);
+}
+
+/* A handle the profile leaves out is not smeared into the glaze (issue 30):
+ * a plain jar (one flat colour, unlit) with one red loop handle on its
+ * right, through the whole pipeline. Over the handle's heights no texel is
+ * redder than the glaze by more than 0.15 (redness R - (G + B) / 2: the
+ * glaze -0.35, the handle +0.80, the grey backdrop 0; the old texture
+ * stretched the handle over the right edge's texels), on either side. */
+Test(recon_texture, a_handle_left_out_of_the_profile_is_not_in_the_texture, .timeout = 60)
+{
+    synth_scene_params p;
+    cr_assert_eq(synth_scene_case("jar_handles_bw", 300, 400, &p), 0);
+    p.grayscale = 0, p.jpeg_quality = 0, p.contact_shadow = 0;
+    const float glaze[3] = {0.20f, 0.50f, 0.60f};
+    synth_scene_vessel *v = &p.vessels[0];
+    v->lit = 0, v->decor = SYNTH_DECOR_NONE, v->highlight = 0;
+    memcpy(v->glaze, glaze, sizeof glaze);
+    p.attachments[0] = (synth_attachment){SYNTH_ATTACH_HANDLE, 1, 0.55, 0.85, 0.10, 0.04, {0.90f, 0.10f, 0.10f}};
+    p.attachments[1].kind = SYNTH_ATTACH_NONE;
+    image_t img;
+    cr_assert_eq(synth_scene_draw(&p, &img, NULL, NULL), 0);
+    reconstruct_options opt = reconstruct_options_default();
+    opt.segmenter = RECONSTRUCT_SEGMENTER_CLASSIC;
+    reconstruction r;
+    char err[512];
+    cr_assert_eq(reconstruct_image(&img, &opt, &r, err, sizeof err), 0, "refused: %s", err);
+    const recon_texture_t *t = &r.texture;
+    double glaze_red = glaze[0] - 0.5 * (glaze[1] + glaze[2]), worst[2] = {-1, -1};
+    for (int j = 0; j < t->height; j++) {
+        double height = 1.0 - (j + 0.5) / t->height;
+        if (height < 0.50 || height > 0.90) /* the handle's ends, 0.55 and 0.85 of the body's height */
+            continue;
+        for (int i = 0; i < t->width; i++) {
+            const uint8_t *px = t->rgb + ((size_t)j * t->width + i) * 3;
+            double red = (px[0] - 0.5 * (px[1] + px[2])) / 255.0 - glaze_red;
+            worst[2 * i >= t->width] = fmax(worst[2 * i >= t->width], red);
+        }
+    }
+    cr_log_info("handle rows: redder than the glaze by at most %.3f (left half), %.3f (right half)", worst[0],
+                worst[1]);
+    cr_expect_leq(worst[1], 0.15, "the handle's side is %.3f redder than the glaze (the handle smeared in)", worst[1]);
+    cr_expect_leq(worst[0], 0.15, "the other side is %.3f redder than the glaze", worst[0]);
+    reconstruction_free(&r);
     image_free(&img);
 }

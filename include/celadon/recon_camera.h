@@ -138,8 +138,12 @@ int recon_camera_sees(const recon_camera *cam, const recon_meridian *mer, double
  * pixel of the outline) have seen = 0 and the colour of the nearest seen
  * texel of their row (of the nearest row with one, if none). One row per
  * pixel of the meridian's height, the widest cross-section's width in
- * pixels. Returns 0, or -1 with a one-line reason in err. */
+ * pixels. With parts (the extraction of the photo; NULL for none), what the
+ * parts left out of the profile cover is filled from the body
+ * (recon_texture_covered_rows, recon_texture_fill_parts: a row's image row
+ * and its body's outline are where the camera images its generators). Returns 0, or -1 with a one-line reason in err. */
 int recon_texture_from_camera(const image_t *photo, const recon_camera *cam, const recon_meridian *mer,
+                              const recon_result *parts,
                               recon_texture_t *out, char *err, size_t errlen);
 
 /* ---- the overlay's perspective layers (overlay_camera.c): what

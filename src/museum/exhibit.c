@@ -13,5 +13,6 @@ void museum_exhibit_free(museum_exhibit *e)
     lod_free(e->lods, e->n_lods);
     free(e->texture_jpg);
     free(e->label_png);
+    free(e->sign_png);
     memset(e, 0, sizeof *e);
 }

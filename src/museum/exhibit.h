@@ -27,8 +27,9 @@ typedef struct {
     bspline_t curve;          /* the shape (profile_shape): (r, h), px, or units of the height for a meridian */
     lod_level lods[LOD_MAX_LEVELS];
     int n_lods;
-    uint8_t *texture_jpg, *label_png; /* the glb's images: the texture as JPEG, the label as PNG; owned */
-    size_t texture_len, label_len;
+    uint8_t *texture_jpg, *label_png, *sign_png; /* the glb's images: the texture as JPEG, the label and the
+                                                  * title sign as PNG (sign NULL: none); owned */
+    size_t texture_len, label_len, sign_len;
 } museum_exhibit;
 
 void museum_exhibit_free(museum_exhibit *e);

@@ -3,6 +3,7 @@
 #include "museum/label.h"
 
 #include <cairo.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -39,11 +40,39 @@ static cairo_status_t sink_write(void *closure, const unsigned char *data, unsig
     return CAIRO_STATUS_SUCCESS;
 }
 
+/* The surface as PNG bytes (malloc'd), then destroyed. Returns 0 or -1. */
+static int surface_png(cairo_surface_t *surf, uint8_t **png, size_t *len)
+{
+    byte_sink sink = {0};
+    cairo_status_t st = cairo_surface_write_to_png_stream(surf, sink_write, &sink);
+    cairo_surface_destroy(surf);
+    if (st != CAIRO_STATUS_SUCCESS || sink.failed) {
+        free(sink.data);
+        return -1;
+    }
+    *png = sink.data;
+    *len = sink.len;
+    return 0;
+}
+
+/* A width x height RGB surface and its context, or NULL (nothing left over). */
+static cairo_t *canvas(int width, int height, cairo_surface_t **surf)
+{
+    *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+    cairo_t *cr = cairo_create(*surf);
+    if (cairo_status(cr) == CAIRO_STATUS_SUCCESS)
+        return cr;
+    cairo_destroy(cr);
+    cairo_surface_destroy(*surf);
+    return NULL;
+}
+
 static void set_font(cairo_t *cr, label_role role, double size)
 {
-    cairo_select_font_face(cr, "sans-serif",
+    cairo_select_font_face(cr, role == LABEL_SIGN ? LABEL_SIGN_FONT : "sans-serif",
                            role == LABEL_DATE || role == LABEL_NOTE ? CAIRO_FONT_SLANT_ITALIC : CAIRO_FONT_SLANT_NORMAL,
-                           role == LABEL_TITLE ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+                           role == LABEL_TITLE || role == LABEL_SIGN ? CAIRO_FONT_WEIGHT_BOLD
+                                                                     : CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, size);
 }
 
@@ -163,13 +192,10 @@ int label_render_png(const label_text *t, int width, int height, uint8_t **png, 
     *png = NULL;
     *len = 0;
     label_line lines[LABEL_MAX_LINES];
-    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
-    cairo_t *cr = cairo_create(surf);
-    if (cairo_status(cr) != CAIRO_STATUS_SUCCESS) {
-        cairo_destroy(cr);
-        cairo_surface_destroy(surf);
+    cairo_surface_t *surf;
+    cairo_t *cr = canvas(width, height, &surf);
+    if (!cr)
         return -1;
-    }
     int n = layout_on(cr, t, width, height, lines, LABEL_MAX_LINES);
     cairo_set_source_rgb(cr, 0.94, 0.92, 0.87); /* card */
     cairo_paint(cr);
@@ -190,14 +216,72 @@ int label_render_png(const label_text *t, int width, int height, uint8_t **png, 
         cairo_show_text(cr, l->text);
     }
     cairo_destroy(cr);
-    byte_sink sink = {0};
-    cairo_status_t st = cairo_surface_write_to_png_stream(surf, sink_write, &sink);
-    cairo_surface_destroy(surf);
-    if (st != CAIRO_STATUS_SUCCESS || sink.failed) {
-        free(sink.data);
-        return -1;
+    return surface_png(surf, png, len);
+}
+
+/* ------------------------------------------------------------------ title signs */
+
+/* The font size whose capitals are cap px tall (the "H" measured). */
+static double size_for_cap(cairo_t *cr, double cap)
+{
+    set_font(cr, LABEL_SIGN, 100.0);
+    cairo_text_extents_t ext;
+    cairo_text_extents(cr, "H", &ext);
+    return ext.height > 0 ? 100.0 * cap / ext.height : cap;
+}
+
+static int sign_layout_on(cairo_t *cr, const char *title, int width, int height, double cap_px, label_line *lines,
+                          int max_lines)
+{
+    double size = size_for_cap(cr, cap_px), m = MARGIN * width;
+    int n_max = max_lines < LABEL_TITLE_LINES ? max_lines : LABEL_TITLE_LINES;
+    /* Lines that fit the height, the block centred in it. */
+    int fit = (int)floor((height - 0.6 * cap_px - 1.3 * size) / (LINE_SPACING * size)) + 1;
+    n_max = fit < n_max ? fit : n_max;
+    if (n_max < 1)
+        return 0;
+    layout_state s = {cr, m, 0, height, width - 2 * m, lines, 0, n_max};
+    wrap(&s, title, LABEL_SIGN, size, n_max);
+    /* The lines' block (the first one's font size above its baseline, 0.3
+     * capitals of descent below the last) centred, each line centred. */
+    double block = s.n ? size + (s.n - 1) * LINE_SPACING * size + 0.3 * cap_px : 0;
+    for (int i = 0; i < s.n; i++) {
+        lines[i].x = 0.5 * (width - lines[i].advance);
+        lines[i].y += 0.5 * (height - block);
     }
-    *png = sink.data;
-    *len = sink.len;
-    return 0;
+    return s.n;
+}
+
+int label_sign_layout(const char *title, int width, int height, double cap_px, label_line *lines, int max_lines)
+{
+    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+    cairo_t *cr = cairo_create(surf);
+    int n = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? sign_layout_on(cr, title, width, height, cap_px, lines,
+                                                                      max_lines)
+                                                     : -1;
+    cairo_destroy(cr);
+    cairo_surface_destroy(surf);
+    return n;
+}
+
+int label_sign_png(const char *title, int width, int height, double cap_px, uint8_t **png, size_t *len)
+{
+    *png = NULL;
+    *len = 0;
+    label_line lines[LABEL_TITLE_LINES];
+    cairo_surface_t *surf;
+    cairo_t *cr = canvas(width, height, &surf);
+    if (!cr)
+        return -1;
+    int n = sign_layout_on(cr, title, width, height, cap_px, lines, LABEL_TITLE_LINES);
+    cairo_set_source_rgb(cr, 0.16, 0.24, 0.20); /* a dark celadon plate */
+    cairo_paint(cr);
+    cairo_set_source_rgb(cr, 0.96, 0.94, 0.88); /* the card's colour */
+    for (int i = 0; i < n; i++) {
+        set_font(cr, LABEL_SIGN, lines[i].size);
+        cairo_move_to(cr, lines[i].x, lines[i].y);
+        cairo_show_text(cr, lines[i].text);
+    }
+    cairo_destroy(cr);
+    return surface_png(surf, png, len);
 }

@@ -24,7 +24,11 @@ typedef struct {
     const char *description; /* may be NULL */
 } label_text;
 
-typedef enum { LABEL_TITLE, LABEL_DATE, LABEL_SIZE, LABEL_NOTE, LABEL_DESCRIPTION } label_role;
+typedef enum { LABEL_TITLE, LABEL_DATE, LABEL_SIZE, LABEL_NOTE, LABEL_DESCRIPTION, LABEL_SIGN } label_role;
+
+/* The title sign's face (LABEL_SIGN lines), bold: narrower letters than the
+ * labels' sans-serif, so more of a title fits a plinth's width. */
+#define LABEL_SIGN_FONT "DejaVu Sans Condensed"
 
 typedef struct {
     char text[LABEL_LINE_BYTES]; /* UTF-8, an ellipsis "…" at the end when cut */
@@ -43,5 +47,13 @@ double label_text_width(int width);
 
 /* The plate as a PNG; *png (malloc'd) receives the file's bytes. Returns 0 or -1. */
 int label_render_png(const label_text *t, int width, int height, uint8_t **png, size_t *len);
+
+/* The title sign of an exhibit (layout.h, LAYOUT_SIGN_*): the title alone,
+ * bold, its capitals cap_px tall, centred, on at most LABEL_TITLE_LINES
+ * lines (fewer when the height has no room), the last one cut with "…";
+ * light letters on a dark plate. label_sign_layout gives its lines (their
+ * number, or -1), label_sign_png the plate as a PNG (0 or -1). */
+int label_sign_layout(const char *title, int width, int height, double cap_px, label_line *lines, int max_lines);
+int label_sign_png(const char *title, int width, int height, double cap_px, uint8_t **png, size_t *len);
 
 #endif

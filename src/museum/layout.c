@@ -17,6 +17,8 @@
 #define MAX_LABEL_WIDTH 0.3
 #define LABEL_DROP 0.06        /* m: the label's top edge below the pedestal's top */
 #define LABEL_OFFSET 0.002     /* m: in front of the pedestal face, so the two never coincide */
+#define SIGN_GAP 0.04           /* m: between the label and the sign */
+#define SIGN_FLOOR 0.08         /* m: the sign's bottom at least this far above the floor */
 #define LIGHT_DROP 0.03        /* m: the case light below the lid */
 #define CAMERA_YFOV_DEG 60.0
 #define PENDANT_DROP 0.6       /* m: ceiling lights hang this far under the ceiling */
@@ -41,7 +43,7 @@ static layout_exhibit exhibit_for(const layout_vessel *v, vec3 centre)
 {
     double clear = layout_clearance(v);
     layout_exhibit e = {.centre = centre};
-    e.width = 2.0 * (v->radius + clear);
+    e.width = fmax(LAYOUT_MIN_FOOTPRINT, 2.0 * (v->radius + clear));
     e.pedestal_height = fmin(MAX_PEDESTAL, fmax(MIN_PEDESTAL, DISPLAY_HEIGHT - 0.5 * v->height));
     e.case_height = v->height + clear;
     e.vessel_base = v3(centre.x, e.pedestal_height, centre.z);
@@ -50,6 +52,14 @@ static layout_exhibit exhibit_for(const layout_vessel *v, vec3 centre)
     e.label_height = e.label_width / LABEL_ASPECT;
     e.label_centre = v3(centre.x, e.pedestal_height - LABEL_DROP - 0.5 * e.label_height,
                         centre.z + 0.5 * e.width + LABEL_OFFSET);
+    /* The sign: as many lines as the face has room for under the label. */
+    double room = e.label_centre.y - 0.5 * e.label_height - SIGN_GAP - SIGN_FLOOR;
+    e.sign_lines = (int)floor((room / LAYOUT_SIGN_CAP - LAYOUT_SIGN_PAD) / LAYOUT_SIGN_PITCH);
+    e.sign_lines = e.sign_lines < 0 ? 0 : e.sign_lines > LAYOUT_SIGN_LINES ? LAYOUT_SIGN_LINES : e.sign_lines;
+    e.sign_width = 0.9 * e.width;
+    e.sign_height = e.sign_lines ? LAYOUT_SIGN_CAP * (LAYOUT_SIGN_PAD + LAYOUT_SIGN_PITCH * e.sign_lines) : 0.0;
+    e.sign_centre = v3(centre.x, e.label_centre.y - 0.5 * e.label_height - SIGN_GAP - 0.5 * e.sign_height,
+                       e.label_centre.z);
     return e;
 }
 

@@ -29,6 +29,19 @@
  * camera, at most LAYOUT_ENTRANCE / 2 in front of it. */
 #define LAYOUT_DOOR_WIDTH 1.0
 #define LAYOUT_DOOR_HEIGHT 2.1
+/* Every footprint is at least this wide (a plinth of a real museum; the
+ * title sign needs the width). */
+#define LAYOUT_MIN_FOOTPRINT 0.6
+/* The title sign on each pedestal's front, under the label: the title in
+ * capitals LAYOUT_SIGN_CAP tall (8 px and more at 960x540 from the
+ * entrance for the first row, 60 degrees of field: f = 468 px over a
+ * distance up to 3.2 m), on at most LAYOUT_SIGN_LINES lines; a line takes
+ * LAYOUT_SIGN_PITCH capitals of height and the plate LAYOUT_SIGN_PAD more
+ * (the first line's ascent and the last one's descent, margins). */
+#define LAYOUT_SIGN_CAP 0.055
+#define LAYOUT_SIGN_LINES 2
+#define LAYOUT_SIGN_PITCH 1.8
+#define LAYOUT_SIGN_PAD 1.2
 
 typedef struct {
     double height, radius; /* m: the vessel's height and its largest radius (a bound) */
@@ -43,6 +56,9 @@ typedef struct {
     vec3 light;             /* the case light, under the case's lid */
     vec3 label_centre;      /* the label, on the pedestal's front face (+z), facing +z */
     double label_width, label_height;
+    int sign_lines;         /* the title sign's lines (0: no room for one on the pedestal's face) */
+    vec3 sign_centre;       /* under the label, on the same face */
+    double sign_width, sign_height;
 } layout_exhibit;
 
 typedef struct {

@@ -27,6 +27,7 @@
 #include "museum/slug.h"
 
 enum { LABEL_WIDTH_PX = 768, MUSEUM_TEXTURE_JPEG_QUALITY = 85 };
+#define SIGN_PX_PER_M 1000.0 /* the title sign's image: 55 px capitals */
 #define VISITOR_RADIUS 0.25 /* m: how close a visitor's eye gets to a case wall */
 
 museum_options museum_options_default(void)
@@ -186,6 +187,17 @@ static int write_labels(build_ctx *b, const layout_t *l, museum_exhibit *ex, int
             return -1;
         }
         add_file(b, "labels/%s.png", ex[i].slug);
+        if (le->sign_lines > 0) {
+            int sw = (int)lround(SIGN_PX_PER_M * le->sign_width), sh = (int)lround(SIGN_PX_PER_M * le->sign_height);
+            snprintf(path, sizeof path, "%s/labels/%s-sign.png", b->tmp, ex[i].slug);
+            if (label_sign_png(ex[i].title, sw, sh, SIGN_PX_PER_M * LAYOUT_SIGN_CAP, &ex[i].sign_png,
+                               &ex[i].sign_len) != 0 ||
+                write_bytes(path, ex[i].sign_png, ex[i].sign_len) != 0) {
+                snprintf(err, errlen, "cannot draw or write the title sign of %s", ex[i].photo);
+                return -1;
+            }
+            add_file(b, "labels/%s-sign.png", ex[i].slug);
+        }
         add_file(b, "vessels/%s/profile.json", ex[i].slug);
         add_file(b, "vessels/%s/texture.png", ex[i].slug);
     }

@@ -537,6 +537,16 @@ static json_t *exhibit_extras(const museum_exhibit *e, int index)
     return x;
 }
 
+/* A plate (the unit quad, scaled) with its PNG, a child of parent at `at`. */
+static int plate_node(builder *b, json_t *parent, const char *name, const uint8_t *png, size_t len, vec3 at,
+                      double width, double height)
+{
+    int tex = add_texture(b, name, png, len, "image/png");
+    int mat = tex < 0 ? -1 : add_textured_material(b, name, tex, 0.9, 0);
+    int mesh = mat < 0 ? -1 : add_mesh(b, name, &b->quad, mat);
+    return mesh < 0 ? -1 : add_child(parent, mesh_node(b, name, mesh, at, v3(width, height, 1)));
+}
+
 static int exhibit_node(builder *b, const museum_exhibit *e, const layout_exhibit *le, int index)
 {
     char name[400];
@@ -565,12 +575,13 @@ static int exhibit_node(builder *b, const museum_exhibit *e, const layout_exhibi
     rc |= glaze < 0 ? -1 : add_child(en, vessel_node(b, e, up, glaze));
 
     snprintf(name, sizeof name, "Label: %s", e->title);
-    int ltex = add_texture(b, name, e->label_png, e->label_len, "image/png");
-    int lmat = ltex < 0 ? -1 : add_textured_material(b, name, ltex, 0.9, 0);
-    int lmesh = lmat < 0 ? -1 : add_mesh(b, name, &b->quad, lmat);
-    rc |= lmesh < 0 ? -1
-                    : add_child(en, mesh_node(b, name, lmesh, v3_sub(le->label_centre, le->centre),
-                                              v3(le->label_width, le->label_height, 1)));
+    rc |= plate_node(b, en, name, e->label_png, e->label_len, v3_sub(le->label_centre, le->centre),
+                     le->label_width, le->label_height);
+    if (e->sign_png) {
+        snprintf(name, sizeof name, "Sign: %s", e->title);
+        rc |= plate_node(b, en, name, e->sign_png, e->sign_len, v3_sub(le->sign_centre, le->centre),
+                         le->sign_width, le->sign_height);
+    }
     snprintf(name, sizeof name, "Case light: %s", e->title);
     rc |= add_child(en, light_node(b, name, v3_sub(le->light, le->centre), museum_case_light(le)));
     return rc != 0 ? -1 : glb_append(&b->g, "nodes", en);
@@ -590,16 +601,19 @@ static int level_at(const museum_exhibit *e, double d)
 static void figures(const builder *b, const layout_t *l, const museum_exhibit *ex, int n, museum_report *rep)
 {
     /* Per exhibit: pedestal and case (5 quads each), the case's frame (12
-     * bars of 6 quads), label (1 quad). */
-    long long per_exhibit = 10 + 10 + 12 * 6 * 2 + 2;
-    rep->triangles_full = rep->triangles_entrance = rep->triangles_coarsest = b->static_tris + n * per_exhibit;
+     * bars of 6 quads), label (1 quad), and the title sign (1 quad) when it has one. */
+    long long per_exhibit = 10 + 10 + 12 * 6 * 2 + 2, signs = 0;
+    for (int i = 0; i < n; i++)
+        signs += ex[i].sign_png != NULL;
+    rep->triangles_full = rep->triangles_entrance = rep->triangles_coarsest =
+        b->static_tris + n * per_exhibit + 2 * signs;
     for (int i = 0; i < n; i++) {
         double d = v3_len(v3_sub(l->camera_position, l->exhibits[i].vessel_base));
         rep->triangles_full += ex[i].lods[0].mesh.n_tris;
         rep->triangles_entrance += ex[i].lods[level_at(&ex[i], d)].mesh.n_tris;
         rep->triangles_coarsest += ex[i].lods[ex[i].n_lods - 1].mesh.n_tris;
     }
-    rep->draw_calls = b->static_calls + 5 * n;
+    rep->draw_calls = b->static_calls + 5 * n + (int)signs;
 }
 
 /* The entrance (layout.h): a wooden leaf in the middle of the entrance wall

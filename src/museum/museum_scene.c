@@ -168,7 +168,31 @@ static void vessel(writer w, const museum_exhibit *e, const layout_exhibit *le)
     end(w);
 }
 
-/* Pedestal (a cube), the glass case's five faces, the label, the case light. */
+/* A plate facing +z centred at c, its image (a file of the folder) diffuse on it. */
+static void plate(writer w, const char *name, vec3 c, double width, double height, const char *image)
+{
+    rectangle(w, v3(c.x - width / 2, c.y - height / 2, c.z), v3(width, 0, 0), v3(0, height, 0), NULL, name);
+    object(w, "bsdf", "diffuse", NULL);
+    object(w, "texture", "bitmap", NULL);
+    attr(w, "name", "reflectance");
+    prop(w, "string", "filename", image);
+    /* The rectangle's v runs up; the image's rows run down. */
+    start(w, "transform");
+    attr(w, "name", "to_uv");
+    start(w, "scale");
+    attr(w, "value", "1, -1, 1");
+    end(w);
+    start(w, "translate");
+    attr(w, "value", "0, 1, 0");
+    end(w);
+    end(w);
+    end(w);
+    end(w);
+    end(w);
+}
+
+/* Pedestal (a cube), the glass case's five faces, the label and the title
+ * sign, the case light. */
 static void exhibit(writer w, const museum_exhibit *e, const layout_exhibit *le)
 {
     char buf[512];
@@ -205,27 +229,14 @@ static void exhibit(writer w, const museum_exhibit *e, const layout_exhibit *le)
     end(w);
 
     snprintf(buf, sizeof buf, "Label: %s", e->title);
-    vec3 lc = le->label_centre;
-    rectangle(w, v3(lc.x - le->label_width / 2, lc.y - le->label_height / 2, lc.z), v3(le->label_width, 0, 0),
-              v3(0, le->label_height, 0), NULL, buf);
-    object(w, "bsdf", "diffuse", NULL);
-    object(w, "texture", "bitmap", NULL);
-    attr(w, "name", "reflectance");
-    snprintf(buf, sizeof buf, "labels/%s.png", e->slug);
-    prop(w, "string", "filename", buf);
-    /* The rectangle's v runs up; the image's rows run down. */
-    start(w, "transform");
-    attr(w, "name", "to_uv");
-    start(w, "scale");
-    attr(w, "value", "1, -1, 1");
-    end(w);
-    start(w, "translate");
-    attr(w, "value", "0, 1, 0");
-    end(w);
-    end(w);
-    end(w);
-    end(w);
-    end(w);
+    char file[256];
+    snprintf(file, sizeof file, "labels/%s.png", e->slug);
+    plate(w, buf, le->label_centre, le->label_width, le->label_height, file);
+    if (le->sign_lines > 0) {
+        snprintf(buf, sizeof buf, "Sign: %s", e->title);
+        snprintf(file, sizeof file, "labels/%s-sign.png", e->slug);
+        plate(w, buf, le->sign_centre, le->sign_width, le->sign_height, file);
+    }
     point_light(w, le->light, museum_case_light(le));
 }
 

@@ -60,6 +60,7 @@ static int fill_row(uint8_t *rgb, const uint8_t *seen, int w)
 }
 
 int recon_texture_from_camera(const image_t *photo, const recon_camera *cam, const recon_meridian *mer,
+                              const recon_result *parts,
                               recon_texture_t *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
@@ -73,7 +74,8 @@ int recon_texture_from_camera(const image_t *photo, const recon_camera *cam, con
     int rows = (int)lround(H), cols = (int)ceil(2 * rmax * H);
     out->rgb = malloc((size_t)rows * cols * 3);
     out->seen = malloc((size_t)rows * cols);
-    double *r = malloc(2 * (size_t)rows * sizeof *r), *slope = r + rows;
+    /* r, slope, row_y (each row's image row) and body_x (its outline's x on either side) */
+    double *r = malloc(5 * (size_t)rows * sizeof *r), *slope = r + rows, *row_y = r + 2 * rows, *body_x = r + 3 * rows;
     int *seen_rows = malloc((size_t)rows * sizeof *seen_rows);
     if (!out->rgb || !out->seen || !r || !seen_rows || radius_by_row(mer, rows, r, slope) != 0) {
         free(r);
@@ -99,6 +101,9 @@ int recon_texture_from_camera(const image_t *photo, const recon_camera *cam, con
                 px[3 * i + k] = recon_to_u8(rgb[k]);
             seen[i] = (uint8_t)recon_camera_sees(cam, mer, r[j], h, phi, slope[j], min_cos);
         }
+        vec2 left = recon_camera_project(cam, mer, r[j], h, M_PI), right = recon_camera_project(cam, mer, r[j], h, 0);
+        row_y[j] = 0.5 * (left.y + right.y);
+        body_x[2 * j] = left.x, body_x[2 * j + 1] = right.x;
         seen_rows[j] = fill_row(px, seen, cols);
     }
     /* Rows the camera did not see at all (an underside): the nearest row
@@ -113,6 +118,12 @@ int recon_texture_from_camera(const image_t *photo, const recon_camera *cam, con
         if (best >= 0)
             memcpy(out->rgb + (size_t)j * cols * 3, out->rgb + (size_t)best * cols * 3, (size_t)cols * 3);
     }
+    unsigned char *sides = parts ? malloc((size_t)rows) : NULL;
+    if (sides) {
+        recon_texture_covered_rows(parts, rows, row_y, body_x, sides);
+        recon_texture_fill_parts(out, sides);
+    }
+    free(sides);
     free(r);
     free(seen_rows);
     return 0;

@@ -255,7 +255,7 @@ static int reconstruct_decoded(const char *path, const reconstruct_options *opt,
     r->ms.camera = ms_since(t0);
     t0 = now_seconds();
     int tex = reconstruction_is_perspective(r)
-                  ? recon_texture_from_camera(&r->photo, &r->camera, &r->meridian, &r->texture, err, errlen)
+                  ? recon_texture_from_camera(&r->photo, &r->camera, &r->meridian, &r->extract, &r->texture, err, errlen)
                   : recon_texture_from_photo(&r->photo, &r->extract, &r->texture, err, errlen);
     if (tex != 0)
         return 2;

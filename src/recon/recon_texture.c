@@ -68,6 +68,17 @@ static int fill_missing_rows(double *s_row, const unsigned char *hit, int rows)
 }
 
 
+/* The profile polyline's radius at height h (px), linear between its points. */
+static double polyline_radius(const recon_result *res, double h)
+{
+    const vec2 *p = res->polyline;
+    int i = 0;
+    while (i + 2 < res->n_polyline && p[i + 1].y < h)
+        i++;
+    double t = p[i + 1].y > p[i].y ? fmin(fmax((h - p[i].y) / (p[i + 1].y - p[i].y), 0.0), 1.0) : 0.0;
+    return p[i].x + t * (p[i + 1].x - p[i].x);
+}
+
 int recon_texture_from_photo(const image_t *photo, const recon_result *res, recon_texture_t *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
@@ -79,8 +90,10 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
     int rows = (int)lround(H);
     double *s_row[2] = {calloc((size_t)rows, sizeof(double)), calloc((size_t)rows, sizeof(double))};
     unsigned char *hit[2] = {calloc((size_t)rows, 1), calloc((size_t)rows, 1)};
+    unsigned char *sides = calloc((size_t)rows, 1); /* recon_texture_fill_parts's */
+    double *row_y = calloc(3 * (size_t)rows, sizeof *row_y), *body_x = row_y ? row_y + rows : NULL;
     int status = -1;
-    if (!s_row[0] || !s_row[1] || !hit[0] || !hit[1]) {
+    if (!s_row[0] || !s_row[1] || !hit[0] || !hit[1] || !sides || !row_y) {
         snprintf(err, errlen, "texture: out of memory");
         goto done;
     }
@@ -94,6 +107,24 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
         snprintf(err, errlen, "texture: neither silhouette reaches the profile's heights");
         goto done;
     }
+    /* Over the rows where a part covers a side (recon_texture_covered_rows:
+     * a part left out of the profile, or an outline standing out of the
+     * profile) the outline on that side is not the body's: the profile's
+     * radius is (taken from the other side, or bridged). */
+    vec2 dir = res->axis_direction, right = v2(-dir.y, dir.x);
+    for (int j = 0; j < rows && res->n_polyline >= 2; j++) {
+        double h = row_height(j, rows, H), r = polyline_radius(res, h);
+        vec2 on_axis = v2_add(res->axis_origin, v2_scale(dir, h));
+        row_y[j] = on_axis.y;
+        body_x[2 * j] = v2_add(on_axis, v2_scale(right, -r)).x;
+        body_x[2 * j + 1] = v2_add(on_axis, v2_scale(right, r)).x;
+    }
+    if (res->n_polyline >= 2)
+        recon_texture_covered_rows(res, rows, row_y, body_x, sides);
+    for (int j = 0; j < rows; j++)
+        for (int k = 0; k < 2; k++)
+            if (sides[j] & (1 << k))
+                s_row[k][j] = (k ? 1 : -1) * polyline_radius(res, row_height(j, rows, H));
     /* A side washed out over its whole height: the other side's mirror image
      * (the vessel is symmetric about its axis). */
     for (int k = 0; k < 2; k++)
@@ -119,7 +150,6 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
     }
     for (int i = 0; i < out->width; i++)
         cos_u[i] = cos(M_PI * (i + 0.5) / out->width);
-    vec2 dir = res->axis_direction, right = v2(-dir.y, dir.x);
     for (int j = 0; j < rows; j++) {
         double c = 0.5 * (s_row[0][j] + s_row[1][j]), a = 0.5 * (s_row[1][j] - s_row[0][j]);
         /* The outermost half pixel is a mix of vessel and background: sample
@@ -135,8 +165,11 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
         }
     }
     free(cos_u);
+    recon_texture_fill_parts(out, sides);
     status = 0;
 done:
+    free(sides);
+    free(row_y);
     for (int k = 0; k < 2; k++) {
         free(s_row[k]);
         free(hit[k]);

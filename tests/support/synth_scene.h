@@ -75,6 +75,7 @@ typedef struct {
     double h0, h1;    /* HANDLE: heights of its two ends; SPOUT: root and tip; LUG: h0 its centre (fractions of H) */
     double reach;     /* how far it stands out of the wider of r(h0), r(h1), fraction of H */
     double thickness; /* fraction of H (SPOUT: at the root, half at the tip; LUG: its height) */
+    float colour[3];  /* its own colour; all 0: the subject's glaze */
 } synth_attachment;
 
 typedef enum { SYNTH_STAND_NONE, SYNTH_STAND_CYLINDER, SYNTH_STAND_BOX } synth_stand_kind;

@@ -340,6 +340,7 @@ typedef struct {
     vec2 pt[STROKE_SEGMENTS + 1];
     double half[STROKE_SEGMENTS + 1];
     const synth_scene_vessel *look;
+    const synth_attachment *part;
 } stroke;
 
 /* Distance from q to the stroke's centreline and the half-width there. */
@@ -366,12 +367,14 @@ static double stroke_sdf(const void *ctx, double x, double y)
     return d - hw;
 }
 
-/* A tube lit across its width: brightest along the middle. */
-static void tube_colour(const synth_scene_vessel *look, double across, float rgb[3])
+/* A tube lit across its width: brightest along the middle; in the
+ * attachment's own colour, or the glaze's. */
+static void tube_colour(const synth_scene_vessel *look, const synth_attachment *a, double across, float rgb[3])
 {
     double shade = look->lit ? 0.40 + 0.55 * sqrt(fmax(0, 1 - across * across)) : 1.0;
+    const float *c = a->colour[0] > 0 || a->colour[1] > 0 || a->colour[2] > 0 ? a->colour : look->glaze;
     for (int q = 0; q < 3; q++)
-        rgb[q] = (float)(shade * look->glaze[q]);
+        rgb[q] = (float)(shade * c[q]);
 }
 
 static void stroke_colour(const void *ctx, double x, double y, float rgb[3])
@@ -379,7 +382,7 @@ static void stroke_colour(const void *ctx, double x, double y, float rgb[3])
     const stroke *s = ctx;
     double d, hw;
     stroke_nearest(s, v2(x, y), &d, &hw);
-    tube_colour(s->look, fmin(1, d / hw), rgb);
+    tube_colour(s->look, s->part, fmin(1, d / hw), rgb);
 }
 
 /* Bézier centreline in the axis frame (s, w) of the body, drawn into st. */
@@ -412,6 +415,7 @@ static void build_stroke(const synth_scene_params *p, const synth_attachment *a,
         st->half[k] = half0 + u * (half1 - half0);
     }
     st->look = &p->vessels[0];
+    st->part = a;
 }
 
 /* A solid lug: an ellipse centred on the wall's outline at h0. */
@@ -419,6 +423,7 @@ typedef struct {
     const synth_body *body;
     double s, w, a, b; /* centre and half-axes in the axis frame */
     const synth_scene_vessel *look;
+    const synth_attachment *part;
 } lug;
 
 static double lug_sdf(const void *ctx, double x, double y)
@@ -432,7 +437,7 @@ static void lug_colour(const void *ctx, double x, double y, float rgb[3])
 {
     const lug *l = ctx;
     double f = lug_sdf(ctx, x, y) / fmin(l->a, l->b); /* -1 at the centre, 0 on the edge */
-    tube_colour(l->look, fmin(1, 1 + f), rgb);
+    tube_colour(l->look, l->part, fmin(1, 1 + f), rgb);
 }
 
 int scene_attachment(const synth_scene_params *p, int index, scene_canvas *c, float *weight)
@@ -443,7 +448,7 @@ int scene_attachment(const synth_scene_params *p, int index, scene_canvas *c, fl
     if (a->kind == SYNTH_ATTACH_LUG) {
         const synth_body *b = subject(p);
         double H = b->height_px, w = a->h0 * H * cos(b->elevation_deg * M_PI / 180);
-        lug l = {b, a->side * synth_body_radius(b, a->h0 * H), w, a->reach * H, 0.5 * a->thickness * H, &p->vessels[0]};
+        lug l = {b, a->side * synth_body_radius(b, a->h0 * H), w, a->reach * H, 0.5 * a->thickness * H, &p->vessels[0], a};
         vec2 o = axis_point(b, l.s, l.w);
         double reach = fmax(l.a, l.b) + 2;
         synth_cover_sdf(weight, c->width, c->height, (int)(o.x - reach), (int)(o.y - reach), (int)(o.x + reach),
