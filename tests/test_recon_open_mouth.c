@@ -72,8 +72,8 @@ Test(recon_open_mouth, a_jug_with_a_pouring_lip_and_a_handle_keeps_its_mouth_ope
     cr_assert_eq(synth_scene_case("maebyeong_high", W, H, &p), 0);
     p.vessels[0].body.profile = SYNTH_PROFILE_VASE;
     p.vessels[0].decor = SYNTH_DECOR_NONE;
-    p.attachments[0] = (synth_attachment){SYNTH_ATTACH_SPOUT, 1, 0.93, 1.0, 0.05, 0.05};
-    p.attachments[1] = (synth_attachment){SYNTH_ATTACH_HANDLE, -1, 0.55, 0.97, 0.10, 0.035};
+    p.attachments[0] = (synth_attachment){SYNTH_ATTACH_SPOUT, 1, 0.93, 1.0, 0.05, 0.05, {0, 0, 0}};
+    p.attachments[1] = (synth_attachment){SYNTH_ATTACH_HANDLE, -1, 0.55, 0.97, 0.10, 0.035, {0, 0, 0}};
     image_t img;
     synth_scene_truth t;
     cr_assert_eq(synth_scene_draw(&p, &img, NULL, &t), 0);
