@@ -492,7 +492,8 @@ static int blender_split(const char *name, int has_xyz, char *layer, char *pass,
 /* The rule on the names of Blender's own multilayer EXRs, then on a
  * render with every AOV: each channel lands in the pass a compositor user
  * expects (Combined, Depth, N, albedo, IndexOB, IndexMA, variance, spp,
- * Cycles' Denoising Depth, Normal and Albedo, half), in the default layer,
+ * Cycles' Denoising Depth, Normal and Albedo, half, specular, specular
+ * half), in the default layer,
  * with its channel letter. */
 Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
 {
@@ -510,7 +511,7 @@ Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
     scratch_write_file(dir, "floor.xml", lit_floor_xml, scene, sizeof scene);
     snprintf(out, sizeof out, "%s/passes.exr", dir);
     render_ok((const char *[]){"render", scene, "-o", out, "--aov",
-                               "depth,normal,albedo,index,variance,spp,denoising,half",
+                               "depth,normal,albedo,index,variance,spp,denoising,half,specular",
                                "--spp", "2", NULL});
     exr_planes e;
     read_exr(out, &e);
@@ -523,7 +524,8 @@ Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
                 {"IndexOB", "X", 1},           {"IndexMA", "X", 1},
                 {"variance", "X", 1},          {"spp", "X", 1},
                 {"Denoising Depth", "Z", 1},   {"Denoising Normal", "XYZ", 3},
-                {"Denoising Albedo", "RGB", 3}, {"half", "RGBA", 4}};
+                {"Denoising Albedo", "RGB", 3}, {"half", "RGBA", 4},
+                {"specular", "RGB", 3},        {"specular half", "RGB", 3}};
     enum { NPASS = sizeof want / sizeof want[0] };
     int has_xyz = exr_planes_has(&e, "X") && exr_planes_has(&e, "Y") && exr_planes_has(&e, "Z");
     int found[NPASS] = {0};
@@ -647,4 +649,50 @@ Test(render_outputs, denoising_aovs_see_through_a_mirror, .timeout = 60)
                                check[k].want);
     }
     exr_planes_free(&e);
+}
+
+/* A plane filling the view under a white sky, lit by it alone: coated
+ * (plastic) over a black base, all it shows is the sky in its coat, a
+ * delta lobe's: the specular part is the whole colour, bit for bit, and
+ * so are their halves; diffuse, the specular part is 0 in every pixel. */
+static void coated_plane_xml(const char *bsdf, char *xml, size_t len)
+{
+    snprintf(xml, len,
+             "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
+             "<lookat origin=\"0,0,0\" target=\"0,0,-1\" up=\"0,1,0\"/></transform><float name=\"fov\" value=\"4\"/>"
+             "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"
+             "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/>"
+             "<rfilter type=\"box\"/></film></sensor>"
+             "<emitter type=\"constant\"><rgb name=\"radiance\" value=\"1,1,1\"/></emitter>"
+             "<shape type=\"rectangle\"><transform name=\"to_world\"><rotate y=\"1\" angle=\"30\"/>"
+             "<translate z=\"-2\"/></transform>%s</shape></scene>\n",
+             bsdf);
+}
+
+Test(render_outputs, specular_aov_is_what_leaves_the_first_rough_vertex_by_a_glossy_lobe, .timeout = 60)
+{
+    static const char *const bsdfs[2] = {
+        "<bsdf type=\"plastic\"><rgb name=\"diffuse_reflectance\" value=\"0,0,0\"/></bsdf>",
+        "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.5,0.5,0.5\"/></bsdf>"};
+    for (int diffuse = 0; diffuse < 2; diffuse++) {
+        char xml[2048];
+        coated_plane_xml(bsdfs[diffuse], xml, sizeof xml);
+        exr_planes e;
+        render_aovs(xml, "half,specular", &e);
+        for (int c = 0; c < 3; c++) {
+            const float *rgb = e.planes[plane_index(&e, (const char *[]){"R", "G", "B"}[c])],
+                        *spec = e.planes[plane_index(&e, (const char *[]){"specular.R", "specular.G", "specular.B"}[c])],
+                        *half = e.planes[plane_index(&e, (const char *[]){"half.R", "half.G", "half.B"}[c])],
+                        *spec_half = e.planes[plane_index(
+                            &e, (const char *[]){"specular half.R", "specular half.G", "specular half.B"}[c])];
+            for (int p = 0; p < e.width * e.height; p++) {
+                cr_expect_gt(rgb[p], 0.02f, "pixel %d lit", p);
+                cr_expect_eq(spec[p], diffuse ? 0.0f : rgb[p], "%s, pixel %d: specular %g, colour %g",
+                             diffuse ? "diffuse" : "coated", p, spec[p], rgb[p]);
+                cr_expect_eq(spec_half[p], diffuse ? 0.0f : half[p], "%s, pixel %d: specular half %g, half %g",
+                             diffuse ? "diffuse" : "coated", p, spec_half[p], half[p]);
+            }
+        }
+        exr_planes_free(&e);
+    }
 }

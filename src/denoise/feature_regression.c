@@ -1,25 +1,20 @@
-/* The denoiser (celadon/denoise.h): per pixel, a weighted first-order
- * regression of the colours of a (2R+1)^2 window on the features; with
- * two half-sample renders, each regressed with the weights of the other
- * (cross-filtering) at several colour bandwidths, the one chosen per pixel
- * whose error the halves estimate least (NFOR, Bitterli et al. 2016). */
-#include "celadon/denoise.h"
+/* The denoiser's filter (denoise/feature_regression.h): per pixel, a
+ * weighted first-order regression of the colours of a (2R+1)^2 window on
+ * the features; with two half-sample renders, each regressed with the
+ * weights of the other (cross-filtering) at several colour bandwidths, the
+ * one chosen per pixel whose error the halves estimate least (NFOR,
+ * Bitterli et al. 2016). */
+#include "denoise/feature_regression.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-const char *const denoise_channel_names[DENOISE_HALF_CHANNELS] = {
-    "R",        "G",       "B",       "Denoising Albedo.R", "Denoising Albedo.G", "Denoising Albedo.B",
-    "Denoising Normal.X", "Denoising Normal.Y", "Denoising Normal.Z", "Denoising Depth.Z", "variance.X",
-    "half.R",   "half.G",  "half.B",  "half.A"};
-
 enum {
     RADIUS = 8,      /* the window's half side */
     WINDOW = (2 * RADIUS + 1) * (2 * RADIUS + 1),
     NREG = 10,       /* regressors: 1, dx, dy, albedo (3), normal (3), depth */
-    CH_ALBEDO = 3, CH_NORMAL = 6, CH_DEPTH = 9, CH_VARIANCE = 10, CH_HALF = 11,
-    MAX_BANDWIDTHS = 4,
+    CH_ALBEDO = 3, CH_NORMAL = 6, CH_DEPTH = 9, CH_VARIANCE = 10,
     SELECT_RADIUS = 3 /* the error estimates are averaged over 7x7 pixels before choosing */
 };
 
@@ -38,11 +33,6 @@ static const double RIDGE = 1e-4;
 /* A regressor whose weighted spread in the window is below this is left
  * out (constant feature, e.g. one flat wall's normal). */
 static const double MIN_SPREAD = 1e-6;
-/* A half whose share of the pixel's weight is outside [MIN_SHARE, 1 -
- * MIN_SHARE] (an interrupted render) tells too little: both halves are
- * then taken as the whole. */
-static const double MIN_SHARE = 0.05;
-
 /* What one regression reads: the features (stride DENOISE_CHANNELS), the
  * colour whose patches weigh the neighbours (guide) and the colour that is
  * regressed (target), both stride 3, and the variance of the guide's
@@ -69,12 +59,13 @@ static int finite_pixel(const float *v, int n)
     return 1;
 }
 
-/* v averaged over each (2r+1)^2 neighbourhood within the image. */
+/* v averaged over each (2r+1)^2 neighbourhood within the image (NULL:
+ * out of memory). */
 static double *box_mean(int w, int h, const double *v, int r)
 {
     double *out = malloc(sizeof *out * (size_t)w * h);
     if (!out)
-        abort();
+        return NULL;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             double s = 0;
@@ -87,12 +78,13 @@ static double *box_mean(int w, int h, const double *v, int r)
     return out;
 }
 
-/* The variance channel of in, non-finite or negative values as 0. */
+/* The variance channel of in, non-finite or negative values as 0 (NULL:
+ * out of memory). */
 static double *variance_channel(int w, int h, const float *in)
 {
     double *v = malloc(sizeof *v * (size_t)w * h);
     if (!v)
-        abort();
+        return NULL;
     for (size_t p = 0; p < (size_t)w * h; p++) {
         float s = in[p * DENOISE_CHANNELS + CH_VARIANCE];
         v[p] = isfinite(s) && s > 0 ? s : 0.0;
@@ -288,58 +280,47 @@ static void denoise_all(const image *im, const double *ks, int nk, float *out)
         }
 }
 
-/* The RGB of in (stride DENOISE_CHANNELS or more), stride 3. */
-static float *colour_of(int w, int h, const float *in, int stride)
+/* The RGB of in (stride DENOISE_CHANNELS), stride 3 (NULL: out of
+ * memory). */
+static float *colour_of(int w, int h, const float *in)
 {
     float *c = malloc(sizeof *c * (size_t)w * h * 3);
     if (!c)
-        abort();
+        return NULL;
     for (size_t p = 0; p < (size_t)w * h; p++)
-        memcpy(c + 3 * p, in + p * stride, 3 * sizeof *c);
+        memcpy(c + 3 * p, in + p * DENOISE_CHANNELS, 3 * sizeof *c);
     return c;
 }
 
-void denoise_image(int width, int height, const float *in, float *out)
+int denoise_image(int width, int height, const float *in, float *out)
 {
     double *raw = variance_channel(width, height, in);
     /* The variance averaged over each 3x3 neighbourhood (a 16-spp estimate
      * of it is itself noisy). */
-    double *var = box_mean(width, height, raw, 1);
-    float *colour = colour_of(width, height, in, DENOISE_CHANNELS);
-    image im = {width, height, in, colour, colour, var};
-    denoise_all(&im, &K_COLOUR, 1, out);
-    free(raw), free(var), free(colour);
-}
-
-/* The two halves of each pixel: a = half.RGB / A, b = (RGB - half.RGB) /
- * (1 - A), each stride 3, and their features (the first DENOISE_CHANNELS
- * of in). */
-static void split_halves(int w, int h, const float *in, float *a, float *b, float *feat)
-{
-    for (size_t p = 0; p < (size_t)w * h; p++) {
-        const float *v = in + p * DENOISE_HALF_CHANNELS;
-        double share = v[CH_HALF + 3];
-        int both = isfinite(share) && share >= MIN_SHARE && share <= 1.0 - MIN_SHARE;
-        for (int c = 0; c < 3; c++) {
-            a[3 * p + c] = both ? (float)(v[CH_HALF + c] / share) : v[c];
-            b[3 * p + c] = both ? (float)((v[c] - v[CH_HALF + c]) / (1.0 - share)) : v[c];
-        }
-        memcpy(feat + p * DENOISE_CHANNELS, v, DENOISE_CHANNELS * sizeof *feat);
+    double *var = raw ? box_mean(width, height, raw, 1) : NULL;
+    float *colour = colour_of(width, height, in);
+    int rc = -1;
+    if (var && colour) {
+        image im = {width, height, in, colour, colour, var};
+        denoise_all(&im, &K_COLOUR, 1, out);
+        rc = 0;
     }
+    free(raw), free(var), free(colour);
+    return rc;
 }
 
-/* The variance of a half's pixels (each channel): the renderer's sample
- * variance (3x3-averaged), rescaled by how far the halves actually differ
- * around the pixel, since with quasi-random samplers the sample variance
+/* The variance of a half's pixels (each channel): the sample variance
+ * (3x3-averaged), rescaled by how far the halves actually differ around
+ * the pixel, since with quasi-random samplers the sample variance
  * overstates the error of the mean several times (Rousselle et al. 2012
  * use the halves' difference alike). Where the sample variance is 0 the
- * halves' difference alone, averaged. */
-static double *half_variance(int w, int h, const float *feat, const float *a, const float *b)
+ * halves' difference alone, averaged. NULL: out of memory. */
+static double *half_variance(int w, int h, const double *raw, const float *a, const float *b)
 {
     size_t n = (size_t)w * h;
-    double *raw = variance_channel(w, h, feat), *diff = calloc(n, sizeof *diff);
+    double *diff = malloc(sizeof *diff * n);
     if (!diff)
-        abort();
+        return NULL;
     for (size_t p = 0; p < n; p++) {
         double s = 0;
         for (int c = 0; c < 3; c++) {
@@ -349,61 +330,78 @@ static double *half_variance(int w, int h, const float *feat, const float *a, co
         diff[p] = s / 6; /* E[(a - b)^2] = 2 var(half) */
     }
     double *sample = box_mean(w, h, raw, 1), *sample_wide = box_mean(w, h, raw, 4),
-           *diff_wide = box_mean(w, h, diff, 4);
+           *diff_wide = box_mean(w, h, diff, 4), *var = malloc(sizeof *var * n);
     /* A half holds half the samples: its variance is twice the whole's
-     * (the channel's), so 2 sample[p] rescaled by diff_wide / (2
+     * (the sample variance's), so 2 sample[p] rescaled by diff_wide / (2
      * sample_wide). */
-    for (size_t p = 0; p < n; p++)
-        raw[p] = sample_wide[p] > 0 ? sample[p] * diff_wide[p] / sample_wide[p] : diff_wide[p];
+    if (sample && sample_wide && diff_wide && var)
+        for (size_t p = 0; p < n; p++)
+            var[p] = sample_wide[p] > 0 ? sample[p] * diff_wide[p] / sample_wide[p] : diff_wide[p];
+    else
+        free(var), var = NULL;
     free(diff), free(sample), free(sample_wide), free(diff_wide);
-    return raw;
+    return var;
 }
 
-void denoise_image_halves(int width, int height, const float *in, float *out)
+/* Each bandwidth's error at each pixel, estimated from the halves: the
+ * filtered a (fa) against b (independent of a; E[(fa - b)^2] = MSE(fa) +
+ * var(b)) and vice versa, less what averaging fa and fb removes of their
+ * variance, (fa - fb)^2 / 4; then averaged over SELECT_RADIUS. Into err
+ * (nk per pixel); -1: out of memory. */
+static int bandwidth_errors(int w, int h, const float *a, const float *b, const float *fa, const float *fb,
+                            const double *var, int nk, double *err)
 {
-    enum { NK = sizeof K_HALVES / sizeof K_HALVES[0] };
-    size_t n = (size_t)width * height;
-    float *a = malloc(sizeof *a * n * 3), *b = malloc(sizeof *b * n * 3),
-          *feat = calloc(n * DENOISE_CHANNELS, sizeof *feat), *fa = malloc(sizeof *fa * n * 3 * NK),
-          *fb = malloc(sizeof *fb * n * 3 * NK);
-    double *err = malloc(sizeof *err * n * NK);
-    if (!a || !b || !feat || !fa || !fb || !err)
-        abort();
-    split_halves(width, height, in, a, b, feat);
-    double *var = half_variance(width, height, feat, a, b);
-    /* Cross-filtering: each half regressed with the weights of the other,
-     * so that a half's noise does not choose its own weights. */
-    image ia = {width, height, feat, b, a, var}, ib = {width, height, feat, a, b, var};
-    denoise_all(&ia, K_HALVES, NK, fa);
-    denoise_all(&ib, K_HALVES, NK, fb);
-    /* Each bandwidth's error per pixel, estimated from the halves: the
-     * filtered a against b (independent of a; E[(fa - b)^2] = MSE(fa) +
-     * var(b)) and vice versa, less what averaging fa and fb removes of
-     * their variance, (fa - fb)^2 / 4; then averaged over SELECT_RADIUS. */
-    for (int k = 0; k < NK; k++) {
-        double *e = malloc(sizeof *e * n);
-        if (!e)
-            abort();
+    size_t n = (size_t)w * h;
+    double *e = malloc(sizeof *e * n);
+    if (!e)
+        return -1;
+    for (int k = 0; k < nk; k++) {
         for (size_t p = 0; p < n; p++) {
             double s = 0;
             for (int c = 0; c < 3; c++) {
-                double xa = fa[(p * NK + k) * 3 + c], xb = fb[(p * NK + k) * 3 + c];
+                double xa = fa[(p * nk + k) * 3 + c], xb = fb[(p * nk + k) * 3 + c];
                 double ea = xa - b[3 * p + c], eb = xb - a[3 * p + c], dab = xa - xb;
                 s += 0.5 * (ea * ea + eb * eb) - 0.25 * dab * dab;
             }
             e[p] = isfinite(s) ? s / 3 - var[p] : INFINITY;
         }
-        double *smooth = box_mean(width, height, e, SELECT_RADIUS);
+        double *smooth = box_mean(w, h, e, SELECT_RADIUS);
+        if (!smooth) {
+            free(e);
+            return -1;
+        }
         for (size_t p = 0; p < n; p++)
-            err[p * NK + k] = isfinite(smooth[p]) ? smooth[p] : INFINITY;
-        free(e), free(smooth);
+            err[p * nk + k] = isfinite(smooth[p]) ? smooth[p] : INFINITY;
+        free(smooth);
     }
-    for (size_t p = 0; p < n; p++) {
-        int best = 0;
-        for (int k = 1; k < NK; k++)
-            best = err[p * NK + k] < err[p * NK + best] ? k : best;
-        for (int c = 0; c < 3; c++)
-            out[3 * p + c] = 0.5f * (fa[(p * NK + best) * 3 + c] + fb[(p * NK + best) * 3 + c]);
+    free(e);
+    return 0;
+}
+
+int feature_regression_halves(int width, int height, const float *feat, const float *a, const float *b,
+                              const double *sample_variance, float *out)
+{
+    enum { NK = sizeof K_HALVES / sizeof K_HALVES[0] };
+    size_t n = (size_t)width * height;
+    float *fa = malloc(sizeof *fa * n * 3 * NK), *fb = malloc(sizeof *fb * n * 3 * NK);
+    double *err = malloc(sizeof *err * n * NK), *var = half_variance(width, height, sample_variance, a, b);
+    int rc = -1;
+    if (fa && fb && err && var) {
+        /* Cross-filtering: each half regressed with the weights of the
+         * other, so that a half's noise does not choose its own weights. */
+        image ia = {width, height, feat, b, a, var}, ib = {width, height, feat, a, b, var};
+        denoise_all(&ia, K_HALVES, NK, fa);
+        denoise_all(&ib, K_HALVES, NK, fb);
+        rc = bandwidth_errors(width, height, a, b, fa, fb, var, NK, err);
     }
-    free(a), free(b), free(feat), free(fa), free(fb), free(err), free(var);
+    if (rc == 0)
+        for (size_t p = 0; p < n; p++) {
+            int best = 0;
+            for (int k = 1; k < NK; k++)
+                best = err[p * NK + k] < err[p * NK + best] ? k : best;
+            for (int c = 0; c < 3; c++)
+                out[3 * p + c] = 0.5f * (fa[(p * NK + best) * 3 + c] + fb[(p * NK + best) * 3 + c]);
+        }
+    free(fa), free(fb), free(err), free(var);
+    return rc;
 }

@@ -124,6 +124,21 @@ static rgb next_event(const integrator_scene *sc, const surface_hit *h, const bs
     return rgb_scale(rgb_mul(rgb_mul(f, tr), es.value), w / pdf_l);
 }
 
+/* The lobes that make a path specular when sampled at its first rough
+ * vertex (integrators.h, INTEGRATOR_AOV_SPECULAR). */
+static const unsigned SPECULAR_LOBES =
+    BSDF_GLOSSY_REFLECTION | BSDF_DELTA_REFLECTION | BSDF_GLOSSY_TRANSMISSION | BSDF_DELTA_TRANSMISSION;
+
+/* L += c, and the specular part too when the path is specular: the
+ * diffuse part L - L_specular is (up to rounding) the sum of the other
+ * terms. */
+static void add_radiance(rgb *L, rgb *L_specular, bool specular, rgb c)
+{
+    *L = rgb_add(*L, c);
+    if (specular)
+        *L_specular = rgb_add(*L_specular, c);
+}
+
 static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray3 *ray0, double tmin, double tmax,
                    sampler_stream *smp, double *aov)
 {
@@ -135,6 +150,10 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
     ray3 ray = *ray0;
     emitter_ref prev = {ray.o, v3(0.0, 0.0, 0.0)}; /* the last scattering vertex, as NEE saw it */
     bool rough_pending = aov != NULL; /* the rough-vertex AOVs are still to be found */
+    /* The path left its first rough vertex by a glossy or delta lobe: what
+     * it gathers from then on is the specular AOV's too. */
+    bool specular = false;
+    rgb L_specular = rgb_gray(0.0);
     double path_length = 0.0;         /* the ray directions are unit: t is a distance */
     if (aov) {
         for (int i = 0; i < INTEGRATOR_AOV_COUNT; i++)
@@ -153,7 +172,7 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
                 double w = prev_delta ? 1.0
                                       : mis_power_heuristic(prev_pdf, emitter_list_pmf(emitters, &prev, e) *
                                                                           emitter_pdf_env(e, ray.d));
-                L = rgb_add(L, rgb_scale(rgb_mul(beta, emitter_eval_env(e, ray.d)), w));
+                add_radiance(&L, &L_specular, specular, rgb_scale(rgb_mul(beta, emitter_eval_env(e, ray.d)), w));
             }
             break;
         }
@@ -161,8 +180,8 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         path_length += hit.t;
         if (depth == 0 && aov)
             integrator_first_hit_aovs(aov, &hit);
-        if (rough_pending)
-            rough_pending = !integrator_rough_hit_aovs(aov, &hit, path_length, beta);
+        bool at_rough = rough_pending && integrator_rough_hit_aovs(aov, &hit, path_length, beta);
+        rough_pending = rough_pending && !at_rough;
         if (sh->emitter && show) {
             const emitter_t *e = sh->emitter;
             rgb le = emitter_eval_hit(e, &hit, ray.d);
@@ -170,7 +189,7 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
                 double w = prev_delta ? 1.0
                                       : mis_power_heuristic(prev_pdf, emitter_list_pmf(emitters, &prev, e) *
                                                                           emitter_pdf_hit(e, prev.p, &hit, ray.d));
-                L = rgb_add(L, rgb_scale(rgb_mul(beta, le), w));
+                add_radiance(&L, &L_specular, specular, rgb_scale(rgb_mul(beta, le), w));
             }
         }
         if (pd->max_depth >= 0 && depth + 1 >= pd->max_depth) {
@@ -183,7 +202,8 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         if ((bsdf_flags(sh->bsdf) & BSDF_SMOOTH) && emitters->count > 0) {
             /* The emitter at depth + 1 + sheets must not pass max_depth - 1. */
             int max_sheets = pd->max_depth < 0 ? -1 : pd->max_depth - 2 - depth;
-            L = rgb_add(L, rgb_mul(beta, next_event(sc, &hit, sh->bsdf, &q, smp, depth, max_sheets)));
+            add_radiance(&L, &L_specular, specular,
+                         rgb_mul(beta, next_event(sc, &hit, sh->bsdf, &q, smp, depth, max_sheets)));
         }
 
         bsdf_sample_rec bs;
@@ -196,6 +216,8 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             aov[INTEGRATOR_AOV_ALPHA] = 1.0;
         if (!sampled || rgb_is_black(bs.weight))
             break;
+        if (at_rough)
+            specular = (bs.sampled_type & SPECULAR_LOBES) != 0;
         beta = rgb_mul(beta, bs.weight);
         eta *= bs.eta;
         /* Straight through a thin sheet, the path keeps the last scattering
@@ -221,7 +243,12 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             break;
     }
     if (!isfinite(L.r) || !isfinite(L.g) || !isfinite(L.b))
-        return rgb_gray(0.0);
+        L = L_specular = rgb_gray(0.0);
+    if (aov) {
+        aov[INTEGRATOR_AOV_SPECULAR] = L_specular.r;
+        aov[INTEGRATOR_AOV_SPECULAR + 1] = L_specular.g;
+        aov[INTEGRATOR_AOV_SPECULAR + 2] = L_specular.b;
+    }
     return L;
 }
 

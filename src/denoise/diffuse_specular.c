@@ -1,0 +1,83 @@
+/* denoise_image_halves (celadon/denoise.h): the colour split into its
+ * diffuse and specular parts (render --aov specular), each denoised on its
+ * own (feature_regression.h) and summed, as production denoisers do
+ * (Cycles, OIDN; Zimmer et al. 2015 "Path-space motion estimation and
+ * decomposition", Bako et al. 2017 "Kernel-predicting convolutional
+ * networks" split diffuse from specular and divide the diffuse part by
+ * the albedo). The diffuse part is demodulated: divided by the first
+ * rough vertex's albedo, what is left is the light falling there, smooth
+ * across a texture's edges, then multiplied back. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "denoise/feature_regression.h"
+
+const char *const denoise_channel_names[DENOISE_HALF_CHANNELS] = {
+    "R",          "G",          "B",          "Denoising Albedo.R", "Denoising Albedo.G", "Denoising Albedo.B",
+    "Denoising Normal.X",       "Denoising Normal.Y",       "Denoising Normal.Z", "Denoising Depth.Z",
+    "variance.X", "half.R",     "half.G",     "half.B",     "half.A",     "specular.R", "specular.G", "specular.B",
+    "specular half.R",          "specular half.G",          "specular half.B"};
+
+enum { CH_ALBEDO = 3, CH_VARIANCE = 10, CH_HALF = 11, CH_SPECULAR = 15, CH_SPECULAR_HALF = 18 };
+
+/* A half whose share of the pixel's weight is outside [MIN_SHARE, 1 -
+ * MIN_SHARE] (an interrupted render) tells too little: both halves are
+ * then taken as the whole. */
+static const double MIN_SHARE = 0.05;
+/* The diffuse part is divided by the albedo, but by no less than this: a
+ * black albedo (or none: the path escaped) leaves little to demodulate. */
+static const double MIN_ALBEDO = 0.02;
+
+/* What the diffuse part of pixel v is divided by, channel c. */
+static double demodulation(const float *v, int c)
+{
+    double a = v[CH_ALBEDO + c];
+    return isfinite(a) && a > MIN_ALBEDO ? a : MIN_ALBEDO;
+}
+
+/* The two halves of a part of each pixel, each divided by d: a =
+ * half / A, b = (whole - half) / (1 - A), where whole and half are the
+ * specular channels, or the colour less them (diffuse); and the sample
+ * variance over the mean d^2. */
+static void split_part(int w, int h, const float *in, int specular, float *a, float *b, double *sample)
+{
+    for (size_t p = 0; p < (size_t)w * h; p++) {
+        const float *v = in + p * DENOISE_HALF_CHANNELS;
+        double share = v[CH_HALF + 3], d2 = 0;
+        int both = isfinite(share) && share >= MIN_SHARE && share <= 1.0 - MIN_SHARE;
+        for (int c = 0; c < 3; c++) {
+            double whole = specular ? v[CH_SPECULAR + c] : (double)v[c] - v[CH_SPECULAR + c];
+            double half = specular ? v[CH_SPECULAR_HALF + c] : (double)v[CH_HALF + c] - v[CH_SPECULAR_HALF + c];
+            double d = specular ? 1.0 : demodulation(v, c);
+            a[3 * p + c] = (float)((both ? half / share : whole) / d);
+            b[3 * p + c] = (float)((both ? (whole - half) / (1.0 - share) : whole) / d);
+            d2 += d * d / 3;
+        }
+        double s = v[CH_VARIANCE];
+        sample[p] = isfinite(s) && s > 0 ? s / d2 : 0.0;
+    }
+}
+
+int denoise_image_halves(int width, int height, const float *in, float *out)
+{
+    size_t n = (size_t)width * height;
+    float *feat = malloc(sizeof *feat * n * DENOISE_CHANNELS), *a = malloc(sizeof *a * n * 3),
+          *b = malloc(sizeof *b * n * 3), *part = malloc(sizeof *part * n * 3);
+    double *sample = malloc(sizeof *sample * n);
+    int rc = feat && a && b && part && sample ? 0 : -1;
+    if (rc == 0)
+        for (size_t p = 0; p < n; p++)
+            memcpy(feat + p * DENOISE_CHANNELS, in + p * DENOISE_HALF_CHANNELS, DENOISE_CHANNELS * sizeof *feat);
+    for (int specular = 0; specular < 2 && rc == 0; specular++) {
+        split_part(width, height, in, specular, a, b, sample);
+        rc = feature_regression_halves(width, height, feat, a, b, sample, part);
+        for (size_t p = 0; p < n && rc == 0; p++)
+            for (int c = 0; c < 3; c++) {
+                double d = specular ? 1.0 : demodulation(in + p * DENOISE_HALF_CHANNELS, c);
+                out[3 * p + c] = (float)((specular ? out[3 * p + c] : 0.0) + part[3 * p + c] * d);
+            }
+    }
+    free(feat), free(a), free(b), free(part), free(sample);
+    return rc;
+}

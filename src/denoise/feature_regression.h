@@ -1,0 +1,19 @@
+/* The denoiser's filter for one buffer (feature_regression.c); the
+ * public entry points are in celadon/denoise.h. */
+#ifndef CELADON_DENOISE_FEATURE_REGRESSION_H
+#define CELADON_DENOISE_FEATURE_REGRESSION_H
+
+#include "celadon/denoise.h"
+
+/* Denoises one buffer given as two independent half-sample renders a and
+ * b (3 floats a pixel each), guided by feat (DENOISE_CHANNELS floats a
+ * pixel, as denoise_image's input: only the albedo, normal and depth are
+ * read) and by sample_variance (a pixel's sample variance, of the whole:
+ * only its shape over the image counts, the halves' difference sets its
+ * level): cross-filtered at two bandwidths, chosen per pixel, the filtered
+ * halves averaged into out (3 floats a pixel). Returns 0, or -1 when out
+ * of memory (out then undefined). */
+int feature_regression_halves(int width, int height, const float *feat, const float *a, const float *b,
+                              const double *sample_variance, float *out);
+
+#endif
