@@ -171,6 +171,32 @@ Test(denoise, keeps_an_image_linear_in_the_features)
     free(img), free(out), free(one);
 }
 
+/* Fireflies: twelve pixels where one half drew a path of weight 100 (the
+ * whole pixel then about 50 above its colour of at most 1): from the
+ * halves they are cut down to what the other half shows around them, and
+ * the denoised image stays within 0.1 of the truth in every pixel (a
+ * firefly kept would leave about 50 in its pixel, or spread over its
+ * neighbours several tenths). */
+Test(denoise, a_firefly_in_one_half_is_cut)
+{
+    float *img = malloc(sizeof *img * W * H * C), *truth = malloc(sizeof *truth * W * H * 3),
+          *out = malloc(sizeof *out * W * H * 3);
+    cr_assert(img && truth && out);
+    two_surfaces(0.02, img, truth, 5);
+    for (int k = 0; k < 12; k++) {
+        float *v = img + ((size_t)(4 + 3 * k) * W + 5 + 5 * k) * C;
+        for (int c = 0; c < 3; c++)
+            v[c] += 50.0f, v[11 + c] += 50.0f; /* half.RGB: 0.5 x 100 */
+    }
+    cr_assert_eq(denoise_image_halves(W, H, img, out), 0);
+    double worst = 0;
+    for (int p = 0; p < W * H; p++)
+        for (int c = 0; c < 3; c++)
+            worst = fmax(worst, fabs(out[(size_t)p * 3 + c] - truth[(size_t)p * 3 + c]));
+    cr_expect_lt(worst, 0.1, "largest error %.3g", worst);
+    free(img), free(truth), free(out);
+}
+
 /* An image too large for memory (2^40 pixels: 12 TB a colour plane) is
  * refused with -1, not abort(); the input is never read. ASan's allocator
  * aborts on such a request unless told otherwise: the test runs in the

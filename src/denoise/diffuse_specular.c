@@ -6,7 +6,17 @@
  * networks" split diffuse from specular and divide the diffuse part by
  * the albedo). The diffuse part is demodulated: divided by the first
  * rough vertex's albedo, what is left is the light falling there, smooth
- * across a texture's edges, then multiplied back. */
+ * across a texture's edges, then multiplied back.
+ *
+ * Fireflies (a rare path of high weight: a caustic through glass, light
+ * off a glossy lobe) are clamped first, within the denoiser only: a
+ * half's pixel is cut down to FIREFLY times the brightest pixel of the
+ * other half around it. A feature that is really there shows in both
+ * independent halves and passes; a sample that one half alone drew is cut.
+ * This loses energy (a bias) but less and less as the samples grow, both
+ * halves nearing the same image (consistent), as outlier rejection does
+ * (DeCoro et al. 2010 "Density-based outlier rejection in Monte Carlo
+ * rendering"; Zirr et al. 2018 "Re-weighting firefly samples"). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,6 +38,9 @@ static const double MIN_SHARE = 0.05;
 /* The diffuse part is divided by the albedo, but by no less than this: a
  * black albedo (or none: the path escaped) leaves little to demodulate. */
 static const double MIN_ALBEDO = 0.02;
+/* A half's pixel (the sum of its channels) is clamped to this times the
+ * largest of the other half's over its 3x3 neighbourhood. */
+static const double FIREFLY = 2.0;
 
 /* What the diffuse part of pixel v is divided by, channel c. */
 static double demodulation(const float *v, int c)
@@ -59,18 +72,52 @@ static void split_part(int w, int h, const float *in, int specular, float *a, fl
     }
 }
 
+/* FIREFLY times the largest sum of channels of b over each pixel's 3x3
+ * neighbourhood, into bound. */
+static void firefly_bound(int w, int h, const float *b, double *bound)
+{
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double m = 0;
+            for (int yy = y > 0 ? y - 1 : 0; yy <= y + 1 && yy < h; yy++)
+                for (int xx = x > 0 ? x - 1 : 0; xx <= x + 1 && xx < w; xx++) {
+                    const float *q = b + 3 * ((size_t)yy * w + xx);
+                    double s = (double)q[0] + q[1] + q[2];
+                    m = s > m ? s : m; /* NaN stays out */
+                }
+            bound[(size_t)y * w + x] = FIREFLY * m;
+        }
+}
+
+/* Each pixel of a whose sum of channels passes its bound, scaled down to
+ * it. */
+static void clamp_to(size_t n, float *a, const double *bound)
+{
+    for (size_t p = 0; p < n; p++) {
+        double s = (double)a[3 * p] + a[3 * p + 1] + a[3 * p + 2];
+        if (s > bound[p])
+            for (int c = 0; c < 3; c++)
+                a[3 * p + c] = (float)(a[3 * p + c] * (bound[p] / s));
+    }
+}
+
 int denoise_image_halves(int width, int height, const float *in, float *out)
 {
     size_t n = (size_t)width * height;
     float *feat = malloc(sizeof *feat * n * DENOISE_CHANNELS), *a = malloc(sizeof *a * n * 3),
           *b = malloc(sizeof *b * n * 3), *part = malloc(sizeof *part * n * 3);
-    double *sample = malloc(sizeof *sample * n);
-    int rc = feat && a && b && part && sample ? 0 : -1;
+    double *sample = malloc(sizeof *sample * n), *bound_a = malloc(sizeof *bound_a * n),
+           *bound_b = malloc(sizeof *bound_b * n);
+    int rc = feat && a && b && part && sample && bound_a && bound_b ? 0 : -1;
     if (rc == 0)
         for (size_t p = 0; p < n; p++)
             memcpy(feat + p * DENOISE_CHANNELS, in + p * DENOISE_HALF_CHANNELS, DENOISE_CHANNELS * sizeof *feat);
     for (int specular = 0; specular < 2 && rc == 0; specular++) {
         split_part(width, height, in, specular, a, b, sample);
+        firefly_bound(width, height, b, bound_a);
+        firefly_bound(width, height, a, bound_b);
+        clamp_to(n, a, bound_a);
+        clamp_to(n, b, bound_b);
         rc = feature_regression_halves(width, height, feat, a, b, sample, part);
         for (size_t p = 0; p < n && rc == 0; p++)
             for (int c = 0; c < 3; c++) {
@@ -78,6 +125,6 @@ int denoise_image_halves(int width, int height, const float *in, float *out)
                 out[3 * p + c] = (float)((specular ? out[3 * p + c] : 0.0) + part[3 * p + c] * d);
             }
     }
-    free(feat), free(a), free(b), free(part), free(sample);
+    free(feat), free(a), free(b), free(part), free(sample), free(bound_a), free(bound_b);
     return rc;
 }
