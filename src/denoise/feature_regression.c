@@ -21,9 +21,8 @@ enum {
 /* Rousselle et al.'s NL-means on colour: k sets how many standard
  * deviations of difference still count as alike; EPS keeps noise-free
  * pixels (variance 0) from dividing by zero. One buffer: K_COLOUR; two
- * halves: each of K_HALVES, chosen per pixel. */
+ * halves: each of the caller's, chosen per pixel. */
 static const double K_COLOUR = 0.45, EPS_COLOUR = 1e-8;
-static const double K_HALVES[] = {0.45, 1.0};
 /* The features' scales in the weights: albedo and normal differences, and
  * depth relative to the pixel's own. */
 static const double SIGMA_ALBEDO = 0.1, SIGMA_NORMAL = 0.3, SIGMA_DEPTH = 0.1;
@@ -379,10 +378,9 @@ static int bandwidth_errors(int w, int h, const float *a, const float *b, const 
 }
 
 int feature_regression_halves(int width, int height, const float *feat, const float *a, const float *b,
-                              const double *sample_variance, float *out)
+                              const double *sample_variance, const double *ks, int nk, float *out)
 {
-    enum { NK = sizeof K_HALVES / sizeof K_HALVES[0] };
-    size_t n = (size_t)width * height;
+    size_t n = (size_t)width * height, NK = (size_t)nk;
     float *fa = malloc(sizeof *fa * n * 3 * NK), *fb = malloc(sizeof *fb * n * 3 * NK);
     double *err = malloc(sizeof *err * n * NK), *var = half_variance(width, height, sample_variance, a, b);
     int rc = -1;
@@ -390,14 +388,14 @@ int feature_regression_halves(int width, int height, const float *feat, const fl
         /* Cross-filtering: each half regressed with the weights of the
          * other, so that a half's noise does not choose its own weights. */
         image ia = {width, height, feat, b, a, var}, ib = {width, height, feat, a, b, var};
-        denoise_all(&ia, K_HALVES, NK, fa);
-        denoise_all(&ib, K_HALVES, NK, fb);
-        rc = bandwidth_errors(width, height, a, b, fa, fb, var, NK, err);
+        denoise_all(&ia, ks, nk, fa);
+        denoise_all(&ib, ks, nk, fb);
+        rc = bandwidth_errors(width, height, a, b, fa, fb, var, nk, err);
     }
     if (rc == 0)
         for (size_t p = 0; p < n; p++) {
-            int best = 0;
-            for (int k = 1; k < NK; k++)
+            size_t best = 0;
+            for (size_t k = 1; k < NK; k++)
                 best = err[p * NK + k] < err[p * NK + best] ? k : best;
             for (int c = 0; c < 3; c++)
                 out[3 * p + c] = 0.5f * (fa[(p * NK + best) * 3 + c] + fb[(p * NK + best) * 3 + c]);

@@ -10,10 +10,12 @@
  * pixel, as denoise_image's input: only the albedo, normal and depth are
  * read) and by sample_variance (a pixel's sample variance, of the whole:
  * only its shape over the image counts, the halves' difference sets its
- * level): cross-filtered at two bandwidths, chosen per pixel, the filtered
- * halves averaged into out (3 floats a pixel). Returns 0, or -1 when out
- * of memory (out then undefined). */
+ * level): cross-filtered at each of the nk bandwidths ks of the NL-means
+ * colour weights (0.45: a pixel's neighbours within about half a standard
+ * deviation count), chosen per pixel, the filtered halves averaged into
+ * out (3 floats a pixel). Returns 0, or -1 when out of memory (out then
+ * undefined). */
 int feature_regression_halves(int width, int height, const float *feat, const float *a, const float *b,
-                              const double *sample_variance, float *out);
+                              const double *sample_variance, const double *ks, int nk, float *out);
 
 #endif
