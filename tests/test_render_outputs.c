@@ -612,13 +612,18 @@ Test(render_outputs, half_aov_is_the_first_half_of_the_samples, .timeout = 60)
  * mirror's (depth 2, within the 7% the tilt makes across the 4-degree
  * view, its normal, albedo 1), the denoising ones the wall's, seen in it
  * (the path's length 2 + 3 alike, the wall's normal and reflectance). */
-static const char mirror_xml[] =
-    "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
-    "<lookat origin=\"0,0,0\" target=\"0,0,-1\" up=\"0,1,0\"/></transform><float name=\"fov\" value=\"4\"/>"
-    "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"
-    "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/>"
-    "<rfilter type=\"box\"/></film></sensor>"
+/* An 8x8 camera at the origin looking down -z through a 4-degree view,
+ * 4 independent samples a pixel, a box filter, under a white sky. */
+#define NARROW_VIEW_XML                                                                                              \
+    "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"                        \
+    "<lookat origin=\"0,0,0\" target=\"0,0,-1\" up=\"0,1,0\"/></transform><float name=\"fov\" value=\"4\"/>"   \
+    "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"                        \
+    "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/>"        \
+    "<rfilter type=\"box\"/></film></sensor>"                                                                      \
     "<emitter type=\"constant\"><rgb name=\"radiance\" value=\"1,1,1\"/></emitter>"
+
+static const char mirror_xml[] =
+    NARROW_VIEW_XML
     "<shape type=\"rectangle\"><transform name=\"to_world\"><rotate y=\"1\" angle=\"45\"/>"
     "<translate z=\"-2\"/></transform><bsdf type=\"conductor\"/></shape>"
     "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"3\"/><rotate y=\"1\" angle=\"-90\"/>"
@@ -658,13 +663,7 @@ Test(render_outputs, denoising_aovs_see_through_a_mirror, .timeout = 60)
 static void coated_plane_xml(const char *bsdf, char *xml, size_t len)
 {
     snprintf(xml, len,
-             "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
-             "<lookat origin=\"0,0,0\" target=\"0,0,-1\" up=\"0,1,0\"/></transform><float name=\"fov\" value=\"4\"/>"
-             "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"
-             "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/>"
-             "<rfilter type=\"box\"/></film></sensor>"
-             "<emitter type=\"constant\"><rgb name=\"radiance\" value=\"1,1,1\"/></emitter>"
-             "<shape type=\"rectangle\"><transform name=\"to_world\"><rotate y=\"1\" angle=\"30\"/>"
+             NARROW_VIEW_XML "<shape type=\"rectangle\"><transform name=\"to_world\"><rotate y=\"1\" angle=\"30\"/>"
              "<translate z=\"-2\"/></transform>%s</shape></scene>\n",
              bsdf);
 }
