@@ -44,7 +44,8 @@ static double gauss(rng_t *r)
  * says sigma^2), the mean of two halves each with independent noise of
  * sigma sqrt(2), the first of which is half.R/G/B (premultiplied by its
  * share, half.A = 1/2); of each, a third of the noise in the specular
- * part (specular.R/G/B, specular half.R/G/B). */
+ * part (specular.R/G/B, specular half.R/G/B), whose clean value is the
+ * mirror light feature (Denoising Mirror.R/G/B). */
 #define EDGE 30
 static void two_surfaces(double sigma, float *img, float *truth, uint64_t seed)
 {
@@ -72,6 +73,7 @@ static void two_surfaces(double sigma, float *img, float *truth, uint64_t seed)
                 p[11 + c] = (float)(0.5 * a);
                 p[15 + c] = (float)(0.5 * (sa + sb));
                 p[18 + c] = (float)(0.5 * sa);
+                p[21 + c] = (float)coat; /* the light the coat mirrors */
                 p[3 + c] = (float)(left * albedo[0][c] + (1 - left) * albedo[1][c]);
                 p[6 + c] = (float)(left * normal[0][c] + (1 - left) * normal[1][c]);
             }
@@ -156,7 +158,7 @@ Test(denoise, keeps_an_image_linear_in_the_features)
                            0.05 * (c + 1) * v[9]);
         v[10] = 0.01f;
         for (int c = 0; c < 3; c++)
-            v[11 + c] = 0.5f * v[c], v[15 + c] = v[18 + c] = 0.0f;
+            v[11 + c] = 0.5f * v[c], v[15 + c] = v[18 + c] = v[21 + c] = 0.0f;
         v[14] = 0.5f;
     }
     float *one = one_buffer(img);
@@ -316,7 +318,8 @@ Test(denoise, bad_inputs_exit_2_with_one_line_and_no_file, .timeout = 60)
     expect_refused(path, "has no channel Denoising Albedo.R, Denoising Albedo.G, Denoising Albedo.B, "
                          "Denoising Normal.X, Denoising Normal.Y, Denoising Normal.Z, Denoising Depth.Z, variance.X, "
                          "half.R, half.G, half.B, half.A, specular.R, specular.G, specular.B, specular half.R, "
-                         "specular half.G, specular half.B");
+                         "specular half.G, specular half.B, Denoising Mirror.R, Denoising Mirror.G, "
+                         "Denoising Mirror.B");
     snprintf(missing, sizeof missing, "%s/none.exr", dir);
     expect_refused(missing, "none.exr");
     scratch_write_file(dir, "text.exr", "not an image\n", text, sizeof text);

@@ -493,7 +493,7 @@ static int blender_split(const char *name, int has_xyz, char *layer, char *pass,
  * render with every AOV: each channel lands in the pass a compositor user
  * expects (Combined, Depth, N, albedo, IndexOB, IndexMA, variance, spp,
  * Cycles' Denoising Depth, Normal and Albedo, half, specular, specular
- * half), in the default layer,
+ * half, Denoising Mirror), in the default layer,
  * with its channel letter. */
 Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
 {
@@ -525,7 +525,8 @@ Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
                 {"variance", "X", 1},          {"spp", "X", 1},
                 {"Denoising Depth", "Z", 1},   {"Denoising Normal", "XYZ", 3},
                 {"Denoising Albedo", "RGB", 3}, {"half", "RGBA", 4},
-                {"specular", "RGB", 3},        {"specular half", "RGB", 3}};
+                {"specular", "RGB", 3},        {"specular half", "RGB", 3},
+                {"Denoising Mirror", "RGB", 3}};
     enum { NPASS = sizeof want / sizeof want[0] };
     int has_xyz = exr_planes_has(&e, "X") && exr_planes_has(&e, "Y") && exr_planes_has(&e, "Z");
     int found[NPASS] = {0};
@@ -659,7 +660,9 @@ Test(render_outputs, denoising_aovs_see_through_a_mirror, .timeout = 60)
 /* A plane filling the view under a white sky, lit by it alone: coated
  * (plastic) over a black base, all it shows is the sky in its coat, a
  * delta lobe's: the specular part is the whole colour, bit for bit, and
- * so are their halves; diffuse, the specular part is 0 in every pixel. */
+ * so are their halves, and the light in the mirror direction is the
+ * sky's, 1; diffuse, the specular part and the mirror light are 0 in
+ * every pixel. */
 static void coated_plane_xml(const char *bsdf, char *xml, size_t len)
 {
     snprintf(xml, len,
@@ -690,6 +693,9 @@ Test(render_outputs, specular_aov_is_what_leaves_the_first_rough_vertex_by_a_glo
                              diffuse ? "diffuse" : "coated", p, spec[p], rgb[p]);
                 cr_expect_eq(spec_half[p], diffuse ? 0.0f : half[p], "%s, pixel %d: specular half %g, half %g",
                              diffuse ? "diffuse" : "coated", p, spec_half[p], half[p]);
+                float mirror = e.planes[plane_index(&e, (const char *[]){"Denoising Mirror.R", "Denoising Mirror.G",
+                                                                         "Denoising Mirror.B"}[c])][p];
+                cr_expect_float_eq(mirror, diffuse ? 0.0f : 1.0f, 1e-6f, "pixel %d: mirror light %g", p, mirror);
             }
         }
         exr_planes_free(&e);

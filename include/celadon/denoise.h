@@ -32,14 +32,15 @@
  * albedo (3), normal (3), depth, the variance of the colour's estimate
  * (DENOISE_CHANNELS of them), then, for denoise_image_halves, the first
  * half of the samples, premultiplied by its share of the pixel (4: R, G,
- * B, A; render.h, RENDER_AOV_HALF), the colour's specular part (3) and
- * its first half (3, premultiplied alike; RENDER_AOV_SPECULAR).
+ * B, A; render.h, RENDER_AOV_HALF), the colour's specular part (3),
+ * its first half (3, premultiplied alike) and the light seen in the
+ * mirror direction at the first rough vertex (3; RENDER_AOV_SPECULAR).
  * denoise_channel_names has the names the renderer's EXR gives them
  * (docs/rendering.md, "AOVs"): R, G, B, Denoising Albedo.R/G/B, Denoising
  * Normal.X/Y/Z, Denoising Depth.Z (the features at the first rough
  * vertex), variance.X, half.R/G/B/A, specular.R/G/B, specular
- * half.R/G/B. */
-enum { DENOISE_CHANNELS = 11, DENOISE_HALF_CHANNELS = 21 };
+ * half.R/G/B, Denoising Mirror.R/G/B. */
+enum { DENOISE_CHANNELS = 11, DENOISE_HALF_CHANNELS = 24 };
 extern const char *const denoise_channel_names[DENOISE_HALF_CHANNELS];
 
 /* Denoises the RGB of in (width * height * DENOISE_CHANNELS floats, as

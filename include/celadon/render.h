@@ -33,7 +33,9 @@ enum {
     /* specular.R, .G, .B: the part of the colour the path gathers after
      * leaving its first rough vertex by a glossy or delta lobe (the rest,
      * RGB - specular, is the diffuse part); with half, also specular
-     * half.R, .G, .B: its first half, premultiplied as half.RGB */
+     * half.R, .G, .B: its first half, premultiplied as half.RGB; and
+     * Denoising Mirror.R, .G, .B: the light seen in the mirror direction
+     * at that vertex where it has a delta reflection (integrators.h) */
     RENDER_AOV_SPECULAR = 256u
 };
 

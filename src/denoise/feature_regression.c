@@ -13,8 +13,8 @@
 enum {
     RADIUS = 8,      /* the window's half side */
     WINDOW = (2 * RADIUS + 1) * (2 * RADIUS + 1),
-    NREG = 10,       /* regressors: 1, dx, dy, albedo (3), normal (3), depth */
-    CH_ALBEDO = 3, CH_NORMAL = 6, CH_DEPTH = 9, CH_VARIANCE = 10,
+    NREG = 11,       /* regressors: 1, dx, dy, albedo (3), normal (3), depth, mirror light */
+    CH_ALBEDO = 3, CH_NORMAL = 6, CH_DEPTH = 9, CH_VARIANCE = 10, CH_MIRROR = 11,
     SELECT_RADIUS = 3 /* the error estimates are averaged over 7x7 pixels before choosing */
 };
 
@@ -32,12 +32,13 @@ static const double RIDGE = 1e-4;
 /* A regressor whose weighted spread in the window is below this is left
  * out (constant feature, e.g. one flat wall's normal). */
 static const double MIN_SPREAD = 1e-6;
-/* What one regression reads: the features (stride DENOISE_CHANNELS), the
+/* What one regression reads: the features (stride: DENOISE_CHANNELS, or
+ * FEATURE_STRIDE with the mirror light), the
  * colour whose patches weigh the neighbours (guide) and the colour that is
  * regressed (target), both stride 3, and the variance of the guide's
  * pixels (each channel). */
 typedef struct {
-    int w, h;
+    int w, h, stride;
     const float *feat;
     const float *guide, *target;
     const double *var;
@@ -47,7 +48,7 @@ static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v;
 
 static const float *features(const image *im, int x, int y)
 {
-    return im->feat + ((size_t)y * im->w + x) * DENOISE_CHANNELS;
+    return im->feat + ((size_t)y * im->w + x) * im->stride;
 }
 
 static int finite_pixel(const float *v, int n)
@@ -172,8 +173,9 @@ static int cholesky_solve(double a[NREG][NREG], double b[NREG][3], int n)
 
 /* The regressors of q relative to p: 1, the screen offset over the
  * radius, the albedo and normal differences, the depth difference
- * relative to p's depth. */
-static void regressors(const float *p, const float *q, int dx, int dy, double *x)
+ * relative to p's depth, the mirror light's difference (0 without it: a
+ * regressor with no spread is left out). */
+static void regressors(const float *p, const float *q, int stride, int dx, int dy, double *x)
 {
     x[0] = 1.0;
     x[1] = (double)dx / RADIUS, x[2] = (double)dy / RADIUS;
@@ -182,6 +184,7 @@ static void regressors(const float *p, const float *q, int dx, int dy, double *x
         x[6 + c] = (double)q[CH_NORMAL + c] - p[CH_NORMAL + c];
     }
     x[9] = ((double)q[CH_DEPTH] - p[CH_DEPTH]) / fmax(fabs(p[CH_DEPTH]), 1e-6);
+    x[10] = stride > CH_MIRROR ? (double)q[CH_MIRROR] - p[CH_MIRROR] : 0.0;
 }
 
 /* The intercept (the value at p's own features) of the least-squares fit
@@ -240,14 +243,14 @@ static void denoise_pixel(const image *im, int px, int py, const double *ks, int
             if (qx < 0 || qy < 0 || qx >= im->w || qy >= im->h)
                 continue;
             const float *q = features(im, qx, qy), *t = im->target + ((size_t)qy * im->w + qx) * 3;
-            if (!finite_pixel(q, DENOISE_CHANNELS) || !finite_pixel(t, 3) ||
+            if (!finite_pixel(q, im->stride) || !finite_pixel(t, 3) ||
                 !finite_pixel(im->guide + ((size_t)qy * im->w + qx) * 3, 3))
                 continue;
             wf[n] = feature_weight(p, q) * variance_weight(im, px, py, qx, qy);
             if (!(wf[n] > 1e-6))
                 continue;
             d[n] = fmax(patch_distance(im, px, py, qx, qy), 0.0);
-            regressors(p, q, qx - px, qy - py, x[n]);
+            regressors(p, q, im->stride, qx - px, qy - py, x[n]);
             for (int c = 0; c < 3; c++)
                 y[n][c] = t[c];
             n++;
@@ -271,7 +274,7 @@ static void denoise_all(const image *im, const double *ks, int nk, float *out)
         for (int x = 0; x < im->w; x++) {
             float *o = out + ((size_t)y * im->w + x) * 3 * nk;
             const float *t = im->target + ((size_t)y * im->w + x) * 3;
-            if (finite_pixel(features(im, x, y), DENOISE_CHANNELS) && finite_pixel(t, 3))
+            if (finite_pixel(features(im, x, y), im->stride) && finite_pixel(t, 3))
                 denoise_pixel(im, x, y, ks, nk, o);
             else
                 for (int k = 0; k < nk; k++)
@@ -300,7 +303,7 @@ int denoise_image(int width, int height, const float *in, float *out)
     float *colour = colour_of(width, height, in);
     int rc = -1;
     if (var && colour) {
-        image im = {width, height, in, colour, colour, var};
+        image im = {width, height, DENOISE_CHANNELS, in, colour, colour, var};
         denoise_all(&im, &K_COLOUR, 1, out);
         rc = 0;
     }
@@ -387,7 +390,7 @@ int feature_regression_halves(int width, int height, const float *feat, const fl
     if (fa && fb && err && var) {
         /* Cross-filtering: each half regressed with the weights of the
          * other, so that a half's noise does not choose its own weights. */
-        image ia = {width, height, feat, b, a, var}, ib = {width, height, feat, a, b, var};
+        image ia = {width, height, FEATURE_STRIDE, feat, b, a, var}, ib = {width, height, FEATURE_STRIDE, feat, a, b, var};
         denoise_all(&ia, ks, nk, fa);
         denoise_all(&ib, ks, nk, fb);
         rc = bandwidth_errors(width, height, a, b, fa, fb, var, nk, err);

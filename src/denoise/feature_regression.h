@@ -5,10 +5,15 @@
 
 #include "celadon/denoise.h"
 
+/* The features of feature_regression_halves, per pixel: those of
+ * denoise_image's input (DENOISE_CHANNELS), then the luminance of the
+ * light seen in the mirror direction (render --aov specular, Denoising
+ * Mirror), or 0 where it does not count. */
+enum { FEATURE_STRIDE = DENOISE_CHANNELS + 1 };
+
 /* Denoises one buffer given as two independent half-sample renders a and
- * b (3 floats a pixel each), guided by feat (DENOISE_CHANNELS floats a
- * pixel, as denoise_image's input: only the albedo, normal and depth are
- * read) and by sample_variance (a pixel's sample variance, of the whole:
+ * b (3 floats a pixel each), guided by feat (FEATURE_STRIDE floats a
+ * pixel: only the albedo, normal, depth and mirror light are read) and by sample_variance (a pixel's sample variance, of the whole:
  * only its shape over the image counts, the halves' difference sets its
  * level): cross-filtered at each of the nk bandwidths ks of the NL-means
  * colour weights (0.45: a pixel's neighbours within about half a standard

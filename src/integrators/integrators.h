@@ -40,7 +40,10 @@ typedef struct {
  * before one. Integrators other than `path` give the first hit's. Then the
  * specular part of the radiance: what the path gathers after leaving its
  * first rough vertex by a glossy or delta lobe (the rest, direct light at
- * that vertex included, is the diffuse part); 0 for other integrators. */
+ * that vertex included, is the diffuse part); and the light seen in the
+ * mirror direction at that vertex, where its BSDF has a delta reflection
+ * (a coat): the emitter met along the mirrored ray (or the environment),
+ * whichever lobe the path then samples. 0 for other integrators. */
 enum {
     INTEGRATOR_AOV_DEPTH = 0,
     INTEGRATOR_AOV_NORMAL = 1,
@@ -50,7 +53,8 @@ enum {
     INTEGRATOR_AOV_ROUGH_NORMAL = 9,
     INTEGRATOR_AOV_ROUGH_ALBEDO = 12,
     INTEGRATOR_AOV_SPECULAR = 15,
-    INTEGRATOR_AOV_COUNT = 18
+    INTEGRATOR_AOV_MIRROR = 18,
+    INTEGRATOR_AOV_COUNT = 21
 };
 
 /* Radiance along ray (t in (tmin, tmax)) from the numbers of smp; aov (may

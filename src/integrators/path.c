@@ -139,6 +139,26 @@ static void add_radiance(rgb *L, rgb *L_specular, bool specular, rgb c)
         *L_specular = rgb_add(*L_specular, c);
 }
 
+/* The light seen from hit in the mirror direction of d about the shading
+ * normal: the emitter the mirrored ray meets (or the environment where it
+ * escapes), into aov[INTEGRATOR_AOV_MIRROR...]. A denoising feature: it
+ * says where a coat's highlights are, in every sample, not only in those
+ * that sample the coat's lobe. */
+static void mirror_light_aov(const integrator_scene *sc, const surface_hit *hit, vec3 d, double *aov)
+{
+    vec3 n = hit->sh.n;
+    ray3 r = spawn(hit, v3_norm(v3_sub(d, v3_scale(n, 2.0 * v3_dot(d, n)))));
+    surface_hit h;
+    rgb le = rgb_gray(0.0);
+    if (shape_list_intersect(sc->shapes, &r, 0.0, INFINITY, &h)) {
+        if (h.shape->emitter)
+            le = emitter_eval_hit(h.shape->emitter, &h, r.d);
+    } else if (sc->emitters->env) {
+        le = emitter_eval_env(sc->emitters->env, r.d);
+    }
+    aov[INTEGRATOR_AOV_MIRROR] = le.r, aov[INTEGRATOR_AOV_MIRROR + 1] = le.g, aov[INTEGRATOR_AOV_MIRROR + 2] = le.b;
+}
+
 static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray3 *ray0, double tmin, double tmax,
                    sampler_stream *smp, double *aov)
 {
@@ -182,6 +202,8 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             integrator_first_hit_aovs(aov, &hit);
         bool at_rough = rough_pending && integrator_rough_hit_aovs(aov, &hit, path_length, beta);
         rough_pending = rough_pending && !at_rough;
+        if (at_rough && (bsdf_flags(sh->bsdf) & BSDF_DELTA_REFLECTION))
+            mirror_light_aov(sc, &hit, ray.d, aov);
         if (sh->emitter && show) {
             const emitter_t *e = sh->emitter;
             rgb le = emitter_eval_hit(e, &hit, ray.d);

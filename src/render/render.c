@@ -165,6 +165,8 @@ static void pack_values(const render_job *j, rgb L, const double *aov, int k, do
         for (int i = 0; i < 3; i++)
             out[n++] = in * aov[INTEGRATOR_AOV_SPECULAR + i];
     }
+    for (int i = 0; i < 3 && (j->aovs & RENDER_AOV_SPECULAR); i++)
+        out[n++] = aov[INTEGRATOR_AOV_MIRROR + i];
     for (int i = 0; i < j->nown; i++)
         out[n++] = aov[INTEGRATOR_AOV_COUNT + i];
 }
@@ -281,7 +283,7 @@ int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, s
     static const char *const xyz_names[3] = {"X", "Y", "Z"}, *const rgba_names[4] = {"R", "G", "B", "A"};
     static const char *const whole[1] = {""};
     int nown = integrator_channel_count(s->integrator);
-    film_aov *list = malloc(sizeof *list * (size_t)(9 + nown));
+    film_aov *list = malloc(sizeof *list * (size_t)(10 + nown));
     if (!list)
         abort();
     int naov = 0;
@@ -307,6 +309,8 @@ int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, s
         list[naov++] = (film_aov){"specular", 3, rgba_names};
     if ((aovs & RENDER_AOV_SPECULAR) && (aovs & RENDER_AOV_HALF))
         list[naov++] = (film_aov){"specular half", 3, rgba_names};
+    if (aovs & RENDER_AOV_SPECULAR)
+        list[naov++] = (film_aov){"Denoising Mirror", 3, rgba_names};
     for (int i = 0; i < nown; i++)
         list[naov++] = (film_aov){integrator_channel_name(s->integrator, i), 1, whole};
     int rc = film_init_format(film, s->film.crop_w, s->film.crop_h, s->film.format, list, naov, err, errlen);

@@ -2,8 +2,8 @@
 # Renders a small scene with every AOV and opens it in Blender's
 # compositor (tests/tools/blender_passes.py), which prints the passes it
 # found: Combined, Alpha, Depth, N, albedo, IndexOB, IndexMA, variance, spp,
-# Denoising Albedo, Denoising Depth, Denoising Normal, half, specular,
-# specular half (Blender 3.4.1: all fifteen; it dropped variance and spp
+# Denoising Albedo, Denoising Depth, Denoising Normal, Denoising Mirror, half,
+# specular, specular half (Blender 3.4.1: all sixteen; it dropped variance and spp
 # while they were dotless names, docs/rendering.md).
 # Exits 0 without Blender, saying so.
 #
