@@ -25,7 +25,7 @@ static void close_dir(void) { scratch_dir_remove(dir); }
 
 TestSuite(denoise, .init = open_dir, .fini = close_dir);
 
-enum { W = 64, H = 48, C = DENOISE_HALF_CHANNELS };
+enum { W = 48, H = 36, C = DENOISE_HALF_CHANNELS };
 
 /* A standard normal deviate (Box-Muller). */
 static double gauss(rng_t *r)
@@ -186,7 +186,7 @@ Test(denoise, a_firefly_in_one_half_is_cut)
     cr_assert(img && truth && out);
     two_surfaces(0.02, img, truth, 5);
     for (int k = 0; k < 12; k++) {
-        float *v = img + ((size_t)(4 + 3 * k) * W + 5 + 5 * k) * C;
+        float *v = img + ((size_t)(3 + 2 * k) * W + 4 + 3 * k) * C;
         for (int c = 0; c < 3; c++)
             v[c] += 50.0f, v[11 + c] += 50.0f; /* half.RGB: 0.5 x 100 */
     }
