@@ -701,3 +701,35 @@ Test(render_outputs, specular_aov_is_what_leaves_the_first_rough_vertex_by_a_glo
         exr_planes_free(&e);
     }
 }
+
+/* A thin glass sheet 1 m in front of the camera, a diffuse wall 2 m
+ * behind it, the sky all around: the samples that the glass reflects (to
+ * the sky) take the denoising features of the wall behind it as those it
+ * lets through do, so every pixel's Denoising Albedo is the wall's
+ * reflectance and its Denoising Depth 3 (they used to be speckled with
+ * the sky's 0 where a sample took the glass's reflection). */
+Test(render_outputs, denoising_aovs_see_through_a_sheet_whichever_way_the_path_goes, .timeout = 60)
+{
+    static const char xml[] =
+        NARROW_VIEW_XML
+        "<shape type=\"rectangle\"><transform name=\"to_world\"><translate z=\"-1\"/></transform>"
+        "<bsdf type=\"thindielectric\"/></shape>"
+        "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"3\"/><translate z=\"-3\"/></transform>"
+        "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.2,0.4,0.6\"/></bsdf></shape></scene>\n";
+    exr_planes e;
+    render_aovs(xml, "denoising", &e);
+    static const struct {
+        const char *name;
+        float want, tol;
+    } check[] = {{"Denoising Albedo.R", 0.2f, 1e-4f},
+                 {"Denoising Albedo.G", 0.4f, 1e-4f},
+                 {"Denoising Albedo.B", 0.6f, 1e-4f},
+                 {"Denoising Depth.Z", 3.0f, 0.01f}};
+    for (size_t k = 0; k < sizeof check / sizeof check[0]; k++) {
+        const float *v = e.planes[plane_index(&e, check[k].name)];
+        for (int p = 0; p < e.width * e.height; p++)
+            cr_expect_float_eq(v[p], check[k].want, check[k].tol, "pixel %d: %s %g, not %g", p, check[k].name, v[p],
+                               check[k].want);
+    }
+    exr_planes_free(&e);
+}

@@ -159,6 +159,28 @@ static void mirror_light_aov(const integrator_scene *sc, const surface_hit *hit,
     aov[INTEGRATOR_AOV_MIRROR] = le.r, aov[INTEGRATOR_AOV_MIRROR + 1] = le.g, aov[INTEGRATOR_AOV_MIRROR + 2] = le.b;
 }
 
+/* The denoising features of a path that reflected off a sheet (thin glass)
+ * before its first rough vertex: those of what lies straight behind the
+ * sheet, as for the paths that went through, so that a glass case's
+ * reflections do not speckle the features of what it holds. */
+static void features_through_sheets(const integrator_scene *sc, const surface_hit *hit, vec3 d, double path_length,
+                                    rgb beta, double *aov)
+{
+    ray3 r = spawn(hit, d);
+    surface_hit h;
+    for (int k = 0; k < 64; k++) { /* 64 sheets in a row: give up, keep the last */
+        if (!shape_list_intersect(sc->shapes, &r, 0.0, INFINITY, &h)) {
+            integrator_clear_rough_aovs(aov);
+            return;
+        }
+        path_length += h.t;
+        if (integrator_rough_hit_aovs(aov, &h, path_length, beta) ||
+            !(bsdf_flags(h.shape->bsdf) & BSDF_STRAIGHT_TRANSMISSION))
+            return;
+        r = spawn(&h, d);
+    }
+}
+
 static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray3 *ray0, double tmin, double tmax,
                    sampler_stream *smp, double *aov)
 {
@@ -169,7 +191,8 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
     bool prev_delta = true;
     ray3 ray = *ray0;
     emitter_ref prev = {ray.o, v3(0.0, 0.0, 0.0)}; /* the last scattering vertex, as NEE saw it */
-    bool rough_pending = aov != NULL; /* the rough-vertex AOVs are still to be found */
+    bool rough_pending = aov != NULL; /* the first rough vertex is still to be found */
+    bool features_pending = rough_pending; /* and the denoising features (found past sheets apart) */
     /* The path left its first rough vertex by a glossy or delta lobe: what
      * it gathers from then on is the specular AOV's too. */
     bool specular = false;
@@ -185,7 +208,7 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         bool found = shape_list_intersect(sc->shapes, &ray, t0, t1, &hit);
         bool show = !(depth == 0 && pd->hide_emitters);
         if (!found) {
-            if (rough_pending)
+            if (features_pending)
                 integrator_clear_rough_aovs(aov);
             if (emitters->env && show) {
                 const emitter_t *e = emitters->env;
@@ -200,8 +223,10 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         path_length += hit.t;
         if (depth == 0 && aov)
             integrator_first_hit_aovs(aov, &hit);
-        bool at_rough = rough_pending && integrator_rough_hit_aovs(aov, &hit, path_length, beta);
+        bool at_rough = rough_pending && (bsdf_flags(sh->bsdf) & BSDF_SMOOTH);
         rough_pending = rough_pending && !at_rough;
+        if (features_pending)
+            features_pending = !integrator_rough_hit_aovs(aov, &hit, path_length, beta);
         if (at_rough && (bsdf_flags(sh->bsdf) & BSDF_DELTA_REFLECTION))
             mirror_light_aov(sc, &hit, ray.d, aov);
         if (sh->emitter && show) {
@@ -240,6 +265,11 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             break;
         if (at_rough)
             specular = (bs.sampled_type & SPECULAR_LOBES) != 0;
+        if (features_pending && (bsdf_flags(sh->bsdf) & BSDF_STRAIGHT_TRANSMISSION) &&
+            !(bs.sampled_type & BSDF_STRAIGHT_TRANSMISSION)) {
+            features_through_sheets(sc, &hit, ray.d, path_length, beta, aov);
+            features_pending = false;
+        }
         beta = rgb_mul(beta, bs.weight);
         eta *= bs.eta;
         /* Straight through a thin sheet, the path keeps the last scattering
