@@ -11,7 +11,7 @@
 #include <string.h>
 
 enum {
-    RADIUS = 8,      /* the window's half side */
+    RADIUS = 10,     /* the window's half side */
     WINDOW = (2 * RADIUS + 1) * (2 * RADIUS + 1),
     NREG = 11,       /* regressors: 1, dx, dy, albedo (3), normal (3), depth, mirror light */
     CH_ALBEDO = 3, CH_NORMAL = 6, CH_DEPTH = 9, CH_VARIANCE = 10, CH_MIRROR = 11,
