@@ -608,6 +608,22 @@ Test(render_outputs, half_aov_is_the_first_half_of_the_samples, .timeout = 60)
     exr_planes_free(&e), exr_planes_free(&f);
 }
 
+/* A channel's value in every pixel, within tol. */
+typedef struct {
+    const char *name;
+    float want, tol;
+} plane_value;
+
+static void expect_planes(const exr_planes *e, const plane_value *check, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        const float *v = e->planes[plane_index(e, check[k].name)];
+        for (int p = 0; p < e->width * e->height; p++)
+            cr_expect_float_eq(v[p], check[k].want, check[k].tol, "pixel %d: %s %g, not %g", p, check[k].name, v[p],
+                               check[k].want);
+    }
+}
+
 /* A camera looking straight at a perfect mirror at 2 m, tilted 45 degrees
  * so that it shows a diffuse wall 3 m to its side: the plain AOVs are the
  * mirror's (depth 2, within the 7% the tilt makes across the 4-degree
@@ -635,10 +651,7 @@ Test(render_outputs, denoising_aovs_see_through_a_mirror, .timeout = 60)
 {
     exr_planes e;
     render_aovs(mirror_xml, "depth,normal,albedo,denoising", &e);
-    static const struct {
-        const char *name;
-        float want, tol;
-    } check[] = {{"Z", 2.0f, 0.15f},
+    static const plane_value check[] = {{"Z", 2.0f, 0.15f},
                  {"N.X", 0.70710678f, 1e-4f},
                  {"N.Z", 0.70710678f, 1e-4f},
                  {"albedo.G", 1.0f, 1e-4f},
@@ -648,12 +661,7 @@ Test(render_outputs, denoising_aovs_see_through_a_mirror, .timeout = 60)
                  {"Denoising Albedo.R", 0.2f, 1e-4f},
                  {"Denoising Albedo.G", 0.4f, 1e-4f},
                  {"Denoising Albedo.B", 0.6f, 1e-4f}};
-    for (size_t k = 0; k < sizeof check / sizeof check[0]; k++) {
-        const float *v = e.planes[plane_index(&e, check[k].name)];
-        for (int p = 0; p < e.width * e.height; p++)
-            cr_expect_float_eq(v[p], check[k].want, check[k].tol, "pixel %d: %s %g, not %g", p, check[k].name, v[p],
-                               check[k].want);
-    }
+    expect_planes(&e, check, sizeof check / sizeof check[0]);
     exr_planes_free(&e);
 }
 
@@ -718,18 +726,10 @@ Test(render_outputs, denoising_aovs_see_through_a_sheet_whichever_way_the_path_g
         "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.2,0.4,0.6\"/></bsdf></shape></scene>\n";
     exr_planes e;
     render_aovs(xml, "denoising", &e);
-    static const struct {
-        const char *name;
-        float want, tol;
-    } check[] = {{"Denoising Albedo.R", 0.2f, 1e-4f},
-                 {"Denoising Albedo.G", 0.4f, 1e-4f},
-                 {"Denoising Albedo.B", 0.6f, 1e-4f},
-                 {"Denoising Depth.Z", 3.0f, 0.01f}};
-    for (size_t k = 0; k < sizeof check / sizeof check[0]; k++) {
-        const float *v = e.planes[plane_index(&e, check[k].name)];
-        for (int p = 0; p < e.width * e.height; p++)
-            cr_expect_float_eq(v[p], check[k].want, check[k].tol, "pixel %d: %s %g, not %g", p, check[k].name, v[p],
-                               check[k].want);
-    }
+    static const plane_value check[] = {{"Denoising Albedo.R", 0.2f, 1e-4f},
+                                        {"Denoising Albedo.G", 0.4f, 1e-4f},
+                                        {"Denoising Albedo.B", 0.6f, 1e-4f},
+                                        {"Denoising Depth.Z", 3.0f, 0.01f}};
+    expect_planes(&e, check, sizeof check / sizeof check[0]);
     exr_planes_free(&e);
 }
