@@ -8,12 +8,14 @@
  * times the inverse of the neighbour's variance relative to the pixel's
  * where it is the noisier. With two independent half-sample renders
  * (render --aov half), as NFOR: each half is regressed with weights from
- * the other's patches (cross-filtering), at two bandwidths of the patch
- * weights; per pixel, the bandwidth whose error the halves estimate least
- * (averaged over 7x7 pixels) is kept, and the two filtered halves
+ * the other's patches (cross-filtering), at three bandwidths of the
+ * patch weights; per pixel, the bandwidth whose error the halves estimate
+ * least (averaged over 7x7 pixels) is kept, and the two filtered halves
  * averaged. The colour's diffuse and specular parts (render --aov
  * specular) are denoised so apart, the diffuse divided by the albedo
- * first and multiplied by it after, and summed.
+ * first and multiplied by it after, the specular regressed on the light
+ * seen in the mirror direction too, and summed; fireflies that one half
+ * alone holds are clamped first.
  *
  * What the regression keeps: an image that is exactly linear in the
  * features over a window is reproduced (up to the ridge's 1e-4 relative
