@@ -243,7 +243,7 @@ int main(int argc, char **argv)
         }
         if (!exists(low)) {
             snprintf(cmd, sizeof cmd, "%s render %s -o %s --spp %d --res %dx%d --sampler zsobol "
-                     "--aov denoising,half,variance", bin, scene, low, SPP_LOW, WIDTH, HEIGHT);
+                     "--aov denoising,half,specular,variance", bin, scene, low, SPP_LOW, WIDTH, HEIGHT);
             run(cmd);
         }
         if (!exists(high)) {

@@ -492,7 +492,8 @@ static int blender_split(const char *name, int has_xyz, char *layer, char *pass,
 /* The rule on the names of Blender's own multilayer EXRs, then on a
  * render with every AOV: each channel lands in the pass a compositor user
  * expects (Combined, Depth, N, albedo, IndexOB, IndexMA, variance, spp,
- * Cycles' Denoising Depth, Normal and Albedo, half), in the default layer,
+ * Cycles' Denoising Depth, Normal and Albedo, half, specular, specular
+ * half, Denoising Mirror), in the default layer,
  * with its channel letter. */
 Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
 {
@@ -510,7 +511,7 @@ Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
     scratch_write_file(dir, "floor.xml", lit_floor_xml, scene, sizeof scene);
     snprintf(out, sizeof out, "%s/passes.exr", dir);
     render_ok((const char *[]){"render", scene, "-o", out, "--aov",
-                               "depth,normal,albedo,index,variance,spp,denoising,half",
+                               "depth,normal,albedo,index,variance,spp,denoising,half,specular",
                                "--spp", "2", NULL});
     exr_planes e;
     read_exr(out, &e);
@@ -523,7 +524,9 @@ Test(render_outputs, aov_names_open_as_blender_passes, .timeout = 60)
                 {"IndexOB", "X", 1},           {"IndexMA", "X", 1},
                 {"variance", "X", 1},          {"spp", "X", 1},
                 {"Denoising Depth", "Z", 1},   {"Denoising Normal", "XYZ", 3},
-                {"Denoising Albedo", "RGB", 3}, {"half", "RGBA", 4}};
+                {"Denoising Albedo", "RGB", 3}, {"half", "RGBA", 4},
+                {"specular", "RGB", 3},        {"specular half", "RGB", 3},
+                {"Denoising Mirror", "RGB", 3}};
     enum { NPASS = sizeof want / sizeof want[0] };
     int has_xyz = exr_planes_has(&e, "X") && exr_planes_has(&e, "Y") && exr_planes_has(&e, "Z");
     int found[NPASS] = {0};
@@ -605,18 +608,39 @@ Test(render_outputs, half_aov_is_the_first_half_of_the_samples, .timeout = 60)
     exr_planes_free(&e), exr_planes_free(&f);
 }
 
+/* A channel's value in every pixel, within tol. */
+typedef struct {
+    const char *name;
+    float want, tol;
+} plane_value;
+
+static void expect_planes(const exr_planes *e, const plane_value *check, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        const float *v = e->planes[plane_index(e, check[k].name)];
+        for (int p = 0; p < e->width * e->height; p++)
+            cr_expect_float_eq(v[p], check[k].want, check[k].tol, "pixel %d: %s %g, not %g", p, check[k].name, v[p],
+                               check[k].want);
+    }
+}
+
 /* A camera looking straight at a perfect mirror at 2 m, tilted 45 degrees
  * so that it shows a diffuse wall 3 m to its side: the plain AOVs are the
  * mirror's (depth 2, within the 7% the tilt makes across the 4-degree
  * view, its normal, albedo 1), the denoising ones the wall's, seen in it
  * (the path's length 2 + 3 alike, the wall's normal and reflectance). */
-static const char mirror_xml[] =
-    "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"
-    "<lookat origin=\"0,0,0\" target=\"0,0,-1\" up=\"0,1,0\"/></transform><float name=\"fov\" value=\"4\"/>"
-    "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"
-    "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/>"
-    "<rfilter type=\"box\"/></film></sensor>"
+/* An 8x8 camera at the origin looking down -z through a 4-degree view,
+ * 4 independent samples a pixel, a box filter, under a white sky. */
+#define NARROW_VIEW_XML                                                                                              \
+    "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">"                        \
+    "<lookat origin=\"0,0,0\" target=\"0,0,-1\" up=\"0,1,0\"/></transform><float name=\"fov\" value=\"4\"/>"   \
+    "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4\"/></sampler>"                        \
+    "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/>"        \
+    "<rfilter type=\"box\"/></film></sensor>"                                                                      \
     "<emitter type=\"constant\"><rgb name=\"radiance\" value=\"1,1,1\"/></emitter>"
+
+static const char mirror_xml[] =
+    NARROW_VIEW_XML
     "<shape type=\"rectangle\"><transform name=\"to_world\"><rotate y=\"1\" angle=\"45\"/>"
     "<translate z=\"-2\"/></transform><bsdf type=\"conductor\"/></shape>"
     "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"3\"/><rotate y=\"1\" angle=\"-90\"/>"
@@ -627,10 +651,7 @@ Test(render_outputs, denoising_aovs_see_through_a_mirror, .timeout = 60)
 {
     exr_planes e;
     render_aovs(mirror_xml, "depth,normal,albedo,denoising", &e);
-    static const struct {
-        const char *name;
-        float want, tol;
-    } check[] = {{"Z", 2.0f, 0.15f},
+    static const plane_value check[] = {{"Z", 2.0f, 0.15f},
                  {"N.X", 0.70710678f, 1e-4f},
                  {"N.Z", 0.70710678f, 1e-4f},
                  {"albedo.G", 1.0f, 1e-4f},
@@ -640,11 +661,75 @@ Test(render_outputs, denoising_aovs_see_through_a_mirror, .timeout = 60)
                  {"Denoising Albedo.R", 0.2f, 1e-4f},
                  {"Denoising Albedo.G", 0.4f, 1e-4f},
                  {"Denoising Albedo.B", 0.6f, 1e-4f}};
-    for (size_t k = 0; k < sizeof check / sizeof check[0]; k++) {
-        const float *v = e.planes[plane_index(&e, check[k].name)];
-        for (int p = 0; p < e.width * e.height; p++)
-            cr_expect_float_eq(v[p], check[k].want, check[k].tol, "pixel %d: %s %g, not %g", p, check[k].name, v[p],
-                               check[k].want);
+    expect_planes(&e, check, sizeof check / sizeof check[0]);
+    exr_planes_free(&e);
+}
+
+/* A plane filling the view under a white sky, lit by it alone: coated
+ * (plastic) over a black base, all it shows is the sky in its coat, a
+ * delta lobe's: the specular part is the whole colour, bit for bit, and
+ * so are their halves, and the light in the mirror direction is the
+ * sky's, 1; diffuse, the specular part and the mirror light are 0 in
+ * every pixel. */
+static void coated_plane_xml(const char *bsdf, char *xml, size_t len)
+{
+    snprintf(xml, len,
+             NARROW_VIEW_XML "<shape type=\"rectangle\"><transform name=\"to_world\"><rotate y=\"1\" angle=\"30\"/>"
+             "<translate z=\"-2\"/></transform>%s</shape></scene>\n",
+             bsdf);
+}
+
+Test(render_outputs, specular_aov_is_what_leaves_the_first_rough_vertex_by_a_glossy_lobe, .timeout = 60)
+{
+    static const char *const bsdfs[2] = {
+        "<bsdf type=\"plastic\"><rgb name=\"diffuse_reflectance\" value=\"0,0,0\"/></bsdf>",
+        "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.5,0.5,0.5\"/></bsdf>"};
+    for (int diffuse = 0; diffuse < 2; diffuse++) {
+        char xml[2048];
+        coated_plane_xml(bsdfs[diffuse], xml, sizeof xml);
+        exr_planes e;
+        render_aovs(xml, "half,specular", &e);
+        for (int c = 0; c < 3; c++) {
+            const float *rgb = e.planes[plane_index(&e, (const char *[]){"R", "G", "B"}[c])],
+                        *spec = e.planes[plane_index(&e, (const char *[]){"specular.R", "specular.G", "specular.B"}[c])],
+                        *half = e.planes[plane_index(&e, (const char *[]){"half.R", "half.G", "half.B"}[c])],
+                        *spec_half = e.planes[plane_index(
+                            &e, (const char *[]){"specular half.R", "specular half.G", "specular half.B"}[c])];
+            for (int p = 0; p < e.width * e.height; p++) {
+                cr_expect_gt(rgb[p], 0.02f, "pixel %d lit", p);
+                cr_expect_eq(spec[p], diffuse ? 0.0f : rgb[p], "%s, pixel %d: specular %g, colour %g",
+                             diffuse ? "diffuse" : "coated", p, spec[p], rgb[p]);
+                cr_expect_eq(spec_half[p], diffuse ? 0.0f : half[p], "%s, pixel %d: specular half %g, half %g",
+                             diffuse ? "diffuse" : "coated", p, spec_half[p], half[p]);
+                float mirror = e.planes[plane_index(&e, (const char *[]){"Denoising Mirror.R", "Denoising Mirror.G",
+                                                                         "Denoising Mirror.B"}[c])][p];
+                cr_expect_float_eq(mirror, diffuse ? 0.0f : 1.0f, 1e-6f, "pixel %d: mirror light %g", p, mirror);
+            }
+        }
+        exr_planes_free(&e);
     }
+}
+
+/* A thin glass sheet 1 m in front of the camera, a diffuse wall 2 m
+ * behind it, the sky all around: the samples that the glass reflects (to
+ * the sky) take the denoising features of the wall behind it as those it
+ * lets through do, so every pixel's Denoising Albedo is the wall's
+ * reflectance and its Denoising Depth 3 (they used to be speckled with
+ * the sky's 0 where a sample took the glass's reflection). */
+Test(render_outputs, denoising_aovs_see_through_a_sheet_whichever_way_the_path_goes, .timeout = 60)
+{
+    static const char xml[] =
+        NARROW_VIEW_XML
+        "<shape type=\"rectangle\"><transform name=\"to_world\"><translate z=\"-1\"/></transform>"
+        "<bsdf type=\"thindielectric\"/></shape>"
+        "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"3\"/><translate z=\"-3\"/></transform>"
+        "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.2,0.4,0.6\"/></bsdf></shape></scene>\n";
+    exr_planes e;
+    render_aovs(xml, "denoising", &e);
+    static const plane_value check[] = {{"Denoising Albedo.R", 0.2f, 1e-4f},
+                                        {"Denoising Albedo.G", 0.4f, 1e-4f},
+                                        {"Denoising Albedo.B", 0.6f, 1e-4f},
+                                        {"Denoising Depth.Z", 3.0f, 0.01f}};
+    expect_planes(&e, check, sizeof check / sizeof check[0]);
     exr_planes_free(&e);
 }

@@ -29,7 +29,14 @@ enum {
      * indices (k < spp / 2), premultiplied by their share A of the pixel's
      * filter weight: half.RGB / A and (RGB - half.RGB) / (1 - A) are two
      * independent half-sample renders (denoise.h) */
-    RENDER_AOV_HALF = 128u
+    RENDER_AOV_HALF = 128u,
+    /* specular.R, .G, .B: the part of the colour the path gathers after
+     * leaving its first rough vertex by a glossy or delta lobe (the rest,
+     * RGB - specular, is the diffuse part); with half, also specular
+     * half.R, .G, .B: its first half, premultiplied as half.RGB; and
+     * Denoising Mirror.R, .G, .B: the light seen in the mirror direction
+     * at that vertex where it has a delta reflection (integrators.h) */
+    RENDER_AOV_SPECULAR = 256u
 };
 
 typedef struct {
@@ -59,7 +66,7 @@ typedef struct {
     double idle_cpu_seconds;
 } render_stats;
 
-/* Parses "depth,normal,albedo,index,variance,spp,denoising,half" (any
+/* Parses "depth,normal,albedo,index,variance,spp,denoising,half,specular" (any
  * subset, any order; "Z" and "N" too) into a mask; -1 for an unknown name. */
 int render_aov_parse(const char *list, unsigned *mask);
 

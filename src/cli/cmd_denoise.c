@@ -1,4 +1,4 @@
-/* celadon denoise: a render's EXR (with the denoising, half and variance
+/* celadon denoise: a render's EXR (with the denoising, half, specular and variance
  * AOVs) denoised into another EXR (denoise.h). */
 #include <stdio.h>
 #include <string.h>
@@ -13,7 +13,7 @@ static void usage(FILE *f)
     fprintf(f, "usage: celadon denoise IN.exr -o OUT.exr\n\n"
                "Denoises a render's colour by a first-order regression on its features\n"
                "(docs/rendering.md, \"Denoising\"). IN.exr must hold R, G, B and the channels of\n"
-               "celadon render --aov denoising,half,variance. OUT.exr has every channel\n"
+               "celadon render --aov denoising,half,specular,variance. OUT.exr has every channel\n"
                "of IN.exr, R, G, B denoised, and IN.exr's header plus celadon/denoised.\n");
 }
 

@@ -45,8 +45,9 @@ static void usage(FILE *f)
                "  --preview FILE  write the image so far to FILE after a pass, every 10 s\n"
                "                  (--preview-every S) and at the end\n"
                "  --denoise       denoise the colour by a regression on the albedo, normal and\n"
-               "                  depth, from two half renders (--denoise adds those AOVs,\n"
-               "                  denoising, half and variance, to an EXR)\n"
+               "                  depth, diffuse and specular apart, from two half renders\n"
+               "                  (--denoise adds those AOVs, denoising, half, specular and\n"
+               "                  variance, to an EXR)\n"
                "  --spp N         samples per pixel (default: the scene's sampler); also the\n"
                "                  value of $spp where the scene has no <default> for it\n"
                "  --res WxH       film size (default: the scene's film; at most 65536 on a side, 1e9 pixels)\n"
@@ -62,7 +63,8 @@ static void usage(FILE *f)
                "  --aov LIST      extra EXR channels: depth (Z), normal (N.X/Y/Z), albedo (albedo.R/G/B),\n"
                "                  index (IndexOB.X, IndexMA.X), variance (variance.X), spp (spp.X),\n"
                "                  denoising (Denoising Albedo.R/G/B, Denoising Normal.X/Y/Z, Denoising\n"
-               "                  Depth.Z: past mirrors and glass), half (half.R/G/B/A)\n"
+               "                  Depth.Z: past mirrors and glass), half (half.R/G/B/A),\n"
+               "                  specular (specular.R/G/B; with half, specular half.R/G/B)\n"
                "  --part K/N      render the K-th of N shares of the samples into OUT.exr, for\n"
                "                  `celadon merge` (docs/distributed.md)\n"
                "  --frames A:B:S  render frames A, A+S, ... below B (S defaults to 1), setting\n"
@@ -187,6 +189,7 @@ static int parse_args(int argc, char **argv, render_args *a)
         } else if (!strcmp(arg, "--aov")) {
             if (render_aov_parse(val, &a->ro.aovs) != 0)
                 return cli_usage_error("render", "--aov wants a list of depth, normal, albedo, index, variance, spp, denoising, half, "
+                                                 "specular, "
                                                  "not '%s'", val);
         } else if (!strcmp(arg, "--part")) {
             if (render_part_parse(val, &a->part) != 0)
@@ -257,7 +260,7 @@ static int parse_args(int argc, char **argv, render_args *a)
         return cli_usage_error("render", "%s", "--part writes a share of the samples: denoise the merged image "
                                                "(celadon denoise)");
     if (a->denoise)
-        a->ro.aovs |= RENDER_AOV_DENOISING | RENDER_AOV_HALF | RENDER_AOV_VARIANCE;
+        a->ro.aovs |= RENDER_AOV_DENOISING | RENDER_AOV_HALF | RENDER_AOV_SPECULAR | RENDER_AOV_VARIANCE;
     if (a->frames && !strchr(a->out, '#'))
         return cli_usage_error("render", "--frames needs a run of # in the output name for the frame, not '%s'",
                                a->out);

@@ -10,7 +10,7 @@ static const cli_command commands[] = {
     {"mesh", "profile.json -> triangle mesh (OBJ+MTL or PLY) at any resolution", cmd_mesh},
     {"render", "Mitsuba 3 scene -> image (EXR/PNG/JPEG) with the path tracer", cmd_render},
     {"merge", "the parts of a render (render --part K/N) -> its image", cmd_merge},
-    {"denoise", "a render's EXR with its denoising, half, variance AOVs -> denoised EXR", cmd_denoise},
+    {"denoise", "a render's EXR with its denoising, half, specular, variance AOVs -> denoised EXR", cmd_denoise},
     {"museum", "photos -> a walkable VR museum (glTF + WebXR page) and its path-traceable scene", cmd_museum},
     {"crosscheck", "analytic vs. meshed renders of a scene: errors against N, report and plot", cmd_crosscheck},
     {NULL, NULL, NULL},

@@ -1,34 +1,28 @@
-/* The denoiser (celadon/denoise.h): per pixel, a weighted first-order
- * regression of the colours of a (2R+1)^2 window on the features; with
- * two half-sample renders, each regressed with the weights of the other
- * (cross-filtering) at several colour bandwidths, the one chosen per pixel
- * whose error the halves estimate least (NFOR, Bitterli et al. 2016). */
-#include "celadon/denoise.h"
+/* The denoiser's filter (denoise/feature_regression.h): per pixel, a
+ * weighted first-order regression of the colours of a (2R+1)^2 window on
+ * the features; with two half-sample renders, each regressed with the
+ * weights of the other (cross-filtering) at several colour bandwidths, the
+ * one chosen per pixel whose error the halves estimate least (NFOR,
+ * Bitterli et al. 2016). */
+#include "denoise/feature_regression.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-const char *const denoise_channel_names[DENOISE_HALF_CHANNELS] = {
-    "R",        "G",       "B",       "Denoising Albedo.R", "Denoising Albedo.G", "Denoising Albedo.B",
-    "Denoising Normal.X", "Denoising Normal.Y", "Denoising Normal.Z", "Denoising Depth.Z", "variance.X",
-    "half.R",   "half.G",  "half.B",  "half.A"};
-
 enum {
-    RADIUS = 8,      /* the window's half side */
+    RADIUS = 10,     /* the window's half side */
     WINDOW = (2 * RADIUS + 1) * (2 * RADIUS + 1),
-    NREG = 10,       /* regressors: 1, dx, dy, albedo (3), normal (3), depth */
-    CH_ALBEDO = 3, CH_NORMAL = 6, CH_DEPTH = 9, CH_VARIANCE = 10, CH_HALF = 11,
-    MAX_BANDWIDTHS = 4,
+    NREG = 11,       /* regressors: 1, dx, dy, albedo (3), normal (3), depth, mirror light */
+    CH_ALBEDO = 3, CH_NORMAL = 6, CH_DEPTH = 9, CH_VARIANCE = 10, CH_MIRROR = 11,
     SELECT_RADIUS = 3 /* the error estimates are averaged over 7x7 pixels before choosing */
 };
 
 /* Rousselle et al.'s NL-means on colour: k sets how many standard
  * deviations of difference still count as alike; EPS keeps noise-free
  * pixels (variance 0) from dividing by zero. One buffer: K_COLOUR; two
- * halves: each of K_HALVES, chosen per pixel. */
+ * halves: each of the caller's, chosen per pixel. */
 static const double K_COLOUR = 0.45, EPS_COLOUR = 1e-8;
-static const double K_HALVES[] = {0.45, 1.0};
 /* The features' scales in the weights: albedo and normal differences, and
  * depth relative to the pixel's own. */
 static const double SIGMA_ALBEDO = 0.1, SIGMA_NORMAL = 0.3, SIGMA_DEPTH = 0.1;
@@ -38,17 +32,13 @@ static const double RIDGE = 1e-4;
 /* A regressor whose weighted spread in the window is below this is left
  * out (constant feature, e.g. one flat wall's normal). */
 static const double MIN_SPREAD = 1e-6;
-/* A half whose share of the pixel's weight is outside [MIN_SHARE, 1 -
- * MIN_SHARE] (an interrupted render) tells too little: both halves are
- * then taken as the whole. */
-static const double MIN_SHARE = 0.05;
-
-/* What one regression reads: the features (stride DENOISE_CHANNELS), the
+/* What one regression reads: the features (stride: DENOISE_CHANNELS, or
+ * FEATURE_STRIDE with the mirror light), the
  * colour whose patches weigh the neighbours (guide) and the colour that is
  * regressed (target), both stride 3, and the variance of the guide's
  * pixels (each channel). */
 typedef struct {
-    int w, h;
+    int w, h, stride;
     const float *feat;
     const float *guide, *target;
     const double *var;
@@ -58,7 +48,7 @@ static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v;
 
 static const float *features(const image *im, int x, int y)
 {
-    return im->feat + ((size_t)y * im->w + x) * DENOISE_CHANNELS;
+    return im->feat + ((size_t)y * im->w + x) * im->stride;
 }
 
 static int finite_pixel(const float *v, int n)
@@ -69,12 +59,13 @@ static int finite_pixel(const float *v, int n)
     return 1;
 }
 
-/* v averaged over each (2r+1)^2 neighbourhood within the image. */
+/* v averaged over each (2r+1)^2 neighbourhood within the image (NULL:
+ * out of memory). */
 static double *box_mean(int w, int h, const double *v, int r)
 {
     double *out = malloc(sizeof *out * (size_t)w * h);
     if (!out)
-        abort();
+        return NULL;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             double s = 0;
@@ -87,12 +78,13 @@ static double *box_mean(int w, int h, const double *v, int r)
     return out;
 }
 
-/* The variance channel of in, non-finite or negative values as 0. */
+/* The variance channel of in, non-finite or negative values as 0 (NULL:
+ * out of memory). */
 static double *variance_channel(int w, int h, const float *in)
 {
     double *v = malloc(sizeof *v * (size_t)w * h);
     if (!v)
-        abort();
+        return NULL;
     for (size_t p = 0; p < (size_t)w * h; p++) {
         float s = in[p * DENOISE_CHANNELS + CH_VARIANCE];
         v[p] = isfinite(s) && s > 0 ? s : 0.0;
@@ -181,8 +173,9 @@ static int cholesky_solve(double a[NREG][NREG], double b[NREG][3], int n)
 
 /* The regressors of q relative to p: 1, the screen offset over the
  * radius, the albedo and normal differences, the depth difference
- * relative to p's depth. */
-static void regressors(const float *p, const float *q, int dx, int dy, double *x)
+ * relative to p's depth, the mirror light's difference (0 without it: a
+ * regressor with no spread is left out). */
+static void regressors(const float *p, const float *q, int stride, int dx, int dy, double *x)
 {
     x[0] = 1.0;
     x[1] = (double)dx / RADIUS, x[2] = (double)dy / RADIUS;
@@ -191,6 +184,7 @@ static void regressors(const float *p, const float *q, int dx, int dy, double *x
         x[6 + c] = (double)q[CH_NORMAL + c] - p[CH_NORMAL + c];
     }
     x[9] = ((double)q[CH_DEPTH] - p[CH_DEPTH]) / fmax(fabs(p[CH_DEPTH]), 1e-6);
+    x[10] = stride > CH_MIRROR ? (double)q[CH_MIRROR] - p[CH_MIRROR] : 0.0;
 }
 
 /* The intercept (the value at p's own features) of the least-squares fit
@@ -249,14 +243,14 @@ static void denoise_pixel(const image *im, int px, int py, const double *ks, int
             if (qx < 0 || qy < 0 || qx >= im->w || qy >= im->h)
                 continue;
             const float *q = features(im, qx, qy), *t = im->target + ((size_t)qy * im->w + qx) * 3;
-            if (!finite_pixel(q, DENOISE_CHANNELS) || !finite_pixel(t, 3) ||
+            if (!finite_pixel(q, im->stride) || !finite_pixel(t, 3) ||
                 !finite_pixel(im->guide + ((size_t)qy * im->w + qx) * 3, 3))
                 continue;
             wf[n] = feature_weight(p, q) * variance_weight(im, px, py, qx, qy);
             if (!(wf[n] > 1e-6))
                 continue;
             d[n] = fmax(patch_distance(im, px, py, qx, qy), 0.0);
-            regressors(p, q, qx - px, qy - py, x[n]);
+            regressors(p, q, im->stride, qx - px, qy - py, x[n]);
             for (int c = 0; c < 3; c++)
                 y[n][c] = t[c];
             n++;
@@ -280,7 +274,7 @@ static void denoise_all(const image *im, const double *ks, int nk, float *out)
         for (int x = 0; x < im->w; x++) {
             float *o = out + ((size_t)y * im->w + x) * 3 * nk;
             const float *t = im->target + ((size_t)y * im->w + x) * 3;
-            if (finite_pixel(features(im, x, y), DENOISE_CHANNELS) && finite_pixel(t, 3))
+            if (finite_pixel(features(im, x, y), im->stride) && finite_pixel(t, 3))
                 denoise_pixel(im, x, y, ks, nk, o);
             else
                 for (int k = 0; k < nk; k++)
@@ -288,58 +282,47 @@ static void denoise_all(const image *im, const double *ks, int nk, float *out)
         }
 }
 
-/* The RGB of in (stride DENOISE_CHANNELS or more), stride 3. */
-static float *colour_of(int w, int h, const float *in, int stride)
+/* The RGB of in (stride DENOISE_CHANNELS), stride 3 (NULL: out of
+ * memory). */
+static float *colour_of(int w, int h, const float *in)
 {
     float *c = malloc(sizeof *c * (size_t)w * h * 3);
     if (!c)
-        abort();
+        return NULL;
     for (size_t p = 0; p < (size_t)w * h; p++)
-        memcpy(c + 3 * p, in + p * stride, 3 * sizeof *c);
+        memcpy(c + 3 * p, in + p * DENOISE_CHANNELS, 3 * sizeof *c);
     return c;
 }
 
-void denoise_image(int width, int height, const float *in, float *out)
+int denoise_image(int width, int height, const float *in, float *out)
 {
     double *raw = variance_channel(width, height, in);
     /* The variance averaged over each 3x3 neighbourhood (a 16-spp estimate
      * of it is itself noisy). */
-    double *var = box_mean(width, height, raw, 1);
-    float *colour = colour_of(width, height, in, DENOISE_CHANNELS);
-    image im = {width, height, in, colour, colour, var};
-    denoise_all(&im, &K_COLOUR, 1, out);
-    free(raw), free(var), free(colour);
-}
-
-/* The two halves of each pixel: a = half.RGB / A, b = (RGB - half.RGB) /
- * (1 - A), each stride 3, and their features (the first DENOISE_CHANNELS
- * of in). */
-static void split_halves(int w, int h, const float *in, float *a, float *b, float *feat)
-{
-    for (size_t p = 0; p < (size_t)w * h; p++) {
-        const float *v = in + p * DENOISE_HALF_CHANNELS;
-        double share = v[CH_HALF + 3];
-        int both = isfinite(share) && share >= MIN_SHARE && share <= 1.0 - MIN_SHARE;
-        for (int c = 0; c < 3; c++) {
-            a[3 * p + c] = both ? (float)(v[CH_HALF + c] / share) : v[c];
-            b[3 * p + c] = both ? (float)((v[c] - v[CH_HALF + c]) / (1.0 - share)) : v[c];
-        }
-        memcpy(feat + p * DENOISE_CHANNELS, v, DENOISE_CHANNELS * sizeof *feat);
+    double *var = raw ? box_mean(width, height, raw, 1) : NULL;
+    float *colour = colour_of(width, height, in);
+    int rc = -1;
+    if (var && colour) {
+        image im = {width, height, DENOISE_CHANNELS, in, colour, colour, var};
+        denoise_all(&im, &K_COLOUR, 1, out);
+        rc = 0;
     }
+    free(raw), free(var), free(colour);
+    return rc;
 }
 
-/* The variance of a half's pixels (each channel): the renderer's sample
- * variance (3x3-averaged), rescaled by how far the halves actually differ
- * around the pixel, since with quasi-random samplers the sample variance
+/* The variance of a half's pixels (each channel): the sample variance
+ * (3x3-averaged), rescaled by how far the halves actually differ around
+ * the pixel, since with quasi-random samplers the sample variance
  * overstates the error of the mean several times (Rousselle et al. 2012
  * use the halves' difference alike). Where the sample variance is 0 the
- * halves' difference alone, averaged. */
-static double *half_variance(int w, int h, const float *feat, const float *a, const float *b)
+ * halves' difference alone, averaged. NULL: out of memory. */
+static double *half_variance(int w, int h, const double *raw, const float *a, const float *b)
 {
     size_t n = (size_t)w * h;
-    double *raw = variance_channel(w, h, feat), *diff = calloc(n, sizeof *diff);
+    double *diff = malloc(sizeof *diff * n);
     if (!diff)
-        abort();
+        return NULL;
     for (size_t p = 0; p < n; p++) {
         double s = 0;
         for (int c = 0; c < 3; c++) {
@@ -349,61 +332,77 @@ static double *half_variance(int w, int h, const float *feat, const float *a, co
         diff[p] = s / 6; /* E[(a - b)^2] = 2 var(half) */
     }
     double *sample = box_mean(w, h, raw, 1), *sample_wide = box_mean(w, h, raw, 4),
-           *diff_wide = box_mean(w, h, diff, 4);
+           *diff_wide = box_mean(w, h, diff, 4), *var = malloc(sizeof *var * n);
     /* A half holds half the samples: its variance is twice the whole's
-     * (the channel's), so 2 sample[p] rescaled by diff_wide / (2
+     * (the sample variance's), so 2 sample[p] rescaled by diff_wide / (2
      * sample_wide). */
-    for (size_t p = 0; p < n; p++)
-        raw[p] = sample_wide[p] > 0 ? sample[p] * diff_wide[p] / sample_wide[p] : diff_wide[p];
+    if (sample && sample_wide && diff_wide && var)
+        for (size_t p = 0; p < n; p++)
+            var[p] = sample_wide[p] > 0 ? sample[p] * diff_wide[p] / sample_wide[p] : diff_wide[p];
+    else
+        free(var), var = NULL;
     free(diff), free(sample), free(sample_wide), free(diff_wide);
-    return raw;
+    return var;
 }
 
-void denoise_image_halves(int width, int height, const float *in, float *out)
+/* Each bandwidth's error at each pixel, estimated from the halves: the
+ * filtered a (fa) against b (independent of a; E[(fa - b)^2] = MSE(fa) +
+ * var(b)) and vice versa, less what averaging fa and fb removes of their
+ * variance, (fa - fb)^2 / 4; then averaged over SELECT_RADIUS. Into err
+ * (nk per pixel); -1: out of memory. */
+static int bandwidth_errors(int w, int h, const float *a, const float *b, const float *fa, const float *fb,
+                            const double *var, int nk, double *err)
 {
-    enum { NK = sizeof K_HALVES / sizeof K_HALVES[0] };
-    size_t n = (size_t)width * height;
-    float *a = malloc(sizeof *a * n * 3), *b = malloc(sizeof *b * n * 3),
-          *feat = calloc(n * DENOISE_CHANNELS, sizeof *feat), *fa = malloc(sizeof *fa * n * 3 * NK),
-          *fb = malloc(sizeof *fb * n * 3 * NK);
-    double *err = malloc(sizeof *err * n * NK);
-    if (!a || !b || !feat || !fa || !fb || !err)
-        abort();
-    split_halves(width, height, in, a, b, feat);
-    double *var = half_variance(width, height, feat, a, b);
-    /* Cross-filtering: each half regressed with the weights of the other,
-     * so that a half's noise does not choose its own weights. */
-    image ia = {width, height, feat, b, a, var}, ib = {width, height, feat, a, b, var};
-    denoise_all(&ia, K_HALVES, NK, fa);
-    denoise_all(&ib, K_HALVES, NK, fb);
-    /* Each bandwidth's error per pixel, estimated from the halves: the
-     * filtered a against b (independent of a; E[(fa - b)^2] = MSE(fa) +
-     * var(b)) and vice versa, less what averaging fa and fb removes of
-     * their variance, (fa - fb)^2 / 4; then averaged over SELECT_RADIUS. */
-    for (int k = 0; k < NK; k++) {
-        double *e = malloc(sizeof *e * n);
-        if (!e)
-            abort();
+    size_t n = (size_t)w * h;
+    double *e = malloc(sizeof *e * n);
+    if (!e)
+        return -1;
+    for (int k = 0; k < nk; k++) {
         for (size_t p = 0; p < n; p++) {
             double s = 0;
             for (int c = 0; c < 3; c++) {
-                double xa = fa[(p * NK + k) * 3 + c], xb = fb[(p * NK + k) * 3 + c];
+                double xa = fa[(p * nk + k) * 3 + c], xb = fb[(p * nk + k) * 3 + c];
                 double ea = xa - b[3 * p + c], eb = xb - a[3 * p + c], dab = xa - xb;
                 s += 0.5 * (ea * ea + eb * eb) - 0.25 * dab * dab;
             }
             e[p] = isfinite(s) ? s / 3 - var[p] : INFINITY;
         }
-        double *smooth = box_mean(width, height, e, SELECT_RADIUS);
+        double *smooth = box_mean(w, h, e, SELECT_RADIUS);
+        if (!smooth) {
+            free(e);
+            return -1;
+        }
         for (size_t p = 0; p < n; p++)
-            err[p * NK + k] = isfinite(smooth[p]) ? smooth[p] : INFINITY;
-        free(e), free(smooth);
+            err[p * nk + k] = isfinite(smooth[p]) ? smooth[p] : INFINITY;
+        free(smooth);
     }
-    for (size_t p = 0; p < n; p++) {
-        int best = 0;
-        for (int k = 1; k < NK; k++)
-            best = err[p * NK + k] < err[p * NK + best] ? k : best;
-        for (int c = 0; c < 3; c++)
-            out[3 * p + c] = 0.5f * (fa[(p * NK + best) * 3 + c] + fb[(p * NK + best) * 3 + c]);
+    free(e);
+    return 0;
+}
+
+int feature_regression_halves(int width, int height, const float *feat, const float *a, const float *b,
+                              const double *sample_variance, const double *ks, int nk, float *out)
+{
+    size_t n = (size_t)width * height, NK = (size_t)nk;
+    float *fa = malloc(sizeof *fa * n * 3 * NK), *fb = malloc(sizeof *fb * n * 3 * NK);
+    double *err = malloc(sizeof *err * n * NK), *var = half_variance(width, height, sample_variance, a, b);
+    int rc = -1;
+    if (fa && fb && err && var) {
+        /* Cross-filtering: each half regressed with the weights of the
+         * other, so that a half's noise does not choose its own weights. */
+        image ia = {width, height, FEATURE_STRIDE, feat, b, a, var}, ib = {width, height, FEATURE_STRIDE, feat, a, b, var};
+        denoise_all(&ia, ks, nk, fa);
+        denoise_all(&ib, ks, nk, fb);
+        rc = bandwidth_errors(width, height, a, b, fa, fb, var, nk, err);
     }
-    free(a), free(b), free(feat), free(fa), free(fb), free(err), free(var);
+    if (rc == 0)
+        for (size_t p = 0; p < n; p++) {
+            size_t best = 0;
+            for (size_t k = 1; k < NK; k++)
+                best = err[p * NK + k] < err[p * NK + best] ? k : best;
+            for (int c = 0; c < 3; c++)
+                out[3 * p + c] = 0.5f * (fa[(p * NK + best) * 3 + c] + fb[(p * NK + best) * 3 + c]);
+        }
+    free(fa), free(fb), free(err), free(var);
+    return rc;
 }

@@ -60,7 +60,7 @@ bool integrator_rough_hit_aovs(double *aov, const surface_hit *hit, double path_
 
 void integrator_clear_rough_aovs(double *aov)
 {
-    for (int i = INTEGRATOR_AOV_ROUGH_DEPTH; i < INTEGRATOR_AOV_COUNT; i++)
+    for (int i = INTEGRATOR_AOV_ROUGH_DEPTH; i < INTEGRATOR_AOV_ROUGH_ALBEDO + 3; i++)
         aov[i] = 0.0;
 }
 

@@ -37,7 +37,13 @@ typedef struct {
  * "AOVs"): the path's first surface with a non-delta lobe, seen through
  * the mirrors, glass and sheets before it (depth: the path's length to it;
  * albedo: times the path's weight there), zero where the path escapes
- * before one. Integrators other than `path` give the first hit's. */
+ * before one. Integrators other than `path` give the first hit's. Then the
+ * specular part of the radiance: what the path gathers after leaving its
+ * first rough vertex by a glossy or delta lobe (the rest, direct light at
+ * that vertex included, is the diffuse part); and the light seen in the
+ * mirror direction at that vertex, where its BSDF has a delta reflection
+ * (a coat): the emitter met along the mirrored ray (or the environment),
+ * whichever lobe the path then samples. 0 for other integrators. */
 enum {
     INTEGRATOR_AOV_DEPTH = 0,
     INTEGRATOR_AOV_NORMAL = 1,
@@ -46,7 +52,9 @@ enum {
     INTEGRATOR_AOV_ROUGH_DEPTH = 8,
     INTEGRATOR_AOV_ROUGH_NORMAL = 9,
     INTEGRATOR_AOV_ROUGH_ALBEDO = 12,
-    INTEGRATOR_AOV_COUNT = 15
+    INTEGRATOR_AOV_SPECULAR = 15,
+    INTEGRATOR_AOV_MIRROR = 18,
+    INTEGRATOR_AOV_COUNT = 21
 };
 
 /* Radiance along ray (t in (tmin, tmax)) from the numbers of smp; aov (may

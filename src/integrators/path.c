@@ -124,6 +124,63 @@ static rgb next_event(const integrator_scene *sc, const surface_hit *h, const bs
     return rgb_scale(rgb_mul(rgb_mul(f, tr), es.value), w / pdf_l);
 }
 
+/* The lobes that make a path specular when sampled at its first rough
+ * vertex (integrators.h, INTEGRATOR_AOV_SPECULAR). */
+static const unsigned SPECULAR_LOBES =
+    BSDF_GLOSSY_REFLECTION | BSDF_DELTA_REFLECTION | BSDF_GLOSSY_TRANSMISSION | BSDF_DELTA_TRANSMISSION;
+
+/* L += c, and the specular part too when the path is specular: the
+ * diffuse part L - L_specular is (up to rounding) the sum of the other
+ * terms. */
+static void add_radiance(rgb *L, rgb *L_specular, bool specular, rgb c)
+{
+    *L = rgb_add(*L, c);
+    if (specular)
+        *L_specular = rgb_add(*L_specular, c);
+}
+
+/* The light seen from hit in the mirror direction of d about the shading
+ * normal: the emitter the mirrored ray meets (or the environment where it
+ * escapes), into aov[INTEGRATOR_AOV_MIRROR...]. A denoising feature: it
+ * says where a coat's highlights are, in every sample, not only in those
+ * that sample the coat's lobe. */
+static void mirror_light_aov(const integrator_scene *sc, const surface_hit *hit, vec3 d, double *aov)
+{
+    vec3 n = hit->sh.n;
+    ray3 r = spawn(hit, v3_norm(v3_sub(d, v3_scale(n, 2.0 * v3_dot(d, n)))));
+    surface_hit h;
+    rgb le = rgb_gray(0.0);
+    if (shape_list_intersect(sc->shapes, &r, 0.0, INFINITY, &h)) {
+        if (h.shape->emitter)
+            le = emitter_eval_hit(h.shape->emitter, &h, r.d);
+    } else if (sc->emitters->env) {
+        le = emitter_eval_env(sc->emitters->env, r.d);
+    }
+    aov[INTEGRATOR_AOV_MIRROR] = le.r, aov[INTEGRATOR_AOV_MIRROR + 1] = le.g, aov[INTEGRATOR_AOV_MIRROR + 2] = le.b;
+}
+
+/* The denoising features of a path that reflected off a sheet (thin glass)
+ * before its first rough vertex: those of what lies straight behind the
+ * sheet, as for the paths that went through, so that a glass case's
+ * reflections do not speckle the features of what it holds. */
+static void features_through_sheets(const integrator_scene *sc, const surface_hit *hit, vec3 d, double path_length,
+                                    rgb beta, double *aov)
+{
+    ray3 r = spawn(hit, d);
+    surface_hit h;
+    for (int k = 0; k < 64; k++) { /* 64 sheets in a row: give up, keep the last */
+        if (!shape_list_intersect(sc->shapes, &r, 0.0, INFINITY, &h)) {
+            integrator_clear_rough_aovs(aov);
+            return;
+        }
+        path_length += h.t;
+        if (integrator_rough_hit_aovs(aov, &h, path_length, beta) ||
+            !(bsdf_flags(h.shape->bsdf) & BSDF_STRAIGHT_TRANSMISSION))
+            return;
+        r = spawn(&h, d);
+    }
+}
+
 static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray3 *ray0, double tmin, double tmax,
                    sampler_stream *smp, double *aov)
 {
@@ -134,7 +191,12 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
     bool prev_delta = true;
     ray3 ray = *ray0;
     emitter_ref prev = {ray.o, v3(0.0, 0.0, 0.0)}; /* the last scattering vertex, as NEE saw it */
-    bool rough_pending = aov != NULL; /* the rough-vertex AOVs are still to be found */
+    bool rough_pending = aov != NULL; /* the first rough vertex is still to be found */
+    bool features_pending = rough_pending; /* and the denoising features (found past sheets apart) */
+    /* The path left its first rough vertex by a glossy or delta lobe: what
+     * it gathers from then on is the specular AOV's too. */
+    bool specular = false;
+    rgb L_specular = rgb_gray(0.0);
     double path_length = 0.0;         /* the ray directions are unit: t is a distance */
     if (aov) {
         for (int i = 0; i < INTEGRATOR_AOV_COUNT; i++)
@@ -146,14 +208,14 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         bool found = shape_list_intersect(sc->shapes, &ray, t0, t1, &hit);
         bool show = !(depth == 0 && pd->hide_emitters);
         if (!found) {
-            if (rough_pending)
+            if (features_pending)
                 integrator_clear_rough_aovs(aov);
             if (emitters->env && show) {
                 const emitter_t *e = emitters->env;
                 double w = prev_delta ? 1.0
                                       : mis_power_heuristic(prev_pdf, emitter_list_pmf(emitters, &prev, e) *
                                                                           emitter_pdf_env(e, ray.d));
-                L = rgb_add(L, rgb_scale(rgb_mul(beta, emitter_eval_env(e, ray.d)), w));
+                add_radiance(&L, &L_specular, specular, rgb_scale(rgb_mul(beta, emitter_eval_env(e, ray.d)), w));
             }
             break;
         }
@@ -161,8 +223,12 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         path_length += hit.t;
         if (depth == 0 && aov)
             integrator_first_hit_aovs(aov, &hit);
-        if (rough_pending)
-            rough_pending = !integrator_rough_hit_aovs(aov, &hit, path_length, beta);
+        bool at_rough = rough_pending && (bsdf_flags(sh->bsdf) & BSDF_SMOOTH);
+        rough_pending = rough_pending && !at_rough;
+        if (features_pending)
+            features_pending = !integrator_rough_hit_aovs(aov, &hit, path_length, beta);
+        if (at_rough && (bsdf_flags(sh->bsdf) & BSDF_DELTA_REFLECTION))
+            mirror_light_aov(sc, &hit, ray.d, aov);
         if (sh->emitter && show) {
             const emitter_t *e = sh->emitter;
             rgb le = emitter_eval_hit(e, &hit, ray.d);
@@ -170,7 +236,7 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
                 double w = prev_delta ? 1.0
                                       : mis_power_heuristic(prev_pdf, emitter_list_pmf(emitters, &prev, e) *
                                                                           emitter_pdf_hit(e, prev.p, &hit, ray.d));
-                L = rgb_add(L, rgb_scale(rgb_mul(beta, le), w));
+                add_radiance(&L, &L_specular, specular, rgb_scale(rgb_mul(beta, le), w));
             }
         }
         if (pd->max_depth >= 0 && depth + 1 >= pd->max_depth) {
@@ -183,7 +249,8 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
         if ((bsdf_flags(sh->bsdf) & BSDF_SMOOTH) && emitters->count > 0) {
             /* The emitter at depth + 1 + sheets must not pass max_depth - 1. */
             int max_sheets = pd->max_depth < 0 ? -1 : pd->max_depth - 2 - depth;
-            L = rgb_add(L, rgb_mul(beta, next_event(sc, &hit, sh->bsdf, &q, smp, depth, max_sheets)));
+            add_radiance(&L, &L_specular, specular,
+                         rgb_mul(beta, next_event(sc, &hit, sh->bsdf, &q, smp, depth, max_sheets)));
         }
 
         bsdf_sample_rec bs;
@@ -196,6 +263,13 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             aov[INTEGRATOR_AOV_ALPHA] = 1.0;
         if (!sampled || rgb_is_black(bs.weight))
             break;
+        if (at_rough)
+            specular = (bs.sampled_type & SPECULAR_LOBES) != 0;
+        if (features_pending && (bsdf_flags(sh->bsdf) & BSDF_STRAIGHT_TRANSMISSION) &&
+            !(bs.sampled_type & BSDF_STRAIGHT_TRANSMISSION)) {
+            features_through_sheets(sc, &hit, ray.d, path_length, beta, aov);
+            features_pending = false;
+        }
         beta = rgb_mul(beta, bs.weight);
         eta *= bs.eta;
         /* Straight through a thin sheet, the path keeps the last scattering
@@ -221,7 +295,12 @@ static rgb path_li(const integrator_t *in, const integrator_scene *sc, const ray
             break;
     }
     if (!isfinite(L.r) || !isfinite(L.g) || !isfinite(L.b))
-        return rgb_gray(0.0);
+        L = L_specular = rgb_gray(0.0);
+    if (aov) {
+        aov[INTEGRATOR_AOV_SPECULAR] = L_specular.r;
+        aov[INTEGRATOR_AOV_SPECULAR + 1] = L_specular.g;
+        aov[INTEGRATOR_AOV_SPECULAR + 2] = L_specular.b;
+    }
     return L;
 }
 

@@ -16,7 +16,7 @@ static void missing_channels(const exr_in *e, char *out, size_t outlen)
         if (!exr_in_has_channel(e, denoise_channel_names[k]))
             n += (size_t)snprintf(out + n, outlen - n, "%s%s", n ? ", " : "has no channel ", denoise_channel_names[k]);
     if (n && n < outlen)
-        snprintf(out + n, outlen - n, " (denoising needs R, G, B and render --aov denoising,half,variance)");
+        snprintf(out + n, outlen - n, " (denoising needs R, G, B and render --aov denoising,half,specular,variance)");
 }
 
 int denoise_exr(const char *in_path, const char *out_path, char *err, size_t errlen)
@@ -37,14 +37,19 @@ int denoise_exr(const char *in_path, const char *out_path, char *err, size_t err
     const char **names = malloc(sizeof *names * (size_t)nch);
     float *all = malloc(sizeof *all * npix * nch), *in = malloc(sizeof *in * npix * DENOISE_HALF_CHANNELS),
           *out = malloc(sizeof *out * npix * 3);
-    if (!names || !all || !in || !out)
-        abort();
+    int rc = -2;
+    if (!names || !all || !in || !out) {
+        snprintf(err, errlen, "%s: %dx%d pixels: out of memory", in_path, w, h);
+        goto done;
+    }
     for (int c = 0; c < nch; c++)
         names[c] = exr_in_channel_name(e, c);
-    int rc = -2;
     if (exr_in_read(e, nch, names, all, err, errlen) == 0 &&
         exr_in_read(e, DENOISE_HALF_CHANNELS, denoise_channel_names, in, err, errlen) == 0) {
-        denoise_image_halves(w, h, in, out);
+        if (denoise_image_halves(w, h, in, out) != 0) {
+            snprintf(err, errlen, "%s: %dx%d pixels: out of memory for the denoiser", in_path, w, h);
+            goto done;
+        }
         for (int c = 0; c < nch; c++)
             for (int k = 0; k < 3; k++)
                 if (!strcmp(names[c], denoise_channel_names[k]))
@@ -53,6 +58,7 @@ int denoise_exr(const char *in_path, const char *out_path, char *err, size_t err
         film_attr denoised = {"celadon/denoised", DENOISE_DESCRIPTION};
         rc = exr_write_float_like(out_path, w, h, nch, names, all, e, &denoised, 1, err, errlen) == 0 ? 0 : -1;
     }
+done:
     exr_in_close(e);
     free(names);
     free(all);

@@ -60,6 +60,8 @@ int render_aov_parse(const char *list, unsigned *mask)
             *mask |= RENDER_AOV_DENOISING;
         else if (!strcmp(tok, "half"))
             *mask |= RENDER_AOV_HALF;
+        else if (!strcmp(tok, "specular"))
+            *mask |= RENDER_AOV_SPECULAR;
         else
             return -1;
     }
@@ -156,6 +158,15 @@ static void pack_values(const render_job *j, rgb L, const double *aov, int k, do
         double in = k < j->half_end;
         out[n++] = in * L.r, out[n++] = in * L.g, out[n++] = in * L.b, out[n++] = in;
     }
+    for (int i = 0; i < 3 && (j->aovs & RENDER_AOV_SPECULAR); i++)
+        out[n++] = aov[INTEGRATOR_AOV_SPECULAR + i];
+    if ((j->aovs & RENDER_AOV_SPECULAR) && (j->aovs & RENDER_AOV_HALF)) {
+        double in = k < j->half_end;
+        for (int i = 0; i < 3; i++)
+            out[n++] = in * aov[INTEGRATOR_AOV_SPECULAR + i];
+    }
+    for (int i = 0; i < 3 && (j->aovs & RENDER_AOV_SPECULAR); i++)
+        out[n++] = aov[INTEGRATOR_AOV_MIRROR + i];
     for (int i = 0; i < j->nown; i++)
         out[n++] = aov[INTEGRATOR_AOV_COUNT + i];
 }
@@ -272,7 +283,7 @@ int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, s
     static const char *const xyz_names[3] = {"X", "Y", "Z"}, *const rgba_names[4] = {"R", "G", "B", "A"};
     static const char *const whole[1] = {""};
     int nown = integrator_channel_count(s->integrator);
-    film_aov *list = malloc(sizeof *list * (size_t)(7 + nown));
+    film_aov *list = malloc(sizeof *list * (size_t)(10 + nown));
     if (!list)
         abort();
     int naov = 0;
@@ -294,6 +305,12 @@ int render_film_init(const scene_t *s, unsigned aovs, film_t *film, char *err, s
     }
     if (aovs & RENDER_AOV_HALF)
         list[naov++] = (film_aov){"half", 4, rgba_names};
+    if (aovs & RENDER_AOV_SPECULAR)
+        list[naov++] = (film_aov){"specular", 3, rgba_names};
+    if ((aovs & RENDER_AOV_SPECULAR) && (aovs & RENDER_AOV_HALF))
+        list[naov++] = (film_aov){"specular half", 3, rgba_names};
+    if (aovs & RENDER_AOV_SPECULAR)
+        list[naov++] = (film_aov){"Denoising Mirror", 3, rgba_names};
     for (int i = 0; i < nown; i++)
         list[naov++] = (film_aov){integrator_channel_name(s->integrator, i), 1, whole};
     int rc = film_init_format(film, s->film.crop_w, s->film.crop_h, s->film.format, list, naov, err, errlen);

@@ -4,7 +4,7 @@
 #ifndef CELADON_TEST_EXR_PLANES_H
 #define CELADON_TEST_EXR_PLANES_H
 
-enum { EXR_PLANES_MAX = 32 };
+enum { EXR_PLANES_MAX = 40 };
 typedef struct {
     int width, height, nch;
     char names[EXR_PLANES_MAX][32];

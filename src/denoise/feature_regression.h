@@ -1,0 +1,26 @@
+/* The denoiser's filter for one buffer (feature_regression.c); the
+ * public entry points are in celadon/denoise.h. */
+#ifndef CELADON_DENOISE_FEATURE_REGRESSION_H
+#define CELADON_DENOISE_FEATURE_REGRESSION_H
+
+#include "celadon/denoise.h"
+
+/* The features of feature_regression_halves, per pixel: those of
+ * denoise_image's input (DENOISE_CHANNELS), then the luminance of the
+ * light seen in the mirror direction (render --aov specular, Denoising
+ * Mirror), or 0 where it does not count. */
+enum { FEATURE_STRIDE = DENOISE_CHANNELS + 1 };
+
+/* Denoises one buffer given as two independent half-sample renders a and
+ * b (3 floats a pixel each), guided by feat (FEATURE_STRIDE floats a
+ * pixel: only the albedo, normal, depth and mirror light are read) and by sample_variance (a pixel's sample variance, of the whole:
+ * only its shape over the image counts, the halves' difference sets its
+ * level): cross-filtered at each of the nk bandwidths ks of the NL-means
+ * colour weights (0.45: a pixel's neighbours within about half a standard
+ * deviation count), chosen per pixel, the filtered halves averaged into
+ * out (3 floats a pixel). Returns 0, or -1 when out of memory (out then
+ * undefined). */
+int feature_regression_halves(int width, int height, const float *feat, const float *a, const float *b,
+                              const double *sample_variance, const double *ks, int nk, float *out);
+
+#endif
