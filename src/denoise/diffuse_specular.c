@@ -34,8 +34,6 @@ const char *const denoise_channel_names[DENOISE_HALF_CHANNELS] = {
     "specular half.R",          "specular half.G",          "specular half.B",          "Denoising Mirror.R",
     "Denoising Mirror.G",       "Denoising Mirror.B"};
 
-enum { CH_ALBEDO = 3, CH_VARIANCE = 10, CH_HALF = 11, CH_SPECULAR = 15, CH_SPECULAR_HALF = 18, CH_MIRROR = 21 };
-
 /* A half whose share of the pixel's weight is outside [MIN_SHARE, 1 -
  * MIN_SHARE] (an interrupted render) tells too little: both halves are
  * then taken as the whole. */
@@ -58,7 +56,7 @@ static const double K_PARTS[] = {0.45, 1.0, 2.0};
 /* What the diffuse part of pixel v is divided by, channel c. */
 static double demodulation(const float *v, int c)
 {
-    double a = v[CH_ALBEDO + c];
+    double a = v[DENOISE_CH_ALBEDO + c];
     return isfinite(a) && a > MIN_ALBEDO ? a : MIN_ALBEDO;
 }
 
@@ -70,17 +68,18 @@ static void split_part(int w, int h, const float *in, int specular, float *a, fl
 {
     for (size_t p = 0; p < (size_t)w * h; p++) {
         const float *v = in + p * DENOISE_HALF_CHANNELS;
-        double share = v[CH_HALF + 3], d2 = 0;
+        double share = v[DENOISE_CH_HALF + 3], d2 = 0;
         int both = isfinite(share) && share >= MIN_SHARE && share <= 1.0 - MIN_SHARE;
         for (int c = 0; c < 3; c++) {
-            double whole = specular ? v[CH_SPECULAR + c] : (double)v[c] - v[CH_SPECULAR + c];
-            double half = specular ? v[CH_SPECULAR_HALF + c] : (double)v[CH_HALF + c] - v[CH_SPECULAR_HALF + c];
+            double whole = specular ? v[DENOISE_CH_SPECULAR + c] : (double)v[c] - v[DENOISE_CH_SPECULAR + c];
+            double half = specular ? v[DENOISE_CH_SPECULAR_HALF + c]
+                                   : (double)v[DENOISE_CH_HALF + c] - v[DENOISE_CH_SPECULAR_HALF + c];
             double d = specular ? 1.0 : demodulation(v, c);
             a[3 * p + c] = (float)((both ? half / share : whole) / d);
             b[3 * p + c] = (float)((both ? (whole - half) / (1.0 - share) : whole) / d);
             d2 += d * d / 3;
         }
-        double s = v[CH_VARIANCE];
+        double s = v[DENOISE_CH_VARIANCE];
         sample[p] = isfinite(s) && s > 0 ? s / d2 : 0.0;
     }
 }
@@ -128,8 +127,8 @@ int denoise_image_halves(int width, int height, const float *in, float *out)
         for (size_t p = 0; p < n; p++) {
             const float *v = in + p * DENOISE_HALF_CHANNELS;
             memcpy(feat + p * FEATURE_STRIDE, v, DENOISE_CHANNELS * sizeof *feat);
-            feat[p * FEATURE_STRIDE + DENOISE_CHANNELS] =
-                specular ? (v[CH_MIRROR] + v[CH_MIRROR + 1] + v[CH_MIRROR + 2]) / 3 : 0.0f;
+            feat[p * FEATURE_STRIDE + FEATURE_MIRROR] =
+                specular ? (v[DENOISE_CH_MIRROR] + v[DENOISE_CH_MIRROR + 1] + v[DENOISE_CH_MIRROR + 2]) / 3 : 0.0f;
         }
         split_part(width, height, in, specular, a, b, sample);
         firefly_bound(width, height, b, bound_a);

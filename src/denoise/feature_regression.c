@@ -14,7 +14,6 @@ enum {
     RADIUS = 10,     /* the window's half side */
     WINDOW = (2 * RADIUS + 1) * (2 * RADIUS + 1),
     NREG = 11,       /* regressors: 1, dx, dy, albedo (3), normal (3), depth, mirror light */
-    CH_ALBEDO = 3, CH_NORMAL = 6, CH_DEPTH = 9, CH_VARIANCE = 10, CH_MIRROR = 11,
     SELECT_RADIUS = 3 /* the error estimates are averaged over 7x7 pixels before choosing */
 };
 
@@ -86,7 +85,7 @@ static double *variance_channel(int w, int h, const float *in)
     if (!v)
         return NULL;
     for (size_t p = 0; p < (size_t)w * h; p++) {
-        float s = in[p * DENOISE_CHANNELS + CH_VARIANCE];
+        float s = in[p * DENOISE_CHANNELS + DENOISE_CH_VARIANCE];
         v[p] = isfinite(s) && s > 0 ? s : 0.0;
     }
     return v;
@@ -119,11 +118,12 @@ static double feature_weight(const float *p, const float *q)
 {
     double da = 0, dn = 0;
     for (int c = 0; c < 3; c++) {
-        double a = (double)p[CH_ALBEDO + c] - q[CH_ALBEDO + c], n = (double)p[CH_NORMAL + c] - q[CH_NORMAL + c];
+        double a = (double)p[DENOISE_CH_ALBEDO + c] - q[DENOISE_CH_ALBEDO + c];
+        double n = (double)p[DENOISE_CH_NORMAL + c] - q[DENOISE_CH_NORMAL + c];
         da += a * a, dn += n * n;
     }
-    double zs = SIGMA_DEPTH * fmax(fmax(fabs(p[CH_DEPTH]), fabs(q[CH_DEPTH])), 1e-6);
-    double dz = ((double)p[CH_DEPTH] - q[CH_DEPTH]) / zs;
+    double zs = SIGMA_DEPTH * fmax(fmax(fabs(p[DENOISE_CH_DEPTH]), fabs(q[DENOISE_CH_DEPTH])), 1e-6);
+    double dz = ((double)p[DENOISE_CH_DEPTH] - q[DENOISE_CH_DEPTH]) / zs;
     return exp(-0.5 * (da / (SIGMA_ALBEDO * SIGMA_ALBEDO) + dn / (SIGMA_NORMAL * SIGMA_NORMAL) + dz * dz));
 }
 
@@ -180,11 +180,11 @@ static void regressors(const float *p, const float *q, int stride, int dx, int d
     x[0] = 1.0;
     x[1] = (double)dx / RADIUS, x[2] = (double)dy / RADIUS;
     for (int c = 0; c < 3; c++) {
-        x[3 + c] = (double)q[CH_ALBEDO + c] - p[CH_ALBEDO + c];
-        x[6 + c] = (double)q[CH_NORMAL + c] - p[CH_NORMAL + c];
+        x[3 + c] = (double)q[DENOISE_CH_ALBEDO + c] - p[DENOISE_CH_ALBEDO + c];
+        x[6 + c] = (double)q[DENOISE_CH_NORMAL + c] - p[DENOISE_CH_NORMAL + c];
     }
-    x[9] = ((double)q[CH_DEPTH] - p[CH_DEPTH]) / fmax(fabs(p[CH_DEPTH]), 1e-6);
-    x[10] = stride > CH_MIRROR ? (double)q[CH_MIRROR] - p[CH_MIRROR] : 0.0;
+    x[9] = ((double)q[DENOISE_CH_DEPTH] - p[DENOISE_CH_DEPTH]) / fmax(fabs(p[DENOISE_CH_DEPTH]), 1e-6);
+    x[10] = stride > FEATURE_MIRROR ? (double)q[FEATURE_MIRROR] - p[FEATURE_MIRROR] : 0.0;
 }
 
 /* The intercept (the value at p's own features) of the least-squares fit

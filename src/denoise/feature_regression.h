@@ -5,11 +5,25 @@
 
 #include "celadon/denoise.h"
 
+/* Where each channel of denoise_channel_names lies in a pixel of the
+ * denoiser's input (the first DENOISE_CHANNELS for denoise_image, all
+ * DENOISE_HALF_CHANNELS for denoise_image_halves; colour at 0). */
+enum {
+    DENOISE_CH_ALBEDO = 3,
+    DENOISE_CH_NORMAL = 6,
+    DENOISE_CH_DEPTH = 9,
+    DENOISE_CH_VARIANCE = 10,
+    DENOISE_CH_HALF = 11,
+    DENOISE_CH_SPECULAR = 15,
+    DENOISE_CH_SPECULAR_HALF = 18,
+    DENOISE_CH_MIRROR = 21
+};
+
 /* The features of feature_regression_halves, per pixel: those of
- * denoise_image's input (DENOISE_CHANNELS), then the luminance of the
- * light seen in the mirror direction (render --aov specular, Denoising
- * Mirror), or 0 where it does not count. */
-enum { FEATURE_STRIDE = DENOISE_CHANNELS + 1 };
+ * denoise_image's input (DENOISE_CHANNELS), then at FEATURE_MIRROR the
+ * luminance of the light seen in the mirror direction (render --aov
+ * specular, Denoising Mirror), or 0 where it does not count. */
+enum { FEATURE_MIRROR = DENOISE_CHANNELS, FEATURE_STRIDE = DENOISE_CHANNELS + 1 };
 
 /* Denoises one buffer given as two independent half-sample renders a and
  * b (3 floats a pixel each), guided by feat (FEATURE_STRIDE floats a
