@@ -75,7 +75,8 @@ int recon_texture_from_camera(const image_t *photo, const recon_camera *cam, con
     out->rgb = malloc((size_t)rows * cols * 3);
     out->seen = malloc((size_t)rows * cols);
     /* r, slope, row_y (each row's image row) and body_x (its outline's x on either side) */
-    double *r = malloc(5 * (size_t)rows * sizeof *r), *slope = r + rows, *row_y = r + 2 * rows, *body_x = r + 3 * rows;
+    double *r = malloc(5 * (size_t)rows * sizeof *r);
+    double *slope = r ? r + rows : NULL, *row_y = r ? r + 2 * rows : NULL, *body_x = r ? r + 3 * rows : NULL;
     int *seen_rows = malloc((size_t)rows * sizeof *seen_rows);
     if (!out->rgb || !out->seen || !r || !seen_rows || radius_by_row(mer, rows, r, slope) != 0) {
         free(r);
@@ -119,12 +120,18 @@ int recon_texture_from_camera(const image_t *photo, const recon_camera *cam, con
             memcpy(out->rgb + (size_t)j * cols * 3, out->rgb + (size_t)best * cols * 3, (size_t)cols * 3);
     }
     unsigned char *sides = parts ? malloc((size_t)rows) : NULL;
-    if (sides) {
-        recon_texture_covered_rows(parts, rows, row_y, body_x, sides);
-        recon_texture_fill_parts(out, sides);
+    int rc = 0;
+    if (parts) {
+        if (sides)
+            recon_texture_covered_rows(parts, rows, row_y, body_x, sides);
+        if (!sides || recon_texture_fill_parts(out, sides) != 0) {
+            recon_texture_free(out);
+            snprintf(err, errlen, "texture: out of memory");
+            rc = -1;
+        }
     }
     free(sides);
     free(r);
     free(seen_rows);
-    return 0;
+    return rc;
 }

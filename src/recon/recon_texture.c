@@ -165,7 +165,11 @@ int recon_texture_from_photo(const image_t *photo, const recon_result *res, reco
         }
     }
     free(cos_u);
-    recon_texture_fill_parts(out, sides);
+    if (recon_texture_fill_parts(out, sides) != 0) {
+        recon_texture_free(out);
+        snprintf(err, errlen, "texture: out of memory");
+        goto done;
+    }
     status = 0;
 done:
     free(sides);
