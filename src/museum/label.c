@@ -179,9 +179,11 @@ static int layout_on(cairo_t *cr, const label_text *t, int width, int height, la
 
 int label_layout(const label_text *t, int width, int height, label_line *lines, int max_lines)
 {
-    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
-    cairo_t *cr = cairo_create(surf);
-    int n = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? layout_on(cr, t, width, height, lines, max_lines) : -1;
+    cairo_surface_t *surf;
+    cairo_t *cr = canvas(1, 1, &surf); /* only measures text */
+    if (!cr)
+        return -1;
+    int n = layout_on(cr, t, width, height, lines, max_lines);
     cairo_destroy(cr);
     cairo_surface_destroy(surf);
     return n;
@@ -254,11 +256,11 @@ static int sign_layout_on(cairo_t *cr, const char *title, int width, int height,
 
 int label_sign_layout(const char *title, int width, int height, double cap_px, label_line *lines, int max_lines)
 {
-    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
-    cairo_t *cr = cairo_create(surf);
-    int n = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? sign_layout_on(cr, title, width, height, cap_px, lines,
-                                                                      max_lines)
-                                                     : -1;
+    cairo_surface_t *surf;
+    cairo_t *cr = canvas(1, 1, &surf); /* only measures text */
+    if (!cr)
+        return -1;
+    int n = sign_layout_on(cr, title, width, height, cap_px, lines, max_lines);
     cairo_destroy(cr);
     cairo_surface_destroy(surf);
     return n;
