@@ -61,13 +61,11 @@ void bake_lightmap(const scene_t *s, const quad_spec *q, const lightmap_layout *
         rgb L = scene_radiance(s, &r, 0, 2 * BAKE_OFFSET, (uint32_t)ix, (uint32_t)iy + stream_row, &variance);
         put_features(in + ((long)iy * m->width + ix) * DENOISE_CHANNELS, L, n, variance);
     }
-    /* Out of memory in the denoiser: as for in above (the bake has no
-     * error path). */
-    if (denoise && denoise_image(m->width, m->height, in, out) != 0)
-        abort();
     if (!denoise)
         for (long i = 0; i < npix; i++)
             memcpy(out + 3 * i, in + i * DENOISE_CHANNELS, 3 * sizeof *out);
+    else if (denoise_image(m->width, m->height, in, out) != 0)
+        abort(); /* out of memory in the denoiser: as for in above (the bake has no error path) */
     free(in);
     for (int k = 0; k < m->n; k++)
         fill_gutter(m, k, out);

@@ -139,15 +139,15 @@ static void make_exhibit(const museum_options *opt, const char *tmp, museum_exhi
         museum_folder_remove(path); /* a refused photo leaves nothing */
         return;
     }
-    double top = bspline_largest(&e->curve, 1), rim = bspline_eval(&e->curve, 1.0).y;
-    e->height_m = vessel_size_height_m(e->height_cm_given, e->diameter_cm_given, top,
-                                       bspline_largest(&e->curve, 0), &e->size_source);
-    e->rim_height_m = e->height_m * rim / top;
     /* The curve's own largest radius: every level's vertices lie on the
      * curve's revolution and its chords inside, so nothing of the vessel is
      * wider (the control polygon's bound was up to 2.2 times wider on
      * real-dev reconstructions, and widened the room with it). */
-    e->radius_m = bspline_largest(&e->curve, 0) * e->height_m / top;
+    double top = bspline_largest(&e->curve, 1), widest = bspline_largest(&e->curve, 0);
+    double rim = bspline_eval(&e->curve, 1.0).y;
+    e->height_m = vessel_size_height_m(e->height_cm_given, e->diameter_cm_given, top, widest, &e->size_source);
+    e->rim_height_m = e->height_m * rim / top;
+    e->radius_m = widest * e->height_m / top;
     layout_vessel lv = {e->height_m, e->radius_m};
     double nearest = e->radius_m + layout_clearance(&lv) + VISITOR_RADIUS;
     e->n_lods = lod_make(&e->curve, e->rim_height_m, opt->lods, opt->n_lods, nearest, e->lods);
