@@ -94,9 +94,7 @@ Test(recon_rendered, a_moon_jar_on_a_sweep_is_not_refused, .timeout = 120)
 {
     if (!pov_available())
         cr_skip_test("povray not found (make deps installs it)");
-    pinhole_params p = drawn_grid_vessel(DRAWN_GRID_VASE, 5, 85, 300, 400);
-    p.radius = drawn_moon_jar_radius;
-    pinhole_frame(&p);
+    pinhole_params p = drawn_grid_vessel(DRAWN_GRID_MOON_JAR, 5, 85, 300, 400);
     reconstruction r;
     render_and_reconstruct("moon jar, 5 deg, 85 mm", &p, &r);
     double mean, cover;

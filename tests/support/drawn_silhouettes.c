@@ -117,7 +117,7 @@ double drawn_wide_mouth_vase_radius(double t)
     return 0.17 + 0.09 * sin(2 * M_PI * (0.85 * t + 0.08)) + 0.25 * pow(t, 6);
 }
 
-const char *const drawn_grid_shape_names[DRAWN_GRID_SHAPES] = {"vase", "bowl", "wide_mouth"};
+const char *const drawn_grid_shape_names[DRAWN_GRID_SHAPES] = {"vase", "bowl", "wide_mouth", "moon_jar"};
 
 int drawn_grid_shape_wanted(int argc, char **argv, int s)
 {
@@ -126,7 +126,7 @@ int drawn_grid_shape_wanted(int argc, char **argv, int s)
         for (int k = 0; k < DRAWN_GRID_SHAPES; k++)
             if (!strcmp(argv[a], drawn_grid_shape_names[k]))
                 named = 1, wanted |= k == s;
-    return !named || wanted;
+    return named ? wanted : s != DRAWN_GRID_MOON_JAR;
 }
 
 pinhole_params drawn_grid_vessel(int s, double elevation_deg, double focal_35mm, int width, int height)
@@ -134,6 +134,8 @@ pinhole_params drawn_grid_vessel(int s, double elevation_deg, double focal_35mm,
     pinhole_params p = pinhole_defaults(s == DRAWN_GRID_BOWL ? SYNTH_BOWL : SYNTH_VASE, elevation_deg);
     if (s == DRAWN_GRID_WIDE_MOUTH)
         p.radius = drawn_wide_mouth_vase_radius;
+    if (s == DRAWN_GRID_MOON_JAR)
+        p.radius = drawn_moon_jar_radius;
     p.width = width;
     p.height = height;
     p.focal_px = recon_focal_from_35mm(width, height, focal_35mm);

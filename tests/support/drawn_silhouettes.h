@@ -41,12 +41,15 @@ double drawn_wide_mouth_vase_radius(double t);
 
 /* The perspective grids' vessels (tests/tools/perspective_grid.c,
  * rendered_grid.c, test_recon_rendered.c), named "vase", "bowl",
- * "wide_mouth". */
-enum { DRAWN_GRID_VASE, DRAWN_GRID_BOWL, DRAWN_GRID_WIDE_MOUTH, DRAWN_GRID_SHAPES };
+ * "wide_mouth", and "moon_jar" (drawn_moon_jar_radius), which the grids
+ * run only when it is named: its camera is issue 25's open failure
+ * (docs/algorithms-recon.md 13.9), the grids' documented tables are the
+ * other three. */
+enum { DRAWN_GRID_VASE, DRAWN_GRID_BOWL, DRAWN_GRID_WIDE_MOUTH, DRAWN_GRID_MOON_JAR, DRAWN_GRID_SHAPES };
 extern const char *const drawn_grid_shape_names[DRAWN_GRID_SHAPES];
 
-/* Whether the grid runs shape s: every shape when no argument names one,
- * else the ones named. */
+/* Whether the grid runs shape s: every shape but the moon jar when no
+ * argument names one, else the ones named. */
 int drawn_grid_shape_wanted(int argc, char **argv, int s);
 
 /* Grid shape s seen from elevation_deg above at focal_35mm (35 mm
